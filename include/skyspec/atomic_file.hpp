@@ -1,0 +1,36 @@
+// Files that appear complete or not at all: write to a temporary name in the destination folder,
+// flush and fsync, then rename over the final name. If the writer is destroyed without commit(),
+// the temporary file is removed.
+#pragma once
+
+#include <filesystem>
+
+namespace skyspec {
+
+class AtomicOutputFile {
+ public:
+  /// Chooses a unique temporary path beside final_path ("<name>.tmp-<random>"). Throws IoError if
+  /// the folder does not exist or is not writable (the message names the folder).
+  explicit AtomicOutputFile(std::filesystem::path final_path);
+  ~AtomicOutputFile();
+  AtomicOutputFile(const AtomicOutputFile&) = delete;
+  AtomicOutputFile& operator=(const AtomicOutputFile&) = delete;
+
+  /// Where the writer must put the bytes.
+  const std::filesystem::path& temporary_path() const { return tmp_; }
+  const std::filesystem::path& final_path() const { return final_; }
+  /// fsync the temporary file, rename it to the final path, fsync the folder. Throws IoError.
+  void commit();
+  /// Remove the temporary file now (also done by the destructor if not committed).
+  void discard() noexcept;
+
+ private:
+  std::filesystem::path final_, tmp_;
+  bool committed_ = false;
+};
+
+/// Check up front that a folder exists (or can be created) and is writable; throws InputError
+/// naming `setting` (e.g. "--out" or "output.directory") otherwise.
+void ensure_writable_directory(const std::filesystem::path& dir, const std::string& setting);
+
+}  // namespace skyspec

@@ -1,0 +1,38 @@
+// Errors that skyspec reports to its users.
+//
+// InputError is for anything the user asked for that cannot be done: it names the setting (a scene
+// key such as "atmosphere.rayleigh.scale_height_m" or a command-line flag such as "--width"), the
+// offending value, what is allowed, and where the value came from (file:line:column or the flag).
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace skyspec {
+
+/// Base class of every exception skyspec throws on purpose.
+class Error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// A user-supplied value is wrong. what() is a complete, human-readable sentence.
+class InputError : public Error {
+ public:
+  InputError(std::string setting, std::string value, std::string allowed, std::string origin = {});
+  const std::string& setting() const { return setting_; }
+  const std::string& value() const { return value_; }
+  const std::string& allowed() const { return allowed_; }
+  const std::string& origin() const { return origin_; }
+
+ private:
+  std::string setting_, value_, allowed_, origin_;
+};
+
+/// Reading or writing a file failed (I/O, format).
+class IoError : public Error {
+ public:
+  using Error::Error;
+};
+
+}  // namespace skyspec

@@ -1,0 +1,64 @@
+// Spectral OpenEXR files in the layout of Fichet, Pacanowski & Wilkie 2021, "An OpenEXR Layout for
+// Spectral Images" (JCGT 10(3)): one float channel per wavelength named "S0.<value>nm" with a
+// decimal comma (e.g. "S0.550,000000nm"), header attributes spectralLayoutVersion = "1.0" and
+// emissiveUnits = "W.m^-2.sr^-1", optional float EV, plus R, G, B linear Rec.709 preview channels
+// and the chromaticities attribute for them.
+//
+// The writer streams: rows are handed over top to bottom in bands, so memory is bounded by one
+// band, not the image. The file is written under a temporary name and renamed on finish().
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace skyspec {
+
+/// "S0.550,000000nm" for 550 (six decimals, comma as the decimal separator).
+std::string spectral_channel_name(double lambda_nm);
+/// The wavelength in nm of an emissive (S0) channel name in any unit the layout allows
+/// ("S0.550,5nm", "S0.0,55um", "S0.550nm"); nothing if the name is not an S0 spectral channel.
+std::optional<double> parse_spectral_channel_name(const std::string& name);
+
+struct SpectralExrMetadata {
+  std::map<std::string, std::string> strings;  ///< extra string attributes, e.g. "skyspec:scene"
+  std::optional<float> ev;                     ///< the layout's optional EV attribute
+};
+
+class SpectralExrWriter {
+ public:
+  /// Opens a temporary file beside final_path. rgb channels R, G, B are always written.
+  SpectralExrWriter(const std::filesystem::path& final_path, int width, int height,
+                    const std::vector<double>& wavelengths_nm, const SpectralExrMetadata& meta);
+  ~SpectralExrWriter();  ///< removes the temporary file if finish() was not reached
+  SpectralExrWriter(const SpectralExrWriter&) = delete;
+  SpectralExrWriter& operator=(const SpectralExrWriter&) = delete;
+
+  /// Write the next `rows` rows (continuing from the last row written).
+  /// spectral: rows * width * n_wavelengths floats, pixel-major ([row][x][lambda]);
+  /// rgb: rows * width * 3 floats ([row][x][c]). Non-finite values are rejected with IoError.
+  void write_rows(int rows, const float* spectral, const float* rgb);
+  /// All rows written: close, fsync, rename. Throws IoError if rows are missing.
+  void finish();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// A spectral EXR read back into memory (tests, `convert` and other tools).
+struct SpectralImage {
+  int width = 0, height = 0;
+  std::vector<double> wavelengths_nm;   ///< ascending
+  std::vector<float> spectral;          ///< [y][x][lambda]
+  std::vector<float> rgb;               ///< [y][x][c], empty if the file has no R, G, B
+  std::map<std::string, std::string> string_attributes;
+  std::optional<float> ev;
+};
+/// Throws IoError naming the file when it cannot be read or has no S0 channels.
+SpectralImage read_spectral_exr(const std::filesystem::path& path);
+
+}  // namespace skyspec
