@@ -5,17 +5,13 @@
 #include <sstream>
 
 #include "skyspec/error.hpp"
+#include "text_format.hpp"
 
 namespace skyspec {
 namespace {
-std::string num(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 void check_range(const std::string& setting, double v) {
   if (!std::isfinite(v) || v <= 0.0 || v > 1.0e5)
-    throw InputError(setting, num(v), "a wavelength in nm, > 0 and <= 100000");
+    throw InputError(setting, format_number(v), "a wavelength in nm, > 0 and <= 100000");
 }
 }  // namespace
 
@@ -25,18 +21,18 @@ WavelengthGrid WavelengthGrid::uniform(double min_nm, double max_nm, double step
   check_range("spectrum.min_nm", min_nm);
   check_range("spectrum.max_nm", max_nm);
   if (max_nm < min_nm)
-    throw InputError("spectrum.max_nm", num(max_nm), ">= spectrum.min_nm (" + num(min_nm) + ")");
+    throw InputError("spectrum.max_nm", format_number(max_nm), ">= spectrum.min_nm (" + format_number(min_nm) + ")");
   if (!std::isfinite(step_nm) || step_nm < 1.0)
-    throw InputError("spectrum.step_nm", num(step_nm), "a step of at least 1 nm");
+    throw InputError("spectrum.step_nm", format_number(step_nm), "a step of at least 1 nm");
   const double steps = (max_nm - min_nm) / step_nm;
   const double whole = std::round(steps);
   if (std::abs(steps - whole) * step_nm > 1e-6)
-    throw InputError("spectrum.step_nm", num(step_nm),
-                     "a step that divides max_nm - min_nm (" + num(max_nm - min_nm) + " nm) evenly");
+    throw InputError("spectrum.step_nm", format_number(step_nm),
+                     "a step that divides max_nm - min_nm (" + format_number(max_nm - min_nm) + " nm) evenly");
   if (whole + 1 > kMaxWavelengths)
-    throw InputError("spectrum.step_nm", num(step_nm),
+    throw InputError("spectrum.step_nm", format_number(step_nm),
                      "at most " + std::to_string(kMaxWavelengths) + " samples (this gives " +
-                         num(whole + 1) + ")");
+                         format_number(whole + 1) + ")");
   std::vector<double> nm(static_cast<size_t>(whole) + 1);
   for (size_t i = 0; i < nm.size(); ++i) nm[i] = min_nm + step_nm * static_cast<double>(i);
   nm.back() = max_nm;
@@ -50,7 +46,7 @@ WavelengthGrid WavelengthGrid::with_count(double min_nm, double max_nm, int coun
     throw InputError("spectrum.count", std::to_string(count),
                      "1 to " + std::to_string(kMaxWavelengths) + " samples");
   if (max_nm < min_nm)
-    throw InputError("spectrum.max_nm", num(max_nm), ">= spectrum.min_nm (" + num(min_nm) + ")");
+    throw InputError("spectrum.max_nm", format_number(max_nm), ">= spectrum.min_nm (" + format_number(min_nm) + ")");
   if (count == 1) {
     if (max_nm != min_nm)
       throw InputError("spectrum.count", "1", "at least 2 when spectrum.max_nm > spectrum.min_nm");
@@ -62,7 +58,7 @@ WavelengthGrid WavelengthGrid::with_count(double min_nm, double max_nm, int coun
   if (step < 1.0 - 1e-9)
     throw InputError("spectrum.count", std::to_string(count),
                      "a count that keeps samples at least 1 nm apart (at most " +
-                         num(std::floor(max_nm - min_nm) + 1) + " here)");
+                         format_number(std::floor(max_nm - min_nm) + 1) + " here)");
   std::vector<double> nm(static_cast<size_t>(count));
   for (int i = 0; i < count; ++i) nm[static_cast<size_t>(i)] = min_nm + step * i;
   nm.back() = max_nm;
@@ -78,8 +74,8 @@ WavelengthGrid WavelengthGrid::from_list(std::vector<double> nm) {
   std::sort(nm.begin(), nm.end());
   for (size_t i = 1; i < nm.size(); ++i)
     if (nm[i] - nm[i - 1] < 1.0 - 1e-9)
-      throw InputError("spectrum.wavelengths_nm", num(nm[i]),
-                       "distinct wavelengths at least 1 nm apart (" + num(nm[i - 1]) + " is too close)");
+      throw InputError("spectrum.wavelengths_nm", format_number(nm[i]),
+                       "distinct wavelengths at least 1 nm apart (" + format_number(nm[i - 1]) + " is too close)");
   return WavelengthGrid(std::move(nm));
 }
 

@@ -41,13 +41,19 @@ double rayleigh_cross_section_m2(double lambda_nm, const RayleighDerivationInput
 /// Mean molecular weight of dry air, g mol^-1, Bodhaine eq. (17): 15.0556 C + 28.9595 (C in ppv).
 double mean_molecular_weight_air_g_per_mol(double co2_ppv);
 
-/// Acceleration of gravity, m s^-2, at latitude (deg) and altitude (m): List 1968 as used by
-/// Bodhaine et al. 1999 eqs. (10)-(11) (the mass-weighted column value: pass the altitude of the
-/// centre of mass of the air column, or the station altitude as Bodhaine's tables do).
+/// Acceleration of gravity, m s^-2, at latitude (deg) and altitude (m above sea level): List 1968 as
+/// used by Bodhaine et al. 1999 eqs. (10)-(11). For the weight of an air column pass the column's
+/// mass-weighted altitude (mass_weighted_column_altitude_m), as Bodhaine's tables do.
 double gravity_m_per_s2(double latitude_deg, double altitude_m);
 
-/// Vertical Rayleigh optical depth of the whole air column above a station from the hydrostatic
-/// relation, Bodhaine eq. (9): tau = sigma P N_A / (m_a g).
+/// Mass-weighted altitude (m) of the air column above a station at station_altitude_m, Bodhaine
+/// et al. 1999 (fit to the U.S. Standard Atmosphere): z_c = 0.73737 z + 5517.56. (Added by the
+/// physics module: Bodhaine's Table 3 evaluates g at z_c, 5517.56 m for a sea-level station.)
+double mass_weighted_column_altitude_m(double station_altitude_m);
+
+/// Vertical Rayleigh optical depth of the whole air column above a station (station altitude in m)
+/// from the hydrostatic relation, Bodhaine eq. (9): tau = sigma P N_A / (m_a g), with g taken at
+/// the column's mass-weighted altitude. Reproduces Bodhaine's Table 3 (0.09707 at 550 nm).
 double rayleigh_optical_depth_hydrostatic(double cross_section_m2, double surface_pressure_Pa,
                                           double latitude_deg, double altitude_m, double co2_ppv);
 

@@ -1,0 +1,97 @@
+// The atmosphere: a planet, a spherical shell of air, and the species in it.
+//
+// AtmosphereSpec is what a user describes (scale heights, pressure, CO2, aerosol load, ...);
+// AtmosphereModel is the same atmosphere evaluated on a wavelength grid: per-species volume
+// scattering and extinction coefficients at relative density 1 (altitude 0) plus the density
+// profile, which is all the integrator needs.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "skyspec/density_profile.hpp"
+#include "skyspec/phase_function.hpp"
+#include "skyspec/rayleigh.hpp"
+#include "skyspec/spectrum.hpp"
+
+namespace skyspec {
+
+enum class ProfileKind { Exponential, UsStandard1976, Constant };
+std::string to_string(ProfileKind k);
+
+struct RayleighSpec {
+  /// Derived: beta(lambda) = sigma(lambda) N(0) from the refractive index and the number density.
+  /// Fixed: beta(lambda) typed in per wavelength (the seed tutorial's constants), kept so that the
+  /// classic RGB-fast literature can be reproduced; every grid wavelength must be listed.
+  enum class Source { Derived, Fixed };
+  Source source = Source::Derived;
+  ProfileKind profile = ProfileKind::UsStandard1976;
+  double scale_height_m = 8000.0;            ///< exponential profile
+  double surface_pressure_Pa = 101325.0;     ///< exponential/constant profile: N(0) = P / (k T)
+  double surface_temperature_K = 288.15;
+  RayleighDerivationInput derivation;        ///< refractive index formula and CO2
+  std::vector<double> fixed_wavelengths_nm;  ///< Fixed source
+  std::vector<double> fixed_beta_per_m;      ///< Fixed source, at altitude 0
+};
+
+struct MieSpec {
+  bool enabled = true;
+  ProfileKind profile = ProfileKind::Exponential;
+  double scale_height_m = 1200.0;
+  /// Aerosol scattering coefficient at altitude 0 and the reference wavelength, m^-1, and the
+  /// Angstrom law beta(lambda) = beta_ref (lambda / lambda_ref)^-alpha.
+  double scattering_per_m = 21e-6;
+  double reference_wavelength_nm = 550.0;
+  double angstrom_exponent = 0.0;
+  /// beta_extinction = ratio * beta_scattering (the seed's 1.1: 10 % absorption).
+  double extinction_to_scattering = 1.1;
+  AerosolPhase phase;
+};
+
+struct AtmosphereSpec {
+  double planet_radius_m = 6360e3;
+  double top_altitude_m = 60e3;  ///< thickness of the shell
+  RayleighSpec rayleigh;
+  MieSpec mie;
+};
+
+/// One scattering species on the grid.
+struct ScatteringSpecies {
+  DensityProfile profile;
+  SpectrumD scattering_per_m;  ///< at relative density 1
+  SpectrumD extinction_per_m;  ///< at relative density 1
+};
+
+class AtmosphereModel {
+ public:
+  /// Throws InputError naming the scene key when the spec cannot be evaluated on the grid.
+  AtmosphereModel(const AtmosphereSpec& spec, const WavelengthGrid& grid);
+
+  const AtmosphereSpec& spec() const { return spec_; }
+  const WavelengthGrid& grid() const { return grid_; }
+  double planet_radius_m() const { return spec_.planet_radius_m; }
+  double top_radius_m() const { return spec_.planet_radius_m + spec_.top_altitude_m; }
+
+  const ScatteringSpecies& rayleigh() const { return rayleigh_; }
+  const ScatteringSpecies& mie() const { return mie_; }
+  const AerosolPhase& mie_phase() const { return spec_.mie.phase; }
+
+  /// Molecular number density at altitude 0, m^-3, and how it was obtained.
+  double rayleigh_number_density_per_m3() const { return rayleigh_n0_per_m3_; }
+  const std::string& rayleigh_number_density_origin() const { return rayleigh_n0_origin_; }
+  /// The derivation (empty for the Fixed source).
+  const std::vector<RayleighDerivationStep>& rayleigh_derivation() const { return derivation_; }
+
+ private:
+  AtmosphereSpec spec_;
+  WavelengthGrid grid_;
+  ScatteringSpecies rayleigh_, mie_;
+  double rayleigh_n0_per_m3_ = 0.0;
+  std::string rayleigh_n0_origin_;
+  std::vector<RayleighDerivationStep> derivation_;
+};
+
+/// Build the density profile of a kind (exponential needs its scale height).
+DensityProfile make_profile(ProfileKind kind, double scale_height_m, double top_altitude_m);
+
+}  // namespace skyspec

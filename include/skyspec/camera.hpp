@@ -1,0 +1,75 @@
+// Cameras: map a pixel to a view ray.
+//
+// Frames: world space is planet-centred. The local frame at the scene's reference point (the
+// point on the planet's surface below the origin of camera coordinates) is east-north-up, with the
+// planet's centre at (0, 0, -R): a camera position (e, n, h) in scene coordinates is the world
+// point (e, n, R + h). Directions are given as azimuth (degrees clockwise from north, so 90 = east)
+// and elevation (degrees above the local horizontal).
+// Pixel (0, 0) is the top-left corner of the image; pixel centres sit at half-integers.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "skyspec/geometry.hpp"
+
+namespace skyspec {
+
+/// Unit vector in the east-north-up frame for an azimuth and an elevation in degrees.
+Vec3 direction_from_angles(double azimuth_deg, double elevation_deg);
+
+class Camera {
+ public:
+  virtual ~Camera() = default;
+  int width() const { return width_; }
+  int height() const { return height_; }
+  /// World-space origin of all rays (pinhole cameras).
+  const Vec3& origin_m() const { return origin_m_; }
+  /// The ray through image point (x, y) in pixels; false if the point maps to no direction
+  /// (outside the fisheye circle).
+  virtual bool direction(double x, double y, Vec3& dir) const = 0;
+  virtual std::string describe() const = 0;
+
+ protected:
+  Camera(int width, int height, Vec3 origin_m) : width_(width), height_(height), origin_m_(std::move(origin_m)) {}
+  int width_, height_;
+  Vec3 origin_m_;
+};
+
+/// The seed tutorial's upward fisheye: image point (x, y) in [-1, 1]^2 (x right, y down), zenith
+/// angle theta = acos(1 - x^2 - y^2) (so the horizon is the unit circle: an equal-area,
+/// 180-degree view), azimuth phi = atan2(y, x) measured from east towards south in the image,
+/// i.e. the image shows the sky as if seen from above with north at the top and east on the right,
+/// as in the tutorial.
+class FisheyeCamera : public Camera {
+ public:
+  FisheyeCamera(int width, int height, Vec3 origin_m) : Camera(width, height, std::move(origin_m)) {}
+  bool direction(double x, double y, Vec3& dir) const override;
+  std::string describe() const override;
+};
+
+/// A pinhole camera looking from origin towards a target, with a vertical field of view; "up" is
+/// the local zenith (or north when looking straight up or down).
+class PerspectiveCamera : public Camera {
+ public:
+  PerspectiveCamera(int width, int height, Vec3 origin_m, const Vec3& look_at_m, double vertical_fov_deg);
+  bool direction(double x, double y, Vec3& dir) const override;
+  std::string describe() const override;
+
+ private:
+  Vec3 forward_, right_, up_;
+  double tan_half_fov_;
+  double fov_deg_;
+};
+
+/// Latitude-longitude panorama of the whole sphere of directions (the HDRI format renderers load):
+/// column -> azimuth from 0 (north, left edge) through 90 (east) to 360, row -> elevation from +90
+/// (top) to -90 (bottom).
+class EquirectangularCamera : public Camera {
+ public:
+  EquirectangularCamera(int width, int height, Vec3 origin_m) : Camera(width, height, std::move(origin_m)) {}
+  bool direction(double x, double y, Vec3& dir) const override;
+  std::string describe() const override;
+};
+
+}  // namespace skyspec

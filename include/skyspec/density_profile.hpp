@@ -1,0 +1,39 @@
+// Vertical profiles of the number density of a scattering species, relative to its value at
+// altitude 0 (sea level): rho(z) = N(z) / N(0). The volume coefficient of the species at
+// altitude z is beta(lambda, z) = beta(lambda, 0) rho(z).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace skyspec {
+
+class DensityProfile {
+ public:
+  enum class Kind { Exponential, UsStandard1976, Constant };
+
+  /// rho(z) = exp(-z / H).
+  static DensityProfile exponential(double scale_height_m);
+  /// rho(z) = N_1976(z) / N_1976(0) from the U.S. Standard Atmosphere 1976 (T and P from the
+  /// standard's layers, N = P / kT), tabulated at 10 m with log-linear interpolation up to top_m.
+  static DensityProfile us_standard_1976(double top_m);
+  /// rho(z) = 1: a homogeneous layer (closed-form tests, teaching).
+  static DensityProfile constant();
+
+  Kind kind() const { return kind_; }
+  double scale_height_m() const { return scale_height_m_; }  ///< exponential only
+  std::string describe() const;
+
+  /// ln rho(z): the integrator works with logarithms (an exponential profile is linear in them).
+  double log_relative(double altitude_m) const;
+
+ private:
+  Kind kind_ = Kind::Constant;
+  double scale_height_m_ = 0.0;
+  // US 1976: ln rho at altitudes step_m_ apart from 0 (values below 0 are extrapolated linearly).
+  std::shared_ptr<const std::vector<double>> log_table_;
+  double step_m_ = 10.0;
+};
+
+}  // namespace skyspec

@@ -1,0 +1,65 @@
+// Column densities and the precomputed table of them towards the sun.
+//
+// The optical depth between two points is tau(lambda) = sum_species beta_ext,s(lambda) C_s, with
+// C_s = integral rho_s(z(t)) dt the species' column of relative density (metres of
+// altitude-0-equivalent gas). C_s does not depend on wavelength, so one table of a few scalars
+// per (altitude, sun zenith cosine) replaces every light-ray march of the seed tutorial
+// (Nishita et al. 1993 tabulate the same quantity; Bruneton & Neyret 2008 tabulate its exp).
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "skyspec/atmosphere.hpp"
+
+namespace skyspec {
+
+/// Species indices used in column arrays.
+enum SpeciesIndex { kRayleigh = 0, kMie = 1, kSpeciesCount = 2 };
+using Columns = std::array<double, kSpeciesCount>;
+
+/// Log-mean of two positive values a, b given x = ln a - ln b: (a - b) / x, the exact integral
+/// mean of an exponential through both (a when x -> 0). Used to integrate log-linear pieces.
+inline double log_mean(double a, double b, double x) {
+  if (x > -1e-3 && x < 1e-3) return b * (1.0 + x * (0.5 + x * (1.0 / 6.0 + x / 24.0)));
+  return (a - b) / x;
+}
+
+/// Distance from radius r along zenith cosine mu to the sphere of radius top_r (r <= top_r).
+double distance_to_top_m(double r_m, double mu, double top_r_m);
+
+/// Column of relative density from radius r, zenith cosine mu, to the top of the atmosphere, by
+/// the exact exponential rule on `segments` pieces (split at the ray's lowest point when it
+/// descends first). Rays that hit the planet are not handled: callers check the horizon.
+double column_to_top_m(const DensityProfile& profile, double planet_radius_m, double top_radius_m,
+                       double r_m, double mu, int segments);
+
+/// Columns for all species from (r, mu) to the top: the table's reference computation.
+Columns columns_to_top_m(const AtmosphereModel& atm, double r_m, double mu, int segments);
+
+/// Precomputed columns to the top of the atmosphere over (r, mu), parameterised as in Bruneton &
+/// Neyret 2008 / Bruneton 2017 (x_r = sqrt(r^2 - R^2) / sqrt(R_t^2 - R^2), x_mu by distance to the
+/// top between its minimum and its value at the horizon), so resolution concentrates at the
+/// ground and at the horizon. Only directions that clear the planet are stored.
+class SunColumnTable {
+ public:
+  struct Resolution {
+    int n_r = 128;           ///< samples in altitude
+    int n_mu = 256;          ///< samples in zenith cosine (horizon to zenith)
+    int segments = 128;      ///< integration pieces per table entry
+  };
+  SunColumnTable(const AtmosphereModel& atm, Resolution res);
+  SunColumnTable(const AtmosphereModel& atm) : SunColumnTable(atm, Resolution{}) {}
+
+  /// Columns from radius r towards zenith cosine mu; r is clamped to [R, R_t] and mu to the
+  /// horizon cosine, so callers must have established that the point is lit.
+  Columns lookup(double r_m, double mu) const;
+  const Resolution& resolution() const { return res_; }
+
+ private:
+  double R_, Rt_, H_;
+  Resolution res_;
+  std::vector<Columns> data_;  // [i_r * n_mu + i_mu]
+};
+
+}  // namespace skyspec

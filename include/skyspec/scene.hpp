@@ -1,0 +1,100 @@
+// A scene: atmosphere, sun, camera, spectral grid, quality and outputs.
+//
+// Scenes are TOML files (see data/scenes/default.toml, which documents every key). Loading
+// starts from a built-in preset ("default" or "seed"), applies the keys of a scene file, then
+// command-line overrides; every key is checked with its unit and range, and an error names the
+// key, the value, what is allowed and where the value came from (file:line:column or the flag).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "skyspec/atmosphere.hpp"
+#include "skyspec/geometry.hpp"
+
+namespace skyspec {
+
+struct SunSpec {
+  double elevation_deg = 30.0;
+  double azimuth_deg = 0.0;  ///< clockwise from north
+  /// A flat (wavelength-independent) extraterrestrial spectral irradiance, W m^-2 nm^-1.
+  double spectral_irradiance_W_m2_nm = 1.0;
+};
+
+struct CameraSpec {
+  enum class Type { Fisheye, Perspective, Equirectangular };
+  Type type = Type::Fisheye;
+  int width = 512, height = 512;
+  Vec3 position_m = Vec3(0, 0, 1);  ///< east, north, height above sea level at the reference point
+  Vec3 look_at_m = Vec3(0, 1000, 1);
+  double fov_deg = 60.0;            ///< perspective: vertical field of view
+};
+
+struct SpectrumSpec {
+  double min_nm = 380.0, max_nm = 780.0, step_nm = 10.0;
+  std::vector<double> wavelengths_nm;  ///< explicit list; overrides min/max/step when non-empty
+};
+
+struct RenderSpec {
+  enum class Path { Spectral, RgbFast };
+  Path path = Path::Spectral;
+  int view_segments = 64;
+  int table_altitude_samples = 256;
+  int table_zenith_samples = 512;
+  int threads = 0;  ///< 0: all cores
+};
+
+struct OutputSpec {
+  std::string directory = "skyspec-out";
+  std::string name = "sky";
+  bool exr = true;
+  bool png = true;
+  std::optional<double> exposure_ev;  ///< preview exposure; automatic when absent
+};
+
+struct Scene {
+  AtmosphereSpec atmosphere;
+  SunSpec sun;
+  CameraSpec camera;
+  SpectrumSpec spectrum;
+  RenderSpec render;
+  OutputSpec output;
+};
+
+/// Names of the built-in presets ("default", "seed").
+std::vector<std::string> preset_names();
+
+/// Builds a Scene from a preset, scene files and overrides, validating as it goes.
+class SceneLoader {
+ public:
+  /// Starts from a built-in preset; throws InputError("preset", ...) for an unknown name.
+  explicit SceneLoader(const std::string& preset = "default");
+  /// Applies every key of a TOML scene file (InputError with file:line:column on any problem).
+  void apply_file(const std::string& path);
+  /// Applies TOML text (origin names it in messages).
+  void apply_toml(const std::string& text, const std::string& origin);
+  /// Applies one key = value given as TOML value text, e.g. ("camera.width", "1024"); origin is
+  /// the flag that supplied it, e.g. "--width".
+  void apply_override(const std::string& key, const std::string& toml_value, const std::string& origin);
+  /// Checks relations between keys (top above ground, camera above ground, grid vs fixed
+  /// coefficients, ...) and returns the scene.
+  Scene finish() const;
+
+ private:
+  Scene scene_;
+};
+
+/// The effective scene as TOML (every key), for provenance and `--from` style reproduction.
+std::string scene_to_toml(const Scene& scene);
+
+/// All scene keys with their documentation ("key  (unit, range)  help"), for --help-keys.
+std::vector<std::pair<std::string, std::string>> scene_key_help();
+
+/// The wavelength grid a scene asks for (validated).
+WavelengthGrid make_wavelength_grid(const Scene& scene);
+/// The sun direction (unit, east-north-up) of a scene.
+Vec3 sun_direction(const Scene& scene);
+
+}  // namespace skyspec

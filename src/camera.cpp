@@ -1,0 +1,71 @@
+#include "skyspec/camera.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "skyspec/units.hpp"
+
+namespace skyspec {
+
+Vec3 direction_from_angles(double azimuth_deg, double elevation_deg) {
+  const double az = degrees_to_radians(azimuth_deg), el = degrees_to_radians(elevation_deg);
+  return Vec3(std::cos(el) * std::sin(az), std::cos(el) * std::cos(az), std::sin(el));
+}
+
+bool FisheyeCamera::direction(double x, double y, Vec3& dir) const {
+  const double u = 2.0 * x / width_ - 1.0, v = 2.0 * y / height_ - 1.0;
+  const double z2 = u * u + v * v;
+  if (z2 > 1.0) return false;
+  const double phi = std::atan2(v, u);
+  const double cos_theta = 1.0 - z2;
+  const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
+  // The tutorial's frame (x east, y up, z south) in east-north-up.
+  dir = Vec3(sin_theta * std::cos(phi), -sin_theta * std::sin(phi), cos_theta);
+  return true;
+}
+
+std::string FisheyeCamera::describe() const {
+  std::ostringstream s;
+  s << "fisheye (upward, equal-area, 180 deg), " << width_ << "x" << height_;
+  return s.str();
+}
+
+PerspectiveCamera::PerspectiveCamera(int width, int height, Vec3 origin_m, const Vec3& look_at_m,
+                                     double vertical_fov_deg)
+    : Camera(width, height, std::move(origin_m)), fov_deg_(vertical_fov_deg) {
+  forward_ = (look_at_m - origin_m_).normalized();
+  Vec3 up_hint = origin_m_.normalized();  // local zenith at the camera
+  if (std::abs(forward_.dot(up_hint)) > 0.999999) up_hint = Vec3(0, 1, 0);  // looking straight up/down
+  right_ = forward_.cross(up_hint).normalized();
+  up_ = right_.cross(forward_);
+  tan_half_fov_ = std::tan(degrees_to_radians(vertical_fov_deg) * 0.5);
+}
+
+bool PerspectiveCamera::direction(double x, double y, Vec3& dir) const {
+  const double aspect = static_cast<double>(width_) / height_;
+  const double sx = (2.0 * x / width_ - 1.0) * tan_half_fov_ * aspect;
+  const double sy = (1.0 - 2.0 * y / height_) * tan_half_fov_;
+  dir = (forward_ + sx * right_ + sy * up_).normalized();
+  return true;
+}
+
+std::string PerspectiveCamera::describe() const {
+  std::ostringstream s;
+  s << "perspective, vertical field of view " << fov_deg_ << " deg, " << width_ << "x" << height_;
+  return s.str();
+}
+
+bool EquirectangularCamera::direction(double x, double y, Vec3& dir) const {
+  const double azimuth_deg = 360.0 * x / width_;
+  const double elevation_deg = 90.0 - 180.0 * y / height_;
+  dir = direction_from_angles(azimuth_deg, elevation_deg);
+  return true;
+}
+
+std::string EquirectangularCamera::describe() const {
+  std::ostringstream s;
+  s << "equirectangular (latitude-longitude, full sphere), " << width_ << "x" << height_;
+  return s.str();
+}
+
+}  // namespace skyspec

@@ -1,0 +1,100 @@
+#include "skyspec/optical_depth.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
+
+namespace skyspec {
+
+double distance_to_top_m(double r_m, double mu, double top_r_m) {
+  // Root of t^2 + 2 r mu t + (r^2 - R_t^2) = 0 that is >= 0; discriminant r^2 (mu^2 - 1) + R_t^2
+  // written as (R_t - r)(R_t + r) + r^2 mu^2 to keep precision near the top.
+  const double disc = (top_r_m - r_m) * (top_r_m + r_m) + r_m * r_m * mu * mu;
+  return std::max(0.0, -r_m * mu + std::sqrt(std::max(disc, 0.0)));
+}
+
+namespace {
+// Column of one profile along the straight path from radius r, zenith cosine mu, over [ta, tb]
+// with `segments` pieces on which ln rho is taken as linear in t (exact for an exponential profile
+// along a radial path, second order otherwise).
+double column_piece(const DensityProfile& profile, double planet_radius_m, double r_m, double mu,
+                    double ta, double tb, int segments) {
+  if (!(tb > ta) || segments < 1) return 0.0;
+  const double dt = (tb - ta) / segments;
+  auto log_rho = [&](double t) {
+    const double rt = std::sqrt(std::max(r_m * r_m + t * t + 2.0 * r_m * mu * t, 0.0));
+    return profile.log_relative(rt - planet_radius_m);
+  };
+  double sum = 0.0, la = log_rho(ta);
+  for (int k = 1; k <= segments; ++k) {
+    const double lb = log_rho(ta + dt * k);
+    sum += dt * log_mean(std::exp(la), std::exp(lb), la - lb);
+    la = lb;
+  }
+  return sum;
+}
+}  // namespace
+
+double column_to_top_m(const DensityProfile& profile, double planet_radius_m, double top_radius_m,
+                       double r_m, double mu, int segments) {
+  const double d = distance_to_top_m(r_m, mu, top_radius_m);
+  const double t_low = -r_m * mu;  // lowest point of the ray (ahead only if mu < 0)
+  if (t_low > 0.0 && t_low < d) {
+    const int s1 = std::max(1, static_cast<int>(std::lround(segments * t_low / d)));
+    const int s2 = std::max(1, segments - s1);
+    return column_piece(profile, planet_radius_m, r_m, mu, 0.0, t_low, s1) +
+           column_piece(profile, planet_radius_m, r_m, mu, t_low, d, s2);
+  }
+  return column_piece(profile, planet_radius_m, r_m, mu, 0.0, d, segments);
+}
+
+Columns columns_to_top_m(const AtmosphereModel& atm, double r_m, double mu, int segments) {
+  Columns c{};
+  c[kRayleigh] = column_to_top_m(atm.rayleigh().profile, atm.planet_radius_m(), atm.top_radius_m(), r_m, mu, segments);
+  c[kMie] = column_to_top_m(atm.mie().profile, atm.planet_radius_m(), atm.top_radius_m(), r_m, mu, segments);
+  return c;
+}
+
+SunColumnTable::SunColumnTable(const AtmosphereModel& atm, Resolution res)
+    : R_(atm.planet_radius_m()),
+      Rt_(atm.top_radius_m()),
+      H_(std::sqrt((Rt_ - R_) * (Rt_ + R_))),
+      res_(res),
+      data_(static_cast<size_t>(res.n_r) * static_cast<size_t>(res.n_mu)) {
+  tbb::parallel_for(0, res_.n_r, [&](int ir) {
+    const double x_r = static_cast<double>(ir) / (res_.n_r - 1);
+    const double rho = H_ * x_r;
+    const double r = std::sqrt(rho * rho + R_ * R_);
+    const double d_min = Rt_ - r, d_max = rho + H_;
+    for (int im = 0; im < res_.n_mu; ++im) {
+      const double x_mu = static_cast<double>(im) / (res_.n_mu - 1);
+      const double d = d_min + x_mu * (d_max - d_min);
+      const double mu = d <= 0.0 ? 1.0 : std::clamp((H_ * H_ - rho * rho - d * d) / (2.0 * r * d), -1.0, 1.0);
+      data_[static_cast<size_t>(ir) * res_.n_mu + im] = columns_to_top_m(atm, r, mu, res_.segments);
+    }
+  });
+}
+
+Columns SunColumnTable::lookup(double r_m, double mu) const {
+  const double r = std::clamp(r_m, R_, Rt_);
+  const double rho = std::sqrt(std::max((r - R_) * (r + R_), 0.0));
+  const double d_min = Rt_ - r, d_max = rho + H_;
+  const double d = distance_to_top_m(r, mu, Rt_);
+  const double x_r = rho / H_;
+  const double x_mu = d_max > d_min ? std::clamp((d - d_min) / (d_max - d_min), 0.0, 1.0) : 0.0;
+  const double fr = x_r * (res_.n_r - 1), fm = x_mu * (res_.n_mu - 1);
+  const int ir = std::min(static_cast<int>(fr), res_.n_r - 2);
+  const int im = std::min(static_cast<int>(fm), res_.n_mu - 2);
+  const double ar = fr - ir, am = fm - im;
+  const Columns& c00 = data_[static_cast<size_t>(ir) * res_.n_mu + im];
+  const Columns& c01 = data_[static_cast<size_t>(ir) * res_.n_mu + im + 1];
+  const Columns& c10 = data_[static_cast<size_t>(ir + 1) * res_.n_mu + im];
+  const Columns& c11 = data_[static_cast<size_t>(ir + 1) * res_.n_mu + im + 1];
+  Columns out{};
+  for (int s = 0; s < kSpeciesCount; ++s)
+    out[s] = (1 - ar) * ((1 - am) * c00[s] + am * c01[s]) + ar * ((1 - am) * c10[s] + am * c11[s]);
+  return out;
+}
+
+}  // namespace skyspec

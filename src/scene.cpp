@@ -1,0 +1,603 @@
+#include "skyspec/scene.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <functional>
+#include <iomanip>
+#include <limits>
+#include <map>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "skyspec/camera.hpp"
+#include "skyspec/embedded_data.hpp"
+#include "skyspec/error.hpp"
+#include "text_format.hpp"
+#include "skyspec/refractive_index.hpp"
+#include "skyspec/units.hpp"
+
+namespace skyspec {
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Value formatting
+
+std::string node_text(const toml::node& n) {
+  std::ostringstream s;
+  if (auto str = n.as_string()) {
+    s << '"' << str->get() << '"';
+  } else if (auto arr = n.as_array()) {
+    s << *arr;
+  } else if (n.is_table()) {
+    s << "(a table)";
+  } else {
+    n.visit([&](auto&& v) { s << v; });
+  }
+  return s.str();
+}
+
+std::string origin_of(const toml::node& n, const std::string& fallback) {
+  const auto& src = n.source();
+  if (src.begin.line == 0) return fallback;
+  std::ostringstream s;
+  s << (src.path ? *src.path : fallback) << ":" << src.begin.line << ":" << src.begin.column;
+  return s.str();
+}
+
+// Levenshtein distance, for "did you mean".
+size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j)
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+
+// ---------------------------------------------------------------------------------------------
+// The key registry: one entry per scene key, with its unit, range, setter and getter.
+
+struct KeyDef {
+  std::string key;
+  std::string doc;  // "(unit, range) help"
+  std::function<void(Scene&, const toml::node&, const std::string& origin)> set;
+  std::function<std::string(const Scene&)> get;  // TOML value text
+};
+
+double get_number(const KeyDef& k, const toml::node& n, const std::string& origin, const std::string& allowed) {
+  if (auto i = n.as_integer()) return static_cast<double>(i->get());
+  if (auto f = n.as_floating_point()) return f->get();
+  throw InputError(k.key, node_text(n), allowed, origin);
+}
+
+struct Range {
+  double lo, hi;
+  bool lo_open = false;
+  std::string describe(const std::string& unit) const {
+    std::ostringstream s;
+    s << "a number" << (unit.empty() ? "" : " in " + unit) << ", " << (lo_open ? "> " : ">= ") << format_number(lo)
+      << " and <= " << format_number(hi);
+    return s.str();
+  }
+  bool contains(double v) const { return std::isfinite(v) && (lo_open ? v > lo : v >= lo) && v <= hi; }
+};
+
+// scale: the stored value is the entered value times scale (e.g. ppm -> parts per volume).
+KeyDef number_key(std::string key, std::string unit, Range range, std::string help,
+                  std::function<double&(Scene&)> ref, double scale = 1.0) {
+  KeyDef k;
+  k.key = std::move(key);
+  const std::string allowed = range.describe(unit);
+  k.doc = "(" + allowed + ") " + help;
+  k.set = [k, allowed, range, ref, scale](Scene& s, const toml::node& n, const std::string& origin) {
+    const double v = get_number(k, n, origin, allowed);
+    if (!range.contains(v)) throw InputError(k.key, node_text(n), allowed, origin);
+    ref(s) = v * scale;
+  };
+  k.get = [ref, scale](const Scene& s) { return format_number(ref(const_cast<Scene&>(s)) / scale); };
+  return k;
+}
+
+KeyDef integer_key(std::string key, long lo, long hi, std::string help, std::function<int&(Scene&)> ref) {
+  KeyDef k;
+  k.key = std::move(key);
+  const std::string allowed = "a whole number from " + std::to_string(lo) + " to " + std::to_string(hi);
+  k.doc = "(" + allowed + ") " + help;
+  k.set = [k, allowed, lo, hi, ref](Scene& s, const toml::node& n, const std::string& origin) {
+    auto i = n.as_integer();
+    if (!i || i->get() < lo || i->get() > hi) throw InputError(k.key, node_text(n), allowed, origin);
+    ref(s) = static_cast<int>(i->get());
+  };
+  k.get = [ref](const Scene& s) { return std::to_string(ref(const_cast<Scene&>(s))); };
+  return k;
+}
+
+KeyDef bool_key(std::string key, std::string help, std::function<bool&(Scene&)> ref) {
+  KeyDef k;
+  k.key = std::move(key);
+  k.doc = "(true or false) " + help;
+  k.set = [k, ref](Scene& s, const toml::node& n, const std::string& origin) {
+    auto b = n.as_boolean();
+    if (!b) throw InputError(k.key, node_text(n), "true or false", origin);
+    ref(s) = b->get();
+  };
+  k.get = [ref](const Scene& s) { return ref(const_cast<Scene&>(s)) ? std::string("true") : std::string("false"); };
+  return k;
+}
+
+std::string join(const std::vector<std::string>& v, const std::string& sep) {
+  std::string out;
+  for (size_t i = 0; i < v.size(); ++i) out += (i ? sep : "") + v[i];
+  return out;
+}
+
+// A string chosen from a list; conversion to the scene's type is done by the callbacks.
+KeyDef choice_key(std::string key, std::vector<std::string> choices, std::string help,
+                  std::function<void(Scene&, const std::string&)> set_value,
+                  std::function<std::string(const Scene&)> get_value) {
+  KeyDef k;
+  k.key = std::move(key);
+  const std::string allowed = "one of: " + join(choices, ", ");
+  k.doc = "(" + allowed + ") " + help;
+  k.set = [k, allowed, choices, set_value](Scene& s, const toml::node& n, const std::string& origin) {
+    auto str = n.as_string();
+    if (!str || std::find(choices.begin(), choices.end(), str->get()) == choices.end())
+      throw InputError(k.key, node_text(n), allowed, origin);
+    set_value(s, str->get());
+  };
+  k.get = [get_value](const Scene& s) { return "\"" + get_value(s) + "\""; };
+  return k;
+}
+
+KeyDef text_key(std::string key, std::string help, std::function<std::string&(Scene&)> ref,
+                bool file_name_only) {
+  KeyDef k;
+  k.key = std::move(key);
+  const std::string allowed = file_name_only ? "a non-empty file name without '/' (letters, digits, '-', '_', '.')"
+                                             : "a non-empty path";
+  k.doc = "(" + allowed + ") " + help;
+  k.set = [k, allowed, ref, file_name_only](Scene& s, const toml::node& n, const std::string& origin) {
+    auto str = n.as_string();
+    if (!str || str->get().empty()) throw InputError(k.key, node_text(n), allowed, origin);
+    if (file_name_only) {
+      const std::string& v = str->get();
+      const bool ok = v != "." && v != ".." && std::all_of(v.begin(), v.end(), [](char c) {
+                        return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.';
+                      });
+      if (!ok) throw InputError(k.key, node_text(n), allowed, origin);
+    }
+    ref(s) = str->get();
+  };
+  k.get = [ref](const Scene& s) {
+    std::ostringstream o;
+    o << toml::value<std::string>(ref(const_cast<Scene&>(s)));
+    return o.str();
+  };
+  return k;
+}
+
+KeyDef vec3_key(std::string key, std::string unit, double bound, std::string help, std::function<Vec3&(Scene&)> ref) {
+  KeyDef k;
+  k.key = std::move(key);
+  const std::string allowed = "an array of 3 numbers in " + unit + ", each within +-" + format_number(bound);
+  k.doc = "(" + allowed + ") " + help;
+  k.set = [k, allowed, bound, ref](Scene& s, const toml::node& n, const std::string& origin) {
+    auto arr = n.as_array();
+    if (!arr || arr->size() != 3) throw InputError(k.key, node_text(n), allowed, origin);
+    Vec3 v;
+    for (size_t i = 0; i < 3; ++i) {
+      const double x = get_number(k, *arr->get(i), origin, allowed);
+      if (!std::isfinite(x) || std::abs(x) > bound) throw InputError(k.key, node_text(n), allowed, origin);
+      v[static_cast<int>(i)] = x;
+    }
+    ref(s) = v;
+  };
+  k.get = [ref](const Scene& s) {
+    const Vec3& v = ref(const_cast<Scene&>(s));
+    return "[" + format_number(v[0]) + ", " + format_number(v[1]) + ", " + format_number(v[2]) + "]";
+  };
+  return k;
+}
+
+KeyDef list_key(std::string key, std::string unit, Range range, size_t max_count, std::string help,
+                std::function<std::vector<double>&(Scene&)> ref) {
+  KeyDef k;
+  k.key = std::move(key);
+  const std::string allowed = "an array of up to " + std::to_string(max_count) + " numbers, each " +
+                              range.describe(unit).substr(std::string("a number").size() + 2);
+  k.doc = "(" + allowed + ") " + help;
+  k.set = [k, allowed, range, max_count, ref](Scene& s, const toml::node& n, const std::string& origin) {
+    auto arr = n.as_array();
+    if (!arr || arr->size() > max_count) throw InputError(k.key, node_text(n), allowed, origin);
+    std::vector<double> v;
+    for (size_t i = 0; i < arr->size(); ++i) {
+      const double x = get_number(k, *arr->get(i), origin, allowed);
+      if (!range.contains(x)) throw InputError(k.key, node_text(n), allowed, origin);
+      v.push_back(x);
+    }
+    ref(s) = v;
+  };
+  k.get = [ref](const Scene& s) {
+    const auto& v = ref(const_cast<Scene&>(s));
+    std::string out = "[";
+    for (size_t i = 0; i < v.size(); ++i) out += (i ? ", " : "") + format_number(v[i]);
+    return out + "]";
+  };
+  return k;
+}
+
+const std::vector<KeyDef>& registry() {
+  static const std::vector<KeyDef> keys = [] {
+    std::vector<KeyDef> r;
+    const double kMaxRadius = 1e9, kMaxLength = 1e9;
+    // planet and atmosphere
+    r.push_back(number_key("planet.radius_m", "m", {1e3, kMaxRadius}, "radius of the planet (sea level)",
+                           [](Scene& s) -> double& { return s.atmosphere.planet_radius_m; }));
+    r.push_back(number_key("atmosphere.top_altitude_m", "m", {1.0, 1e7}, "thickness of the atmosphere shell",
+                           [](Scene& s) -> double& { return s.atmosphere.top_altitude_m; }));
+    // Rayleigh
+    r.push_back(choice_key(
+        "atmosphere.rayleigh.source", {"derived", "fixed"},
+        "derived: beta = sigma(n(lambda), King factor) N; fixed: typed-in coefficients (seed preset)",
+        [](Scene& s, const std::string& v) {
+          s.atmosphere.rayleigh.source = v == "fixed" ? RayleighSpec::Source::Fixed : RayleighSpec::Source::Derived;
+        },
+        [](const Scene& s) {
+          return std::string(s.atmosphere.rayleigh.source == RayleighSpec::Source::Fixed ? "fixed" : "derived");
+        }));
+    auto profile_key = [](std::string key, std::function<ProfileKind&(Scene&)> ref, std::string help) {
+      return choice_key(
+          std::move(key), {"exponential", "us1976", "constant"}, std::move(help),
+          [ref](Scene& s, const std::string& v) {
+            ref(s) = v == "us1976" ? ProfileKind::UsStandard1976
+                                   : v == "constant" ? ProfileKind::Constant : ProfileKind::Exponential;
+          },
+          [ref](const Scene& s) { return to_string(ref(const_cast<Scene&>(s))); });
+    };
+    r.push_back(profile_key("atmosphere.rayleigh.profile",
+                            [](Scene& s) -> ProfileKind& { return s.atmosphere.rayleigh.profile; },
+                            "number density profile of air"));
+    r.push_back(number_key("atmosphere.rayleigh.scale_height_m", "m", {1.0, kMaxLength, true},
+                           "scale height of the exponential profile",
+                           [](Scene& s) -> double& { return s.atmosphere.rayleigh.scale_height_m; }));
+    r.push_back(number_key("atmosphere.rayleigh.surface_pressure_Pa", "Pa", {0.0, 1e8, true},
+                           "pressure at altitude 0 (exponential/constant profiles): N(0) = P / kT",
+                           [](Scene& s) -> double& { return s.atmosphere.rayleigh.surface_pressure_Pa; }));
+    r.push_back(number_key("atmosphere.rayleigh.surface_temperature_K", "K", {1.0, 2000.0},
+                           "temperature at altitude 0 (exponential/constant profiles)",
+                           [](Scene& s) -> double& { return s.atmosphere.rayleigh.surface_temperature_K; }));
+    r.push_back(choice_key(
+        "atmosphere.rayleigh.refractive_index", {"peck-reeder", "edlen", "ciddor"},
+        "formula for n(lambda) of standard air",
+        [](Scene& s, const std::string& v) {
+          s.atmosphere.rayleigh.derivation.formula = parse_refractive_index_formula(v, "atmosphere.rayleigh.refractive_index");
+        },
+        [](const Scene& s) { return to_string(s.atmosphere.rayleigh.derivation.formula); }));
+    r.push_back(number_key("atmosphere.rayleigh.co2_ppm", "ppm", {0.0, 1e6},
+                           "CO2 mole fraction (refractive index correction, King factor)",
+                           [](Scene& s) -> double& { return s.atmosphere.rayleigh.derivation.co2_ppv; }, 1e-6));
+    r.push_back(list_key("atmosphere.rayleigh.wavelengths_nm", "nm", {1.0, 1e5}, 64,
+                         "source = fixed: wavelengths of the typed-in coefficients",
+                         [](Scene& s) -> std::vector<double>& { return s.atmosphere.rayleigh.fixed_wavelengths_nm; }));
+    r.push_back(list_key("atmosphere.rayleigh.beta_per_m", "m^-1", {0.0, 1.0}, 64,
+                         "source = fixed: scattering coefficients at altitude 0, one per wavelength",
+                         [](Scene& s) -> std::vector<double>& { return s.atmosphere.rayleigh.fixed_beta_per_m; }));
+    // Mie
+    r.push_back(bool_key("atmosphere.mie.enabled", "aerosols on or off",
+                         [](Scene& s) -> bool& { return s.atmosphere.mie.enabled; }));
+    r.push_back(profile_key("atmosphere.mie.profile", [](Scene& s) -> ProfileKind& { return s.atmosphere.mie.profile; },
+                            "aerosol density profile (us1976 is not meaningful for aerosols but allowed)"));
+    r.push_back(number_key("atmosphere.mie.scale_height_m", "m", {1.0, kMaxLength, true},
+                           "scale height of the aerosol profile",
+                           [](Scene& s) -> double& { return s.atmosphere.mie.scale_height_m; }));
+    r.push_back(number_key("atmosphere.mie.scattering_per_m", "m^-1", {0.0, 1.0},
+                           "aerosol scattering coefficient at altitude 0 and the reference wavelength",
+                           [](Scene& s) -> double& { return s.atmosphere.mie.scattering_per_m; }));
+    r.push_back(number_key("atmosphere.mie.reference_wavelength_nm", "nm", {1.0, 1e5},
+                           "wavelength at which scattering_per_m is given",
+                           [](Scene& s) -> double& { return s.atmosphere.mie.reference_wavelength_nm; }));
+    r.push_back(number_key("atmosphere.mie.angstrom_exponent", "", {-4.0, 4.0},
+                           "Angstrom exponent alpha: beta(lambda) = beta_ref (lambda / lambda_ref)^-alpha",
+                           [](Scene& s) -> double& { return s.atmosphere.mie.angstrom_exponent; }));
+    r.push_back(number_key("atmosphere.mie.extinction_to_scattering", "", {1.0, 100.0},
+                           "extinction / scattering ratio (1 = no absorption; seed: 1.1)",
+                           [](Scene& s) -> double& { return s.atmosphere.mie.extinction_to_scattering; }));
+    r.push_back(choice_key(
+        "atmosphere.mie.phase", {"cornette-shanks", "henyey-greenstein"}, "aerosol phase function",
+        [](Scene& s, const std::string& v) {
+          s.atmosphere.mie.phase.model = parse_aerosol_phase_model(v, "atmosphere.mie.phase");
+        },
+        [](const Scene& s) { return to_string(s.atmosphere.mie.phase.model); }));
+    r.push_back(number_key("atmosphere.mie.g", "", {-0.999, 0.999}, "asymmetry parameter of the phase function",
+                           [](Scene& s) -> double& { return s.atmosphere.mie.phase.g; }));
+    // sun
+    r.push_back(number_key("sun.elevation_deg", "degrees", {-90.0, 90.0}, "sun elevation above the horizon",
+                           [](Scene& s) -> double& { return s.sun.elevation_deg; }));
+    r.push_back(number_key("sun.azimuth_deg", "degrees", {-360.0, 360.0}, "sun azimuth, clockwise from north",
+                           [](Scene& s) -> double& { return s.sun.azimuth_deg; }));
+    r.push_back(number_key("sun.spectral_irradiance", "W m^-2 nm^-1", {0.0, 1e6, true},
+                           "flat extraterrestrial solar spectral irradiance (until a solar table is chosen)",
+                           [](Scene& s) -> double& { return s.sun.spectral_irradiance_W_m2_nm; }));
+    // camera
+    r.push_back(choice_key(
+        "camera.type", {"fisheye", "perspective", "equirectangular"}, "projection",
+        [](Scene& s, const std::string& v) {
+          s.camera.type = v == "perspective" ? CameraSpec::Type::Perspective
+                          : v == "equirectangular" ? CameraSpec::Type::Equirectangular
+                                                   : CameraSpec::Type::Fisheye;
+        },
+        [](const Scene& s) {
+          return std::string(s.camera.type == CameraSpec::Type::Perspective ? "perspective"
+                             : s.camera.type == CameraSpec::Type::Equirectangular ? "equirectangular"
+                                                                                 : "fisheye");
+        }));
+    r.push_back(integer_key("camera.width", 1, 65536, "image width in pixels",
+                            [](Scene& s) -> int& { return s.camera.width; }));
+    r.push_back(integer_key("camera.height", 1, 65536, "image height in pixels",
+                            [](Scene& s) -> int& { return s.camera.height; }));
+    r.push_back(vec3_key("camera.position_m", "m", kMaxLength,
+                         "camera position [east, north, height above sea level]",
+                         [](Scene& s) -> Vec3& { return s.camera.position_m; }));
+    r.push_back(vec3_key("camera.look_at_m", "m", kMaxLength, "perspective: point the camera looks at",
+                         [](Scene& s) -> Vec3& { return s.camera.look_at_m; }));
+    r.push_back(number_key("camera.fov_deg", "degrees", {0.0, 179.0, true}, "perspective: vertical field of view",
+                           [](Scene& s) -> double& { return s.camera.fov_deg; }));
+    // spectrum
+    r.push_back(number_key("spectrum.min_nm", "nm", {1.0, 1e5}, "first wavelength",
+                           [](Scene& s) -> double& { return s.spectrum.min_nm; }));
+    r.push_back(number_key("spectrum.max_nm", "nm", {1.0, 1e5}, "last wavelength",
+                           [](Scene& s) -> double& { return s.spectrum.max_nm; }));
+    r.push_back(number_key("spectrum.step_nm", "nm", {1.0, 1e5}, "spacing of the wavelengths",
+                           [](Scene& s) -> double& { return s.spectrum.step_nm; }));
+    r.push_back(list_key("spectrum.wavelengths_nm", "nm", {1.0, 1e5}, WavelengthGrid::kMaxWavelengths,
+                         "explicit wavelengths (replaces min/max/step when not empty)",
+                         [](Scene& s) -> std::vector<double>& { return s.spectrum.wavelengths_nm; }));
+    // render
+    r.push_back(choice_key(
+        "render.path", {"spectral", "rgb-fast"},
+        "spectral: spectrum -> CIE XYZ -> RGB; rgb-fast: 3 wavelengths read directly as linear Rec.709",
+        [](Scene& s, const std::string& v) {
+          s.render.path = v == "rgb-fast" ? RenderSpec::Path::RgbFast : RenderSpec::Path::Spectral;
+        },
+        [](const Scene& s) { return std::string(s.render.path == RenderSpec::Path::RgbFast ? "rgb-fast" : "spectral"); }));
+    r.push_back(integer_key("render.view_segments", 1, 4096, "quadrature segments along each view ray",
+                            [](Scene& s) -> int& { return s.render.view_segments; }));
+    r.push_back(integer_key("render.table_altitude_samples", 8, 4096, "sun optical-depth table: altitudes",
+                            [](Scene& s) -> int& { return s.render.table_altitude_samples; }));
+    r.push_back(integer_key("render.table_zenith_samples", 8, 8192, "sun optical-depth table: zenith cosines",
+                            [](Scene& s) -> int& { return s.render.table_zenith_samples; }));
+    r.push_back(integer_key("render.threads", 0, 1024, "worker threads (0: all cores)",
+                            [](Scene& s) -> int& { return s.render.threads; }));
+    // output
+    r.push_back(text_key("output.directory", "folder for the output files",
+                         [](Scene& s) -> std::string& { return s.output.directory; }, false));
+    r.push_back(text_key("output.name", "base name of the output files (<name>.exr, <name>.png)",
+                         [](Scene& s) -> std::string& { return s.output.name; }, true));
+    r.push_back(bool_key("output.exr", "write the spectral OpenEXR", [](Scene& s) -> bool& { return s.output.exr; }));
+    r.push_back(bool_key("output.png", "write the sRGB PNG preview", [](Scene& s) -> bool& { return s.output.png; }));
+    {
+      KeyDef k;
+      k.key = "output.exposure_ev";
+      const std::string allowed = "a number of stops from -64 to 64";
+      k.doc = "(" + allowed + ") preview exposure: pixel values are multiplied by 2^EV (automatic when absent)";
+      k.set = [k, allowed](Scene& s, const toml::node& n, const std::string& origin) {
+        const double v = get_number(k, n, origin, allowed);
+        if (!std::isfinite(v) || v < -64 || v > 64) throw InputError(k.key, node_text(n), allowed, origin);
+        s.output.exposure_ev = v;
+      };
+      k.get = [](const Scene& s) { return s.output.exposure_ev ? format_number(*s.output.exposure_ev) : std::string(); };
+      r.push_back(k);
+    }
+    return r;
+  }();
+  return keys;
+}
+
+const KeyDef* find_key(const std::string& key) {
+  for (const auto& k : registry())
+    if (k.key == key) return &k;
+  return nullptr;
+}
+
+[[noreturn]] void unknown_key(const std::string& key, const std::string& origin) {
+  std::string best;
+  size_t best_d = std::numeric_limits<size_t>::max();
+  for (const auto& k : registry()) {
+    // Compare with the full key and with its last component (a key in the wrong table).
+    const size_t d = edit_distance(key, k.key);
+    const std::string leaf = k.key.substr(k.key.rfind('.') + 1);
+    const std::string key_leaf = key.substr(key.rfind('.') + 1);
+    const size_t d2 = key_leaf == leaf ? 1 : d;
+    if (std::min(d, d2) < best_d) {
+      best_d = std::min(d, d2);
+      best = k.key;
+    }
+  }
+  std::string allowed = "a known scene key";
+  if (best_d <= std::max<size_t>(3, key.size() / 3)) allowed += " (did you mean \"" + best + "\"?)";
+  allowed += "; `skyspec render --help-keys` lists them all";
+  throw InputError("unknown key \"" + key + "\"", "(its value)", allowed, origin);
+}
+
+void apply_table(Scene& scene, const toml::table& tbl, const std::string& prefix, const std::string& fallback_origin) {
+  for (const auto& [k, node] : tbl) {
+    const std::string key = prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
+    if (auto sub = node.as_table()) {
+      // A table is a group of keys, unless the registry has no key below it.
+      bool any = false;
+      for (const auto& def : registry())
+        if (def.key.rfind(key + ".", 0) == 0) any = true;
+      if (!any) unknown_key(key, origin_of(node, fallback_origin));
+      apply_table(scene, *sub, key, fallback_origin);
+      continue;
+    }
+    const KeyDef* def = find_key(key);
+    if (!def) unknown_key(key, origin_of(node, fallback_origin));
+    def->set(scene, node, origin_of(node, fallback_origin));
+  }
+}
+
+toml::table parse_toml(const std::string& text, const std::string& origin) {
+  try {
+    return toml::parse(text, origin);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream s;
+    s << origin << ":" << e.source().begin.line << ":" << e.source().begin.column << ": not valid TOML: "
+      << e.description();
+    throw InputError("scene file", origin, "valid TOML (" + std::string(e.description()) + ")",
+                     origin + ":" + std::to_string(e.source().begin.line) + ":" +
+                         std::to_string(e.source().begin.column));
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> preset_names() {
+  std::vector<std::string> names;
+  for (const auto& [path, content] : embedded_files()) {
+    std::string p(path);
+    if (p.rfind("scenes/", 0) == 0 && p.size() > 12 && p.substr(p.size() - 5) == ".toml")
+      names.push_back(p.substr(7, p.size() - 12));
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+SceneLoader::SceneLoader(const std::string& preset) {
+  const auto names = preset_names();
+  if (std::find(names.begin(), names.end(), preset) == names.end())
+    throw InputError("preset", "\"" + preset + "\"", "one of: " + join(names, ", "));
+  // Every preset is applied over the built-in defaults of the Scene struct.
+  apply_toml(std::string(embedded_file("scenes/" + preset + ".toml")), "preset " + preset);
+}
+
+void SceneLoader::apply_toml(const std::string& text, const std::string& origin) {
+  const toml::table tbl = parse_toml(text, origin);
+  apply_table(scene_, tbl, "", origin);
+}
+
+void SceneLoader::apply_file(const std::string& path) {
+  std::string text;
+  {
+    FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) throw InputError("--scene", "\"" + path + "\"", "a readable TOML scene file (" + std::string(std::strerror(errno)) + ")");
+    char buf[65536];
+    size_t n;
+    while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) {
+      text.append(buf, n);
+      if (text.size() > (16u << 20)) {
+        std::fclose(f);
+        throw InputError("--scene", "\"" + path + "\"", "a scene file of at most 16 MiB");
+      }
+    }
+    std::fclose(f);
+  }
+  apply_toml(text, path);
+}
+
+void SceneLoader::apply_override(const std::string& key, const std::string& toml_value, const std::string& origin) {
+  const KeyDef* def = find_key(key);
+  if (!def) unknown_key(key, origin);
+  toml::table tbl;
+  try {
+    tbl = toml::parse("v = " + toml_value, origin);
+  } catch (const toml::parse_error&) {
+    // Not a TOML literal: take it as a bare string (e.g. --camera fisheye).
+    tbl = toml::table{{"v", toml_value}};
+  }
+  const toml::node* n = tbl.get("v");
+  // Strip source positions: the origin is the flag, not a line of a file.
+  if (auto s = n->as_string()) {
+    toml::value<std::string> v(s->get());
+    def->set(scene_, v, origin);
+  } else if (auto i = n->as_integer()) {
+    toml::value<int64_t> v(i->get());
+    def->set(scene_, v, origin);
+  } else if (auto fp = n->as_floating_point()) {
+    toml::value<double> v(fp->get());
+    def->set(scene_, v, origin);
+  } else if (auto b = n->as_boolean()) {
+    toml::value<bool> v(b->get());
+    def->set(scene_, v, origin);
+  } else {
+    def->set(scene_, *n, origin);
+  }
+}
+
+Scene SceneLoader::finish() const {
+  Scene s = scene_;
+  const double R = s.atmosphere.planet_radius_m;
+  // Camera: not inside the planet.
+  const Vec3 world = Vec3(s.camera.position_m.x(), s.camera.position_m.y(), R + s.camera.position_m.z());
+  if (world.norm() < R)
+    throw InputError("camera.position_m",
+                     "[" + format_number(s.camera.position_m.x()) + ", " + format_number(s.camera.position_m.y()) + ", " +
+                         format_number(s.camera.position_m.z()) + "]",
+                     "a position on or above the ground (this one is " + format_number(R - world.norm()) + " m below it)");
+  if (s.camera.type == CameraSpec::Type::Perspective && (s.camera.look_at_m - s.camera.position_m).norm() < 1e-6)
+    throw InputError("camera.look_at_m", "the camera position", "a point different from camera.position_m");
+  if (static_cast<double>(s.camera.width) * s.camera.height > 1.0e9)
+    throw InputError("camera.width x camera.height", std::to_string(s.camera.width) + "x" + std::to_string(s.camera.height),
+                     "at most 1e9 pixels");
+  // Grid and colour path.
+  const WavelengthGrid grid = make_wavelength_grid(s);
+  if (s.render.path == RenderSpec::Path::RgbFast) {
+    const bool ok = grid.size() == 3 && grid.index_of(440) >= 0 && grid.index_of(550) >= 0 && grid.index_of(680) >= 0;
+    if (!ok)
+      throw InputError("spectrum", grid.describe(),
+                       "exactly 440, 550 and 680 nm when render.path = \"rgb-fast\" (they become B, G, R)");
+  } else if (grid.min_nm() < 360.0 || grid.max_nm() > 830.0 || grid.size() < 2) {
+    throw InputError("spectrum", grid.describe(),
+                     "at least 2 wavelengths within 360-830 nm, the range of the CIE colour-matching functions, "
+                     "when render.path = \"spectral\"");
+  }
+  if (s.atmosphere.rayleigh.source == RayleighSpec::Source::Fixed) {
+    // AtmosphereModel reports the details; evaluate once here so errors surface before rendering.
+    AtmosphereModel check(s.atmosphere, grid);
+    (void)check;
+  }
+  return s;
+}
+
+WavelengthGrid make_wavelength_grid(const Scene& s) {
+  if (!s.spectrum.wavelengths_nm.empty()) return WavelengthGrid::from_list(s.spectrum.wavelengths_nm);
+  return WavelengthGrid::uniform(s.spectrum.min_nm, s.spectrum.max_nm, s.spectrum.step_nm);
+}
+
+Vec3 sun_direction(const Scene& s) { return direction_from_angles(s.sun.azimuth_deg, s.sun.elevation_deg); }
+
+std::string scene_to_toml(const Scene& scene) {
+  const Scene& s = scene;
+  std::map<std::string, std::vector<std::pair<std::string, std::string>>> tables;
+  std::vector<std::string> order;
+  for (const auto& k : registry()) {
+    const std::string value = k.get(s);
+    if (value.empty()) continue;
+    const auto dot = k.key.rfind('.');
+    const std::string table = k.key.substr(0, dot), leaf = k.key.substr(dot + 1);
+    if (!tables.count(table)) order.push_back(table);
+    tables[table].push_back({leaf, value});
+  }
+  std::ostringstream out;
+  for (const auto& t : order) {
+    out << "[" << t << "]\n";
+    for (const auto& [leaf, value] : tables[t]) out << leaf << " = " << value << "\n";
+    out << "\n";
+  }
+  return out.str();
+}
+
+std::vector<std::pair<std::string, std::string>> scene_key_help() {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& k : registry()) out.push_back({k.key, k.doc});
+  return out;
+}
+
+}  // namespace skyspec
