@@ -92,6 +92,20 @@ void SkyRenderer::spectrum_to_rgb(const float* spectrum, float rgb[3]) const {
   for (int c = 0; c < 3; ++c) rgb[c] = v[c];
 }
 
+void SkyRenderer::radiance(const Vec3& dir, float* spectrum) const {
+  const auto& m = *impl_;
+  ScatteringWorkspace ws(m.grid.size());
+  Spectrum out(m.grid.size());
+  m.integrator.radiance(m.camera->origin_m(), dir.normalized(), m.sun_dir, m.sun_irradiance, ws, out);
+  std::copy(out.data(), out.data() + out.size(), spectrum);
+}
+
+void SkyRenderer::radiance_rgb(const Vec3& dir, float rgb[3]) const {
+  std::vector<float> s(static_cast<size_t>(impl_->grid.size()));
+  radiance(dir, s.data());
+  spectrum_to_rgb(s.data(), rgb);
+}
+
 void SkyRenderer::render_rows(int y0, int rows, float* spectral, float* rgb) const {
   const auto& m = *impl_;
   const int w = m.camera->width(), n = m.grid.size();

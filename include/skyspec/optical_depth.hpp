@@ -29,8 +29,9 @@ inline double log_mean(double a, double b, double x) {
 double distance_to_top_m(double r_m, double mu, double top_r_m);
 
 /// Column of relative density from radius r, zenith cosine mu, to the top of the atmosphere, by
-/// the exact exponential rule on `segments` pieces (split at the ray's lowest point when it
-/// descends first). Rays that hit the planet are not handled: callers check the horizon.
+/// the exponential (log-mean) rule with Richardson extrapolation on `segments` pieces (split at
+/// the ray's lowest point when it descends first). Rays that hit the planet are not handled:
+/// callers check the horizon.
 double column_to_top_m(const DensityProfile& profile, double planet_radius_m, double top_radius_m,
                        double r_m, double mu, int segments);
 

@@ -35,6 +35,11 @@ class SkyRenderer {
   /// on the number of threads.
   void render_rows(int y0, int rows, float* spectral, float* rgb) const;
 
+  /// Spectral radiance (grid size floats) seen from the scene's camera position looking along
+  /// the world-space unit direction dir, and the same as linear Rec.709.
+  void radiance(const Vec3& dir, float* spectrum) const;
+  void radiance_rgb(const Vec3& dir, float rgb[3]) const;
+
   /// Linear Rec.709 from a spectrum: through CIE XYZ (spectral path, Y in cd m^-2 for radiance in
   /// W m^-2 sr^-1 nm^-1) or directly from the 680/550/440 nm values (RGB-fast path).
   void spectrum_to_rgb(const float* spectrum, float rgb[3]) const;

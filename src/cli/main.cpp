@@ -117,7 +117,10 @@ int main(int argc, char** argv) {
   };
   render->add_option("--preset", preset, "built-in starting scene: default or seed")->capture_default_str();
   render->add_option("--scene", scene_file, "TOML scene file applied over the preset");
-  for (auto& f : flags) render->add_option(f.flag, f.value, f.help + " [" + f.key + "]");
+  // A flag given twice takes its last value, so a command can be amended by appending to it.
+  for (auto& f : flags)
+    render->add_option(f.flag, f.value, f.help + " [" + f.key + "]")
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   render->add_option("--set", sets, "override any scene key: KEY=VALUE (repeatable)");
   render->add_flag("--no-exr", no_exr, "do not write the spectral EXR");
   render->add_flag("--no-png", no_png, "do not write the PNG preview");

@@ -1,2 +1,70 @@
 #!/usr/bin/env bash
-echo "cli tests: placeholder"; exit 0
+# Command-line behaviour: bad input is rejected with a message naming the flag or key, the value
+# and what is allowed, a non-zero exit code and no output file; a good render writes an EXR that
+# OpenEXR's and OpenImageIO's tools read. Usage: test_cli.sh PATH_TO_SKYSPEC
+set -u
+skyspec=$1
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+pass=0
+fail=0
+
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+
+# expect_error NAME EXIT_CODE 'text that must appear in stderr' ARGS...
+expect_error() {
+  local name=$1 code=$2 text=$3
+  shift 3
+  local out="$work/out-$name"
+  "$skyspec" render -q --out "$out" --width 8 --height 8 "$@" >"$work/stdout" 2>"$work/stderr"
+  local rc=$?
+  if [ "$rc" != "$code" ]; then bad "$name: exit $rc, expected $code"; cat "$work/stderr"; return; fi
+  if ! grep -qF -- "$text" "$work/stderr"; then bad "$name: stderr lacks '$text':"; cat "$work/stderr"; return; fi
+  if [ -d "$out" ] && [ -n "$(ls -A "$out")" ]; then bad "$name: left files: $(ls "$out")"; return; fi
+  ok
+}
+
+expect_error unknown_flag 2 "--bogus" --bogus 3
+expect_error negative_width 2 "--width: camera.width = -5 is not allowed: a whole number from 1 to 65536" --width -5
+expect_error non_number 2 "--sun-elevation: sun.elevation_deg = \"high\"" --sun-elevation high
+expect_error elevation_range 2 "sun.elevation_deg = 95" --sun-elevation 95
+expect_error unknown_key 2 "did you mean \"atmosphere.mie.g\"" --set atmosphere.mie.gg=0.7
+expect_error set_syntax 2 "KEY=VALUE" --set novalue
+expect_error camera_type 2 "one of: fisheye, perspective, equirectangular" --camera pinhole
+expect_error grid_outside_cmf 2 "360-830 nm" --lambda-min 300
+expect_error below_ground 2 "below" --position 0,0,-50
+expect_error top_not_above_ground 2 "atmosphere.top_altitude_m = -1000" --set atmosphere.top_altitude_m=-1000
+expect_error negative_radius 2 "planet.radius_m = -6360000" --set planet.radius_m=-6360e3
+expect_error unknown_preset 2 "one of: default, seed" --preset moon
+expect_error missing_scene 2 "--scene" --scene "$work/nope.toml"
+printf '[camera]\nwidth = 8\nheigth = 8\n' >"$work/typo.toml"
+expect_error scene_typo 2 "typo.toml:3:1" --scene "$work/typo.toml"
+expect_error unwritable_out 2 "output.directory" --set "output.directory=\"/proc/skyspec\""
+expect_error no_outputs 2 "at least one output" --no-exr --no-png
+
+# A good render: exit 0, both files, nothing else left in the folder, quiet stderr when piped.
+out="$work/good"
+if "$skyspec" render --out "$out" --width 24 --height 16 --camera equirectangular >"$work/stdout" 2>"$work/stderr"; then
+  [ -s "$out/sky.exr" ] && [ -s "$out/sky.png" ] && ok || bad "good render: files missing"
+  [ "$(ls "$out" | wc -l)" = 2 ] && ok || bad "good render: extra files $(ls "$out")"
+  [ ! -s "$work/stderr" ] && ok || { bad "good render: stderr not empty when not a terminal"; cat "$work/stderr"; }
+  grep -q "wrote $out/sky.exr" "$work/stdout" && ok || bad "good render: summary missing"
+  exrheader "$out/sky.exr" | grep -q "S0.550,000000nm" && ok || bad "exrheader does not list S0.550,000000nm"
+  exrheader "$out/sky.exr" | grep -q 'emissiveUnits (type string): "W.m^-2.sr^-1"' && ok || bad "emissiveUnits missing"
+  oiiotool --info -v "$out/sky.exr" | grep -q "44 channel" && ok || bad "oiiotool does not read 44 channels"
+  oiiotool "$out/sky.exr" --ch R,G,B --printstats 2>&1 | grep -q "Stats Min" && ok || bad "oiiotool cannot compute stats"
+else
+  bad "good render failed"; cat "$work/stderr"
+fi
+
+# --quiet prints nothing at all on success.
+"$skyspec" render -q --out "$work/quiet" --width 4 --height 4 >"$work/stdout" 2>"$work/stderr"
+[ ! -s "$work/stdout" ] && [ ! -s "$work/stderr" ] && ok || bad "--quiet was not quiet"
+
+# --help is something a newcomer can follow, and --help-keys documents every key with its unit.
+"$skyspec" render --help | grep -q -- "--sun-elevation" && ok || bad "render --help lacks --sun-elevation"
+"$skyspec" render --help-keys | grep -q "atmosphere.rayleigh.scale_height_m  (a number in m" && ok || bad "--help-keys"
+
+echo "cli: $pass passed, $fail failed"
+[ "$fail" = 0 ]

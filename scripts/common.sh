@@ -1,0 +1,33 @@
+# Shared by scripts/render-default.sh and scripts/test.sh: install what is missing, then build.
+# Idempotent: with everything installed and built, it only asks dpkg and make.
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+
+# Debian bookworm packages: compiler and build tools, the libraries the build finds with
+# find_package, and the tools the tests use to open our outputs (exrheader, oiiotool).
+SKYSPEC_PACKAGES=(
+  build-essential cmake pkg-config
+  libeigen3-dev libopenexr-dev libimath-dev libopencolorio-dev libtbb-dev libpng-dev
+  libtomlplusplus-dev libcli11-dev libboost-test-dev
+  openexr openimageio-tools
+)
+
+install_missing_packages() {
+  local missing=()
+  for p in "${SKYSPEC_PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  [ ${#missing[@]} -eq 0 ] && return 0
+  echo "skyspec: installing missing packages: ${missing[*]}" >&2
+  local sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
+}
+
+build() {
+  if [ ! -f build/CMakeCache.txt ]; then
+    cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >&2
+  fi
+  cmake --build build -j"$(nproc)" >&2
+}

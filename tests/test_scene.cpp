@@ -1,0 +1,121 @@
+#define BOOST_TEST_MODULE scene
+#include <boost/test/unit_test.hpp>
+
+#include <string>
+
+#include "skyspec/error.hpp"
+#include "skyspec/scene.hpp"
+
+using namespace skyspec;
+
+namespace {
+// The message of the InputError that `f` throws ("" if it throws none).
+template <class F>
+std::string error_of(F f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+std::string load_error(const std::string& toml, const std::string& preset = "default") {
+  return error_of([&] {
+    SceneLoader l(preset);
+    l.apply_toml(toml, "test.toml");
+    (void)l.finish();
+  });
+}
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(presets_load) {
+  const Scene d = SceneLoader("default").finish();
+  BOOST_TEST(make_wavelength_grid(d).size() == 41);
+  BOOST_TEST((d.render.path == RenderSpec::Path::Spectral));
+  BOOST_TEST(d.atmosphere.rayleigh.derivation.co2_ppv == 420e-6, boost::test_tools::tolerance(1e-12));
+  const Scene s = SceneLoader("seed").finish();
+  BOOST_TEST((s.render.path == RenderSpec::Path::RgbFast));
+  BOOST_TEST(s.atmosphere.rayleigh.fixed_beta_per_m.size() == 3u);
+  BOOST_TEST(s.sun.spectral_irradiance_W_m2_nm == 20.0);
+}
+
+BOOST_AUTO_TEST_CASE(unknown_preset_lists_the_known_ones) {
+  const std::string e = error_of([] { SceneLoader l("sunset"); });
+  BOOST_TEST(contains(e, "preset"));
+  BOOST_TEST(contains(e, "default, seed"));
+}
+
+BOOST_AUTO_TEST_CASE(unknown_key_suggests_the_nearest_and_names_the_line) {
+  const std::string e = load_error("[atmosphere.rayleigh]\nscale_heigth_m = 8000\n");
+  BOOST_TEST(contains(e, "test.toml:2:1"));
+  BOOST_TEST(contains(e, "atmosphere.rayleigh.scale_heigth_m"));
+  BOOST_TEST(contains(e, "did you mean \"atmosphere.rayleigh.scale_height_m\""));
+  const std::string t = load_error("[camra]\nwidth = 5\n");
+  BOOST_TEST(contains(t, "unknown key \"camra\""));
+}
+
+BOOST_AUTO_TEST_CASE(wrong_type_and_out_of_range_values) {
+  const std::string type = load_error("[camera]\nwidth = \"wide\"\n");
+  BOOST_TEST(contains(type, "test.toml:2:9"));
+  BOOST_TEST(contains(type, "camera.width = \"wide\""));
+  BOOST_TEST(contains(type, "a whole number from 1 to 65536"));
+  const std::string radius = load_error("[planet]\nradius_m = -5\n");
+  BOOST_TEST(contains(radius, "planet.radius_m = -5"));
+  BOOST_TEST(contains(radius, ">= 1000"));
+  BOOST_TEST(!load_error("[atmosphere]\ntop_altitude_m = 0\n").empty());
+  BOOST_TEST(contains(load_error("[atmosphere.mie]\ng = 1.0\n"), "atmosphere.mie.g"));
+  BOOST_TEST(contains(load_error("[atmosphere.mie]\nphase = \"rayleigh\"\n"), "cornette-shanks, henyey-greenstein"));
+  BOOST_TEST(contains(load_error("[sun]\nelevation_deg = nan\n"), "sun.elevation_deg"));
+  BOOST_TEST(contains(load_error("[output]\nname = \"../x\"\n"), "output.name"));
+}
+
+BOOST_AUTO_TEST_CASE(invalid_toml_reports_position) {
+  const std::string e = load_error("[camera]\nwidth = = 3\n");
+  BOOST_TEST(contains(e, "test.toml:2:"));
+  BOOST_TEST(contains(e, "valid TOML"));
+}
+
+BOOST_AUTO_TEST_CASE(wavelength_grid_must_suit_the_colour_path) {
+  BOOST_TEST(contains(load_error("[spectrum]\nmin_nm = 300\n"), "360-830 nm"));
+  BOOST_TEST(contains(load_error("[spectrum]\nstep_nm = 0.5\n"), "spectrum.step_nm = 0.5 is not allowed: a number in nm, >= 1"));
+  BOOST_TEST(contains(load_error("[spectrum]\nstep_nm = 7\n"), "divides"));
+  // The seed's typed-in coefficients exist only at its three wavelengths.
+  BOOST_TEST(contains(load_error("[spectrum]\nwavelengths_nm = [440, 550, 600]\n[render]\npath = \"spectral\"\n", "seed"),
+                      "atmosphere.rayleigh.wavelengths_nm"));
+  BOOST_TEST(contains(load_error("[render]\npath = \"rgb-fast\"\n"), "exactly 440, 550 and 680 nm"));
+}
+
+BOOST_AUTO_TEST_CASE(camera_below_ground_is_rejected) {
+  const std::string e = load_error("[camera]\nposition_m = [0, 0, -10]\n");
+  BOOST_TEST(contains(e, "camera.position_m"));
+  BOOST_TEST(contains(e, "below"));
+}
+
+BOOST_AUTO_TEST_CASE(overrides_name_their_flag) {
+  const std::string e = error_of([] {
+    SceneLoader l;
+    l.apply_override("camera.width", "-5", "--width");
+  });
+  BOOST_TEST(contains(e, "--width: camera.width = -5 is not allowed: a whole number from 1 to 65536"));
+  const std::string k = error_of([] {
+    SceneLoader l;
+    l.apply_override("camera.widht", "5", "--set camera.widht");
+  });
+  BOOST_TEST(contains(k, "did you mean \"camera.width\""));
+  SceneLoader l;
+  l.apply_override("camera.type", "equirectangular", "--camera");  // bare words are strings
+  BOOST_TEST((l.finish().camera.type == CameraSpec::Type::Equirectangular));
+}
+
+BOOST_AUTO_TEST_CASE(effective_scene_round_trips_through_toml) {
+  SceneLoader a("default");
+  a.apply_override("sun.elevation_deg", "7.25", "test");
+  a.apply_override("atmosphere.rayleigh.co2_ppm", "360", "test");
+  const std::string dumped = scene_to_toml(a.finish());
+  SceneLoader b("seed");  // a different start: the dump must hold every key
+  b.apply_toml(dumped, "dump");
+  BOOST_TEST(scene_to_toml(b.finish()) == dumped);
+  BOOST_TEST(b.finish().atmosphere.rayleigh.derivation.co2_ppv == 360e-6, boost::test_tools::tolerance(1e-12));
+}
