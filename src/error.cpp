@@ -20,4 +20,14 @@ InputError::InputError(std::string setting, std::string value, std::string allow
       allowed_(std::move(allowed)),
       origin_(std::move(origin)) {}
 
+InputError::InputError(Composed, std::string message, std::string setting, std::string origin)
+    : Error(std::move(message)), setting_(std::move(setting)), origin_(std::move(origin)) {}
+
+InputError InputError::unknown_key(std::string key, std::string hint, std::string origin) {
+  std::string msg;
+  if (!origin.empty()) msg += origin + ": ";
+  msg += "unknown key \"" + key + "\"" + hint;
+  return InputError(Composed{}, std::move(msg), std::move(key), std::move(origin));
+}
+
 }  // namespace skyspec

@@ -151,16 +151,26 @@ SpectralImageBuffer render_to_memory(const Scene& scene, const ProgressFn& progr
 }
 
 double auto_exposure_scale(const std::vector<float>& linear_rgb) {
+  std::vector<double> y;
+  y.reserve(linear_rgb.size() / 3);
+  for (size_t i = 0; i + 2 < linear_rgb.size(); i += 3) {
+    const double v = 0.2126 * linear_rgb[i] + 0.7152 * linear_rgb[i + 1] + 0.0722 * linear_rgb[i + 2];
+    if (v > 0.0) y.push_back(v);
+  }
+  if (y.empty()) return 1.0;
+  // Only pixels within a factor 100 of the 90th percentile count, so that dark ground or the
+  // night side does not drag the exposure of the sky up.
+  std::vector<double> sorted = y;
+  const size_t k = sorted.size() * 9 / 10;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(k), sorted.end());
+  const double floor = 0.01 * sorted[k];
   double sum_log = 0.0;
   size_t count = 0;
-  for (size_t i = 0; i + 2 < linear_rgb.size(); i += 3) {
-    const double y = 0.2126 * linear_rgb[i] + 0.7152 * linear_rgb[i + 1] + 0.0722 * linear_rgb[i + 2];
-    if (y > 0.0) {
-      sum_log += std::log(y);
+  for (double v : y)
+    if (v >= floor) {
+      sum_log += std::log(v);
       ++count;
     }
-  }
-  if (count == 0) return 1.0;
   return 0.18 / std::exp(sum_log / static_cast<double>(count));
 }
 

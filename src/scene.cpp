@@ -48,6 +48,14 @@ std::string origin_of(const toml::node& n, const std::string& fallback) {
   return s.str();
 }
 
+std::string origin_of_key(const toml::key& k, const std::string& fallback) {
+  const auto& src = k.source();
+  if (src.begin.line == 0) return fallback;
+  std::ostringstream s;
+  s << (src.path ? *src.path : fallback) << ":" << src.begin.line << ":" << src.begin.column;
+  return s.str();
+}
+
 // Levenshtein distance, for "did you mean".
 size_t edit_distance(const std::string& a, const std::string& b) {
   std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);
@@ -420,10 +428,10 @@ const KeyDef* find_key(const std::string& key) {
       best = k.key;
     }
   }
-  std::string allowed = "a known scene key";
-  if (best_d <= std::max<size_t>(3, key.size() / 3)) allowed += " (did you mean \"" + best + "\"?)";
-  allowed += "; `skyspec render --help-keys` lists them all";
-  throw InputError("unknown key \"" + key + "\"", "(its value)", allowed, origin);
+  std::string hint;
+  if (best_d <= std::max<size_t>(3, key.size() / 3)) hint += " (did you mean \"" + best + "\"?)";
+  hint += "; `skyspec render --help-keys` lists the known keys";
+  throw InputError::unknown_key(key, hint, origin);
 }
 
 void apply_table(Scene& scene, const toml::table& tbl, const std::string& prefix, const std::string& fallback_origin) {
@@ -434,12 +442,12 @@ void apply_table(Scene& scene, const toml::table& tbl, const std::string& prefix
       bool any = false;
       for (const auto& def : registry())
         if (def.key.rfind(key + ".", 0) == 0) any = true;
-      if (!any) unknown_key(key, origin_of(node, fallback_origin));
+      if (!any) unknown_key(key, origin_of_key(k, fallback_origin));
       apply_table(scene, *sub, key, fallback_origin);
       continue;
     }
     const KeyDef* def = find_key(key);
-    if (!def) unknown_key(key, origin_of(node, fallback_origin));
+    if (!def) unknown_key(key, origin_of_key(k, fallback_origin));
     def->set(scene, node, origin_of(node, fallback_origin));
   }
 }

@@ -20,12 +20,16 @@ class Error : public std::runtime_error {
 class InputError : public Error {
  public:
   InputError(std::string setting, std::string value, std::string allowed, std::string origin = {});
+  /// A setting that does not exist: "<origin>: unknown key "<key>"<hint>".
+  static InputError unknown_key(std::string key, std::string hint, std::string origin);
   const std::string& setting() const { return setting_; }
   const std::string& value() const { return value_; }
   const std::string& allowed() const { return allowed_; }
   const std::string& origin() const { return origin_; }
 
  private:
+  struct Composed {};
+  InputError(Composed, std::string message, std::string setting, std::string origin);
   std::string setting_, value_, allowed_, origin_;
 };
 

@@ -69,8 +69,9 @@ struct RenderOutputs {
 /// atomically: on any error no output file is left behind.
 RenderOutputs render_scene_to_files(const Scene& scene, const ProgressFn& progress = {});
 
-/// The automatic preview exposure: the scale that maps the log-average luminance of the lit
-/// pixels to 0.18 (Reinhard et al. 2002's key value), from linear RGB ([n][3]).
+/// The automatic preview exposure: the scale that maps the log-average luminance to 0.18
+/// (Reinhard et al. 2002's key value), over the pixels no darker than 1/100 of the 90th
+/// percentile (so dark ground does not count), from linear RGB ([n][3]).
 double auto_exposure_scale(const std::vector<float>& linear_rgb);
 
 }  // namespace skyspec

@@ -3,130 +3,25 @@
 // Exit codes: 0 success; 2 bad input (unknown option or key, value out of range, ...);
 // 3 an input or output file could not be read or written; 1 an internal error.
 
-#include <CLI/CLI.hpp>
-
-#include <cstdio>
 #include <iostream>
-#include <optional>
 #include <string>
 #include <vector>
 
-#include "progress.hpp"
+#include "commands.hpp"
 #include "skyspec/error.hpp"
-#include "skyspec/render.hpp"
-#include "skyspec/scene.hpp"
 #include "skyspec/version.hpp"
 
-namespace {
-
-constexpr int kExitBadInput = 2;
-constexpr int kExitIo = 3;
-constexpr int kExitInternal = 1;
-
-// A flag that sets one scene key; the value goes through the scene's validation so that an error
-// names both the flag and the key.
-struct KeyFlag {
-  std::string flag, key, help;
-  std::optional<std::string> value;
-  bool is_list = false;  // "a,b,c" -> [a, b, c]
-};
-
-std::string as_toml_array(const std::string& csv) {
-  if (!csv.empty() && csv.front() == '[') return csv;
-  return "[" + csv + "]";
-}
-
-int run_render(const std::string& preset, const std::string& scene_file, std::vector<KeyFlag>& flags,
-               const std::vector<std::string>& sets, bool no_exr, bool no_png, bool quiet, bool help_keys,
-               bool print_scene) {
-  if (help_keys) {
-    for (const auto& [key, doc] : skyspec::scene_key_help()) std::cout << key << "  " << doc << "\n";
-    return 0;
-  }
-  skyspec::SceneLoader loader(preset);
-  if (!scene_file.empty()) loader.apply_file(scene_file);
-  for (auto& f : flags)
-    if (f.value) loader.apply_override(f.key, f.is_list ? as_toml_array(*f.value) : *f.value, f.flag);
-  if (no_exr) loader.apply_override("output.exr", "false", "--no-exr");
-  if (no_png) loader.apply_override("output.png", "false", "--no-png");
-  for (const auto& s : sets) {
-    const auto eq = s.find('=');
-    if (eq == std::string::npos || eq == 0)
-      throw skyspec::InputError("--set", "\"" + s + "\"", "KEY=VALUE, e.g. --set atmosphere.mie.g=0.8");
-    std::string key = s.substr(0, eq), value = s.substr(eq + 1);
-    while (!key.empty() && key.back() == ' ') key.pop_back();
-    loader.apply_override(key, value, "--set " + key);
-  }
-  const skyspec::Scene scene = loader.finish();
-  if (print_scene) {
-    std::cout << skyspec::scene_to_toml(scene);
-    return 0;
-  }
-  skyspec::cli::ProgressBar bar("rendering", quiet);
-  const auto out = skyspec::render_scene_to_files(scene, [&](int done, int total) { bar.update(done, total); });
-  bar.finish();
-  if (!quiet) {
-    if (!out.exr.empty()) std::cout << "wrote " << out.exr.string() << "\n";
-    if (!out.png.empty()) std::cout << "wrote " << out.png.string() << " (preview exposure " << out.preview_ev << " EV)\n";
-    std::fprintf(stdout, "rendered %dx%d, %s, in %.2f s\n", scene.camera.width, scene.camera.height,
-                 skyspec::make_wavelength_grid(scene).describe().c_str(), out.seconds);
-  }
-  return 0;
-}
-
-}  // namespace
-
 int main(int argc, char** argv) {
+  using namespace skyspec::cli;
   CLI::App app{"skyspec: a spectral, physically based sky simulator.\n"
                "Renders the sky from Rayleigh scattering derived from the refractive index of air and\n"
                "aerosol (Mie) scattering, one ray march per spectral sample, into spectral OpenEXR."};
   app.set_version_flag("--version", std::string("skyspec ") + skyspec::version_string());
   app.require_subcommand(1);
 
-  auto* render = app.add_subcommand("render", "Render a sky to a spectral OpenEXR and a PNG preview");
-  render->footer(
-      "Examples:\n"
-      "  skyspec render                                  # built-in default scene -> skyspec-out/sky.exr, sky.png\n"
-      "  skyspec render --sun-elevation 5 --out dusk     # low sun\n"
-      "  skyspec render --preset seed                    # the seed tutorial's RGB-fast sky\n"
-      "  skyspec render --scene my.toml --set atmosphere.mie.g=0.8\n"
-      "  skyspec render --camera equirectangular --width 1024 --height 512\n"
-      "Scene files are TOML; data/scenes/default.toml documents every key, --help-keys lists units and ranges.");
-  std::string preset = "default", scene_file;
-  std::vector<std::string> sets;
-  bool no_exr = false, no_png = false, quiet = false, help_keys = false, print_scene = false;
-  std::vector<KeyFlag> flags = {
-      {"--out", "output.directory", "output folder (created if missing)", {}, false},
-      {"--name", "output.name", "base name of the output files", {}, false},
-      {"--width", "camera.width", "image width in pixels", {}, false},
-      {"--height", "camera.height", "image height in pixels", {}, false},
-      {"--camera", "camera.type", "fisheye, perspective or equirectangular", {}, false},
-      {"--position", "camera.position_m", "camera position east,north,height in m", {}, true},
-      {"--look-at", "camera.look_at_m", "perspective: target east,north,height in m", {}, true},
-      {"--fov", "camera.fov_deg", "perspective: vertical field of view, degrees", {}, false},
-      {"--sun-elevation", "sun.elevation_deg", "sun elevation, degrees", {}, false},
-      {"--sun-azimuth", "sun.azimuth_deg", "sun azimuth, degrees clockwise from north", {}, false},
-      {"--lambda-min", "spectrum.min_nm", "first wavelength, nm", {}, false},
-      {"--lambda-max", "spectrum.max_nm", "last wavelength, nm", {}, false},
-      {"--lambda-step", "spectrum.step_nm", "wavelength step, nm", {}, false},
-      {"--wavelengths", "spectrum.wavelengths_nm", "explicit wavelengths, nm, comma-separated", {}, true},
-      {"--path", "render.path", "spectral or rgb-fast", {}, false},
-      {"--view-segments", "render.view_segments", "quadrature segments per view ray", {}, false},
-      {"--threads", "render.threads", "worker threads (0: all cores)", {}, false},
-      {"--exposure", "output.exposure_ev", "preview exposure in EV (default: automatic)", {}, false},
+  const std::vector<Command> commands = {
+      add_render_command(app),
   };
-  render->add_option("--preset", preset, "built-in starting scene: default or seed")->capture_default_str();
-  render->add_option("--scene", scene_file, "TOML scene file applied over the preset");
-  // A flag given twice takes its last value, so a command can be amended by appending to it.
-  for (auto& f : flags)
-    render->add_option(f.flag, f.value, f.help + " [" + f.key + "]")
-        ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
-  render->add_option("--set", sets, "override any scene key: KEY=VALUE (repeatable)");
-  render->add_flag("--no-exr", no_exr, "do not write the spectral EXR");
-  render->add_flag("--no-png", no_png, "do not write the PNG preview");
-  render->add_flag("-q,--quiet", quiet, "no progress bar and no summary");
-  render->add_flag("--help-keys", help_keys, "list every scene key with its unit and range, then exit");
-  render->add_flag("--print-scene", print_scene, "print the effective scene as TOML, then exit");
 
   try {
     app.parse(argc, argv);
@@ -137,14 +32,16 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "skyspec: error: " << e.what() << "\n(see `skyspec " << (render->parsed() ? "render " : "")
-              << "--help`)\n";
+    std::string which;
+    for (const auto& c : commands)
+      if (c.app->parsed()) which = c.app->get_name() + " ";
+    std::cerr << "skyspec: error: " << e.what() << "\n(see `skyspec " << which << "--help`)\n";
     return kExitBadInput;
   }
 
   try {
-    if (render->parsed())
-      return run_render(preset, scene_file, flags, sets, no_exr, no_png, quiet, help_keys, print_scene);
+    for (const auto& c : commands)
+      if (c.app->parsed()) return c.run();
   } catch (const skyspec::InputError& e) {
     std::cerr << "skyspec: error: " << e.what() << "\n";
     return kExitBadInput;
@@ -155,5 +52,5 @@ int main(int argc, char** argv) {
     std::cerr << "skyspec: internal error: " << e.what() << "\n";
     return kExitInternal;
   }
-  return 0;
+  return kExitOk;
 }

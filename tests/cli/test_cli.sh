@@ -39,7 +39,7 @@ expect_error negative_radius 2 "planet.radius_m = -6360000" --set planet.radius_
 expect_error unknown_preset 2 "one of: default, seed" --preset moon
 expect_error missing_scene 2 "--scene" --scene "$work/nope.toml"
 printf '[camera]\nwidth = 8\nheigth = 8\n' >"$work/typo.toml"
-expect_error scene_typo 2 "typo.toml:3:1" --scene "$work/typo.toml"
+expect_error scene_typo 2 "typo.toml:3:1: unknown key \"camera.heigth\" (did you mean \"camera.height\"?)" --scene "$work/typo.toml"
 expect_error unwritable_out 2 "output.directory" --set "output.directory=\"/proc/skyspec\""
 expect_error no_outputs 2 "at least one output" --no-exr --no-png
 

@@ -1,0 +1,25 @@
+// The subcommands of the skyspec CLI. Each lives in its own file (command_<name>.cpp) and
+// registers itself on the application; main() parses, finds the parsed one, runs it and maps
+// exceptions to exit codes.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+
+namespace skyspec::cli {
+
+/// Exit codes shared by every subcommand.
+constexpr int kExitOk = 0;
+constexpr int kExitInternal = 1;
+constexpr int kExitBadInput = 2;
+constexpr int kExitIo = 3;
+
+struct Command {
+  CLI::App* app;             ///< the subcommand, to ask whether it was parsed
+  std::function<int()> run;  ///< runs it after parsing; returns the exit code
+};
+
+Command add_render_command(CLI::App& app);
+
+}  // namespace skyspec::cli
