@@ -364,6 +364,9 @@ const std::vector<KeyDef>& registry() {
                            [](Scene& s) -> double& { return s.spectrum.max_nm; }));
     r.push_back(number_key("spectrum.step_nm", "nm", {1.0, 1e5}, "spacing of the wavelengths",
                            [](Scene& s) -> double& { return s.spectrum.step_nm; }));
+    r.push_back(integer_key("spectrum.count", 0, WavelengthGrid::kMaxWavelengths,
+                            "number of evenly spread wavelengths over min..max (0: use step_nm)",
+                            [](Scene& s) -> int& { return s.spectrum.count; }));
     r.push_back(list_key("spectrum.wavelengths_nm", "nm", {1.0, 1e5}, WavelengthGrid::kMaxWavelengths,
                          "explicit wavelengths (replaces min/max/step when not empty)",
                          [](Scene& s) -> std::vector<double>& { return s.spectrum.wavelengths_nm; }));
@@ -576,6 +579,7 @@ Scene SceneLoader::finish() const {
 
 WavelengthGrid make_wavelength_grid(const Scene& s) {
   if (!s.spectrum.wavelengths_nm.empty()) return WavelengthGrid::from_list(s.spectrum.wavelengths_nm);
+  if (s.spectrum.count > 0) return WavelengthGrid::with_count(s.spectrum.min_nm, s.spectrum.max_nm, s.spectrum.count);
   return WavelengthGrid::uniform(s.spectrum.min_nm, s.spectrum.max_nm, s.spectrum.step_nm);
 }
 

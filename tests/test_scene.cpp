@@ -81,6 +81,10 @@ BOOST_AUTO_TEST_CASE(wavelength_grid_must_suit_the_colour_path) {
   BOOST_TEST(contains(load_error("[spectrum]\nmin_nm = 300\n"), "360-830 nm"));
   BOOST_TEST(contains(load_error("[spectrum]\nstep_nm = 0.5\n"), "spectrum.step_nm = 0.5 is not allowed: a number in nm, >= 1"));
   BOOST_TEST(contains(load_error("[spectrum]\nstep_nm = 7\n"), "divides"));
+  BOOST_TEST(contains(load_error("[spectrum]\ncount = 500\n"), "at least 1 nm apart"));
+  SceneLoader counted;
+  counted.apply_toml("[spectrum]\ncount = 48\nmin_nm = 360\nmax_nm = 830\n", "test.toml");
+  BOOST_TEST(make_wavelength_grid(counted.finish()).size() == 48);
   // The seed's typed-in coefficients exist only at its three wavelengths.
   BOOST_TEST(contains(load_error("[spectrum]\nwavelengths_nm = [440, 550, 600]\n[render]\npath = \"spectral\"\n", "seed"),
                       "atmosphere.rayleigh.wavelengths_nm"));

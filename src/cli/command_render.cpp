@@ -47,6 +47,7 @@ struct RenderOptions {
       {"--lambda-min", "spectrum.min_nm", "first wavelength, nm", {}, false},
       {"--lambda-max", "spectrum.max_nm", "last wavelength, nm", {}, false},
       {"--lambda-step", "spectrum.step_nm", "wavelength step, nm", {}, false},
+      {"--lambda-count", "spectrum.count", "number of wavelengths over min..max (replaces the step)", {}, false},
       {"--wavelengths", "spectrum.wavelengths_nm", "explicit wavelengths, nm, comma-separated", {}, true},
       {"--path", "render.path", "spectral or rgb-fast", {}, false},
       {"--view-segments", "render.view_segments", "quadrature segments per view ray", {}, false},
