@@ -1,5 +1,6 @@
 #include "skyspec/atmosphere.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -8,6 +9,25 @@
 #include "skyspec/units.hpp"
 
 namespace skyspec {
+
+// Until the built-in ozone table is wired in (data/ozone/), only scene-supplied cross-sections work.
+SpectrumD builtin_ozone_cross_sections_m2(const WavelengthGrid&) {
+  throw InputError("atmosphere.ozone.cross_section_m2", "[]", "a table of cross-sections (no built-in table yet)");
+}
+
+namespace {
+// Ozone absorption cross-sections on the grid: the scene's own table if it has one, else the
+// built-in laboratory data.
+SpectrumD ozone_cross_sections_m2(const OzoneSpec& o, const WavelengthGrid& grid) {
+  SpectrumD sigma(grid.size());
+  if (!o.cross_section_m2.empty()) {
+    for (int i = 0; i < grid.size(); ++i)
+      sigma[i] = interpolate_linear(o.cross_section_wavelengths_nm, o.cross_section_m2, grid.nm(i));
+    return sigma;
+  }
+  return builtin_ozone_cross_sections_m2(grid);
+}
+}  // namespace
 
 std::string to_string(ProfileKind k) {
   switch (k) {
@@ -84,6 +104,35 @@ AtmosphereModel::AtmosphereModel(const AtmosphereSpec& spec, const WavelengthGri
         m.enabled ? m.scattering_per_m * std::pow(grid.nm(i) / m.reference_wavelength_nm, -m.angstrom_exponent)
                   : 0.0;
   mie_.extinction_per_m = mie_.scattering_per_m * m.extinction_to_scattering;
+
+  // --- Ozone: absorption cross-section x number density at the layer's peak -----------------
+  const auto& o = spec.ozone;
+  ozone_.profile = DensityProfile::tent(o.bottom_m, o.peak_m, o.top_m);
+  ozone_.scattering_per_m = SpectrumD::Zero(n);
+  ozone_.extinction_per_m = SpectrumD::Zero(n);
+  if (o.enabled && o.column_DU > 0.0) {
+    // Column = N_peak * (area under the tent) = N_peak (top - bottom) / 2.
+    ozone_peak_per_m3_ = o.column_DU * constants::kDobsonUnit_per_m2 / ozone_.profile.tent_area_m();
+    const SpectrumD sigma = ozone_cross_sections_m2(o, grid);
+    ozone_.extinction_per_m = sigma * ozone_peak_per_m3_;
+  }
+
+  // --- Ground -----------------------------------------------------------------------------
+  ground_albedo_.resize(n);
+  const auto& g = spec.ground;
+  for (int i = 0; i < n; ++i)
+    ground_albedo_[i] = g.albedo_values.empty() ? g.albedo
+                                                : interpolate_linear(g.albedo_wavelengths_nm, g.albedo_values, grid.nm(i));
+}
+
+double interpolate_linear(const std::vector<double>& x, const std::vector<double>& y, double x0) {
+  if (x.empty()) return 0.0;
+  if (x0 <= x.front()) return y.front();
+  if (x0 >= x.back()) return y.back();
+  const auto it = std::upper_bound(x.begin(), x.end(), x0);
+  const size_t i = static_cast<size_t>(it - x.begin());
+  const double f = (x0 - x[i - 1]) / (x[i] - x[i - 1]);
+  return y[i - 1] + f * (y[i] - y[i - 1]);
 }
 
 }  // namespace skyspec

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "skyspec/standard_atmosphere.hpp"
@@ -16,6 +17,22 @@ DensityProfile DensityProfile::exponential(double scale_height_m) {
 }
 
 DensityProfile DensityProfile::constant() { return DensityProfile(); }
+
+DensityProfile DensityProfile::tent(double bottom_m, double peak_m, double top_m) {
+  DensityProfile p;
+  p.kind_ = Kind::Tent;
+  p.bottom_m_ = bottom_m;
+  p.peak_m_ = peak_m;
+  p.top_m_ = top_m;
+  return p;
+}
+
+double DensityProfile::relative(double altitude_m) const {
+  if (kind_ != Kind::Tent) return std::exp(log_relative(altitude_m));
+  if (altitude_m <= bottom_m_ || altitude_m >= top_m_) return 0.0;
+  if (altitude_m <= peak_m_) return (altitude_m - bottom_m_) / (peak_m_ - bottom_m_);
+  return (top_m_ - altitude_m) / (top_m_ - peak_m_);
+}
 
 DensityProfile DensityProfile::us_standard_1976(double top_m) {
   DensityProfile p;
@@ -38,6 +55,10 @@ double DensityProfile::log_relative(double altitude_m) const {
       return -altitude_m / scale_height_m_;
     case Kind::Constant:
       return 0.0;
+    case Kind::Tent: {
+      const double rho = relative(altitude_m);
+      return rho > 0.0 ? std::log(rho) : -std::numeric_limits<double>::infinity();
+    }
     case Kind::UsStandard1976: {
       const auto& t = *log_table_;
       const double x = altitude_m / step_m_;
@@ -63,6 +84,9 @@ std::string DensityProfile::describe() const {
       break;
     case Kind::UsStandard1976:
       s << "U.S. Standard Atmosphere 1976 (N = P / kT)";
+      break;
+    case Kind::Tent:
+      s << "layer from " << bottom_m_ << " m, peak at " << peak_m_ << " m, to " << top_m_ << " m (tent)";
       break;
   }
   return s.str();

@@ -29,6 +29,21 @@ double column_piece(const DensityProfile& profile, double planet_radius_m, doubl
     return profile.log_relative(rt - planet_radius_m);
   };
   double fine = 0.0, coarse = 0.0;
+  if (!profile.positive_everywhere()) {
+    // A layer with zero density outside: trapezoid rule on rho itself, extrapolated (Simpson).
+    auto rho = [&](double t) {
+      const double rt = std::sqrt(std::max(r_m * r_m + t * t + 2.0 * r_m * mu * t, 0.0));
+      return profile.relative(rt - planet_radius_m);
+    };
+    double q0 = rho(ta);
+    for (int k = 2; k <= segments; k += 2) {
+      const double q1 = rho(ta + dt * (k - 1)), q2 = rho(ta + dt * k);
+      fine += 0.5 * dt * (q0 + 2.0 * q1 + q2);
+      coarse += dt * (q0 + q2);
+      q0 = q2;
+    }
+    return std::max(0.0, (4.0 * fine - coarse) / 3.0);
+  }
   double l0 = log_rho(ta);
   for (int k = 2; k <= segments; k += 2) {
     const double l1 = log_rho(ta + dt * (k - 1)), l2 = log_rho(ta + dt * k);
@@ -58,6 +73,9 @@ Columns columns_to_top_m(const AtmosphereModel& atm, double r_m, double mu, int 
   Columns c{};
   c[kRayleigh] = column_to_top_m(atm.rayleigh().profile, atm.planet_radius_m(), atm.top_radius_m(), r_m, mu, segments);
   c[kMie] = column_to_top_m(atm.mie().profile, atm.planet_radius_m(), atm.top_radius_m(), r_m, mu, segments);
+  c[kOzone] = atm.ozone().enabled()
+                  ? column_to_top_m(atm.ozone().profile, atm.planet_radius_m(), atm.top_radius_m(), r_m, mu, segments)
+                  : 0.0;
   return c;
 }
 

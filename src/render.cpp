@@ -14,6 +14,7 @@
 #include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/png_image.hpp"
+#include "skyspec/multiple_scattering.hpp"
 #include "skyspec/single_scattering.hpp"
 #include "skyspec/spectral_exr.hpp"
 #include "skyspec/units.hpp"
@@ -36,6 +37,16 @@ std::unique_ptr<Camera> make_camera(const Scene& scene) {
   return nullptr;
 }
 
+namespace {
+std::unique_ptr<ScatteringOrders> build_orders(const Scene& s, const SingleScattering& integrator) {
+  MultipleScatteringSettings ms;
+  ms.orders = s.render.scattering_orders;
+  ms.altitude_samples = s.render.ms_altitude_samples;
+  ms.sun_samples = s.render.ms_sun_samples;
+  return std::make_unique<ScatteringOrders>(integrator, ms);
+}
+}  // namespace
+
 struct SkyRenderer::Impl {
   Scene scene;
   WavelengthGrid grid;
@@ -43,6 +54,8 @@ struct SkyRenderer::Impl {
   SunColumnTable table;
   TableSunColumns sun_columns;
   SingleScattering integrator;
+  std::unique_ptr<ScatteringOrders> orders;  // null for single scattering
+  ScatteringSources sources;
   std::unique_ptr<Camera> camera;
   Vec3 sun_dir;
   Spectrum sun_irradiance;
@@ -58,6 +71,8 @@ struct SkyRenderer::Impl {
         table(atmosphere, SunColumnTable::Resolution{s.render.table_altitude_samples, s.render.table_zenith_samples, 128}),
         sun_columns(table),
         integrator(atmosphere, sun_columns, IntegratorSettings{s.render.view_segments}),
+        orders(s.render.scattering_orders >= 2 ? build_orders(s, integrator) : nullptr),
+        sources{true, orders.get()},
         camera(make_camera(s)),
         sun_dir(sun_direction(s)),
         sun_irradiance(Spectrum::Constant(grid.size(), static_cast<float>(s.sun.spectral_irradiance_W_m2_nm))),
@@ -96,7 +111,7 @@ void SkyRenderer::radiance(const Vec3& dir, float* spectrum) const {
   const auto& m = *impl_;
   ScatteringWorkspace ws(m.grid.size());
   Spectrum out(m.grid.size());
-  m.integrator.radiance(m.camera->origin_m(), dir.normalized(), m.sun_dir, m.sun_irradiance, ws, out);
+  m.integrator.radiance(m.camera->origin_m(), dir.normalized(), m.sun_dir, m.sun_irradiance, m.sources, ws, out);
   std::copy(out.data(), out.data() + out.size(), spectrum);
 }
 
@@ -120,7 +135,7 @@ void SkyRenderer::render_rows(int y0, int rows, float* spectral, float* rgb) con
         Vec3 dir;
         float* px = spectral + static_cast<size_t>(idx) * n;
         if (m.camera->direction(x + 0.5, y0 + row + 0.5, dir)) {
-          m.integrator.radiance(m.camera->origin_m(), dir, m.sun_dir, m.sun_irradiance, ws, radiance);
+          m.integrator.radiance(m.camera->origin_m(), dir, m.sun_dir, m.sun_irradiance, m.sources, ws, radiance);
           std::copy(radiance.data(), radiance.data() + n, px);
         } else {
           std::fill(px, px + n, 0.0f);

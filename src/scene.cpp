@@ -325,6 +325,27 @@ const std::vector<KeyDef>& registry() {
         [](const Scene& s) { return to_string(s.atmosphere.mie.phase.model); }));
     r.push_back(number_key("atmosphere.mie.g", "", {-0.999, 0.999}, "asymmetry parameter of the phase function",
                            [](Scene& s) -> double& { return s.atmosphere.mie.phase.g; }));
+    // ozone
+    r.push_back(bool_key("atmosphere.ozone.enabled", "absorbing ozone layer on or off",
+                         [](Scene& s) -> bool& { return s.atmosphere.ozone.enabled; }));
+    r.push_back(number_key("atmosphere.ozone.column_DU", "Dobson units", {0.0, 2000.0},
+                           "total ozone column (about 300 DU on Earth)",
+                           [](Scene& s) -> double& { return s.atmosphere.ozone.column_DU; }));
+    r.push_back(number_key("atmosphere.ozone.bottom_m", "m", {0.0, 1e7}, "bottom of the ozone layer (tent profile)",
+                           [](Scene& s) -> double& { return s.atmosphere.ozone.bottom_m; }));
+    r.push_back(number_key("atmosphere.ozone.peak_m", "m", {0.0, 1e7}, "altitude of the ozone maximum",
+                           [](Scene& s) -> double& { return s.atmosphere.ozone.peak_m; }));
+    r.push_back(number_key("atmosphere.ozone.top_m", "m", {0.0, 1e7}, "top of the ozone layer",
+                           [](Scene& s) -> double& { return s.atmosphere.ozone.top_m; }));
+    // ground
+    r.push_back(number_key("ground.albedo", "", {0.0, 1.0}, "Lambertian albedo of the ground (0: black)",
+                           [](Scene& s) -> double& { return s.atmosphere.ground.albedo; }));
+    r.push_back(list_key("ground.albedo_wavelengths_nm", "nm", {1.0, 1e5}, 1024,
+                         "spectral albedo: wavelengths (replaces ground.albedo when not empty)",
+                         [](Scene& s) -> std::vector<double>& { return s.atmosphere.ground.albedo_wavelengths_nm; }));
+    r.push_back(list_key("ground.albedo_values", "", {0.0, 1.0}, 1024,
+                         "spectral albedo: values at ground.albedo_wavelengths_nm, linearly interpolated",
+                         [](Scene& s) -> std::vector<double>& { return s.atmosphere.ground.albedo_values; }));
     // sun
     r.push_back(number_key("sun.elevation_deg", "degrees", {-90.0, 90.0}, "sun elevation above the horizon",
                            [](Scene& s) -> double& { return s.sun.elevation_deg; }));
@@ -386,6 +407,13 @@ const std::vector<KeyDef>& registry() {
                             [](Scene& s) -> int& { return s.render.table_zenith_samples; }));
     r.push_back(integer_key("render.threads", 0, 1024, "worker threads (0: all cores)",
                             [](Scene& s) -> int& { return s.render.threads; }));
+    r.push_back(integer_key("render.scattering_orders", 1, 50,
+                            "highest scattering order (1: single scattering; >= 2 adds precomputed orders)",
+                            [](Scene& s) -> int& { return s.render.scattering_orders; }));
+    r.push_back(integer_key("render.ms_altitude_samples", 4, 512, "multiple-scattering tables: altitudes",
+                            [](Scene& s) -> int& { return s.render.ms_altitude_samples; }));
+    r.push_back(integer_key("render.ms_sun_samples", 4, 1024, "multiple-scattering tables: sun zenith cosines",
+                            [](Scene& s) -> int& { return s.render.ms_sun_samples; }));
     // output
     r.push_back(text_key("output.directory", "folder for the output files",
                          [](Scene& s) -> std::string& { return s.output.directory; }, false));
@@ -557,6 +585,20 @@ Scene SceneLoader::finish() const {
   if (static_cast<double>(s.camera.width) * s.camera.height > 1.0e9)
     throw InputError("camera.width x camera.height", std::to_string(s.camera.width) + "x" + std::to_string(s.camera.height),
                      "at most 1e9 pixels");
+  const auto& oz = s.atmosphere.ozone;
+  if (oz.enabled && !(oz.bottom_m < oz.peak_m && oz.peak_m < oz.top_m))
+    throw InputError("atmosphere.ozone.peak_m", format_number(oz.peak_m),
+                     "bottom_m < peak_m < top_m (here " + format_number(oz.bottom_m) + ", " + format_number(oz.peak_m) +
+                         ", " + format_number(oz.top_m) + ")");
+  const auto& gr = s.atmosphere.ground;
+  if (gr.albedo_wavelengths_nm.size() != gr.albedo_values.size())
+    throw InputError("ground.albedo_values", std::to_string(gr.albedo_values.size()) + " values",
+                     "one value per entry of ground.albedo_wavelengths_nm (" +
+                         std::to_string(gr.albedo_wavelengths_nm.size()) + ")");
+  for (size_t i = 1; i < gr.albedo_wavelengths_nm.size(); ++i)
+    if (!(gr.albedo_wavelengths_nm[i] > gr.albedo_wavelengths_nm[i - 1]))
+      throw InputError("ground.albedo_wavelengths_nm", format_number(gr.albedo_wavelengths_nm[i]),
+                       "strictly increasing wavelengths");
   // Grid and colour path.
   const WavelengthGrid grid = make_wavelength_grid(s);
   if (s.render.path == RenderSpec::Path::RgbFast) {

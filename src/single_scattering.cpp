@@ -4,29 +4,33 @@
 #include <cmath>
 
 #include "skyspec/phase_function.hpp"
+#include "skyspec/units.hpp"
 
 namespace skyspec {
 
 ScatteringWorkspace::ScatteringWorkspace(int n)
     : tau_a(n), tau_b(n), tau_c(n), trans_a(n), trans_b(n), trans_c(n), f_a(n), f_b(n), x(n),
-      sum_rayleigh(n), sum_mie(n), coarse_rayleigh(n), coarse_mie(n) {}
+      view_tau(n), view_trans(n), ms_a(n), ms_b(n), ms_c(n), source(n),
+      sum_rayleigh(n), sum_mie(n), coarse_rayleigh(n), coarse_mie(n), sum_ms(n), coarse_ms(n) {}
 
 SingleScattering::SingleScattering(const AtmosphereModel& atm, const SunColumns& sun_columns,
                                    IntegratorSettings s)
     : atm_(atm),
       sun_(sun_columns),
       settings_(s),
-      ext_rayleigh_(atm.rayleigh().extinction_per_m.cast<float>()),
-      ext_mie_(atm.mie().extinction_per_m.cast<float>()),
       sca_rayleigh_(atm.rayleigh().scattering_per_m.cast<float>()),
-      sca_mie_(atm.mie().scattering_per_m.cast<float>()) {}
+      sca_mie_(atm.mie().scattering_per_m.cast<float>()),
+      albedo_over_pi_((atm.ground_albedo() / kPi).cast<float>()) {
+  ext_[kRayleigh] = atm.rayleigh().extinction_per_m.cast<float>();
+  ext_[kMie] = atm.mie().extinction_per_m.cast<float>();
+  ext_[kOzone] = atm.ozone().extinction_per_m.cast<float>();
+}
 
 namespace {
 
 // Add dt * logmean(f_a, f_b) to sum, elementwise, with x = ln f_a - ln f_b. Where |x| is small the
 // series b (1 + x/2 + x^2/6 + x^3/24) avoids the cancellation in (a - b) / x.
-void accumulate_log_mean(const Spectrum& f_a, const Spectrum& f_b, const Spectrum& x, float dt,
-                         Spectrum& sum) {
+void accumulate_log_mean(const Spectrum& f_a, const Spectrum& f_b, const Spectrum& x, float dt, Spectrum& sum) {
   sum += dt * (x.abs() < 1e-2f)
                   .select(f_b * (1.0f + x * (0.5f + x * (1.0f / 6.0f + x * (1.0f / 24.0f)))),
                           (f_a - f_b) / x);
@@ -35,13 +39,41 @@ void accumulate_log_mean(const Spectrum& f_a, const Spectrum& f_b, const Spectru
 // A node of the quadrature: a point on the view ray.
 struct Node {
   double t;
-  double log_rho[kSpeciesCount];
+  double r;
+  double mu_sun;
+  double log_rho[2];  // Rayleigh, Mie
+  double rho_ozone;
+};
+
+// A stretch of the ray between cuts, lit by the sun or in the planet's shadow.
+struct Piece {
+  double t0, t1;
+  bool lit;
 };
 
 }  // namespace
 
+void SingleScattering::transmittance_to_space(const Vec3& o, const Vec3& d, Spectrum& out) const {
+  const double R = atm_.planet_radius_m(), Rt = atm_.top_radius_m();
+  out.setOnes();
+  const SphereHit ground = intersect_sphere(o, d, R);
+  if (o.norm() < R || (ground.hit && ground.t_near_m > 0.0)) {
+    out.setZero();
+    return;
+  }
+  const SphereHit top = intersect_sphere(o, d, Rt);
+  if (!top.hit || top.t_far_m <= 0.0) return;
+  // Columns from the entry point (or the origin, inside) to the exit.
+  const Vec3 start = o + std::max(0.0, top.t_near_m) * d;
+  const double r = std::min(start.norm(), Rt);
+  const Columns c = columns_to_top_m(atm_, r, start.dot(d) / start.norm(), 256);
+  Spectrum tau = ext_[kRayleigh] * static_cast<float>(c[kRayleigh]) + ext_[kMie] * static_cast<float>(c[kMie]) +
+                 ext_[kOzone] * static_cast<float>(c[kOzone]);
+  out = (-tau).exp();
+}
+
 void SingleScattering::radiance(const Vec3& o, const Vec3& d, const Vec3& s, const Spectrum& sun_irradiance,
-                                ScatteringWorkspace& ws, Spectrum& out) const {
+                                const ScatteringSources& sources, ScatteringWorkspace& ws, Spectrum& out) const {
   out.setZero();
   const double R = atm_.planet_radius_m(), Rt = atm_.top_radius_m();
   if (o.norm() < R) return;  // inside the planet
@@ -51,127 +83,218 @@ void SingleScattering::radiance(const Vec3& o, const Vec3& d, const Vec3& s, con
   if (!top.hit || top.t_far_m <= 0.0) return;
   const double t_begin = std::max(0.0, top.t_near_m);
   double t_end = top.t_far_m;
+  bool hits_ground = false;
   const SphereHit ground = intersect_sphere(o, d, R);
-  if (ground.hit && ground.t_near_m > 0.0) t_end = std::min(t_end, ground.t_near_m);
+  if (ground.hit && ground.t_near_m > 0.0 && ground.t_near_m < t_end) {
+    t_end = ground.t_near_m;
+    hits_ground = true;
+  }
   if (!(t_end > t_begin)) return;
 
-  // Cut points: shadow boundaries and the ray's lowest point.
+  // Pieces: cut at the shadow boundaries (closed form) and at the ray's lowest point. Shadowed
+  // pieces carry only higher-order light; without it they matter only for the view columns.
   const IntervalSet lit = lit_intervals(o, d, t_begin, t_end, s, R);
-  if (lit.count == 0) return;
+  const bool higher = sources.higher != nullptr;
+  // Without higher orders, a ray entirely in shadow sees nothing (its ground point is dark too).
+  if (!higher && lit.count == 0) return;
   const double t_low = -o.dot(d);
+  Piece pieces[8];
+  int n_pieces = 0;
+  {
+    double cuts[6];
+    bool cut_lit[6];
+    int n = 0;
+    double t = t_begin;
+    for (int i = 0; i < lit.count; ++i) {
+      if (lit.parts[i].t0_m > t) {
+        cuts[n] = lit.parts[i].t0_m;
+        cut_lit[n++] = false;  // [t, t0] dark
+      }
+      cuts[n] = lit.parts[i].t1_m;
+      cut_lit[n++] = true;
+      t = lit.parts[i].t1_m;
+    }
+    if (t < t_end) {
+      cuts[n] = t_end;
+      cut_lit[n++] = false;
+    }
+    double a = t_begin;
+    for (int i = 0; i < n; ++i) {
+      const double b = cuts[i];
+      if (t_low > a && t_low < b) {
+        pieces[n_pieces++] = {a, t_low, cut_lit[i]};
+        a = t_low;
+      }
+      pieces[n_pieces++] = {a, b, cut_lit[i]};
+      a = b;
+    }
+  }
 
-  const DensityProfile* profiles[kSpeciesCount] = {&atm_.rayleigh().profile, &atm_.mie().profile};
+  const DensityProfile& prof_r = atm_.rayleigh().profile;
+  const DensityProfile& prof_m = atm_.mie().profile;
+  const DensityProfile& prof_o = atm_.ozone().profile;
+  const bool ozone = atm_.ozone().enabled();
   auto make_node = [&](double t) {
     Node n;
     n.t = t;
     const Vec3 p = o + t * d;
-    const double alt = p.norm() - R;
-    for (int k = 0; k < kSpeciesCount; ++k) n.log_rho[k] = profiles[k]->log_relative(alt);
+    n.r = p.norm();
+    n.mu_sun = p.dot(s) / n.r;
+    const double alt = n.r - R;
+    n.log_rho[0] = prof_r.log_relative(alt);
+    n.log_rho[1] = prof_m.log_relative(alt);
+    n.rho_ozone = ozone ? prof_o.relative(alt) : 0.0;
     return n;
   };
 
-  // View-ray columns accumulate from t_begin across lit and shadowed parts alike.
-  double view_col[kSpeciesCount] = {0.0, 0.0};
-  Node prev = make_node(t_begin);
+  // View-ray columns from t_begin: log-mean rule for the positive profiles, trapezoid for ozone.
+  double view_col[kSpeciesCount] = {0.0, 0.0, 0.0};
   auto advance_columns = [&](const Node& a, const Node& b) {
     const double dt = b.t - a.t;
-    for (int k = 0; k < kSpeciesCount; ++k)
+    for (int k = 0; k < 2; ++k)
       view_col[k] += dt * log_mean(std::exp(a.log_rho[k]), std::exp(b.log_rho[k]), a.log_rho[k] - b.log_rho[k]);
+    view_col[kOzone] += 0.5 * dt * (a.rho_ozone + b.rho_ozone);
   };
-  // Shadowed stretch [prev.t, t]: only extinction along the view ray matters.
-  auto skip_to = [&](double t) {
-    if (!(t > prev.t)) return;
-    const int n = 8;
-    const double dt = (t - prev.t) / n;
-    const double t0 = prev.t;
-    for (int i = 1; i <= n; ++i) {
-      Node next = make_node(i == n ? t : t0 + dt * i);
-      advance_columns(prev, next);
-      prev = next;
-    }
+  auto view_tau = [&](Spectrum& tau) {
+    tau = ext_[kRayleigh] * static_cast<float>(view_col[kRayleigh]) + ext_[kMie] * static_cast<float>(view_col[kMie]);
+    if (ozone) tau += ext_[kOzone] * static_cast<float>(view_col[kOzone]);
   };
-
-  // Spectral state at a node: tau, ln-free transmittance, then the integrands per species.
-  auto eval_tau = [&](const Node& n, Spectrum& tau) {
-    const Vec3 p = o + n.t * d;
-    const double r = p.norm();
-    const Columns sun = sun_.at(r, p.dot(s) / r);
-    tau = ext_rayleigh_ * static_cast<float>(view_col[kRayleigh] + sun[kRayleigh]) +
-          ext_mie_ * static_cast<float>(view_col[kMie] + sun[kMie]);
+  // Total optical depth view + sun at a lit node.
+  auto total_tau = [&](const Node& n, Spectrum& tau) {
+    const Columns sun = sun_.at(n.r, n.mu_sun);
+    tau = ext_[kRayleigh] * static_cast<float>(view_col[kRayleigh] + sun[kRayleigh]) +
+          ext_[kMie] * static_cast<float>(view_col[kMie] + sun[kMie]);
+    if (ozone) tau += ext_[kOzone] * static_cast<float>(view_col[kOzone] + sun[kOzone]);
   };
-
-  // Integrals over one segment [a, b] of rho_s exp(-tau) for both species, by the log-mean rule.
+  // Higher-order integrand exp(-tau_view) sum_s beta_sca,s rho_s J at a node.
+  auto higher_integrand = [&](const Node& n, Spectrum& m) {
+    sources.higher->source(n.r, n.mu_sun, ws.source.data());
+    view_tau(ws.view_tau);
+    const float rho_r = static_cast<float>(std::exp(n.log_rho[0])), rho_m = static_cast<float>(std::exp(n.log_rho[1]));
+    m = (-ws.view_tau).exp() * ws.source * (sca_rayleigh_ * rho_r + sca_mie_ * rho_m);
+  };
+  // Single-scattering integrals over one segment [a, b] for both species, by the log-mean rule.
   auto accumulate_segment = [&](const Node& na, const Node& nb, const Spectrum& tau_a, const Spectrum& trans_a,
-                                const Spectrum& tau_b, const Spectrum& trans_b, ScatteringWorkspace& w,
-                                Spectrum& sum_r, Spectrum& sum_m) {
+                                const Spectrum& tau_b, const Spectrum& trans_b, Spectrum& sum_r, Spectrum& sum_m) {
     const float seg = static_cast<float>(nb.t - na.t);
-    for (int sp = 0; sp < kSpeciesCount; ++sp) {
+    for (int sp = 0; sp < 2; ++sp) {
       const float rho_a = static_cast<float>(std::exp(na.log_rho[sp]));
       const float rho_b = static_cast<float>(std::exp(nb.log_rho[sp]));
-      w.x = static_cast<float>(na.log_rho[sp] - nb.log_rho[sp]) - (tau_a - tau_b);
-      w.f_a = rho_a * trans_a;
-      w.f_b = rho_b * trans_b;
-      accumulate_log_mean(w.f_a, w.f_b, w.x, seg, sp == kRayleigh ? sum_r : sum_m);
+      ws.x = static_cast<float>(na.log_rho[sp] - nb.log_rho[sp]) - (tau_a - tau_b);
+      ws.f_a = rho_a * trans_a;
+      ws.f_b = rho_b * trans_b;
+      accumulate_log_mean(ws.f_a, ws.f_b, ws.x, seg, sp == 0 ? sum_r : sum_m);
     }
   };
 
-  double total_lit = 0.0;
-  for (int i = 0; i < lit.count; ++i) total_lit += lit.parts[i].length_m();
+  double total_len = 0.0;
+  for (int i = 0; i < n_pieces; ++i)
+    if (pieces[i].lit || higher) total_len += pieces[i].t1 - pieces[i].t0;
   ws.sum_rayleigh.setZero();
   ws.sum_mie.setZero();
   ws.coarse_rayleigh.setZero();
   ws.coarse_mie.setZero();
+  ws.sum_ms.setZero();
+  ws.coarse_ms.setZero();
 
-  for (int i = 0; i < lit.count; ++i) {
-    const Interval& iv = lit.parts[i];
-    skip_to(iv.t0_m);
-    // Split the lit piece at the lowest point of the ray if it lies inside.
-    double cuts[3] = {iv.t0_m, iv.t1_m, iv.t1_m};
-    int n_pieces = 1;
-    if (t_low > iv.t0_m && t_low < iv.t1_m) {
-      cuts[1] = t_low;
-      n_pieces = 2;
+  Node prev = make_node(t_begin);
+  for (int i = 0; i < n_pieces; ++i) {
+    const Piece& pc = pieces[i];
+    const bool single_here = sources.single && pc.lit;
+    if (!single_here && !higher) {
+      // Nothing to collect: only the view columns advance, on a few segments.
+      const int n = 8;
+      const double dt = (pc.t1 - pc.t0) / n;
+      for (int k = 1; k <= n; ++k) {
+        const Node next = make_node(k == n ? pc.t1 : pc.t0 + dt * k);
+        advance_columns(prev, next);
+        prev = next;
+      }
+      continue;
     }
-    eval_tau(prev, ws.tau_a);
-    ws.trans_a = (-ws.tau_a).exp();
-    for (int pc = 0; pc < n_pieces; ++pc) {
-      const double a = cuts[pc], b = cuts[pc + 1];
-      // An even number of segments, so that pairs of them form the coarse rule.
-      int segs = std::max(2, static_cast<int>(std::lround(settings_.view_segments * (b - a) / total_lit)));
-      segs += segs % 2;
-      const double dt = (b - a) / segs;
-      Node pair_start = prev;
+    // An even number of segments, so that pairs of them form the coarse rule.
+    int segs = std::max(2, static_cast<int>(std::lround(settings_.view_segments * (pc.t1 - pc.t0) / total_len)));
+    segs += segs % 2;
+    const double dt = (pc.t1 - pc.t0) / segs;
+    if (single_here) {
+      total_tau(prev, ws.tau_a);
+      ws.trans_a = (-ws.tau_a).exp();
       ws.tau_c = ws.tau_a;
       ws.trans_c = ws.trans_a;
-      for (int k = 1; k <= segs; ++k) {
-        Node next = make_node(k == segs ? b : a + dt * k);
-        advance_columns(prev, next);
-        eval_tau(next, ws.tau_b);
+    }
+    if (higher) {
+      higher_integrand(prev, ws.ms_a);
+      ws.ms_c = ws.ms_a;
+    }
+    Node pair_start = prev;
+    for (int k = 1; k <= segs; ++k) {
+      const Node next = make_node(k == segs ? pc.t1 : pc.t0 + dt * k);
+      advance_columns(prev, next);
+      const float seg = static_cast<float>(next.t - prev.t);
+      if (single_here) {
+        total_tau(next, ws.tau_b);
         ws.trans_b = (-ws.tau_b).exp();
-        accumulate_segment(prev, next, ws.tau_a, ws.trans_a, ws.tau_b, ws.trans_b, ws, ws.sum_rayleigh, ws.sum_mie);
-        if (k % 2 == 0) {
-          accumulate_segment(pair_start, next, ws.tau_c, ws.trans_c, ws.tau_b, ws.trans_b, ws, ws.coarse_rayleigh,
+        accumulate_segment(prev, next, ws.tau_a, ws.trans_a, ws.tau_b, ws.trans_b, ws.sum_rayleigh, ws.sum_mie);
+      }
+      if (higher) {
+        higher_integrand(next, ws.ms_b);
+        ws.sum_ms += (0.5f * seg) * (ws.ms_a + ws.ms_b);
+      }
+      if (k % 2 == 0) {
+        if (single_here) {
+          accumulate_segment(pair_start, next, ws.tau_c, ws.trans_c, ws.tau_b, ws.trans_b, ws.coarse_rayleigh,
                              ws.coarse_mie);
-          pair_start = next;
           ws.tau_c = ws.tau_b;
           ws.trans_c = ws.trans_b;
         }
-        prev = next;
+        if (higher) {
+          ws.coarse_ms += static_cast<float>(0.5 * (next.t - pair_start.t)) * (ws.ms_c + ws.ms_b);
+          ws.ms_c = ws.ms_b;
+        }
+        pair_start = next;
+      }
+      prev = next;
+      if (single_here) {
         ws.tau_a.swap(ws.tau_b);
         ws.trans_a.swap(ws.trans_b);
       }
+      if (higher) ws.ms_a.swap(ws.ms_b);
     }
   }
 
-  // Richardson extrapolation: the rule's error is O(dt^2), so (4 fine - coarse) / 3 cancels the
+  // Richardson extrapolation: each rule's error is O(dt^2), so (4 fine - coarse) / 3 cancels the
   // leading term. Clamped at 0 in case a coarse pair is far off (it never is for smooth integrands).
-  ws.sum_rayleigh = ((4.0f * ws.sum_rayleigh - ws.coarse_rayleigh) * (1.0f / 3.0f)).max(0.0f);
-  ws.sum_mie = ((4.0f * ws.sum_mie - ws.coarse_mie) * (1.0f / 3.0f)).max(0.0f);
+  if (sources.single) {
+    ws.sum_rayleigh = ((4.0f * ws.sum_rayleigh - ws.coarse_rayleigh) * (1.0f / 3.0f)).max(0.0f);
+    ws.sum_mie = ((4.0f * ws.sum_mie - ws.coarse_mie) * (1.0f / 3.0f)).max(0.0f);
+    const double mu = d.dot(s);
+    const float phase_r = static_cast<float>(rayleigh_phase(mu));
+    const float phase_m = static_cast<float>(atm_.mie_phase()(mu));
+    out = sca_rayleigh_ * ws.sum_rayleigh * phase_r + sca_mie_ * ws.sum_mie * phase_m;
+  }
+  if (higher) out += ((4.0f * ws.sum_ms - ws.coarse_ms) * (1.0f / 3.0f)).max(0.0f);
 
-  const double mu = d.dot(s);
-  const float phase_r = static_cast<float>(rayleigh_phase(mu));
-  const float phase_m = static_cast<float>(atm_.mie_phase()(mu));
-  out = sun_irradiance * (sca_rayleigh_ * ws.sum_rayleigh * phase_r + sca_mie_ * ws.sum_mie * phase_m);
+  // The ground: Lambertian reflection of the direct sun (order 1) and of the sky (higher orders),
+  // seen through the whole view ray.
+  if (hits_ground && albedo_over_pi_.maxCoeff() > 0.0f) {
+    const Node g = prev;  // the last node is the ground point
+    view_tau(ws.view_tau);
+    ws.view_trans = (-ws.view_tau).exp();
+    ws.source.setZero();
+    if (sources.single && g.mu_sun > 0.0) {
+      Spectrum& tau_sun = ws.tau_c;  // free at this point
+      const Columns sun = sun_.at(R, g.mu_sun);
+      tau_sun = ext_[kRayleigh] * static_cast<float>(sun[kRayleigh]) + ext_[kMie] * static_cast<float>(sun[kMie]) +
+                ext_[kOzone] * static_cast<float>(sun[kOzone]);
+      ws.source = (-tau_sun).exp() * static_cast<float>(g.mu_sun);
+    }
+    if (higher) {
+      sources.higher->ground_irradiance(g.mu_sun, ws.ms_c.data());
+      ws.source += ws.ms_c;
+    }
+    out += ws.view_trans * albedo_over_pi_ * ws.source;
+  }
+  out *= sun_irradiance;
 }
 
 }  // namespace skyspec

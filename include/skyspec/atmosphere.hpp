@@ -48,11 +48,29 @@ struct MieSpec {
   AerosolPhase phase;
 };
 
+/// An absorbing ozone layer: a tent profile holding a given column.
+struct OzoneSpec {
+  bool enabled = false;
+  double column_DU = 300.0;  ///< total column, Dobson units (1 DU = 2.6867e20 molecules m^-2)
+  double bottom_m = 10e3, peak_m = 25e3, top_m = 40e3;
+  /// Absorption cross-sections (m^2 per molecule) at these wavelengths, linearly interpolated; when
+  /// empty, the built-in laboratory table (data/ozone/) is used.
+  std::vector<double> cross_section_wavelengths_nm, cross_section_m2;
+};
+
+/// The planet's surface: Lambertian, with a constant or a spectral albedo.
+struct GroundSpec {
+  double albedo = 0.0;                   ///< used when albedo_values is empty
+  std::vector<double> albedo_wavelengths_nm, albedo_values;  ///< spectral albedo, linearly interpolated
+};
+
 struct AtmosphereSpec {
   double planet_radius_m = 6360e3;
   double top_altitude_m = 60e3;  ///< thickness of the shell
   RayleighSpec rayleigh;
   MieSpec mie;
+  OzoneSpec ozone;
+  GroundSpec ground;
 };
 
 /// One scattering species on the grid.
@@ -60,6 +78,7 @@ struct ScatteringSpecies {
   DensityProfile profile;
   SpectrumD scattering_per_m;  ///< at relative density 1
   SpectrumD extinction_per_m;  ///< at relative density 1
+  bool enabled() const { return extinction_per_m.size() > 0 && extinction_per_m.maxCoeff() > 0.0; }
 };
 
 class AtmosphereModel {
@@ -74,6 +93,12 @@ class AtmosphereModel {
 
   const ScatteringSpecies& rayleigh() const { return rayleigh_; }
   const ScatteringSpecies& mie() const { return mie_; }
+  /// Ozone: absorption only (scattering_per_m is zero); relative density 1 at the layer's peak.
+  const ScatteringSpecies& ozone() const { return ozone_; }
+  /// Number density of ozone at the layer's peak, m^-3 (0 without ozone).
+  double ozone_peak_number_density_per_m3() const { return ozone_peak_per_m3_; }
+  /// Lambertian albedo of the ground on the grid.
+  const SpectrumD& ground_albedo() const { return ground_albedo_; }
   const AerosolPhase& mie_phase() const { return spec_.mie.phase; }
 
   /// Molecular number density at altitude 0, m^-3, and how it was obtained.
@@ -85,11 +110,16 @@ class AtmosphereModel {
  private:
   AtmosphereSpec spec_;
   WavelengthGrid grid_;
-  ScatteringSpecies rayleigh_, mie_;
+  ScatteringSpecies rayleigh_, mie_, ozone_;
+  double ozone_peak_per_m3_ = 0.0;
+  SpectrumD ground_albedo_;
   double rayleigh_n0_per_m3_ = 0.0;
   std::string rayleigh_n0_origin_;
   std::vector<RayleighDerivationStep> derivation_;
 };
+
+/// Piecewise-linear interpolation of (x, y) samples at x0, constant beyond the ends.
+double interpolate_linear(const std::vector<double>& x, const std::vector<double>& y, double x0);
 
 /// Build the density profile of a kind (exponential needs its scale height).
 DensityProfile make_profile(ProfileKind kind, double scale_height_m, double top_altitude_m);

@@ -11,7 +11,7 @@ namespace skyspec {
 
 class DensityProfile {
  public:
-  enum class Kind { Exponential, UsStandard1976, Constant };
+  enum class Kind { Exponential, UsStandard1976, Constant, Tent };
 
   /// rho(z) = exp(-z / H).
   static DensityProfile exponential(double scale_height_m);
@@ -20,13 +20,24 @@ class DensityProfile {
   static DensityProfile us_standard_1976(double top_m);
   /// rho(z) = 1: a homogeneous layer (closed-form tests, teaching).
   static DensityProfile constant();
+  /// A layer: 0 below bottom_m, rising linearly to 1 at peak_m, falling linearly to 0 at top_m
+  /// (the ozone layer model of Bruneton 2017's reference implementation).
+  static DensityProfile tent(double bottom_m, double peak_m, double top_m);
 
   Kind kind() const { return kind_; }
   double scale_height_m() const { return scale_height_m_; }  ///< exponential only
   std::string describe() const;
 
   /// ln rho(z): the integrator works with logarithms (an exponential profile is linear in them).
+  /// -infinity where the density is zero (tent profile outside its layer).
   double log_relative(double altitude_m) const;
+  /// rho(z).
+  double relative(double altitude_m) const;
+  /// True when rho > 0 everywhere, so that integrals may use the log-mean rule; false for the
+  /// tent, which is integrated with the trapezoid rule.
+  bool positive_everywhere() const { return kind_ != Kind::Tent; }
+  /// Integral of rho over all altitudes, m (tent only: its thickness-weighted area).
+  double tent_area_m() const { return 0.5 * (top_m_ - bottom_m_); }
 
  private:
   Kind kind_ = Kind::Constant;
@@ -34,6 +45,7 @@ class DensityProfile {
   // US 1976: ln rho at altitudes step_m_ apart from 0 (values below 0 are extrapolated linearly).
   std::shared_ptr<const std::vector<double>> log_table_;
   double step_m_ = 10.0;
+  double bottom_m_ = 0.0, peak_m_ = 0.0, top_m_ = 0.0;  // tent
 };
 
 }  // namespace skyspec

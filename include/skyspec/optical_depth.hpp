@@ -14,8 +14,8 @@
 
 namespace skyspec {
 
-/// Species indices used in column arrays.
-enum SpeciesIndex { kRayleigh = 0, kMie = 1, kSpeciesCount = 2 };
+/// Species indices used in column arrays. Ozone absorbs only.
+enum SpeciesIndex { kRayleigh = 0, kMie = 1, kOzone = 2, kSpeciesCount = 3 };
 using Columns = std::array<double, kSpeciesCount>;
 
 /// Log-mean of two positive values a, b given x = ln a - ln b: (a - b) / x, the exact integral

@@ -45,6 +45,10 @@ struct RenderSpec {
   int table_altitude_samples = 256;
   int table_zenith_samples = 512;
   int threads = 0;  ///< 0: all cores
+  /// Highest scattering order (1: single scattering); orders >= 2 come from precomputed tables.
+  int scattering_orders = 6;
+  int ms_altitude_samples = 24;
+  int ms_sun_samples = 48;
 };
 
 struct OutputSpec {

@@ -1,18 +1,24 @@
-// Single scattering along a view ray (Nishita et al. 1993; the seed tutorial's equation 4):
+// Radiance along a view ray: single scattering (Nishita et al. 1993; the seed tutorial's
+// equation 4), plus, when given, light scattered more than once from precomputed source tables,
+// and light reflected by a Lambertian ground:
 //
-//   L(lambda) = E_sun(lambda) sum_s beta_sca,s(lambda) p_s(mu)
-//               * integral_0^T rho_s(t) exp(-tau_view(0, t) - tau_sun(t)) dt
+//   L(lambda) = E_sun sum_s beta_sca,s p_s(mu) int rho_s(t) exp(-tau_view(0,t) - tau_sun(t)) dt  (order 1)
+//             + E_sun int exp(-tau_view(0,t)) sum_s beta_sca,s rho_s(t) J(r(t), mu_s(t)) dt      (orders >= 2)
+//             + exp(-tau_view(0,T)) a / pi [E_sun T_sun(g) max(0, mu_s(g)) + E_sun G(mu_s(g))]  (ground at g)
 //
-// over the part of the ray inside the atmosphere and outside the planet's shadow, with
-// tau = sum_s beta_ext,s C_s. All wavelengths are carried together as one vector.
+// tau = sum_s beta_ext,s C_s over Rayleigh, Mie and ozone. J is the isotropic in-scattering source
+// of the higher orders per unit solar irradiance, G the ground irradiance they give (see
+// multiple_scattering.hpp). All wavelengths are carried together as one vector.
 //
 // Quadrature: the ray is cut at the shadow boundaries (closed form) and at its lowest point, and
-// each piece into segments; on a segment, ln of the integrand rho_s exp(-tau) is taken as linear in
-// t, which integrates exactly where the density is exponential and the optical depth linear
-// (the log-mean rule). The rule is second order; pairs of segments give a coarse estimate of the
-// same integral and Richardson extrapolation, (4 fine - coarse) / 3, removes the leading error
-// term at the cost of one extra log-mean per pair (no extra exponentials). View-ray columns are
-// accumulated with the log-mean rule; columns towards the sun come from the SunColumnTable.
+// each piece into segments. For the single-scattering term, ln of the integrand rho_s exp(-tau)
+// is taken as linear on a segment, which integrates exactly where the density is exponential and
+// the optical depth linear (the log-mean rule); it is second order, and pairs of segments give a
+// coarse estimate of the same integral so that Richardson extrapolation, (4 fine - coarse) / 3,
+// removes the leading error term at the cost of one extra log-mean per pair. The smooth
+// higher-order term uses the trapezoid rule with the same extrapolation (Simpson's rule).
+// View-ray columns are accumulated along the way; columns towards the sun come from the
+// SunColumnTable.
 #pragma once
 
 #include "skyspec/geometry.hpp"
@@ -22,14 +28,16 @@
 namespace skyspec {
 
 struct IntegratorSettings {
-  int view_segments = 32;  ///< segments along each lit piece of a view ray, in total
+  int view_segments = 64;  ///< segments along each view ray, in total
 };
 
 /// Per-thread scratch memory (spectral arrays are allocated once and reused).
 struct ScatteringWorkspace {
   explicit ScatteringWorkspace(int n_wavelengths);
   Spectrum tau_a, tau_b, tau_c, trans_a, trans_b, trans_c, f_a, f_b, x;
+  Spectrum view_tau, view_trans, ms_a, ms_b, ms_c, source;
   Spectrum sum_rayleigh, sum_mie, coarse_rayleigh, coarse_mie;  // fine and coarse (paired) rules
+  Spectrum sum_ms, coarse_ms;
 };
 
 /// How the sun's columns are obtained at a point; the table in production, closed forms in tests.
@@ -48,24 +56,52 @@ class TableSunColumns : public SunColumns {
   const SunColumnTable& table_;
 };
 
+/// An isotropic in-scattering source field J(r, mu_s) (radiance per unit scattering coefficient
+/// and per unit solar irradiance, sr^-1) and the irradiance G(mu_s) it puts on the ground (per unit
+/// solar irradiance). Implemented by the scattering-order tables.
+class InScatteringSource {
+ public:
+  virtual ~InScatteringSource() = default;
+  virtual void source(double r_m, double mu_sun, float* out) const = 0;
+  virtual void ground_irradiance(double mu_sun, float* out) const = 0;
+};
+
+/// What a radiance evaluation includes.
+struct ScatteringSources {
+  bool single = true;                         ///< order 1: air scattering + direct sun off the ground
+  const InScatteringSource* higher = nullptr;  ///< orders >= 2 from tables (or one order while building them)
+};
+
 class SingleScattering {
  public:
   /// The atmosphere and sun-column provider must outlive this object.
   SingleScattering(const AtmosphereModel& atm, const SunColumns& sun_columns, IntegratorSettings s);
 
-  /// Radiance reaching origin_m from direction -dir... i.e. seen looking along dir (unit), for a
-  /// sun in direction sun_dir (unit) with spectral irradiance sun_irradiance (per wavelength).
-  /// Writes `out` (size = grid size). Rays that start below the ground give 0.
-  void radiance(const Vec3& origin_m, const Vec3& dir, const Vec3& sun_dir,
-                const Spectrum& sun_irradiance, ScatteringWorkspace& ws, Spectrum& out) const;
+  /// Radiance seen from origin_m looking along dir (unit), for a sun in direction sun_dir (unit)
+  /// with spectral irradiance sun_irradiance (per wavelength). Writes `out` (grid size).
+  /// Rays that start below the ground give 0.
+  void radiance(const Vec3& origin_m, const Vec3& dir, const Vec3& sun_dir, const Spectrum& sun_irradiance,
+                const ScatteringSources& sources, ScatteringWorkspace& ws, Spectrum& out) const;
+  /// Single scattering only (order 1).
+  void radiance(const Vec3& origin_m, const Vec3& dir, const Vec3& sun_dir, const Spectrum& sun_irradiance,
+                ScatteringWorkspace& ws, Spectrum& out) const {
+    radiance(origin_m, dir, sun_dir, sun_irradiance, ScatteringSources{}, ws, out);
+  }
+
+  /// Transmittance from origin_m along dir to the edge of the atmosphere (0 if the ray hits the
+  /// ground): the attenuation of the sun's disk seen in that direction.
+  void transmittance_to_space(const Vec3& origin_m, const Vec3& dir, Spectrum& out) const;
 
   const AtmosphereModel& atmosphere() const { return atm_; }
+  const SunColumns& sun_columns() const { return sun_; }
+  const IntegratorSettings& settings() const { return settings_; }
 
  private:
   const AtmosphereModel& atm_;
   const SunColumns& sun_;
   IntegratorSettings settings_;
-  Spectrum ext_rayleigh_, ext_mie_, sca_rayleigh_, sca_mie_;  // float copies, per metre
+  Spectrum ext_[kSpeciesCount];
+  Spectrum sca_rayleigh_, sca_mie_, albedo_over_pi_;
 };
 
 }  // namespace skyspec
