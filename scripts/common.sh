@@ -4,12 +4,15 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 # Debian bookworm packages: compiler and build tools, the libraries the build finds with
-# find_package, and the tools the tests use to open our outputs (exrheader, oiiotool).
+# find_package, and the tools the tests use to open our outputs (exrheader, oiiotool, ociocheck).
 SKYSPEC_PACKAGES=(
   build-essential cmake pkg-config
   libeigen3-dev libopenexr-dev libimath-dev libopencolorio-dev libtbb-dev libpng-dev
   libtomlplusplus-dev libcli11-dev libboost-test-dev
-  openexr openimageio-tools
+  openexr openimageio-tools opencolorio-tools
+  nlohmann-json3-dev
+  pybind11-dev python3-dev python3-numpy python3-matplotlib python3-openimageio
+  jupyter-nbconvert python3-ipykernel
 )
 
 install_missing_packages() {

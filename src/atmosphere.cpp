@@ -5,19 +5,16 @@
 #include <sstream>
 
 #include "skyspec/error.hpp"
+#include "skyspec/ozone.hpp"
 #include "skyspec/standard_atmosphere.hpp"
 #include "skyspec/units.hpp"
 
 namespace skyspec {
 
-// Until the built-in ozone table is wired in (data/ozone/), only scene-supplied cross-sections work.
-SpectrumD builtin_ozone_cross_sections_m2(const WavelengthGrid&) {
-  throw InputError("atmosphere.ozone.cross_section_m2", "[]", "a table of cross-sections (no built-in table yet)");
-}
-
 namespace {
 // Ozone absorption cross-sections on the grid: the scene's own table if it has one, else the
-// built-in laboratory data.
+// built-in laboratory data (Serdyuchenko et al. 2014, 233 K, 10 nm bins; data/ozone/), averaged
+// over each grid sample's bin.
 SpectrumD ozone_cross_sections_m2(const OzoneSpec& o, const WavelengthGrid& grid) {
   SpectrumD sigma(grid.size());
   if (!o.cross_section_m2.empty()) {
@@ -25,7 +22,7 @@ SpectrumD ozone_cross_sections_m2(const OzoneSpec& o, const WavelengthGrid& grid
       sigma[i] = interpolate_linear(o.cross_section_wavelengths_nm, o.cross_section_m2, grid.nm(i));
     return sigma;
   }
-  return builtin_ozone_cross_sections_m2(grid);
+  return ozone_cross_section_on_grid(grid, "spectrum");
 }
 }  // namespace
 
@@ -104,6 +101,23 @@ AtmosphereModel::AtmosphereModel(const AtmosphereSpec& spec, const WavelengthGri
         m.enabled ? m.scattering_per_m * std::pow(grid.nm(i) / m.reference_wavelength_nm, -m.angstrom_exponent)
                   : 0.0;
   mie_.extinction_per_m = mie_.scattering_per_m * m.extinction_to_scattering;
+  mie_g_ = SpectrumD::Constant(n, m.phase.g);
+  if (m.enabled && !m.table_wavelengths_nm.empty()) {
+    const auto& x = m.table_wavelengths_nm;
+    auto q_w = [&](double l) {
+      return interpolate_linear(x, m.table_extinction_efficiency, l) * interpolate_linear(x, m.table_single_scattering_albedo, l);
+    };
+    const double anchor = q_w(m.reference_wavelength_nm);
+    if (!(anchor > 0.0))
+      throw InputError("atmosphere.mie.reference_wavelength_nm", std::to_string(m.reference_wavelength_nm),
+                       "a wavelength where the aerosol tables' extinction efficiency x single-scattering albedo > 0");
+    for (int i = 0; i < n; ++i) {
+      const double w = interpolate_linear(x, m.table_single_scattering_albedo, grid.nm(i));
+      mie_.scattering_per_m[i] = m.scattering_per_m * q_w(grid.nm(i)) / anchor;
+      mie_.extinction_per_m[i] = mie_.scattering_per_m[i] / w;
+      mie_g_[i] = interpolate_linear(x, m.table_g, grid.nm(i));
+    }
+  }
 
   // --- Ozone: absorption cross-section x number density at the layer's peak -----------------
   const auto& o = spec.ozone;

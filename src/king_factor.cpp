@@ -72,4 +72,9 @@ double king_factor_air(double lambda_nm, double co2_ppv) {
   return weighted_sum / total_percent;
 }
 
+double king_factor_co2(double lambda_nm) {
+  const double nu_per_cm = 1e7 / lambda_nm;
+  return 1.1364 + 25.3e-12 * nu_per_cm * nu_per_cm;
+}
+
 }  // namespace skyspec

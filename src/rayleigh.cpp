@@ -73,11 +73,17 @@ double cross_section_from_refractivity_m2(double lambda_nm, double refractivity,
 RayleighDerivationStep derive_one(double lambda_nm, const RayleighDerivationInput& in) {
   RayleighDerivationStep step{};
   step.lambda_nm = lambda_nm;
-  step.refractivity_ref = refractivity_standard_air(in.formula, lambda_nm);
-  step.refractivity = refractivity_with_co2(in.formula, lambda_nm, in.co2_ppv);
-  step.king_n2 = king_factor_n2(lambda_nm);
-  step.king_o2 = king_factor_o2(lambda_nm);
-  step.king_factor = king_factor_air(lambda_nm, in.co2_ppv);
+  if (in.gas == ScatteringGas::CarbonDioxide) {
+    // Pure CO2 at the same reference conditions (288.15 K, 101325 Pa) as the number density.
+    step.refractivity_ref = step.refractivity = refractivity_co2(lambda_nm);
+    step.king_factor = king_factor_co2(lambda_nm);
+  } else {
+    step.refractivity_ref = refractivity_standard_air(in.formula, lambda_nm);
+    step.refractivity = refractivity_with_co2(in.formula, lambda_nm, in.co2_ppv);
+    step.king_n2 = king_factor_n2(lambda_nm);
+    step.king_o2 = king_factor_o2(lambda_nm);
+    step.king_factor = king_factor_air(lambda_nm, in.co2_ppv);
+  }
   step.number_density_per_m3 = constants::kStandardNumberDensity_per_m3;
   step.cross_section_m2 = cross_section_from_refractivity_m2(lambda_nm, step.refractivity,
                                                              step.number_density_per_m3, step.king_factor);
@@ -85,6 +91,8 @@ RayleighDerivationStep derive_one(double lambda_nm, const RayleighDerivationInpu
 }
 
 }  // namespace
+
+std::string to_string(ScatteringGas g) { return g == ScatteringGas::CarbonDioxide ? "co2" : "air"; }
 
 std::vector<RayleighDerivationStep> derive_rayleigh(const std::vector<double>& lambda_nm,
                                                     const RayleighDerivationInput& in) {

@@ -135,4 +135,16 @@ std::string describe(RefractiveIndexFormula f) {
   return {};  // unreachable
 }
 
+double refractivity_co2(double lambda_nm) {
+  if (!(lambda_nm >= 200.0) || !std::isfinite(lambda_nm))
+    throw InputError("wavelength_nm", format_number(lambda_nm), "a wavelength of at least 200 nm");
+  const double nu_per_cm = 1e7 / lambda_nm;
+  const double nu2 = nu_per_cm * nu_per_cm;
+  auto term = [nu2](double strength, double resonance_per_cm) {
+    return strength / (resonance_per_cm * resonance_per_cm - nu2);
+  };
+  return 1.1427e3 * (term(5799.25, 128908.9) + term(120.05, 89223.8) + term(5.3334, 75037.5) + term(4.3244, 67837.7) +
+                     term(1.218145e-7, 2418.136));
+}
+
 }  // namespace skyspec

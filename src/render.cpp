@@ -3,6 +3,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <map>
+#include <optional>
+#include <limits>
+#include <mutex>
 #include <sstream>
 
 #include <tbb/enumerable_thread_specific.h>
@@ -12,11 +17,16 @@
 
 #include "skyspec/atomic_file.hpp"
 #include "skyspec/colour.hpp"
+#include "skyspec/display_pipeline.hpp"
 #include "skyspec/error.hpp"
+#include "skyspec/exposure.hpp"
 #include "skyspec/png_image.hpp"
+#include "skyspec/rgb_exr.hpp"
 #include "skyspec/multiple_scattering.hpp"
 #include "skyspec/single_scattering.hpp"
+#include "skyspec/solar_spectrum.hpp"
 #include "skyspec/spectral_exr.hpp"
+#include "skyspec/sun_disk.hpp"
 #include "skyspec/units.hpp"
 #include "skyspec/version.hpp"
 
@@ -38,12 +48,53 @@ std::unique_ptr<Camera> make_camera(const Scene& scene) {
 }
 
 namespace {
-std::unique_ptr<ScatteringOrders> build_orders(const Scene& s, const SingleScattering& integrator) {
+// The sun's spectral irradiance at the top of the atmosphere on the grid, W m^-2 nm^-1.
+Spectrum make_sun_irradiance(const Scene& s, const WavelengthGrid& grid) {
+  if (s.sun.spectrum == SunSpec::Spectrum::Flat)
+    return Spectrum::Constant(grid.size(), static_cast<float>(s.sun.spectral_irradiance_W_m2_nm));
+  const double scale = 1.0 / (s.sun.distance_au * s.sun.distance_au);  // inverse-square law
+  return (solar_irradiance_on_grid(grid, "spectrum") * scale).cast<float>();
+}
+
+// The scene keys the scattering-order tables depend on: the planet, the atmosphere, the ground,
+// the wavelength grid and the table settings (not the sun, the camera or the outputs).
+std::string scattering_tables_key(const Scene& s) {
+  std::istringstream in(scene_to_toml(s));
+  std::string line, table, key;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line.front() == '[') {
+      table = line;
+      continue;
+    }
+    const bool render_key = table == "[render]" && (line.rfind("table_", 0) == 0 || line.rfind("ms_", 0) == 0 ||
+                                                    line.rfind("scattering_orders", 0) == 0);
+    if (table.rfind("[atmosphere", 0) == 0 || table == "[planet]" || table == "[ground]" || table == "[spectrum]" ||
+        render_key)
+      key += table + line + "\n";
+  }
+  return key;
+}
+
+// Tables are reused across renders of the same atmosphere in one process (a time-lapse changes
+// only the sun). The last few are kept.
+std::shared_ptr<const ScatteringOrders> build_orders(const Scene& s, const SingleScattering& integrator) {
+  static std::mutex mutex;
+  static std::vector<std::pair<std::string, std::shared_ptr<const ScatteringOrders>>> cache;
+  const std::string key = scattering_tables_key(s);
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    for (const auto& [k, v] : cache)
+      if (k == key) return v;
+  }
   MultipleScatteringSettings ms;
   ms.orders = s.render.scattering_orders;
   ms.altitude_samples = s.render.ms_altitude_samples;
   ms.sun_samples = s.render.ms_sun_samples;
-  return std::make_unique<ScatteringOrders>(integrator, ms);
+  auto orders = std::make_shared<const ScatteringOrders>(integrator, ms);
+  std::lock_guard<std::mutex> lock(mutex);
+  cache.emplace_back(key, orders);
+  if (cache.size() > 4) cache.erase(cache.begin());
+  return orders;
 }
 }  // namespace
 
@@ -54,15 +105,45 @@ struct SkyRenderer::Impl {
   SunColumnTable table;
   TableSunColumns sun_columns;
   SingleScattering integrator;
-  std::unique_ptr<ScatteringOrders> orders;  // null for single scattering
+  std::shared_ptr<const ScatteringOrders> orders;  // null for single scattering
   ScatteringSources sources;
   std::unique_ptr<Camera> camera;
   Vec3 sun_dir;
   Spectrum sun_irradiance;
+  double sun_radius_rad;
   Eigen::Matrix<float, 3, Eigen::Dynamic> to_rgb;  // spectrum -> linear Rec.709
   int rgb_index[3] = {0, 0, 0};                     // RGB-fast: indices of 680, 550, 440 nm
   bool rgb_fast;
   int threads;
+
+  // Adds the limb-darkened sun disk to the radiance of pixel (px, py) (top-left corner), whose
+  // centre looks along dir. The disk is far smaller than most pixels, so the pixel's area is
+  // sampled on an 8 x 8 grid and the disk's radiance averaged over it; the attenuation along the
+  // line of sight is taken at the pixel's centre.
+  void add_sun_disk(int px, int py, const Vec3& dir, Spectrum& radiance, Spectrum& disk, Spectrum& trans) const {
+    Vec3 neighbour;
+    if (!camera->direction(px + 1.5, py + 0.5, neighbour) && !camera->direction(px - 0.5, py + 0.5, neighbour)) return;
+    const double pixel_rad = std::acos(std::clamp(neighbour.dot(dir), -1.0, 1.0));
+    const double to_sun = std::acos(std::clamp(dir.dot(sun_dir), -1.0, 1.0));
+    if (to_sun > sun_radius_rad + 1.5 * pixel_rad) return;
+    const int n = 8;
+    Spectrum& sample = trans;  // reused below for the transmittance
+    disk.setZero();
+    bool any = false;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        Vec3 d;
+        if (!camera->direction(px + (i + 0.5) / n, py + (j + 0.5) / n, d)) continue;
+        const double x = std::acos(std::clamp(d.dot(sun_dir), -1.0, 1.0)) / sun_radius_rad;
+        if (x >= 1.0) continue;
+        disk_radiance_per_irradiance(grid, sun_radius_rad, x, sample);
+        disk += sample;
+        any = true;
+      }
+    if (!any) return;
+    integrator.transmittance_to_space(camera->origin_m(), dir, trans);
+    radiance += disk * (1.0f / (n * n)) * trans * sun_irradiance;
+  }
 
   explicit Impl(const Scene& s)
       : scene(s),
@@ -74,8 +155,9 @@ struct SkyRenderer::Impl {
         orders(s.render.scattering_orders >= 2 ? build_orders(s, integrator) : nullptr),
         sources{true, orders.get()},
         camera(make_camera(s)),
-        sun_dir(sun_direction(s)),
-        sun_irradiance(Spectrum::Constant(grid.size(), static_cast<float>(s.sun.spectral_irradiance_W_m2_nm))),
+        sun_dir(skyspec::sun_direction(s)),
+        sun_irradiance(make_sun_irradiance(s, grid)),
+        sun_radius_rad(skyspec::sun_angular_radius_rad(s.sun.distance_au)),
         rgb_fast(s.render.path == RenderSpec::Path::RgbFast),
         threads(s.render.threads > 0 ? s.render.threads : tbb::this_task_arena::max_concurrency()) {
     if (rgb_fast) {
@@ -95,6 +177,18 @@ const Scene& SkyRenderer::scene() const { return impl_->scene; }
 const WavelengthGrid& SkyRenderer::grid() const { return impl_->grid; }
 int SkyRenderer::width() const { return impl_->camera->width(); }
 int SkyRenderer::height() const { return impl_->camera->height(); }
+
+const Spectrum& SkyRenderer::sun_irradiance() const { return impl_->sun_irradiance; }
+const Vec3& SkyRenderer::sun_direction() const { return impl_->sun_dir; }
+const Vec3& SkyRenderer::camera_origin_m() const { return impl_->camera->origin_m(); }
+double SkyRenderer::sun_angular_radius_rad() const { return impl_->sun_radius_rad; }
+const ScatteringOrders* SkyRenderer::scattering_orders() const { return impl_->orders.get(); }
+
+void SkyRenderer::transmittance(const Vec3& dir, float* out) const {
+  Spectrum t(impl_->grid.size());
+  impl_->integrator.transmittance_to_space(impl_->camera->origin_m(), dir.normalized(), t);
+  std::copy(t.data(), t.data() + t.size(), out);
+}
 
 void SkyRenderer::spectrum_to_rgb(const float* spectrum, float rgb[3]) const {
   const auto& m = *impl_;
@@ -121,22 +215,62 @@ void SkyRenderer::radiance_rgb(const Vec3& dir, float rgb[3]) const {
   spectrum_to_rgb(s.data(), rgb);
 }
 
-void SkyRenderer::render_rows(int y0, int rows, float* spectral, float* rgb) const {
+void SkyRenderer::aerial_rows(int y0, int rows, const float* distance_m, float* transmittance, float* inscatter) const {
   const auto& m = *impl_;
   const int w = m.camera->width(), n = m.grid.size();
-  tbb::enumerable_thread_specific<std::pair<ScatteringWorkspace, Spectrum>> scratch(
-      [n] { return std::make_pair(ScatteringWorkspace(n), Spectrum(n)); });
+  struct Scratch {
+    ScatteringWorkspace ws;
+    Spectrum radiance, trans;
+    explicit Scratch(int k) : ws(k), radiance(k), trans(k) {}
+  };
+  tbb::enumerable_thread_specific<Scratch> scratch([n] { return Scratch(n); });
   tbb::task_arena arena(m.threads);
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<int>(0, rows * w, 64), [&](const tbb::blocked_range<int>& r) {
-      auto& [ws, radiance] = scratch.local();
+      Scratch& sc = scratch.local();
+      for (int idx = r.begin(); idx != r.end(); ++idx) {
+        const int row = idx / w, x = idx % w;
+        float* t_px = transmittance + static_cast<size_t>(idx) * n;
+        float* l_px = inscatter + static_cast<size_t>(idx) * n;
+        Vec3 dir;
+        if (!m.camera->direction(x + 0.5, y0 + row + 0.5, dir)) {
+          std::fill(t_px, t_px + n, 1.0f);
+          std::fill(l_px, l_px + n, 0.0f);
+          continue;
+        }
+        ScatteringSources src = m.sources;
+        src.max_distance_m = std::isfinite(distance_m[idx]) ? static_cast<double>(distance_m[idx])
+                                                             : std::numeric_limits<double>::infinity();
+        src.transmittance = &sc.trans;
+        m.integrator.radiance(m.camera->origin_m(), dir, m.sun_dir, m.sun_irradiance, src, sc.ws, sc.radiance);
+        std::copy(sc.trans.data(), sc.trans.data() + n, t_px);
+        std::copy(sc.radiance.data(), sc.radiance.data() + n, l_px);
+      }
+    });
+  });
+}
+
+void SkyRenderer::render_rows(int y0, int rows, float* spectral, float* rgb) const {
+  const auto& m = *impl_;
+  const int w = m.camera->width(), n = m.grid.size();
+  struct Scratch {
+    ScatteringWorkspace ws;
+    Spectrum radiance, disk, trans;
+    explicit Scratch(int k) : ws(k), radiance(k), disk(k), trans(k) {}
+  };
+  tbb::enumerable_thread_specific<Scratch> scratch([n] { return Scratch(n); });
+  tbb::task_arena arena(m.threads);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<int>(0, rows * w, 64), [&](const tbb::blocked_range<int>& r) {
+      Scratch& sc = scratch.local();
       for (int idx = r.begin(); idx != r.end(); ++idx) {
         const int row = idx / w, x = idx % w;
         Vec3 dir;
         float* px = spectral + static_cast<size_t>(idx) * n;
         if (m.camera->direction(x + 0.5, y0 + row + 0.5, dir)) {
-          m.integrator.radiance(m.camera->origin_m(), dir, m.sun_dir, m.sun_irradiance, m.sources, ws, radiance);
-          std::copy(radiance.data(), radiance.data() + n, px);
+          m.integrator.radiance(m.camera->origin_m(), dir, m.sun_dir, m.sun_irradiance, m.sources, sc.ws, sc.radiance);
+          if (m.scene.sun.disk) m.add_sun_disk(x, y0 + row, dir, sc.radiance, sc.disk, sc.trans);
+          std::copy(sc.radiance.data(), sc.radiance.data() + n, px);
         } else {
           std::fill(px, px + n, 0.0f);
         }
@@ -165,30 +299,6 @@ SpectralImageBuffer render_to_memory(const Scene& scene, const ProgressFn& progr
   return img;
 }
 
-double auto_exposure_scale(const std::vector<float>& linear_rgb) {
-  std::vector<double> y;
-  y.reserve(linear_rgb.size() / 3);
-  for (size_t i = 0; i + 2 < linear_rgb.size(); i += 3) {
-    const double v = 0.2126 * linear_rgb[i] + 0.7152 * linear_rgb[i + 1] + 0.0722 * linear_rgb[i + 2];
-    if (v > 0.0) y.push_back(v);
-  }
-  if (y.empty()) return 1.0;
-  // Only pixels within a factor 100 of the 90th percentile count, so that dark ground or the
-  // night side does not drag the exposure of the sky up.
-  std::vector<double> sorted = y;
-  const size_t k = sorted.size() * 9 / 10;
-  std::nth_element(sorted.begin(), sorted.begin() + static_cast<long>(k), sorted.end());
-  const double floor = 0.01 * sorted[k];
-  double sum_log = 0.0;
-  size_t count = 0;
-  for (double v : y)
-    if (v >= floor) {
-      sum_log += std::log(v);
-      ++count;
-    }
-  return 0.18 / std::exp(sum_log / static_cast<double>(count));
-}
-
 namespace {
 void check_finite(const float* p, size_t n, const char* what) {
   for (size_t i = 0; i < n; ++i)
@@ -197,25 +307,81 @@ void check_finite(const float* p, size_t n, const char* what) {
 }
 }  // namespace
 
+namespace {
+
+/// The automatic exposure, metered before rendering so that the EXR header can record it: the
+/// sky's radiance (without the sun's disk) at the pixels metering_pixels() picks (exposure.hpp).
+double meter_before_rendering(const SkyRenderer& r) {
+  const auto camera = make_camera(r.scene());
+  std::vector<double> luminance;
+  for (const auto& [x, y] : metering_pixels(r.width(), r.height())) {
+    Vec3 dir;
+    if (!camera->direction(x + 0.5, y + 0.5, dir)) continue;  // outside the image circle: black
+    float rgb[3];
+    r.radiance_rgb(dir, rgb);
+    luminance.push_back(rec709_luminance(rgb));
+  }
+  return key_exposure_scale(luminance);
+}
+
+std::string numbers_text(std::initializer_list<double> values) {
+  std::string text;
+  char buffer[32];
+  for (double v : values) {
+    std::snprintf(buffer, sizeof buffer, "%.9g", v);
+    text += (text.empty() ? "" : " ") + std::string(buffer);
+  }
+  return text;
+}
+
+}  // namespace
+
 RenderOutputs render_scene_to_files(const Scene& scene, const ProgressFn& progress) {
+  return render_scene_to_files(scene, DisplaySettings{}, progress);
+}
+
+RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& display, const ProgressFn& progress) {
   const auto t_start = std::chrono::steady_clock::now();
   ensure_writable_directory(scene.output.directory, "output.directory");
   const std::filesystem::path dir(scene.output.directory);
   RenderOutputs out;
-  if (!scene.output.exr && !scene.output.png)
+  const bool working_exr = !display.exr_space.empty();
+  if (!scene.output.exr && !scene.output.png && !working_exr)
     throw InputError("output.exr and output.png", "false", "at least one output to be true");
+  // The display pipeline checks its names (display, view, look, working space) before rendering.
+  std::optional<DisplayPipeline> pipeline;
+  if (scene.output.png || working_exr) pipeline.emplace(display);
 
   SkyRenderer r(scene);
   const int w = r.width(), h = r.height(), n = r.grid().size();
   const bool rgb_fast = scene.render.path == RenderSpec::Path::RgbFast;
 
+  ExposureSettings exposure = display.exposure;
+  if (exposure.mode == ExposureSettings::Mode::Automatic && scene.output.exposure_ev) {
+    exposure.mode = ExposureSettings::Mode::Manual;
+    exposure.ev = *scene.output.exposure_ev;
+  }
+  const bool automatic = exposure.mode == ExposureSettings::Mode::Automatic;
+  const ResolvedExposure chosen = resolve_exposure(exposure, automatic ? meter_before_rendering(r) : 1.0);
+  out.preview_scale = chosen.scale;
+  out.preview_ev = chosen.ev;
+  out.exposure = chosen.description;
+  float sun_rgb[3];
+  r.spectrum_to_rgb(r.sun_irradiance().data(), sun_rgb);
+
+  std::map<std::string, std::string> provenance;
+  provenance["skyspec:version"] = version_string();
+  provenance["skyspec:scene"] = scene_to_toml(scene);
+  provenance["skyspec:renderPath"] = rgb_fast ? "rgb-fast" : "spectral";
+  provenance["skyspec:wavelengths"] = r.grid().describe();
+  provenance["skyspec:exposure"] = chosen.description;
+  provenance["skyspec:exposureScale"] = numbers_text({chosen.scale});
+  provenance["skyspec:sunRGB"] = numbers_text({sun_rgb[0], sun_rgb[1], sun_rgb[2]});
+
   std::unique_ptr<SpectralExrWriter> exr;
   if (scene.output.exr) {
     SpectralExrMetadata meta;
-    meta.strings["skyspec:version"] = version_string();
-    meta.strings["skyspec:scene"] = scene_to_toml(scene);
-    meta.strings["skyspec:renderPath"] = rgb_fast ? "rgb-fast" : "spectral";
-    meta.strings["skyspec:wavelengths"] = r.grid().describe();
+    meta.strings = provenance;
     meta.strings["skyspec:units"] =
         rgb_fast ? "RGB-fast path: S0 channels and R,G,B in the sun's units (spectral_irradiance x sr^-1); "
                    "R,G,B are the 680, 550, 440 nm values read as linear Rec.709"
@@ -227,8 +393,8 @@ RenderOutputs render_scene_to_files(const Scene& scene, const ProgressFn& progre
 
   const int band = 32;  // two ZIP line blocks per write, compressed in parallel
   std::vector<float> spectral(static_cast<size_t>(band) * w * n), band_rgb(static_cast<size_t>(band) * w * 3);
-  std::vector<float> rgb;  // whole preview image, for the automatic exposure
-  if (scene.output.png) rgb.resize(static_cast<size_t>(w) * h * 3);
+  std::vector<float> rgb;  // whole image, for the PNG and the working-space EXR
+  if (pipeline) rgb.resize(static_cast<size_t>(w) * h * 3);
   for (int y = 0; y < h; y += band) {
     const int rows = std::min(band, h - y);
     r.render_rows(y, rows, spectral.data(), band_rgb.data());
@@ -241,19 +407,37 @@ RenderOutputs render_scene_to_files(const Scene& scene, const ProgressFn& progre
     if (progress) progress(y + rows, h);
   }
 
-  out.preview_scale = scene.output.exposure_ev ? std::exp2(*scene.output.exposure_ev) : auto_exposure_scale(rgb);
-  out.preview_ev = std::log2(out.preview_scale);
   if (exr) exr->finish();
-  if (scene.output.png) {
-    out.png = dir / (scene.output.name + ".png");
-    try {
-      write_png_srgb8(out.png, w, h, rgb, out.preview_scale);
-    } catch (...) {
-      // All or nothing: do not leave the EXR of a render whose outputs did not all arrive.
-      std::error_code ec;
-      if (!out.exr.empty()) std::filesystem::remove(out.exr, ec);
-      throw;
+  try {
+    if (scene.output.png) {
+      out.png = dir / (scene.output.name + ".png");
+      out.display = pipeline->describe();
+      const std::vector<std::pair<std::string, std::string>> text = {
+          {"Software", std::string("skyspec ") + version_string()},
+          {"skyspec:display", out.display},
+          {"skyspec:exposure", chosen.description}};
+      write_png_display(out.png, w, h, pipeline->encode(rgb, chosen.scale), display.png_bit_depth, pipeline->png_tag(), text);
     }
+    if (working_exr) {
+      const WorkingSpace& space = find_working_space(display.exr_space);
+      out.working_exr = dir / (scene.output.name + "-" + space.file_suffix + ".exr");
+      std::map<std::string, std::string> strings = provenance;
+      strings["skyspec:workingSpace"] = space.name + " (scene-linear, converted by " + pipeline->config().describe() + ")";
+      std::map<std::string, float> floats;
+      if (exposure.mode == ExposureSettings::Mode::Camera) {  // OpenEXR's standard camera attributes
+        floats["expTime"] = static_cast<float>(exposure.shutter_s);
+        floats["aperture"] = static_cast<float>(exposure.f_number);
+        floats["isoSpeed"] = static_cast<float>(exposure.iso);
+      }
+      write_rgb_exr(out.working_exr, w, h, to_working_space(pipeline->config(), rgb, space), space.chromaticities,
+                    strings, floats);
+    }
+  } catch (...) {
+    // All or nothing: do not leave the files of a render whose outputs did not all arrive.
+    std::error_code ec;
+    for (const auto& path : {out.exr, out.png})
+      if (!path.empty()) std::filesystem::remove(path, ec);
+    throw;
   }
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
   return out;

@@ -14,6 +14,8 @@
 #include <toml++/toml.h>
 
 #include "skyspec/camera.hpp"
+#include "skyspec/date_time.hpp"
+#include "skyspec/solar_position.hpp"
 #include "skyspec/embedded_data.hpp"
 #include "skyspec/error.hpp"
 #include "text_format.hpp"
@@ -269,6 +271,13 @@ const std::vector<KeyDef>& registry() {
           },
           [ref](const Scene& s) { return to_string(ref(const_cast<Scene&>(s))); });
     };
+    r.push_back(choice_key(
+        "atmosphere.rayleigh.gas", {"air", "co2"},
+        "air: Earth's dry air (refractive_index formula, co2_ppm); co2: pure carbon dioxide (Sneep & Ubachs 2005)",
+        [](Scene& s, const std::string& v) {
+          s.atmosphere.rayleigh.derivation.gas = v == "co2" ? ScatteringGas::CarbonDioxide : ScatteringGas::Air;
+        },
+        [](const Scene& s) { return to_string(s.atmosphere.rayleigh.derivation.gas); }));
     r.push_back(profile_key("atmosphere.rayleigh.profile",
                             [](Scene& s) -> ProfileKind& { return s.atmosphere.rayleigh.profile; },
                             "number density profile of air"));
@@ -325,6 +334,19 @@ const std::vector<KeyDef>& registry() {
         [](const Scene& s) { return to_string(s.atmosphere.mie.phase.model); }));
     r.push_back(number_key("atmosphere.mie.g", "", {-0.999, 0.999}, "asymmetry parameter of the phase function",
                            [](Scene& s) -> double& { return s.atmosphere.mie.phase.g; }));
+    r.push_back(list_key("atmosphere.mie.table_wavelengths_nm", "nm", {1.0, 1e5}, 1024,
+                         "spectral aerosol tables: wavelengths (when given, the tables replace the Angstrom law, "
+                         "extinction_to_scattering and g)",
+                         [](Scene& s) -> std::vector<double>& { return s.atmosphere.mie.table_wavelengths_nm; }));
+    r.push_back(list_key("atmosphere.mie.table_extinction_efficiency", "", {0.0, 1e6}, 1024,
+                         "spectral aerosol tables: extinction efficiency Q (any scale)",
+                         [](Scene& s) -> std::vector<double>& { return s.atmosphere.mie.table_extinction_efficiency; }));
+    r.push_back(list_key("atmosphere.mie.table_single_scattering_albedo", "", {1e-6, 1.0}, 1024,
+                         "spectral aerosol tables: single-scattering albedo",
+                         [](Scene& s) -> std::vector<double>& { return s.atmosphere.mie.table_single_scattering_albedo; }));
+    r.push_back(list_key("atmosphere.mie.table_g", "", {-0.999, 0.999}, 1024,
+                         "spectral aerosol tables: asymmetry parameter",
+                         [](Scene& s) -> std::vector<double>& { return s.atmosphere.mie.table_g; }));
     // ozone
     r.push_back(bool_key("atmosphere.ozone.enabled", "absorbing ozone layer on or off",
                          [](Scene& s) -> bool& { return s.atmosphere.ozone.enabled; }));
@@ -351,9 +373,54 @@ const std::vector<KeyDef>& registry() {
                            [](Scene& s) -> double& { return s.sun.elevation_deg; }));
     r.push_back(number_key("sun.azimuth_deg", "degrees", {-360.0, 360.0}, "sun azimuth, clockwise from north",
                            [](Scene& s) -> double& { return s.sun.azimuth_deg; }));
+    r.push_back(choice_key(
+        "sun.spectrum", {"solar", "flat"},
+        "solar: measured extraterrestrial spectrum (ASTM G173-03) at sun.distance_au; "
+        "flat: sun.spectral_irradiance at every wavelength",
+        [](Scene& s, const std::string& v) {
+          s.sun.spectrum = v == "flat" ? SunSpec::Spectrum::Flat : SunSpec::Spectrum::Solar;
+        },
+        [](const Scene& s) { return std::string(s.sun.spectrum == SunSpec::Spectrum::Flat ? "flat" : "solar"); }));
     r.push_back(number_key("sun.spectral_irradiance", "W m^-2 nm^-1", {0.0, 1e6, true},
-                           "flat extraterrestrial solar spectral irradiance (until a solar table is chosen)",
+                           "the flat spectrum's value (sun.spectrum = \"flat\")",
                            [](Scene& s) -> double& { return s.sun.spectral_irradiance_W_m2_nm; }));
+    r.push_back(number_key("sun.distance_au", "au", {0.05, 100.0},
+                           "planet-sun distance: scales the solar spectrum by (1 au / d)^2 and sets the disk's size "
+                           "(Earth 0.983-1.017, Mars 1.38-1.67)",
+                           [](Scene& s) -> double& { return s.sun.distance_au; }));
+    r.push_back(bool_key("sun.disk", "draw the limb-darkened sun disk", [](Scene& s) -> bool& { return s.sun.disk; }));
+    {
+      KeyDef k;
+      k.key = "sun.date_time";
+      const std::string allowed = "\"\" or an ISO 8601 date-time with UTC offset, e.g. \"2026-06-21T20:30:00+02:00\"";
+      k.doc = "(" + allowed + ") when set, the sun's position and distance are computed for this time at "
+              "location.latitude_deg / longitude_deg (NREL SPA)";
+      k.set = [k, allowed](Scene& s, const toml::node& n, const std::string& origin) {
+        auto str = n.as_string();
+        if (!str) throw InputError(k.key, node_text(n), allowed, origin);
+        if (!str->get().empty()) {
+          try {
+            (void)parse_iso8601(str->get(), k.key);
+          } catch (const InputError& e) {
+            throw InputError(k.key, node_text(n), e.allowed(), origin);
+          }
+        }
+        s.sun.date_time = str->get();
+      };
+      k.get = [](const Scene& s) {
+        std::ostringstream o;
+        o << toml::value<std::string>(s.sun.date_time);
+        return o.str();
+      };
+      r.push_back(k);
+    }
+    r.push_back(bool_key("sun.refraction", "with sun.date_time: apparent elevation, refracted by the air",
+                         [](Scene& s) -> bool& { return s.sun.refraction; }));
+    r.push_back(number_key("location.latitude_deg", "degrees", {-90.0, 90.0}, "latitude of the reference point",
+                           [](Scene& s) -> double& { return s.location.latitude_deg; }));
+    r.push_back(number_key("location.longitude_deg", "degrees", {-180.0, 180.0},
+                           "longitude of the reference point, east positive",
+                           [](Scene& s) -> double& { return s.location.longitude_deg; }));
     // camera
     r.push_back(choice_key(
         "camera.type", {"fisheye", "perspective", "equirectangular"}, "projection",
@@ -513,8 +580,9 @@ SceneLoader::SceneLoader(const std::string& preset) {
   const auto names = preset_names();
   if (std::find(names.begin(), names.end(), preset) == names.end())
     throw InputError("preset", "\"" + preset + "\"", "one of: " + join(names, ", "));
-  // Every preset is applied over the built-in defaults of the Scene struct.
-  apply_toml(std::string(embedded_file("scenes/" + preset + ".toml")), "preset " + preset);
+  // Every preset is the default scene plus the keys its file changes.
+  apply_toml(std::string(embedded_file("scenes/default.toml")), "preset default");
+  if (preset != "default") apply_toml(std::string(embedded_file("scenes/" + preset + ".toml")), "preset " + preset);
 }
 
 void SceneLoader::apply_toml(const std::string& text, const std::string& origin) {
@@ -585,11 +653,40 @@ Scene SceneLoader::finish() const {
   if (static_cast<double>(s.camera.width) * s.camera.height > 1.0e9)
     throw InputError("camera.width x camera.height", std::to_string(s.camera.width) + "x" + std::to_string(s.camera.height),
                      "at most 1e9 pixels");
+  if (!s.sun.date_time.empty()) {
+    // The sun's position and distance for the date, time and place (NREL SPA).
+    Observer where;
+    where.latitude_deg = s.location.latitude_deg;
+    where.longitude_deg = s.location.longitude_deg;
+    where.altitude_m = s.camera.position_m.z();
+    SolarPositionOptions opt;
+    opt.refraction = s.sun.refraction;
+    const SolarPosition sp = solar_position(parse_iso8601(s.sun.date_time, "sun.date_time"), where, opt);
+    s.sun.elevation_deg = sp.elevation_deg;
+    s.sun.azimuth_deg = sp.azimuth_deg;
+    s.sun.distance_au = sp.earth_sun_distance_au;
+  }
   const auto& oz = s.atmosphere.ozone;
   if (oz.enabled && !(oz.bottom_m < oz.peak_m && oz.peak_m < oz.top_m))
     throw InputError("atmosphere.ozone.peak_m", format_number(oz.peak_m),
                      "bottom_m < peak_m < top_m (here " + format_number(oz.bottom_m) + ", " + format_number(oz.peak_m) +
                          ", " + format_number(oz.top_m) + ")");
+  const auto& mie = s.atmosphere.mie;
+  const size_t n_table = mie.table_wavelengths_nm.size();
+  if (n_table > 0) {
+    const std::pair<const char*, size_t> tables[] = {
+        {"atmosphere.mie.table_extinction_efficiency", mie.table_extinction_efficiency.size()},
+        {"atmosphere.mie.table_single_scattering_albedo", mie.table_single_scattering_albedo.size()},
+        {"atmosphere.mie.table_g", mie.table_g.size()}};
+    for (const auto& [key, size] : tables)
+      if (size != n_table)
+        throw InputError(key, std::to_string(size) + " values",
+                         "one value per entry of atmosphere.mie.table_wavelengths_nm (" + std::to_string(n_table) + ")");
+    for (size_t i = 1; i < n_table; ++i)
+      if (!(mie.table_wavelengths_nm[i] > mie.table_wavelengths_nm[i - 1]))
+        throw InputError("atmosphere.mie.table_wavelengths_nm", format_number(mie.table_wavelengths_nm[i]),
+                         "strictly increasing wavelengths");
+  }
   const auto& gr = s.atmosphere.ground;
   if (gr.albedo_wavelengths_nm.size() != gr.albedo_values.size())
     throw InputError("ground.albedo_values", std::to_string(gr.albedo_values.size()) + " values",

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "skyspec/atmosphere.hpp"
 #include "skyspec/phase_function.hpp"
 #include "skyspec/units.hpp"
 
@@ -75,10 +76,15 @@ void SingleScattering::transmittance_to_space(const Vec3& o, const Vec3& d, Spec
 void SingleScattering::radiance(const Vec3& o, const Vec3& d, const Vec3& s, const Spectrum& sun_irradiance,
                                 const ScatteringSources& sources, ScatteringWorkspace& ws, Spectrum& out) const {
   out.setZero();
+  if (sources.transmittance) sources.transmittance->setOnes();
   const double R = atm_.planet_radius_m(), Rt = atm_.top_radius_m();
-  if (o.norm() < R) return;  // inside the planet
+  if (o.norm() < R) {  // inside the planet
+    if (sources.transmittance) sources.transmittance->setZero();
+    return;
+  }
 
-  // The part of the ray inside the atmosphere, up to the ground if it hits it.
+  // The part of the ray inside the atmosphere, up to the ground if it hits it, or up to a surface
+  // at max_distance_m.
   const SphereHit top = intersect_sphere(o, d, Rt);
   if (!top.hit || top.t_far_m <= 0.0) return;
   const double t_begin = std::max(0.0, top.t_near_m);
@@ -89,6 +95,10 @@ void SingleScattering::radiance(const Vec3& o, const Vec3& d, const Vec3& s, con
     t_end = ground.t_near_m;
     hits_ground = true;
   }
+  if (sources.max_distance_m < t_end) {
+    t_end = sources.max_distance_m;
+    hits_ground = false;
+  }
   if (!(t_end > t_begin)) return;
 
   // Pieces: cut at the shadow boundaries (closed form) and at the ray's lowest point. Shadowed
@@ -96,7 +106,7 @@ void SingleScattering::radiance(const Vec3& o, const Vec3& d, const Vec3& s, con
   const IntervalSet lit = lit_intervals(o, d, t_begin, t_end, s, R);
   const bool higher = sources.higher != nullptr;
   // Without higher orders, a ray entirely in shadow sees nothing (its ground point is dark too).
-  if (!higher && lit.count == 0) return;
+  if (!higher && lit.count == 0 && !sources.transmittance) return;
   const double t_low = -o.dot(d);
   Piece pieces[8];
   int n_pieces = 0;
@@ -269,10 +279,25 @@ void SingleScattering::radiance(const Vec3& o, const Vec3& d, const Vec3& s, con
     ws.sum_mie = ((4.0f * ws.sum_mie - ws.coarse_mie) * (1.0f / 3.0f)).max(0.0f);
     const double mu = d.dot(s);
     const float phase_r = static_cast<float>(rayleigh_phase(mu));
-    const float phase_m = static_cast<float>(atm_.mie_phase()(mu));
-    out = sca_rayleigh_ * ws.sum_rayleigh * phase_r + sca_mie_ * ws.sum_mie * phase_m;
+    if (atm_.mie_g_varies()) {
+      // A spectral aerosol: the phase function's asymmetry differs per wavelength.
+      AerosolPhase phase = atm_.mie_phase();
+      for (int i = 0; i < ws.f_a.size(); ++i) {
+        phase.g = atm_.mie_g()[i];
+        ws.f_a[i] = static_cast<float>(phase(mu));
+      }
+      out = sca_rayleigh_ * ws.sum_rayleigh * phase_r + sca_mie_ * ws.sum_mie * ws.f_a;
+    } else {
+      const float phase_m = static_cast<float>(atm_.mie_phase()(mu));
+      out = sca_rayleigh_ * ws.sum_rayleigh * phase_r + sca_mie_ * ws.sum_mie * phase_m;
+    }
   }
   if (higher) out += ((4.0f * ws.sum_ms - ws.coarse_ms) * (1.0f / 3.0f)).max(0.0f);
+
+  if (sources.transmittance) {
+    view_tau(ws.view_tau);
+    *sources.transmittance = (-ws.view_tau).exp();
+  }
 
   // The ground: Lambertian reflection of the direct sun (order 1) and of the sky (higher orders),
   // seen through the whole view ray.

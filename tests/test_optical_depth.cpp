@@ -79,7 +79,9 @@ BOOST_AUTO_TEST_CASE(us1976_vertical_optical_depth_near_bodhaine) {
   const DensityProfile p = DensityProfile::us_standard_1976(100e3);
   const double n0 = us_standard_atmosphere_1976(0).number_density_per_m3;
   const double column_per_m2 = n0 * column_to_top_m(p, R, R + 100e3, R, 1.0, 4000);
-  const double sigma = rayleigh_cross_section_m2(550, {RefractiveIndexFormula::PeckReeder1972, 3.6e-4});
+  RayleighDerivationInput bodhaine;
+  bodhaine.co2_ppv = 3.6e-4;
+  const double sigma = rayleigh_cross_section_m2(550, bodhaine);
   BOOST_TEST(sigma * column_per_m2 == 0.09707, boost::test_tools::tolerance(5e-3));
   // And the column itself is what the standard's sea-level pressure holds up: P0 N_A / (M0 g0).
   const double hydrostatic = 101325.0 * constants::kAvogadro_per_mol / (28.9644e-3 * 9.80665);

@@ -44,7 +44,7 @@ BOOST_AUTO_TEST_CASE(presets_load) {
 BOOST_AUTO_TEST_CASE(unknown_preset_lists_the_known_ones) {
   const std::string e = error_of([] { SceneLoader l("sunset"); });
   BOOST_TEST(contains(e, "preset"));
-  BOOST_TEST(contains(e, "default, seed"));
+  BOOST_TEST(contains(e, "default, hazy, high-altitude, mars, seed"));
 }
 
 BOOST_AUTO_TEST_CASE(unknown_key_suggests_the_nearest_and_names_the_line) {

@@ -3,6 +3,7 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <limits>
 
 #include "atmosphere_fixtures.hpp"
 #include "skyspec/camera.hpp"
@@ -146,4 +147,33 @@ BOOST_AUTO_TEST_CASE(default_quadrature_is_converged) {
         const Spectrum a = radiance(coarse, o, d, s), b = radiance(fine, o, d, s);
         for (int i = 0; i < 3; ++i) BOOST_TEST(static_cast<double>(a[i]) == static_cast<double>(b[i]), boost::test_tools::tolerance(5e-3));
       }
+}
+
+// Aerial perspective: a surface at distance d along a ray in a homogeneous medium lit without
+// attenuation receives L = E beta_sca p / beta_ext (1 - exp(-beta_ext d)) in front of it and is
+// seen through T = exp(-beta_ext d).
+BOOST_AUTO_TEST_CASE(distance_cap_matches_closed_form) {
+  const double top = 10e3, h = 1.0, d = 3000.0;
+  const AtmosphereModel atm(test::simple_atmosphere(ProfileKind::Constant, top, kNm, kBetaR, 21e-6),
+                            WavelengthGrid::from_list(kNm));
+  const ZeroSunColumns zero;
+  const SingleScattering ss(atm, zero, {16});
+  const Vec3 o(0, 0, R + h), up(0, 0, 1), sun = direction_from_angles(0, 40);
+  ScatteringWorkspace ws(3);
+  Spectrum L(3), T(3);
+  ScatteringSources src;
+  src.max_distance_m = d;
+  src.transmittance = &T;
+  ss.radiance(o, up, sun, Spectrum::Ones(3), src, ws, L);
+  const double mu = up.dot(sun);
+  for (int i = 0; i < 3; ++i) {
+    const double br = kBetaR[static_cast<size_t>(i)], bm = 21e-6, bext = br + 1.1 * bm;
+    BOOST_TEST(static_cast<double>(T[i]) == std::exp(-bext * d), boost::test_tools::tolerance(1e-6));
+    const double expected = (br * rayleigh_phase(mu) + bm * cornette_shanks_phase(mu, 0.76)) / bext * (1 - std::exp(-bext * d));
+    BOOST_TEST(static_cast<double>(L[i]) == expected, boost::test_tools::tolerance(2e-6));
+  }
+  // Without a cap the transmittance is to the top of the atmosphere.
+  src.max_distance_m = std::numeric_limits<double>::infinity();
+  ss.radiance(o, up, sun, Spectrum::Ones(3), src, ws, L);
+  BOOST_TEST(static_cast<double>(T[0]) == std::exp(-(kBetaR[0] + 1.1 * 21e-6) * (top - h)), boost::test_tools::tolerance(1e-5));
 }

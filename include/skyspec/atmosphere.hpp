@@ -46,6 +46,12 @@ struct MieSpec {
   /// beta_extinction = ratio * beta_scattering (the seed's 1.1: 10 % absorption).
   double extinction_to_scattering = 1.1;
   AerosolPhase phase;
+  /// Optional spectral single-scattering properties (e.g. a published dust model), linearly
+  /// interpolated; when given they replace the Angstrom law, the ratio and g:
+  ///   beta_sca(lambda) = scattering_per_m Q(lambda) w(lambda) / (Q(lambda_ref) w(lambda_ref)),
+  ///   beta_ext = beta_sca / w, g = g(lambda), with Q the extinction efficiency (any scale) and w
+  ///   the single-scattering albedo.
+  std::vector<double> table_wavelengths_nm, table_extinction_efficiency, table_single_scattering_albedo, table_g;
 };
 
 /// An absorbing ozone layer: a tent profile holding a given column.
@@ -54,7 +60,7 @@ struct OzoneSpec {
   double column_DU = 300.0;  ///< total column, Dobson units (1 DU = 2.6867e20 molecules m^-2)
   double bottom_m = 10e3, peak_m = 25e3, top_m = 40e3;
   /// Absorption cross-sections (m^2 per molecule) at these wavelengths, linearly interpolated; when
-  /// empty, the built-in laboratory table (data/ozone/) is used.
+  /// empty, the built-in laboratory table (Serdyuchenko et al. 2014, 233 K; data/ozone/) is used.
   std::vector<double> cross_section_wavelengths_nm, cross_section_m2;
 };
 
@@ -100,6 +106,9 @@ class AtmosphereModel {
   /// Lambertian albedo of the ground on the grid.
   const SpectrumD& ground_albedo() const { return ground_albedo_; }
   const AerosolPhase& mie_phase() const { return spec_.mie.phase; }
+  /// The aerosol asymmetry parameter per wavelength (constant unless the aerosol has tables).
+  const SpectrumD& mie_g() const { return mie_g_; }
+  bool mie_g_varies() const { return mie_g_.size() > 0 && mie_g_.maxCoeff() != mie_g_.minCoeff(); }
 
   /// Molecular number density at altitude 0, m^-3, and how it was obtained.
   double rayleigh_number_density_per_m3() const { return rayleigh_n0_per_m3_; }
@@ -112,6 +121,7 @@ class AtmosphereModel {
   WavelengthGrid grid_;
   ScatteringSpecies rayleigh_, mie_, ozone_;
   double ozone_peak_per_m3_ = 0.0;
+  SpectrumD mie_g_;
   SpectrumD ground_albedo_;
   double rayleigh_n0_per_m3_ = 0.0;
   std::string rayleigh_n0_origin_;

@@ -15,6 +15,10 @@ constexpr double kKingFactorCO2 = 1.15;    ///< Bates 1984 / Bodhaine et al. 199
 /// Ar 0.934 % and CO2 (co2_ppv parts per volume, 3.6e-4 for 360 ppm).
 double king_factor_air(double lambda_nm, double co2_ppv);
 
+/// Pure carbon dioxide, Sneep & Ubachs 2005 eq. 14: F = 1.1364 + 25.3e-12 nu^2, nu in cm^-1
+/// (Bates 1984's constant 1.15 is its value near 400 nm).
+double king_factor_co2(double lambda_nm);
+
 /// The composition used by king_factor_air, in percent by volume.
 struct AirComposition {
   double n2_percent = 78.084, o2_percent = 20.946, ar_percent = 0.934, co2_percent = 0.036;

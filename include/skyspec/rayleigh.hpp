@@ -15,8 +15,13 @@
 
 namespace skyspec {
 
+/// The scattering gas: Earth's dry air, or pure carbon dioxide (Mars, Venus).
+enum class ScatteringGas { Air, CarbonDioxide };
+std::string to_string(ScatteringGas g);
+
 struct RayleighDerivationInput {
-  RefractiveIndexFormula formula = RefractiveIndexFormula::PeckReeder1972;
+  ScatteringGas gas = ScatteringGas::Air;
+  RefractiveIndexFormula formula = RefractiveIndexFormula::PeckReeder1972;  ///< air only
   double co2_ppv = 3.6e-4;  ///< CO2 mole fraction, parts per volume (Bodhaine's 360 ppm)
 };
 
@@ -27,7 +32,7 @@ struct RayleighDerivationStep {
   double refractivity_ref;         ///< (n - 1) from the formula at its own CO2
   double refractivity;             ///< (n - 1) corrected to the requested CO2 (= n_s - 1)
   double king_factor;              ///< F_air
-  double king_n2, king_o2;         ///< component King factors
+  double king_n2, king_o2;         ///< component King factors (air; 0 for CO2)
   double number_density_per_m3;    ///< N_s the index is paired with
   double cross_section_m2;         ///< sigma
 };

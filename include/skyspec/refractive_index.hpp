@@ -30,6 +30,14 @@ double refractivity_standard_air(RefractiveIndexFormula f, double lambda_nm);
 /// Bodhaine et al. 1999 eq. (19): (n-1)_C = (n-1)_ref [1 + 0.54 (C - C_ref)].
 double refractivity_with_co2(RefractiveIndexFormula f, double lambda_nm, double co2_ppv);
 
+/// (n - 1) of pure carbon dioxide at 288.15 K and 101325 Pa, lambda in nm: Sneep & Ubachs 2005
+/// (JQSRT 92, 293), eq. 13, after Bideau-Mehu et al. 1973, with nu = 1/lambda in cm^-1:
+///   n - 1 = 1.1427e3 [5799.25 / (128908.9^2 - nu^2) + 120.05 / (89223.8^2 - nu^2)
+///                     + 5.3334 / (75037.5^2 - nu^2) + 4.3244 / (67837.7^2 - nu^2)
+///                     + 1.218145e-7 / (2418.136^2 - nu^2)]
+/// (the last numerator as corrected by Kitzmann et al. 2017; it contributes ~1e-10 in the visible).
+double refractivity_co2(double lambda_nm);
+
 /// A one-line statement of the formula with its source, for reports.
 std::string describe(RefractiveIndexFormula f);
 

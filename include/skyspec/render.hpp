@@ -13,6 +13,9 @@
 
 namespace skyspec {
 
+class ScatteringOrders;
+struct DisplaySettings;
+
 /// Called after each band of rows with (rows done, rows in total).
 using ProgressFn = std::function<void(int rows_done, int rows_total)>;
 
@@ -35,10 +38,29 @@ class SkyRenderer {
   /// on the number of threads.
   void render_rows(int y0, int rows, float* spectral, float* rgb) const;
 
-  /// Spectral radiance (grid size floats) seen from the scene's camera position looking along
-  /// the world-space unit direction dir, and the same as linear Rec.709.
+  /// Spectral radiance (grid size floats) of the sky, without the sun's disk, seen from the
+  /// scene's camera position looking along the world-space unit direction dir, and the same as
+  /// linear Rec.709.
   void radiance(const Vec3& dir, float* spectrum) const;
   void radiance_rgb(const Vec3& dir, float rgb[3]) const;
+
+  /// Aerial perspective for rows [y0, y0 + rows): for each pixel, the spectral transmittance from
+  /// the camera to a surface at distance_m[pixel] along the pixel's ray, and the light the air
+  /// scatters into that stretch of ray (all orders the scene asks for). Infinite distances give
+  /// the sky (transmittance to space, 0 where the ground is in the way). Buffers: distance
+  /// [row][x], transmittance and inscatter [row][x][lambda].
+  void aerial_rows(int y0, int rows, const float* distance_m, float* transmittance, float* inscatter) const;
+
+  /// Transmittance from the camera along dir to space (0 where the ground is in the way).
+  void transmittance(const Vec3& dir, float* out) const;
+  /// The sun: spectral irradiance at the top of the atmosphere (W m^-2 nm^-1, or the flat
+  /// spectrum's units), direction (world space, unit) and angular radius.
+  const Spectrum& sun_irradiance() const;
+  const Vec3& sun_direction() const;
+  double sun_angular_radius_rad() const;
+  const Vec3& camera_origin_m() const;
+  /// The precomputed higher scattering orders, or null when rendering single scattering.
+  const ScatteringOrders* scattering_orders() const;
 
   /// Linear Rec.709 from a spectrum: through CIE XYZ (spectral path, Y in cd m^-2 for radiance in
   /// W m^-2 sr^-1 nm^-1) or directly from the 680/550/440 nm values (RGB-fast path).
@@ -60,18 +82,25 @@ SpectralImageBuffer render_to_memory(const Scene& scene, const ProgressFn& progr
 
 struct RenderOutputs {
   std::filesystem::path exr, png;  ///< empty when not written
-  double preview_scale = 1.0;      ///< factor applied to linear RGB before sRGB encoding
+  std::filesystem::path working_exr;  ///< the RGB EXR in DisplaySettings::exr_space, if asked for
+  double preview_scale = 1.0;      ///< the exposure: factor applied to linear RGB before display
   double preview_ev = 0.0;         ///< log2(preview_scale)
+  std::string exposure;            ///< how the exposure was chosen (also in the files' headers)
+  std::string display;             ///< the display pipeline used for the PNG
   double seconds = 0.0;
 };
 
 /// Renders the scene and writes its outputs (spectral EXR streamed in bands, PNG preview), each
 /// atomically: on any error no output file is left behind.
 RenderOutputs render_scene_to_files(const Scene& scene, const ProgressFn& progress = {});
+/// The same with a display pipeline for the PNG (display_pipeline.hpp: OCIO display, view, look,
+/// exposure, bit depth) and optionally a scene-linear RGB EXR in a working space. The exposure is
+/// chosen before rendering (automatic exposure meters the sky first, see exposure.hpp) and
+/// recorded in both EXRs' headers ("skyspec:exposure", "skyspec:exposureScale"); the EXR values
+/// stay scene-linear. scene.output.exposure_ev, when set, is a manual exposure unless the settings
+/// ask for a camera exposure. Without settings: sRGB, Un-tone-mapped, skyspec's built-in config.
+RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& display,
+                                    const ProgressFn& progress = {});
 
-/// The automatic preview exposure: the scale that maps the log-average luminance to 0.18
-/// (Reinhard et al. 2002's key value), over the pixels no darker than 1/100 of the 90th
-/// percentile (so dark ground does not count), from linear RGB ([n][3]).
-double auto_exposure_scale(const std::vector<float>& linear_rgb);
 
 }  // namespace skyspec

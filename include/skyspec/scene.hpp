@@ -19,8 +19,25 @@ namespace skyspec {
 struct SunSpec {
   double elevation_deg = 30.0;
   double azimuth_deg = 0.0;  ///< clockwise from north
-  /// A flat (wavelength-independent) extraterrestrial spectral irradiance, W m^-2 nm^-1.
+  /// "solar": the measured extraterrestrial spectrum (ASTM G173-03, data/solar/) scaled by
+  /// (1 au / d)^2; "flat": spectral_irradiance_W_m2_nm at every wavelength.
+  enum class Spectrum { Solar, Flat };
+  Spectrum spectrum = Spectrum::Solar;
+  /// The flat spectrum's value, W m^-2 nm^-1.
   double spectral_irradiance_W_m2_nm = 1.0;
+  double distance_au = 1.0;  ///< planet-sun distance
+  bool disk = true;  ///< draw the limb-darkened sun disk
+  /// When not empty, an ISO 8601 date-time with UTC offset ("2026-06-21T20:30:00+02:00"): the
+  /// sun's elevation, azimuth and distance are computed for it at the location (NREL SPA),
+  /// replacing elevation_deg, azimuth_deg and distance_au (the Earth-Sun distance: Earth only).
+  std::string date_time;
+  bool refraction = true;  ///< with date_time: use the apparent (refracted) elevation
+};
+
+/// Where on the planet the scene's reference point is (used with sun.date_time).
+struct LocationSpec {
+  double latitude_deg = 0.0;   ///< north positive
+  double longitude_deg = 0.0;  ///< east positive
 };
 
 struct CameraSpec {
@@ -62,6 +79,7 @@ struct OutputSpec {
 struct Scene {
   AtmosphereSpec atmosphere;
   SunSpec sun;
+  LocationSpec location;
   CameraSpec camera;
   SpectrumSpec spectrum;
   RenderSpec render;

@@ -21,6 +21,8 @@
 // SunColumnTable.
 #pragma once
 
+#include <limits>
+
 #include "skyspec/geometry.hpp"
 #include "skyspec/optical_depth.hpp"
 #include "skyspec/spectrum.hpp"
@@ -70,6 +72,11 @@ class InScatteringSource {
 struct ScatteringSources {
   bool single = true;                         ///< order 1: air scattering + direct sun off the ground
   const InScatteringSource* higher = nullptr;  ///< orders >= 2 from tables (or one order while building them)
+  /// Aerial perspective: integrate only up to this distance along the ray (a surface there hides
+  /// what lies behind, including the ground), and, when `transmittance` is given, return the
+  /// transmittance from the origin to the end of the integrated stretch.
+  double max_distance_m = std::numeric_limits<double>::infinity();
+  Spectrum* transmittance = nullptr;
 };
 
 class SingleScattering {

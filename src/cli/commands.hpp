@@ -21,5 +21,11 @@ struct Command {
 };
 
 Command add_render_command(CLI::App& app);
+Command add_convert_command(CLI::App& app);
+Command add_compare_command(CLI::App& app);
+Command add_irradiance_command(CLI::App& app);
+Command add_timelapse_command(CLI::App& app);
+Command add_aerial_command(CLI::App& app);
+Command add_coefficients_command(CLI::App& app);
 
 }  // namespace skyspec::cli

@@ -21,6 +21,12 @@ int main(int argc, char** argv) {
 
   const std::vector<Command> commands = {
       add_render_command(app),
+      add_convert_command(app),
+      add_compare_command(app),
+      add_irradiance_command(app),
+      add_timelapse_command(app),
+      add_aerial_command(app),
+      add_coefficients_command(app),
   };
 
   try {

@@ -36,7 +36,7 @@ expect_error grid_outside_cmf 2 "360-830 nm" --lambda-min 300
 expect_error below_ground 2 "below" --position 0,0,-50
 expect_error top_not_above_ground 2 "atmosphere.top_altitude_m = -1000" --set atmosphere.top_altitude_m=-1000
 expect_error negative_radius 2 "planet.radius_m = -6360000" --set planet.radius_m=-6360e3
-expect_error unknown_preset 2 "one of: default, seed" --preset moon
+expect_error unknown_preset 2 "one of: default, hazy, high-altitude, mars, seed" --preset moon
 expect_error missing_scene 2 "--scene" --scene "$work/nope.toml"
 printf '[camera]\nwidth = 8\nheigth = 8\n' >"$work/typo.toml"
 expect_error scene_typo 2 "typo.toml:3:1: unknown key \"camera.heigth\" (did you mean \"camera.height\"?)" --scene "$work/typo.toml"
@@ -57,6 +57,30 @@ if "$skyspec" render --out "$out" --width 24 --height 16 --camera equirectangula
 else
   bad "good render failed"; cat "$work/stderr"
 fi
+
+# Time-lapse: frames with one exposure, --resume keeps finished frames.
+tl="$work/tl"
+if "$skyspec" timelapse -q --latitude 48.14 --longitude 11.58 --start 2026-06-21T20:00:00+02:00 \
+    --end 2026-06-21T20:30:00+02:00 --step-minutes 15 --out "$tl" --width 8 --height 8 2>"$work/stderr"; then
+  [ "$(ls "$tl" | wc -l)" = 6 ] && ok || bad "timelapse: expected 6 files, got $(ls "$tl")"
+  touch -d '2001-01-01' "$tl/sky_0001.exr"
+  "$skyspec" timelapse -q --resume --latitude 48.14 --longitude 11.58 --start 2026-06-21T20:00:00+02:00 \
+    --end 2026-06-21T20:30:00+02:00 --step-minutes 15 --out "$tl" --width 8 --height 8
+  [ "$(stat -c %Y "$tl/sky_0001.exr")" -lt 1000000000 ] && ok || bad "timelapse --resume re-rendered a finished frame"
+else
+  bad "timelapse failed"; cat "$work/stderr"
+fi
+"$skyspec" timelapse -q --start 2026-06-21T20:00:00Z --end 2026-06-21T19:00:00Z --step-minutes 5 --out "$work/tl2" 2>"$work/stderr"
+[ $? = 2 ] && grep -q -- "--end" "$work/stderr" && [ ! -e "$work/tl2" -o -z "$(ls -A "$work/tl2" 2>/dev/null)" ] && ok || bad "timelapse: end before start not rejected"
+"$skyspec" timelapse -q --start 2026-13-01T00:00:00Z --end 2026-06-21T19:00:00Z --step-minutes 5 --out "$work/tl3" 2>"$work/stderr"
+[ $? = 2 ] && grep -q -- "--start" "$work/stderr" && ok || bad "timelapse: bad date not rejected"
+
+# Aerial perspective: a constant distance, then a bad depth-mode.
+"$skyspec" aerial -q --distance 2000 --camera perspective --position 0,0,2 --look-at 0,1000,300 --fov 40 \
+  --image "$out/sky.exr" --out "$work/ap" 2>"$work/stderr" && [ -s "$work/ap/sky_transmittance.exr" ] \
+  && [ -s "$work/ap/sky_inscatter.exr" ] && [ -s "$work/ap/sky_composite.exr" ] && ok || { bad "aerial failed"; cat "$work/stderr"; }
+"$skyspec" aerial -q --distance 2000 --depth-is sideways --image "$out/sky.exr" --out "$work/ap2" 2>"$work/stderr"
+[ $? = 2 ] && grep -q -- "--depth-is" "$work/stderr" && [ ! -e "$work/ap2" ] && ok || bad "aerial: bad --depth-is not rejected"
 
 # --quiet prints nothing at all on success.
 "$skyspec" render -q --out "$work/quiet" --width 4 --height 4 >"$work/stdout" 2>"$work/stderr"

@@ -1,0 +1,35 @@
+// Irradiance at the camera: what the sky and the sun deliver to a horizontal surface there, so
+// that a scene can be lit consistently with the rendered sky.
+//
+//   direct normal      E_dn(lambda) = E_sun(lambda) T(camera -> sun)
+//   direct horizontal  E_dh = E_dn max(0, cos theta_sun)
+//   diffuse horizontal E_d  = integral over the upper hemisphere of L_sky(omega) cos(theta) d omega
+//
+// The hemisphere integral uses Gauss-Legendre nodes in cos(theta) and the midpoint rule in
+// azimuth; the sky radiance excludes the sun's disk (that is the direct part). Broadband values
+// integrate the spectrum over the grid's range (trapezoid); illuminance is 683 lm/W times the
+// integral weighted by the CIE 1931 y-bar function.
+#pragma once
+
+#include <string>
+
+#include "skyspec/render.hpp"
+#include "skyspec/spectrum.hpp"
+
+namespace skyspec {
+
+struct IrradianceReport {
+  std::vector<double> wavelengths_nm;
+  SpectrumD direct_normal, direct_horizontal, diffuse_horizontal;  ///< W m^-2 nm^-1
+  double direct_normal_W_m2 = 0, direct_horizontal_W_m2 = 0, diffuse_horizontal_W_m2 = 0;
+  double direct_normal_lux = 0, direct_horizontal_lux = 0, diffuse_horizontal_lux = 0;
+  double global_horizontal_lux() const { return direct_horizontal_lux + diffuse_horizontal_lux; }
+  /// A few lines for people, e.g. for the render summary.
+  std::string describe() const;
+};
+
+/// Irradiance on a horizontal surface at the renderer's camera position. zenith_nodes and
+/// azimuth_nodes set the hemisphere quadrature. For the spectral path only (needs the CMFs).
+IrradianceReport irradiance_at_camera(const SkyRenderer& renderer, int zenith_nodes = 32, int azimuth_nodes = 64);
+
+}  // namespace skyspec

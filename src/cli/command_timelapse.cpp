@@ -1,0 +1,151 @@
+// `skyspec timelapse`: one image per time step between a start and an end date-time at a place,
+// the sun placed by the NREL solar position algorithm, with one exposure for every frame.
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "progress.hpp"
+#include "scene_options.hpp"
+#include "skyspec/date_time.hpp"
+#include "skyspec/error.hpp"
+#include "skyspec/exposure.hpp"
+#include "skyspec/render.hpp"
+#include "skyspec/solar_position.hpp"
+
+namespace skyspec::cli {
+namespace {
+
+constexpr int kMaxFrames = 100000;
+
+std::vector<KeyFlag> timelapse_flags() {
+  std::vector<KeyFlag> flags = {
+      {"--out", "output.directory", "output folder (created if missing)", {}, false},
+      {"--name", "output.name", "base name of the frames: <name>_0000.exr, ...", {}, false},
+      {"--width", "camera.width", "image width in pixels", {}, false},
+      {"--height", "camera.height", "image height in pixels", {}, false},
+      {"--camera", "camera.type", "fisheye, perspective or equirectangular", {}, false},
+      {"--position", "camera.position_m", "camera position east,north,height in m", {}, true},
+      {"--look-at", "camera.look_at_m", "perspective: target east,north,height in m", {}, true},
+      {"--fov", "camera.fov_deg", "perspective: vertical field of view, degrees", {}, false},
+      {"--latitude", "location.latitude_deg", "latitude, degrees north", {}, false},
+      {"--longitude", "location.longitude_deg", "longitude, degrees east", {}, false},
+      {"--threads", "render.threads", "worker threads (0: all cores)", {}, false},
+      {"--exposure", "output.exposure_ev", "exposure in EV for every frame (default: metered once)", {}, false},
+  };
+  for (auto& f : spectrum_flags()) flags.push_back(f);
+  return flags;
+}
+
+struct TimelapseOptions {
+  SceneOptions scene{"default", {}, {}, timelapse_flags()};
+  std::string start, end;
+  double step_minutes = 0.0;
+  bool resume = false, quiet = false;
+};
+
+std::string frame_name(const std::string& base, int k) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "_%04d", k);
+  return base + buf;
+}
+
+bool frame_done(const Scene& s) {
+  const std::filesystem::path dir(s.output.directory);
+  return (!s.output.exr || std::filesystem::exists(dir / (s.output.name + ".exr"))) &&
+         (!s.output.png || std::filesystem::exists(dir / (s.output.name + ".png")));
+}
+
+int run(TimelapseOptions& o) {
+  if (o.start.empty()) throw InputError("--start", "(missing)", "an ISO 8601 date-time with UTC offset");
+  if (o.end.empty()) throw InputError("--end", "(missing)", "an ISO 8601 date-time with UTC offset");
+  const DateTime start = parse_iso8601(o.start, "--start"), end = parse_iso8601(o.end, "--end");
+  const double span_s = seconds_between(start, end);
+  if (span_s < 0) throw InputError("--end", "\"" + o.end + "\"", "a time not before --start (" + o.start + ")");
+  if (!(o.step_minutes > 0.0) || !std::isfinite(o.step_minutes))
+    throw InputError("--step-minutes", std::to_string(o.step_minutes), "a number of minutes > 0");
+  const double frames_d = std::floor(span_s / (o.step_minutes * 60.0) + 1e-9) + 1;
+  if (frames_d > kMaxFrames)
+    throw InputError("--step-minutes", std::to_string(o.step_minutes),
+                     "a step giving at most " + std::to_string(kMaxFrames) + " frames (this gives " +
+                         std::to_string(static_cast<long>(frames_d)) + ")");
+  const int frames = static_cast<int>(frames_d);
+
+  auto frame_scene = [&](int k, const std::string& extra_key = {}, const std::string& extra_value = {}) {
+    const std::string when = to_iso8601(add_seconds(start, k * o.step_minutes * 60.0));
+    return load_scene(o.scene, [&](SceneLoader& l) {
+      l.apply_override("sun.date_time", "\"" + when + "\"", "--start/--step-minutes");
+      if (!extra_key.empty()) l.apply_override(extra_key, extra_value, "timelapse");
+    });
+  };
+  Scene first = frame_scene(0);
+  // One exposure for all frames: the one given, or the automatic exposure of the frame with the
+  // highest sun, metered on a 64 x 64 render of it.
+  std::string ev_text;
+  if (!first.output.exposure_ev) {
+    int brightest = 0;
+    double best = -1e9;
+    for (int k = 0; k < frames; ++k) {
+      const double el = frame_scene(k).sun.elevation_deg;
+      if (el > best) best = el, brightest = k;
+    }
+    Scene meter = frame_scene(brightest);
+    const double aspect = static_cast<double>(meter.camera.height) / meter.camera.width;
+    meter.camera.width = 64;
+    meter.camera.height = std::max(1, static_cast<int>(std::lround(64 * aspect)));
+    const SpectralImageBuffer img = render_to_memory(meter);
+    const double ev = std::log2(metered_exposure_scale(img.rgb, img.width, img.height));
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.6f", ev);
+    ev_text = buf;
+    if (!o.quiet)
+      std::cout << "exposure " << ev_text << " EV for every frame (metered on frame " << brightest << ", sun "
+                << best << " deg)\n";
+  }
+
+  ProgressBar bar("time-lapse", o.quiet);
+  int written = 0, skipped = 0;
+  for (int k = 0; k < frames; ++k) {
+    Scene s = frame_scene(k, "output.name", "\"" + frame_name(first.output.name, k) + "\"");
+    if (!ev_text.empty()) s.output.exposure_ev = std::stod(ev_text);
+    if (o.resume && frame_done(s)) {
+      ++skipped;
+    } else {
+      render_scene_to_files(s);
+      ++written;
+    }
+    bar.update(k + 1, frames);
+  }
+  bar.finish();
+  if (!o.quiet)
+    std::cout << "wrote " << written << " frame(s)" << (skipped ? ", kept " + std::to_string(skipped) + " finished" : "")
+              << " in " << first.output.directory << "\n";
+  return kExitOk;
+}
+
+}  // namespace
+
+Command add_timelapse_command(CLI::App& app) {
+  auto o = std::make_shared<TimelapseOptions>();
+  auto* cmd = app.add_subcommand("timelapse", "Render one image per time step at a place, the sun from date and time");
+  cmd->footer(
+      "Example:\n"
+      "  skyspec timelapse --latitude 48.14 --longitude 11.58 --start 2026-06-21T19:00:00+02:00 \\\n"
+      "      --end 2026-06-21T22:30:00+02:00 --step-minutes 15 --out sunset\n"
+      "Frames are <name>_0000.exr/.png ...; all share one exposure (--exposure, or metered once on the frame\n"
+      "with the highest sun). Finished frames are complete files (written atomically): --resume keeps them.");
+  add_scene_options(*cmd, o->scene);
+  cmd->add_option("--start", o->start, "first frame, ISO 8601 with UTC offset (e.g. 2026-06-21T19:00:00+02:00)");
+  cmd->add_option("--end", o->end, "last frame at or before this time");
+  cmd->add_option("--step-minutes", o->step_minutes, "time between frames, minutes");
+  cmd->add_flag("--resume", o->resume, "keep frames whose files exist (from an interrupted run)");
+  cmd->add_flag("-q,--quiet", o->quiet, "no progress bar and no summary");
+  return {cmd, [o] { return run(*o); }};
+}
+
+}  // namespace skyspec::cli

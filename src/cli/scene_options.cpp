@@ -1,0 +1,49 @@
+#include "scene_options.hpp"
+
+#include "skyspec/error.hpp"
+
+namespace skyspec::cli {
+
+std::string as_toml_array(const std::string& csv) {
+  if (!csv.empty() && csv.front() == '[') return csv;
+  return "[" + csv + "]";
+}
+
+std::vector<KeyFlag> spectrum_flags() {
+  return {
+      {"--lambda-min", "spectrum.min_nm", "first wavelength, nm", {}, false},
+      {"--lambda-max", "spectrum.max_nm", "last wavelength, nm", {}, false},
+      {"--lambda-step", "spectrum.step_nm", "wavelength step, nm", {}, false},
+      {"--lambda-count", "spectrum.count", "number of wavelengths over min..max (replaces the step)", {}, false},
+      {"--wavelengths", "spectrum.wavelengths_nm", "explicit wavelengths, nm, comma-separated", {}, true},
+  };
+}
+
+void add_scene_options(CLI::App& app, SceneOptions& o) {
+  std::string presets;
+  for (const auto& p : preset_names()) presets += (presets.empty() ? "" : " or ") + p;
+  app.add_option("--preset", o.preset, "built-in starting scene: " + presets)->capture_default_str();
+  app.add_option("--scene", o.scene_file, "TOML scene file applied over the preset");
+  for (auto& f : o.flags)
+    app.add_option(f.flag, f.value, f.help + " [" + f.key + "]")->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  app.add_option("--set", o.sets, "override any scene key: KEY=VALUE (repeatable)");
+}
+
+Scene load_scene(const SceneOptions& o, const std::function<void(SceneLoader&)>& before_sets) {
+  SceneLoader loader(o.preset);
+  if (!o.scene_file.empty()) loader.apply_file(o.scene_file);
+  for (const auto& f : o.flags)
+    if (f.value) loader.apply_override(f.key, f.is_list ? as_toml_array(*f.value) : *f.value, f.flag);
+  if (before_sets) before_sets(loader);
+  for (const auto& s : o.sets) {
+    const auto eq = s.find('=');
+    if (eq == std::string::npos || eq == 0)
+      throw InputError("--set", "\"" + s + "\"", "KEY=VALUE, e.g. --set atmosphere.mie.g=0.8");
+    std::string key = s.substr(0, eq), value = s.substr(eq + 1);
+    while (!key.empty() && key.back() == ' ') key.pop_back();
+    loader.apply_override(key, value, "--set " + key);
+  }
+  return loader.finish();
+}
+
+}  // namespace skyspec::cli

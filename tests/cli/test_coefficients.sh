@@ -1,0 +1,82 @@
+#!/usr/bin/env bash
+# `skyspec coefficients`: bad input is rejected with a message naming the flag, exit code 2 and no
+# output file; each format is written atomically and is well formed (JSON parsed by Python's json,
+# CSV rows as wide as the header, HTML with its plots). Usage: test_coefficients.sh PATH_TO_SKYSPEC
+set -u
+skyspec=$1
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+pass=0
+fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+
+# expect_error NAME EXIT_CODE 'text that must appear in stderr' ARGS...
+expect_error() {
+  local name=$1 code=$2 text=$3
+  shift 3
+  local out="$work/err-$name.md"
+  "$skyspec" coefficients --out "$out" "$@" >"$work/stdout" 2>"$work/stderr"
+  local rc=$?
+  if [ "$rc" != "$code" ]; then bad "$name: exit $rc, expected $code"; cat "$work/stderr"; return; fi
+  if ! grep -qF -- "$text" "$work/stderr"; then bad "$name: stderr lacks '$text':"; cat "$work/stderr"; return; fi
+  if ls "$work" | grep -q "err-$name"; then bad "$name: left a file"; return; fi
+  ok
+}
+
+expect_error pressure_without_unit 2 "--pressure = \"250\" is not allowed: a pressure with its unit" --pressure 250 --temperature 220K
+expect_error temperature_missing 2 "--temperature" --pressure 250hPa
+expect_error negative_temperature 2 "--temperature" --pressure 250hPa --temperature -5K
+expect_error bad_format 2 "--format = xml is not allowed: one of: md, csv, json, html" --format xml
+expect_error altitude_above_top 2 "--altitudes = \"70000\" is not allowed" --altitudes 0,70000
+expect_error altitude_not_number 2 "--altitudes" --altitudes 0,high
+expect_error formula 2 "one of: peck-reeder, edlen, ciddor" --refractive-index peck_reeder
+expect_error unknown_key 2 "unknown key" --set atmosphere.rayleigh.co2=400
+expect_error grid 2 "spectrum" --lambda-min 100
+expect_error unwritable 2 "--out" --out /proc/skyspec/report.md
+
+# Markdown on stdout by default, with the published comparisons.
+if "$skyspec" coefficients --wavelengths 440,550,680 >"$work/report.md" 2>"$work/stderr"; then
+  grep -q "^# skyspec coefficient derivation report" "$work/report.md" && ok || bad "markdown title missing"
+  grep -q "Bodhaine et al. 1999, Table 3" "$work/report.md" && ok || bad "Bodhaine comparison missing"
+  grep -q "seed tutorial" "$work/report.md" && ok || bad "seed comparison missing"
+  [ ! -s "$work/stderr" ] && ok || bad "stderr not empty"
+else
+  bad "markdown report failed"; cat "$work/stderr"
+fi
+
+# JSON through --out (format from the extension), 220 K and 250 hPa, two altitudes.
+if "$skyspec" coefficients --pressure 250hPa --temperature 220K --altitudes 0,5000 --out "$work/cold.json" 2>"$work/stderr"; then
+  [ "$(ls "$work" | grep -c cold)" = 1 ] && ok || bad "json: extra files $(ls "$work")"
+  /usr/bin/python3 - "$work/cold.json" <<'PY' && ok || bad "json content"
+import json, math, sys
+j = json.load(open(sys.argv[1]), parse_constant=lambda c: (_ for _ in ()).throw(ValueError(c)))
+n = len(j["wavelength_nm"])
+assert n == 41, n
+assert len(j["levels"]) == 2 and [l["altitude_m"] for l in j["levels"]] == [0, 5000]
+c = j["conditions"]
+assert abs(c["number_density_per_m3"] / (25000 / (1.380649e-23 * 220)) - 1) < 1e-14
+sigma = j["rayleigh"]["cross_section_m2"]
+assert all(abs(b / (s * c["number_density_per_m3"]) - 1) < 1e-14 for b, s in zip(c["rayleigh_scattering_per_m"], sigma))
+refs = {r["id"]: r for r in j["references"]}
+assert max(abs(r["difference_percent"]) for r in refs["bodhaine1999_table3"]["rows"]) < 0.1
+PY
+else
+  bad "json report failed"; cat "$work/stderr"
+fi
+
+# CSV and HTML.
+if "$skyspec" coefficients --format csv --out "$work/r.csv" --lambda-step 20 2>"$work/stderr"; then
+  awk -F, '!/^#/ { if (!w) w = NF; else if (NF != w) exit 1; rows++ } END { exit !(rows == 22) }' "$work/r.csv" && ok || bad "csv shape"
+else
+  bad "csv report failed"; cat "$work/stderr"
+fi
+if "$skyspec" coefficients --out "$work/r.html" 2>"$work/stderr"; then
+  [ "$(grep -c '<svg' "$work/r.html")" = 3 ] && ok || bad "html: expected 3 plots"
+  grep -q "</html>" "$work/r.html" && ok || bad "html incomplete"
+else
+  bad "html report failed"; cat "$work/stderr"
+fi
+
+echo "$pass passed, $fail failed"
+[ "$fail" = 0 ]

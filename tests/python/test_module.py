@@ -1,0 +1,139 @@
+"""The `skyspec` Python module against the command-line program it shares its library with.
+
+Run by CTest with PYTHONPATH pointing at the built module and SKYSPEC_CLI at the program:
+    PYTHONPATH=build/python SKYSPEC_CLI=build/skyspec /usr/bin/python3 -m unittest tests/python/test_module.py
+The derivation must equal the CLI's JSON report number for number, a render must equal the CLI's
+spectral EXR (read with OpenImageIO) pixel for pixel, and published values must come out right.
+"""
+import json
+import os
+import subprocess
+import tempfile
+import unittest
+
+import numpy as np
+
+import skyspec
+
+CLI = os.environ.get("SKYSPEC_CLI", "skyspec")
+
+
+def cli(*args):
+    done = subprocess.run([CLI, *args], capture_output=True, text=True)
+    if done.returncode != 0:
+        raise AssertionError(f"skyspec {' '.join(args)} failed: {done.stderr}")
+    return done.stdout
+
+
+def cli_json(*args):
+    return json.loads(cli("coefficients", "--format", "json", *args))
+
+
+class DeriveAgainstCli(unittest.TestCase):
+    def assert_same(self, a, b, what):
+        a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+        self.assertEqual(a.shape, b.shape, what)
+        np.testing.assert_allclose(a, b, rtol=1e-15, atol=0, err_msg=what)
+
+    def test_cold_thin_air_and_two_altitudes(self):
+        j = cli_json("--pressure", "250hPa", "--temperature", "220K", "--altitudes", "0,5000")
+        d = skyspec.derive(pressure_Pa=25000, temperature_K=220, altitudes_m=[0, 5000])
+        self.assert_same(d["wavelength_nm"], j["wavelength_nm"], "wavelengths")
+        for key, jkey in [("refractivity", "refractivity"), ("refractivity_formula_co2", "refractivity_formula_co2"),
+                          ("king_factor_air", "king_factor_air"), ("king_factor_n2", "king_factor_n2"),
+                          ("king_factor_o2", "king_factor_o2"), ("cross_section_m2", "cross_section_m2")]:
+            self.assert_same(d[key], j["rayleigh"][jkey], key)
+        self.assert_same(d["altitude_m"], [lv["altitude_m"] for lv in j["levels"]], "altitudes")
+        self.assert_same(d["number_density_per_m3"], [lv["number_density_per_m3"] for lv in j["levels"]], "N")
+        for key in ["rayleigh_scattering_per_m", "rayleigh_optical_depth", "mie_scattering_per_m",
+                    "mie_extinction_per_m", "mie_optical_depth", "ozone_optical_depth", "total_optical_depth"]:
+            self.assert_same(d[key], [lv[key] for lv in j["levels"]], key)
+        c = j["conditions"]
+        self.assertEqual(d["conditions_number_density_per_m3"], c["number_density_per_m3"])
+        self.assert_same(d["conditions_rayleigh_scattering_per_m"], c["rayleigh_scattering_per_m"], "beta(P, T)")
+        self.assert_same(d["conditions_rayleigh_optical_depth_above"], c["rayleigh_optical_depth_above"], "tau above")
+        self.assert_same(d["conditions_refractivity"], c["refractivity"], "n - 1 at (P, T)")
+        # N = P / (k T) for 250 hPa and 220 K, and beta = sigma N.
+        n = 25000 / (1.380649e-23 * 220)
+        self.assertAlmostEqual(d["conditions_number_density_per_m3"] / n, 1.0, places=14)
+        np.testing.assert_allclose(d["conditions_rayleigh_scattering_per_m"], d["cross_section_m2"] * n, rtol=1e-14)
+
+    def test_seed_preset_and_options(self):
+        j = cli_json("--preset", "seed", "--refractive-index", "ciddor", "--co2-ppm", "360")
+        d = skyspec.derive(preset="seed", refractive_index="ciddor", co2_ppm=360)
+        self.assertEqual(d["rayleigh_source"], "fixed")
+        self.assertEqual(j["rayleigh"]["source"], "fixed")
+        self.assert_same(d["wavelength_nm"], [440, 550, 680], "seed grid")
+        self.assert_same(d["cross_section_m2"], j["rayleigh"]["cross_section_m2"], "sigma")
+        self.assert_same(d["rayleigh_scattering_per_m"][0], [33.1e-6, 13.5e-6, 5.8e-6], "typed-in beta")
+
+    def test_report_text_is_the_cli_report(self):
+        args = ["--wavelengths", "400,500,600", "--altitudes", "0,1000"]
+        from_cli = json.loads(cli("coefficients", "--format", "json", *args))
+        from_module = json.loads(skyspec.coefficient_report("json", wavelengths_nm=[400, 500, 600], altitudes_m=[0, 1000]))
+        from_cli.pop("origin")
+        from_module.pop("origin")
+        self.assertEqual(from_cli, from_module)
+        self.assertIn("<svg", skyspec.coefficient_report("html", wavelengths_nm=[400, 500, 600]))
+
+
+class RenderAgainstCli(unittest.TestCase):
+    def test_spectral_image_equals_the_exr(self):
+        import OpenImageIO as oiio
+        overrides = {"camera.width": 12, "camera.height": 8, "camera.type": "equirectangular",
+                     "sun.elevation_deg": 10, "render.table_altitude_samples": 32, "render.table_zenith_samples": 64}
+        img = skyspec.render(overrides=overrides)
+        self.assertEqual(img.spectral.shape, (8, 12, 41))
+        self.assertEqual(img.spectral.dtype, np.float32)
+        np.testing.assert_array_equal(img.wavelengths_nm, np.arange(380, 781, 10))
+        self.assertTrue(np.isfinite(img.spectral).all())
+        with tempfile.TemporaryDirectory() as tmp:
+            cli("render", "-q", "--out", tmp, "--no-png", "--width", "12", "--height", "8", "--camera", "equirectangular",
+                "--sun-elevation", "10", "--set", "render.table_altitude_samples=32",
+                "--set", "render.table_zenith_samples=64")
+            exr = oiio.ImageBuf(os.path.join(tmp, "sky.exr"))
+            names = list(exr.spec().channelnames)
+            pixels = exr.get_pixels(oiio.FLOAT)
+        for i, nm in enumerate(img.wavelengths_nm):
+            channel = names.index(f"S0.{int(nm)},000000nm")
+            np.testing.assert_array_equal(pixels[:, :, channel], img.spectral[:, :, i], err_msg=f"{nm} nm")
+        for c, name in enumerate("RGB"):
+            np.testing.assert_array_equal(pixels[:, :, names.index(name)], img.rgb[:, :, c], err_msg=name)
+        # XYZ -> linear Rec.709 (IEC 61966-2-1) gives back the RGB.
+        m = np.array([[3.2404542, -1.5371385, -0.4985314], [-0.9692660, 1.8760108, 0.0415560],
+                      [0.0556434, -0.2040259, 1.0572252]])
+        rgb = img.xyz.astype(np.float64) @ m.T
+        np.testing.assert_allclose(rgb, img.rgb, rtol=2e-3, atol=1e-3 * float(np.abs(img.rgb).max()))
+
+    def test_bad_override_names_the_key(self):
+        with self.assertRaises(ValueError) as e:
+            skyspec.render(overrides={"camera": {"width": -5}})
+        self.assertIn("camera.width", str(e.exception))
+        with self.assertRaises(ValueError) as e:
+            skyspec.derive(overrides={"atmosphere.rayleigh.co2": 400})
+        self.assertIn("unknown key", str(e.exception))
+
+
+class PublishedValues(unittest.TestCase):
+    def test_standard_atmosphere_definition(self):
+        # U.S. Standard Atmosphere 1976: 288.15 K and 101325 Pa at sea level, 216.65 K from 11 to 20 km
+        # geopotential (11.019 to 20.063 km geometric).
+        s = skyspec.us_standard_atmosphere(np.array([0.0, 15000.0, 19000.0]))
+        np.testing.assert_allclose(s["temperature_K"], [288.15, 216.65, 216.65], rtol=1e-9)
+        self.assertAlmostEqual(float(s["pressure_Pa"][0]), 101325.0, places=6)
+        np.testing.assert_allclose(s["number_density_per_m3"], s["pressure_Pa"] / (1.380649e-23 * s["temperature_K"]),
+                                   rtol=1e-12)
+
+    def test_bodhaine_cross_section(self):
+        # Bodhaine et al. 1999: sigma(550 nm) = 4.51e-27 cm^2 at 360 ppm CO2.
+        sigma = skyspec.rayleigh_cross_section([550.0], co2_ppm=360)[0]
+        self.assertLess(abs(sigma / 4.51e-31 - 1), 1e-3)
+
+    def test_comparisons(self):
+        refs = {c["id"]: c for c in skyspec.published_comparisons()}
+        self.assertLess(refs["bodhaine1999_table3"]["max_abs_difference_percent"], 0.1)
+        self.assertEqual(len(refs["seed_constants"]["published"]), 3)
+
+
+if __name__ == "__main__":
+    unittest.main()
