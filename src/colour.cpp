@@ -11,6 +11,7 @@
 
 #include "skyspec/embedded_data.hpp"
 #include "skyspec/error.hpp"
+#include "csv_table.hpp"
 
 namespace skyspec {
 namespace {
@@ -22,56 +23,19 @@ namespace {
 constexpr std::string_view kCie1931File = "cie/cie1931_2deg_5nm.csv";
 
 /// Splits "a,b,c,d" into its fields.
-std::vector<std::string> split_csv_line(const std::string& line) {
-  std::vector<std::string> fields;
-  std::string field;
-  std::istringstream in(line);
-  while (std::getline(in, field, ',')) fields.push_back(field);
-  return fields;
-}
-
-/// A number in the C locale (the table uses '.' as its decimal point whatever the user's locale).
-bool parse_number(const std::string& text, double& value) {
-  std::istringstream in(text);
-  in.imbue(std::locale::classic());
-  in >> value;
-  return !in.fail() && (in >> std::ws).eof() && std::isfinite(value);
-}
-
-/// Parses "nm,x,y,z" rows; blank lines and lines starting with '#' are comments, and the first
-/// remaining line is the column header. Wavelengths must increase strictly.
+/// Parses the "nm,x,y,z" table (format: csv_table.hpp). Wavelengths must increase strictly.
 CmfTable parse_cmf_csv(std::string_view file_name, std::string_view text) {
-  const auto fail = [&](int line_number, const std::string& why) {
-    return Error(std::string(file_name) + ":" + std::to_string(line_number) + ": " + why);
-  };
   CmfTable table;
-  std::istringstream in{std::string(text)};
-  std::string line;
-  bool header_seen = false;
-  int line_number = 0;
-  while (std::getline(in, line)) {
-    ++line_number;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty() || line[0] == '#') continue;
-    if (!header_seen) {
-      header_seen = true;
-      if (line != "nm,x,y,z") throw fail(line_number, "expected the header 'nm,x,y,z'");
-      continue;
-    }
-    const std::vector<std::string> fields = split_csv_line(line);
-    double v[4];
-    if (fields.size() != 4) throw fail(line_number, "expected 4 comma-separated numbers");
-    for (int k = 0; k < 4; ++k)
-      if (!parse_number(fields[static_cast<size_t>(k)], v[k]))
-        throw fail(line_number, "'" + fields[static_cast<size_t>(k)] + "' is not a number");
-    if (!table.nm.empty() && v[0] <= table.nm.back())
-      throw fail(line_number, "wavelengths must increase");
-    table.nm.push_back(v[0]);
-    table.x.push_back(v[1]);
-    table.y.push_back(v[2]);
-    table.z.push_back(v[3]);
+  for (const CsvRow& row : parse_csv(file_name, text, {"nm", "x", "y", "z"})) {
+    const double nm = csv_number(file_name, row, 0);
+    if (!table.nm.empty() && nm <= table.nm.back())
+      throw Error(std::string(file_name) + ":" + std::to_string(row.line_number) + ": wavelengths must increase");
+    table.nm.push_back(nm);
+    table.x.push_back(csv_number(file_name, row, 1));
+    table.y.push_back(csv_number(file_name, row, 2));
+    table.z.push_back(csv_number(file_name, row, 3));
   }
-  if (table.nm.size() < 2) throw fail(line_number, "fewer than 2 rows of data");
+  if (table.nm.size() < 2) throw Error(std::string(file_name) + ": fewer than 2 rows of data");
   return table;
 }
 

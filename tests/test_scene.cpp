@@ -123,3 +123,23 @@ BOOST_AUTO_TEST_CASE(effective_scene_round_trips_through_toml) {
   BOOST_TEST(scene_to_toml(b.finish()) == dumped);
   BOOST_TEST(b.finish().atmosphere.rayleigh.derivation.co2_ppv == 360e-6, boost::test_tools::tolerance(1e-12));
 }
+
+// Every shipped preset loads, validates and builds its atmosphere on its grid.
+BOOST_AUTO_TEST_CASE(every_preset_is_valid) {
+  for (const auto& name : preset_names()) {
+    BOOST_TEST_CONTEXT("preset " << name) {
+      const Scene s = SceneLoader(name).finish();
+      const AtmosphereModel atm(s.atmosphere, make_wavelength_grid(s));
+      BOOST_TEST(atm.rayleigh().scattering_per_m.minCoeff() > 0.0);
+      BOOST_TEST(atm.top_radius_m() > atm.planet_radius_m());
+    }
+  }
+  // Mars: CO2 scatters more per molecule than air, the gas is thin, the dust absorbs blue.
+  const Scene mars = SceneLoader("mars").finish();
+  const AtmosphereModel m(mars.atmosphere, make_wavelength_grid(mars));
+  BOOST_TEST(m.rayleigh_derivation().front().king_factor > 1.1);
+  BOOST_TEST(m.rayleigh_number_density_per_m3() < 1e24);
+  const int blue = 2, red = m.grid().size() - 3;  // 400 and 760 nm on the default grid
+  BOOST_TEST(m.mie().scattering_per_m[blue] / m.mie().extinction_per_m[blue] <
+             m.mie().scattering_per_m[red] / m.mie().extinction_per_m[red]);
+}

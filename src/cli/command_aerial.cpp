@@ -26,18 +26,12 @@ namespace skyspec::cli {
 namespace {
 
 std::vector<KeyFlag> aerial_flags() {
-  std::vector<KeyFlag> flags = {
-      {"--out", "output.directory", "output folder (created if missing)", {}, false},
-      {"--name", "output.name", "base name: <name>_transmittance.exr, _inscatter.exr, _composite.exr", {}, false},
-      {"--camera", "camera.type", "the camera the image was made with (perspective, equirectangular, fisheye)", {}, false},
-      {"--position", "camera.position_m", "camera position east,north,height in m", {}, true},
-      {"--look-at", "camera.look_at_m", "perspective: target east,north,height in m", {}, true},
-      {"--fov", "camera.fov_deg", "perspective: vertical field of view, degrees", {}, false},
-      {"--sun-elevation", "sun.elevation_deg", "sun elevation, degrees", {}, false},
-      {"--sun-azimuth", "sun.azimuth_deg", "sun azimuth, degrees clockwise from north", {}, false},
-      {"--threads", "render.threads", "worker threads (0: all cores)", {}, false},
-  };
-  for (auto& f : spectrum_flags()) flags.push_back(f);
+  // The image's size comes from the inputs, so there are no --width and --height.
+  std::vector<KeyFlag> flags = output_flags();
+  append_flags(flags, camera_flags(false));
+  append_flags(flags, sun_flags());
+  append_flags(flags, {{"--threads", "render.threads", "worker threads (0: all cores)", {}, false}});
+  append_flags(flags, spectrum_flags());
   return flags;
 }
 

@@ -23,18 +23,13 @@ namespace skyspec::cli {
 namespace {
 
 std::vector<KeyFlag> compare_flags() {
-  return {
-      {"--width", "camera.width", "image width in pixels", {}, false},
-      {"--height", "camera.height", "image height in pixels", {}, false},
-      {"--camera", "camera.type", "fisheye, perspective or equirectangular", {}, false},
-      {"--position", "camera.position_m", "camera position east,north,height in m", {}, true},
-      {"--look-at", "camera.look_at_m", "perspective: target east,north,height in m", {}, true},
-      {"--fov", "camera.fov_deg", "perspective: vertical field of view, degrees", {}, false},
-      {"--sun-elevation", "sun.elevation_deg", "sun elevation, degrees", {}, false},
-      {"--sun-azimuth", "sun.azimuth_deg", "sun azimuth, degrees clockwise from north", {}, false},
+  std::vector<KeyFlag> flags = camera_flags(true);
+  append_flags(flags, sun_flags());
+  append_flags(flags, {
       {"--view-segments", "render.view_segments", "quadrature segments per view ray", {}, false},
       {"--threads", "render.threads", "worker threads (0: all cores)", {}, false},
-  };
+  });
+  return flags;
 }
 
 struct CompareOptions {

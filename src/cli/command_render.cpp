@@ -19,20 +19,11 @@ namespace skyspec::cli {
 namespace {
 
 std::vector<KeyFlag> render_flags() {
-  std::vector<KeyFlag> flags = {
-      {"--out", "output.directory", "output folder (created if missing)", {}, false},
-      {"--name", "output.name", "base name of the output files", {}, false},
-      {"--width", "camera.width", "image width in pixels", {}, false},
-      {"--height", "camera.height", "image height in pixels", {}, false},
-      {"--camera", "camera.type", "fisheye, perspective or equirectangular", {}, false},
-      {"--position", "camera.position_m", "camera position east,north,height in m", {}, true},
-      {"--look-at", "camera.look_at_m", "perspective: target east,north,height in m", {}, true},
-      {"--fov", "camera.fov_deg", "perspective: vertical field of view, degrees", {}, false},
-      {"--sun-elevation", "sun.elevation_deg", "sun elevation, degrees", {}, false},
-      {"--sun-azimuth", "sun.azimuth_deg", "sun azimuth, degrees clockwise from north", {}, false},
-  };
-  for (auto& f : spectrum_flags()) flags.push_back(f);
-  flags.insert(flags.end(), {
+  std::vector<KeyFlag> flags = output_flags();
+  append_flags(flags, camera_flags(true));
+  append_flags(flags, sun_flags());
+  append_flags(flags, spectrum_flags());
+  append_flags(flags, {
       {"--path", "render.path", "spectral or rgb-fast", {}, false},
       {"--view-segments", "render.view_segments", "quadrature segments per view ray", {}, false},
       {"--threads", "render.threads", "worker threads (0: all cores)", {}, false},

@@ -24,21 +24,15 @@ namespace {
 constexpr int kMaxFrames = 100000;
 
 std::vector<KeyFlag> timelapse_flags() {
-  std::vector<KeyFlag> flags = {
-      {"--out", "output.directory", "output folder (created if missing)", {}, false},
-      {"--name", "output.name", "base name of the frames: <name>_0000.exr, ...", {}, false},
-      {"--width", "camera.width", "image width in pixels", {}, false},
-      {"--height", "camera.height", "image height in pixels", {}, false},
-      {"--camera", "camera.type", "fisheye, perspective or equirectangular", {}, false},
-      {"--position", "camera.position_m", "camera position east,north,height in m", {}, true},
-      {"--look-at", "camera.look_at_m", "perspective: target east,north,height in m", {}, true},
-      {"--fov", "camera.fov_deg", "perspective: vertical field of view, degrees", {}, false},
+  std::vector<KeyFlag> flags = output_flags();
+  append_flags(flags, camera_flags(true));
+  append_flags(flags, {
       {"--latitude", "location.latitude_deg", "latitude, degrees north", {}, false},
       {"--longitude", "location.longitude_deg", "longitude, degrees east", {}, false},
       {"--threads", "render.threads", "worker threads (0: all cores)", {}, false},
       {"--exposure", "output.exposure_ev", "exposure in EV for every frame (default: metered once)", {}, false},
-  };
-  for (auto& f : spectrum_flags()) flags.push_back(f);
+  });
+  append_flags(flags, spectrum_flags());
   return flags;
 }
 

@@ -9,6 +9,39 @@ std::string as_toml_array(const std::string& csv) {
   return "[" + csv + "]";
 }
 
+std::vector<KeyFlag> output_flags() {
+  return {
+      {"--out", "output.directory", "output folder (created if missing)", {}, false},
+      {"--name", "output.name", "base name of the output files", {}, false},
+  };
+}
+
+std::vector<KeyFlag> camera_flags(bool size) {
+  std::vector<KeyFlag> flags;
+  if (size) {
+    flags.push_back({"--width", "camera.width", "image width in pixels", {}, false});
+    flags.push_back({"--height", "camera.height", "image height in pixels", {}, false});
+  }
+  append_flags(flags, {
+      {"--camera", "camera.type", "fisheye, perspective or equirectangular", {}, false},
+      {"--position", "camera.position_m", "camera position east,north,height in m", {}, true},
+      {"--look-at", "camera.look_at_m", "perspective: target east,north,height in m", {}, true},
+      {"--fov", "camera.fov_deg", "perspective: vertical field of view, degrees", {}, false},
+  });
+  return flags;
+}
+
+std::vector<KeyFlag> sun_flags() {
+  return {
+      {"--sun-elevation", "sun.elevation_deg", "sun elevation, degrees", {}, false},
+      {"--sun-azimuth", "sun.azimuth_deg", "sun azimuth, degrees clockwise from north", {}, false},
+  };
+}
+
+void append_flags(std::vector<KeyFlag>& flags, const std::vector<KeyFlag>& more) {
+  flags.insert(flags.end(), more.begin(), more.end());
+}
+
 std::vector<KeyFlag> spectrum_flags() {
   return {
       {"--lambda-min", "spectrum.min_nm", "first wavelength, nm", {}, false},

@@ -29,6 +29,14 @@ struct SceneOptions {
 
 /// The flags of the wavelength grid (spectrum.*), shared by every command that takes a grid.
 std::vector<KeyFlag> spectrum_flags();
+/// --out and --name (output.*).
+std::vector<KeyFlag> output_flags();
+/// The camera: --camera, --position, --look-at, --fov, and, with `size`, --width and --height.
+std::vector<KeyFlag> camera_flags(bool size);
+/// --sun-elevation and --sun-azimuth.
+std::vector<KeyFlag> sun_flags();
+/// Appends the flags of `more` to `flags`.
+void append_flags(std::vector<KeyFlag>& flags, const std::vector<KeyFlag>& more);
 
 /// Registers --preset, --scene, every flag of o.flags and --set on the subcommand. A flag given
 /// twice takes its last value, so a command can be amended by appending to it.

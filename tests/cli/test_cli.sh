@@ -4,25 +4,14 @@
 # OpenEXR's and OpenImageIO's tools read. Usage: test_cli.sh PATH_TO_SKYSPEC
 set -u
 skyspec=$1
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-pass=0
-fail=0
-
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 
 # expect_error NAME EXIT_CODE 'text that must appear in stderr' ARGS...
 expect_error() {
   local name=$1 code=$2 text=$3
   shift 3
-  local out="$work/out-$name"
-  "$skyspec" render -q --out "$out" --width 8 --height 8 "$@" >"$work/stdout" 2>"$work/stderr"
-  local rc=$?
-  if [ "$rc" != "$code" ]; then bad "$name: exit $rc, expected $code"; cat "$work/stderr"; return; fi
-  if ! grep -qF -- "$text" "$work/stderr"; then bad "$name: stderr lacks '$text':"; cat "$work/stderr"; return; fi
-  if [ -d "$out" ] && [ -n "$(ls -A "$out")" ]; then bad "$name: left files: $(ls "$out")"; return; fi
-  ok
+  run_expecting_error "$name" "$code" "$text" "$work/out-$name" \
+    "$skyspec" render -q --out "$work/out-$name" --width 8 --height 8 "$@"
 }
 
 expect_error unknown_flag 2 "--bogus" --bogus 3
@@ -90,5 +79,4 @@ fi
 "$skyspec" render --help | grep -q -- "--sun-elevation" && ok || bad "render --help lacks --sun-elevation"
 "$skyspec" render --help-keys | grep -q "atmosphere.rayleigh.scale_height_m  (a number in m" && ok || bad "--help-keys"
 
-echo "cli: $pass passed, $fail failed"
-[ "$fail" = 0 ]
+finish cli

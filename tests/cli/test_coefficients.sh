@@ -4,24 +4,15 @@
 # CSV rows as wide as the header, HTML with its plots). Usage: test_coefficients.sh PATH_TO_SKYSPEC
 set -u
 skyspec=$1
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 
 # expect_error NAME EXIT_CODE 'text that must appear in stderr' ARGS...
 expect_error() {
   local name=$1 code=$2 text=$3
   shift 3
-  local out="$work/err-$name.md"
-  "$skyspec" coefficients --out "$out" "$@" >"$work/stdout" 2>"$work/stderr"
-  local rc=$?
-  if [ "$rc" != "$code" ]; then bad "$name: exit $rc, expected $code"; cat "$work/stderr"; return; fi
-  if ! grep -qF -- "$text" "$work/stderr"; then bad "$name: stderr lacks '$text':"; cat "$work/stderr"; return; fi
-  if ls "$work" | grep -q "err-$name"; then bad "$name: left a file"; return; fi
-  ok
+  mkdir -p "$work/err-$name"
+  run_expecting_error "$name" "$code" "$text" "$work/err-$name" \
+    "$skyspec" coefficients --out "$work/err-$name/report.md" "$@"
 }
 
 expect_error pressure_without_unit 2 "--pressure = \"250\" is not allowed: a pressure with its unit" --pressure 250 --temperature 220K
@@ -78,5 +69,4 @@ else
   bad "html report failed"; cat "$work/stderr"
 fi
 
-echo "$pass passed, $fail failed"
-[ "$fail" = 0 ]
+finish cli_coefficients

@@ -9,24 +9,13 @@ skyspec=$1
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 config="$here/../../data/ocio/config.ocio"
 unset OCIO
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 
 # expect_error NAME EXIT_CODE 'text that must appear in stderr' COMMAND ARGS... (output in $work/out-NAME)
 expect_error() {
   local name=$1 code=$2 text=$3 command=$4
   shift 4
-  local out="$work/out-$name"
-  "$skyspec" "$command" -q --out "$out" "$@" >"$work/stdout" 2>"$work/stderr"
-  local rc=$?
-  if [ "$rc" != "$code" ]; then bad "$name: exit $rc, expected $code"; cat "$work/stderr"; return; fi
-  if ! grep -qF -- "$text" "$work/stderr"; then bad "$name: stderr lacks '$text':"; cat "$work/stderr"; return; fi
-  if [ -d "$out" ] && [ -n "$(ls -A "$out")" ]; then bad "$name: left files: $(ls "$out")"; return; fi
-  ok
+  run_expecting_error "$name" "$code" "$text" "$work/out-$name" "$skyspec" "$command" -q --out "$work/out-$name" "$@"
 }
 
 small=(--width 8 --height 8 --set render.scattering_orders=1)
@@ -104,5 +93,4 @@ else
   bad "compare failed"
 fi
 
-echo "cli_display: $pass passed, $fail failed"
-[ "$fail" = 0 ]
+finish cli_display
