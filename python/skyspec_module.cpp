@@ -390,8 +390,9 @@ Example: skyspec.derive(pressure_Pa=25000, temperature_K=220)["conditions_raylei
         R"(Render a scene into memory (no files are written).
 
 Returns a named tuple (spectral, wavelengths_nm, xyz, rgb):
-  spectral        float32 array (height, width, n): spectral radiance, W m^-2 sr^-1 nm^-1 per unit of
-                  sun.spectral_irradiance (RGB-fast path: the 3 values read as linear RGB)
+  spectral        float32 array (height, width, n): spectral radiance, W m^-2 sr^-1 nm^-1 (absolute with
+                  sun.spectrum = "solar"; with "flat", in units of sun.spectral_irradiance;
+                  RGB-fast path: the 3 values read as linear RGB)
   wavelengths_nm  float64 array (n)
   xyz             float32 (height, width, 3): CIE 1931 XYZ, Y in cd m^-2 (spectral path: integrated
                   from the spectrum; RGB-fast path: converted from its linear Rec.709 values)

@@ -12,6 +12,7 @@
 #include "progress.hpp"
 #include "scene_options.hpp"
 #include "skyspec/error.hpp"
+#include "skyspec/irradiance.hpp"
 #include "skyspec/render.hpp"
 #include "skyspec/scene.hpp"
 
@@ -51,6 +52,19 @@ bool exposure_flag_given(const RenderOptions& o) {
   return false;
 }
 
+// Absolute photometry of the render for the summary: the sky's luminance at the zenith and the
+// illuminance the sun and the sky put on a horizontal surface at the camera (the scattering
+// tables are cached, so this costs a few thousand rays).
+void print_photometry(const Scene& scene) {
+  const SkyRenderer r(scene);
+  float rgb[3];
+  r.radiance_rgb(r.camera_origin_m().normalized(), rgb);
+  const double zenith_cd_m2 = 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
+  const IrradianceReport e = irradiance_at_camera(r, 16, 32);
+  std::printf("luminance at the zenith %.4g cd/m2; at the camera, horizontal: direct %.4g lx, diffuse %.4g lx\n",
+              zenith_cd_m2, e.direct_horizontal_lux, e.diffuse_horizontal_lux);
+}
+
 int run_render(RenderOptions& o) {
   if (list_displays_if_asked(o.display)) return kExitOk;
   if (o.help_keys) {
@@ -74,6 +88,7 @@ int run_render(RenderOptions& o) {
     std::cout << "exposure: " << out.exposure << "\n";
     std::printf("rendered %dx%d, %s, in %.2f s\n", scene.camera.width, scene.camera.height,
                 make_wavelength_grid(scene).describe().c_str(), out.seconds);
+    if (scene.render.path == RenderSpec::Path::Spectral) print_photometry(scene);
   }
   return kExitOk;
 }
