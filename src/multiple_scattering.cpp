@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
+#include <fstream>
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include "skyspec/atomic_file.hpp"
 #include "skyspec/units.hpp"
 
 namespace skyspec {
@@ -89,6 +92,29 @@ void SourceTable::ground_irradiance(double mu, float* out) const {
 void SourceTable::add(const SourceTable& o) {
   for (size_t i = 0; i < j_.size(); ++i) j_[i] += o.j_[i];
   for (size_t i = 0; i < g_.size(); ++i) g_[i] += o.g_[i];
+}
+
+void SourceTable::write(std::ostream& out) const {
+  const int32_t shape[3] = {n_h_, n_mu_, n_l_};
+  out.write(reinterpret_cast<const char*>(shape), sizeof shape);
+  out.write(reinterpret_cast<const char*>(j_.data()), static_cast<std::streamsize>(j_.size() * sizeof(float)));
+  out.write(reinterpret_cast<const char*>(g_.data()), static_cast<std::streamsize>(g_.size() * sizeof(float)));
+}
+
+bool SourceTable::read(std::istream& in) {
+  int32_t shape[3];
+  if (!in.read(reinterpret_cast<char*>(shape), sizeof shape)) return false;
+  if (shape[0] != n_h_ || shape[1] != n_mu_ || shape[2] != n_l_) return false;
+  std::vector<float> j(j_.size()), g(g_.size());
+  if (!in.read(reinterpret_cast<char*>(j.data()), static_cast<std::streamsize>(j.size() * sizeof(float)))) return false;
+  if (!in.read(reinterpret_cast<char*>(g.data()), static_cast<std::streamsize>(g.size() * sizeof(float)))) return false;
+  for (float v : j)
+    if (!std::isfinite(v)) return false;
+  for (float v : g)
+    if (!std::isfinite(v)) return false;
+  j_.swap(j);
+  g_.swap(g);
+  return true;
 }
 
 double SourceTable::mean_source() const {
@@ -178,4 +204,62 @@ ScatteringOrders::ScatteringOrders(const SingleScattering& integrator, const Mul
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+namespace {
+constexpr char kCacheMagic[] = "skyspec scattering orders v1\n";
+}
+
+bool ScatteringOrders::save(const std::string& path, const std::string& key) const {
+  try {
+    AtomicOutputFile file(path);
+    {
+      std::ofstream out(file.temporary_path(), std::ios::binary);
+      out.write(kCacheMagic, sizeof kCacheMagic - 1);
+      const uint64_t key_size = key.size();
+      out.write(reinterpret_cast<const char*>(&key_size), sizeof key_size);
+      out.write(key.data(), static_cast<std::streamsize>(key.size()));
+      const int32_t count = static_cast<int32_t>(orders_.size());
+      out.write(reinterpret_cast<const char*>(&count), sizeof count);
+      for (const auto& t : orders_) t->write(out);
+      sum_->write(out);
+      if (!out.flush()) return false;
+    }
+    file.commit();
+    return true;
+  } catch (const std::exception&) {
+    return false;  // a cache that cannot be written only costs time
+  }
+}
+
+std::unique_ptr<ScatteringOrders> ScatteringOrders::load(const std::string& path, const std::string& key,
+                                                         const AtmosphereModel& atm,
+                                                         const MultipleScatteringSettings& settings) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return nullptr;
+  std::string magic(sizeof kCacheMagic - 1, '\0');
+  if (!in.read(magic.data(), static_cast<std::streamsize>(magic.size())) || magic != kCacheMagic) return nullptr;
+  uint64_t key_size = 0;
+  if (!in.read(reinterpret_cast<char*>(&key_size), sizeof key_size) || key_size != key.size()) return nullptr;
+  std::string stored(key.size(), '\0');
+  if (!in.read(stored.data(), static_cast<std::streamsize>(stored.size())) || stored != key) return nullptr;
+  int32_t count = 0;
+  if (!in.read(reinterpret_cast<char*>(&count), sizeof count) || count != settings.orders - 1) return nullptr;
+  std::unique_ptr<ScatteringOrders> o(new ScatteringOrders(settings));
+  auto make_table = [&] {
+    return std::make_unique<SourceTable>(atm.planet_radius_m(), atm.top_radius_m(), settings.altitude_samples,
+                                         settings.sun_samples, atm.grid().size());
+  };
+  for (int k = 0; k < count; ++k) {
+    auto t = make_table();
+    if (!t->read(in)) return nullptr;
+    o->orders_.push_back(std::move(t));
+  }
+  o->sum_ = make_table();
+  if (!o->sum_->read(in)) return nullptr;
+  return o;
+}
+
+}  // namespace skyspec
+
+namespace skyspec {
+const char* build_stamp_multiple_scattering() { return __DATE__ " " __TIME__; }
 }  // namespace skyspec

@@ -121,3 +121,7 @@ Columns SunColumnTable::lookup(double r_m, double mu) const {
 }
 
 }  // namespace skyspec
+
+namespace skyspec {
+const char* build_stamp_optical_depth() { return __DATE__ " " __TIME__; }
+}  // namespace skyspec

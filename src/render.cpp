@@ -7,6 +7,10 @@
 #include <map>
 #include <optional>
 #include <limits>
+#include <cstdint>
+#include <filesystem>
+#include <cstdio>
+#include <cstdlib>
 #include <mutex>
 #include <sstream>
 
@@ -29,6 +33,7 @@
 #include "skyspec/sun_disk.hpp"
 #include "skyspec/units.hpp"
 #include "skyspec/version.hpp"
+#include "build_stamps.hpp"
 
 namespace skyspec {
 
@@ -75,6 +80,40 @@ std::string scattering_tables_key(const Scene& s) {
   return key;
 }
 
+// The part of a table's cache key that the scene does not show: the coefficients actually
+// computed (so a change in how they are derived invalidates old tables) and when the integrator's
+// code was compiled.
+std::string table_code_key(const AtmosphereModel& atm) {
+  std::ostringstream k;
+  k << "\ncode " << version_string() << " | " << build_stamp_single_scattering() << " | "
+    << build_stamp_multiple_scattering() << " | " << build_stamp_optical_depth() << " | "
+    << build_stamp_density_profile() << "\ncoefficients";
+  k << std::hexfloat;
+  for (const ScatteringSpecies* sp : {&atm.rayleigh(), &atm.mie(), &atm.ozone()}) {
+    for (int i = 0; i < sp->scattering_per_m.size(); ++i) k << ' ' << sp->scattering_per_m[i] << ' ' << sp->extinction_per_m[i];
+    k << " | " << sp->profile.describe();
+  }
+  for (int i = 0; i < atm.ground_albedo().size(); ++i) k << ' ' << atm.ground_albedo()[i];
+  for (int i = 0; i < atm.mie_g().size(); ++i) k << ' ' << atm.mie_g()[i];
+  return k.str();
+}
+
+// Where tables are cached on disk: $SKYSPEC_CACHE_DIR, else $XDG_CACHE_HOME/skyspec, else
+// ~/.cache/skyspec; the file name is a hash of the key (the file holds the whole key and is
+// used only if it matches). Empty when no folder can be named.
+std::string table_cache_path(const std::string& key) {
+  std::filesystem::path dir;
+  if (const char* d = std::getenv("SKYSPEC_CACHE_DIR"); d && *d) dir = d;
+  else if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) dir = std::filesystem::path(x) / "skyspec";
+  else if (const char* h = std::getenv("HOME"); h && *h) dir = std::filesystem::path(h) / ".cache" / "skyspec";
+  else return {};
+  uint64_t hash = 1469598103934665603ull;  // FNV-1a, 64 bit
+  for (unsigned char c : key) hash = (hash ^ c) * 1099511628211ull;
+  char name[64];
+  std::snprintf(name, sizeof name, "orders-%016llx.bin", static_cast<unsigned long long>(hash));
+  return (dir / name).string();
+}
+
 // Tables are reused across renders of the same atmosphere in one process (a time-lapse changes
 // only the sun). The last few are kept.
 std::shared_ptr<const ScatteringOrders> build_orders(const Scene& s, const SingleScattering& integrator) {
@@ -90,7 +129,19 @@ std::shared_ptr<const ScatteringOrders> build_orders(const Scene& s, const Singl
   ms.orders = s.render.scattering_orders;
   ms.altitude_samples = s.render.ms_altitude_samples;
   ms.sun_samples = s.render.ms_sun_samples;
-  auto orders = std::make_shared<const ScatteringOrders>(integrator, ms);
+  std::shared_ptr<const ScatteringOrders> orders;
+  const std::string cache_path = s.render.cache_tables ? table_cache_path(key) : std::string();
+  const std::string full_key = key + table_code_key(integrator.atmosphere());
+  if (!cache_path.empty()) orders = ScatteringOrders::load(cache_path, full_key, integrator.atmosphere(), ms);
+  if (!orders) {
+    auto built = std::make_shared<const ScatteringOrders>(integrator, ms);
+    if (!cache_path.empty()) {
+      std::error_code ec;
+      std::filesystem::create_directories(std::filesystem::path(cache_path).parent_path(), ec);
+      built->save(cache_path, full_key);
+    }
+    orders = built;
+  }
   std::lock_guard<std::mutex> lock(mutex);
   cache.emplace_back(key, orders);
   if (cache.size() > 4) cache.erase(cache.begin());

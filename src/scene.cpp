@@ -481,6 +481,10 @@ const std::vector<KeyDef>& registry() {
                             [](Scene& s) -> int& { return s.render.ms_altitude_samples; }));
     r.push_back(integer_key("render.ms_sun_samples", 4, 1024, "multiple-scattering tables: sun zenith cosines",
                             [](Scene& s) -> int& { return s.render.ms_sun_samples; }));
+    r.push_back(bool_key("render.cache_tables",
+                         "keep multiple-scattering tables on disk ($SKYSPEC_CACHE_DIR, $XDG_CACHE_HOME/skyspec or "
+                         "~/.cache/skyspec) and reuse them for the same atmosphere",
+                         [](Scene& s) -> bool& { return s.render.cache_tables; }));
     // output
     r.push_back(text_key("output.directory", "folder for the output files",
                          [](Scene& s) -> std::string& { return s.output.directory; }, false));

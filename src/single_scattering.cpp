@@ -323,3 +323,7 @@ void SingleScattering::radiance(const Vec3& o, const Vec3& d, const Vec3& s, con
 }
 
 }  // namespace skyspec
+
+namespace skyspec {
+const char* build_stamp_single_scattering() { return __DATE__ " " __TIME__; }
+}  // namespace skyspec

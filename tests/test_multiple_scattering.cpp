@@ -4,7 +4,10 @@
 #include <cmath>
 #include <vector>
 
+#include <fstream>
+
 #include "atmosphere_fixtures.hpp"
+#include "scratch_folder.hpp"
 #include "skyspec/camera.hpp"
 #include "skyspec/multiple_scattering.hpp"
 #include "skyspec/units.hpp"
@@ -119,4 +122,41 @@ BOOST_AUTO_TEST_CASE(gauss_legendre_integrates_polynomials_exactly) {
   for (size_t i = 0; i < x.size(); ++i) integral += w[i] * std::pow(x[i], 11);  // degree 2n - 1
   const double exact = (std::pow(2.0, 12) - std::pow(-0.3, 12)) / 12.0;
   BOOST_TEST(integral == exact, boost::test_tools::tolerance(1e-12));
+}
+
+// The disk cache gives back exactly the tables it was given, and nothing for another key or a
+// damaged file.
+BOOST_AUTO_TEST_CASE(tables_round_trip_through_the_cache) {
+  const AtmosphereModel atm(test::simple_atmosphere(ProfileKind::Exponential, 60e3, kNm, kBetaR, 21e-6),
+                            WavelengthGrid::from_list(kNm));
+  const SunColumnTable table(atm, {32, 64, 32});
+  const TableSunColumns cols(table);
+  const SingleScattering ss(atm, cols, {16});
+  MultipleScatteringSettings ms;
+  ms.orders = 3;
+  ms.altitude_samples = 6;
+  ms.sun_samples = 8;
+  const ScatteringOrders built(ss, ms);
+  const test::ScratchFolder dir("ms-cache");
+  const std::string path = (dir.path / "orders.bin").string();
+  BOOST_REQUIRE(built.save(path, "key A"));
+  const auto loaded = ScatteringOrders::load(path, "key A", atm, ms);
+  BOOST_REQUIRE(loaded);
+  float a[3], b[3];
+  for (double mu : {-0.3, 0.0, 0.4, 1.0}) {
+    built.source(6360e3 + 1234, mu, a);
+    loaded->source(6360e3 + 1234, mu, b);
+    for (int i = 0; i < 3; ++i) BOOST_TEST(a[i] == b[i]);
+    built.ground_irradiance(mu, a);
+    loaded->ground_irradiance(mu, b);
+    for (int i = 0; i < 3; ++i) BOOST_TEST(a[i] == b[i]);
+  }
+  BOOST_TEST(loaded->order(3).mean_source() == built.order(3).mean_source());
+  BOOST_TEST(!ScatteringOrders::load(path, "key B", atm, ms));
+  ms.sun_samples = 9;
+  BOOST_TEST(!ScatteringOrders::load(path, "key A", atm, ms));
+  { std::ofstream(path, std::ios::binary | std::ios::trunc) << "skyspec scattering orders v1\n garbage"; }
+  ms.sun_samples = 8;
+  BOOST_TEST(!ScatteringOrders::load(path, "key A", atm, ms));
+  BOOST_TEST(dir.entries().size() == 1u);  // no temporary file left by save()
 }

@@ -18,7 +18,9 @@
 // The tables depend on the atmosphere and the grid only, not on the sun's spectrum.
 #pragma once
 
+#include <iosfwd>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "skyspec/single_scattering.hpp"
@@ -53,6 +55,11 @@ class SourceTable : public InScatteringSource {
   const float* g_at(int i_sun) const { return &g_[static_cast<size_t>(i_sun) * n_l_]; }
   /// this += other (same shape).
   void add(const SourceTable& other);
+  /// Exact binary form (for the disk cache): shape, then J and G as raw floats.
+  void write(std::ostream& out) const;
+  /// Reads what write() wrote; false (and the table untouched) if the stream is short or the shape
+  /// differs from this table's.
+  bool read(std::istream& in);
   /// Mean of J over the table and the wavelengths (for diagnostics and tests).
   double mean_source() const;
 
@@ -77,7 +84,16 @@ class ScatteringOrders : public InScatteringSource {
   const SourceTable& sum() const { return *sum_; }
   double build_seconds() const { return build_seconds_; }
 
+  /// Saves the tables to `path` atomically, tagged with `key` (the scene keys they depend on).
+  /// Returns false (and leaves no file) if it cannot.
+  bool save(const std::string& path, const std::string& key) const;
+  /// Loads tables saved under exactly `key` for this atmosphere and settings; null if the file is
+  /// missing, from another key or version, or damaged.
+  static std::unique_ptr<ScatteringOrders> load(const std::string& path, const std::string& key,
+                                                const AtmosphereModel& atm, const MultipleScatteringSettings& settings);
+
  private:
+  explicit ScatteringOrders(const MultipleScatteringSettings& settings) : settings_(settings) {}
   MultipleScatteringSettings settings_;
   std::vector<std::unique_ptr<SourceTable>> orders_;
   std::unique_ptr<SourceTable> sum_;

@@ -66,6 +66,8 @@ struct RenderSpec {
   int scattering_orders = 6;
   int ms_altitude_samples = 24;
   int ms_sun_samples = 48;
+  /// Keep the multiple-scattering tables on disk and reuse them for the same atmosphere.
+  bool cache_tables = true;
 };
 
 struct OutputSpec {
