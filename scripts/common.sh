@@ -28,9 +28,24 @@ install_missing_packages() {
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2
 }
 
+# In CI (CI=true, as CI services set it) compiler warnings are errors: -DSKYSPEC_WERROR=ON.
+werror_flag() {
+  if [ "${CI:-}" = true ]; then echo -DSKYSPEC_WERROR=ON; else echo -DSKYSPEC_WERROR=OFF; fi
+}
+
 build() {
-  if [ ! -f build/CMakeCache.txt ]; then
-    cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >&2
+  if [ ! -f build/CMakeCache.txt ] || [ "${CI:-}" = true ]; then
+    cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "$(werror_flag)" >&2
   fi
   cmake --build build -j"$(nproc)" >&2
+}
+
+# The same sources built with AddressSanitizer + UndefinedBehaviorSanitizer in build-asan/
+# (-O2 -g; no Python module: an instrumented extension cannot be loaded by an uninstrumented python3).
+build_sanitized() {
+  if [ ! -f build-asan/CMakeCache.txt ] || [ "${CI:-}" = true ]; then
+    cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSKYSPEC_SANITIZE=ON \
+      -DSKYSPEC_BUILD_PYTHON=OFF -DSKYSPEC_NATIVE=ON "$(werror_flag)" >&2
+  fi
+  cmake --build build-asan -j"$(nproc)" >&2
 }

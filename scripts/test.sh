@@ -1,6 +1,15 @@
 #!/usr/bin/env bash
-# Installs what is missing, builds, and runs every test through CTest.
+# Installs what is missing, builds, and runs every test through CTest; then builds again with
+# AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/) and runs the Boost.Test suites and
+# the command-line tests there (no Python or notebooks: that build has no Python module). Any
+# sanitizer report aborts the process under test and fails its test.
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+# Tests keep their multiple-scattering table cache inside the build folder, not in ~/.cache.
+export SKYSPEC_CACHE_DIR="$PWD/build/test-cache"
 install_missing_packages
 build
 ctest --test-dir build --output-on-failure -j"$(nproc)"
+build_sanitized
+ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
+UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  ctest --test-dir build-asan --output-on-failure -j"$(nproc)" -E '^(python_|notebook_)'

@@ -25,8 +25,12 @@ struct PngErrorMessage {
 };
 
 void on_png_error(png_structp png, png_const_charp message) {
+  const int error_number = errno;  // libpng's stdio writer says only "Write Error": add the reason
   auto* error = static_cast<PngErrorMessage*>(png_get_error_ptr(png));
-  std::snprintf(error->text, sizeof error->text, "%s", message);
+  if (error_number != 0 && std::strcmp(message, "Write Error") == 0)
+    std::snprintf(error->text, sizeof error->text, "cannot write: %s", std::strerror(error_number));
+  else
+    std::snprintf(error->text, sizeof error->text, "%s", message);
   png_longjmp(png, 1);
 }
 
@@ -96,7 +100,8 @@ void write_png_srgb8(const std::filesystem::path& path, int width, int height,
   const bool stream_ok = std::ferror(out) == 0;
   const bool closed = std::fclose(out) == 0;
   if (!encoded) throw IoError(where + error.text);
-  if (!stream_ok || !closed) throw IoError(where + "cannot write '" + file.temporary_path().string() + "'");
+  if (!stream_ok || !closed)
+    throw IoError(where + "cannot write '" + file.temporary_path().string() + "': " + std::strerror(errno));
   file.commit();
 }
 
@@ -109,7 +114,10 @@ namespace {
 struct DisplayPngLayout {
   int width, height, bit_depth;
   PngColourTag tag;
-  const std::vector<std::pair<std::string, std::string>>* text;
+  // Text chunks, prepared by the caller: encode_display_png may longjmp out, so it must not own
+  // anything with a destructor (a std::vector there leaked on a write error, found by ASan).
+  const png_text* chunks;
+  int chunk_count;
 };
 
 void set_chrm(png_structp png, png_infop info, double rx, double ry, double gx, double gy, double bx, double by) {
@@ -157,16 +165,7 @@ bool encode_display_png(FILE* out, const DisplayPngLayout& layout, const png_byt
     case PngColourTag::None:
       break;
   }
-  std::vector<png_text> chunks;
-  for (const auto& [key, value] : *layout.text) {
-    png_text t{};
-    t.compression = PNG_TEXT_COMPRESSION_NONE;
-    t.key = const_cast<png_charp>(key.c_str());
-    t.text = const_cast<png_charp>(value.c_str());
-    t.text_length = value.size();
-    chunks.push_back(t);
-  }
-  if (!chunks.empty()) png_set_text(png, info, chunks.data(), static_cast<int>(chunks.size()));
+  if (layout.chunk_count > 0) png_set_text(png, info, layout.chunks, layout.chunk_count);
   png_write_info(png, info);
   // libpng 1.6.39 has no cICP support: the chunk is written by hand, after IHDR and before IDAT
   // as the PNG 3rd edition requires.
@@ -218,12 +217,22 @@ void write_png_display(const std::filesystem::path& path, int width, int height,
   FILE* out = std::fopen(file.temporary_path().c_str(), "wb");
   if (!out) throw IoError(where + "cannot open '" + file.temporary_path().string() + "': " + std::strerror(errno));
   PngErrorMessage error;
-  const DisplayPngLayout layout{width, height, bit_depth, tag, &text};
+  std::vector<png_text> chunks;
+  for (const auto& [key, value] : text) {
+    png_text t{};
+    t.compression = PNG_TEXT_COMPRESSION_NONE;
+    t.key = const_cast<png_charp>(key.c_str());
+    t.text = const_cast<png_charp>(value.c_str());
+    t.text_length = value.size();
+    chunks.push_back(t);
+  }
+  const DisplayPngLayout layout{width, height, bit_depth, tag, chunks.data(), static_cast<int>(chunks.size())};
   const bool encoded = encode_display_png(out, layout, pixels.data(), &error);
   const bool stream_ok = std::ferror(out) == 0;
   const bool closed = std::fclose(out) == 0;
   if (!encoded) throw IoError(where + error.text);
-  if (!stream_ok || !closed) throw IoError(where + "cannot write '" + file.temporary_path().string() + "'");
+  if (!stream_ok || !closed)
+    throw IoError(where + "cannot write '" + file.temporary_path().string() + "': " + std::strerror(errno));
   file.commit();
 }
 

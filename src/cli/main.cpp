@@ -1,13 +1,15 @@
 // skyspec command-line front end: parses and validates, then calls the library.
 //
 // Exit codes: 0 success; 2 bad input (unknown option or key, value out of range, ...);
-// 3 an input or output file could not be read or written; 1 an internal error.
+// 3 an input or output file could not be read or written; 1 an internal error;
+// 130 / 143 stopped by SIGINT / SIGTERM (interrupt.hpp), leaving no partial file.
 
 #include <iostream>
 #include <string>
 #include <vector>
 
 #include "commands.hpp"
+#include "interrupt.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/version.hpp"
 
@@ -45,9 +47,13 @@ int main(int argc, char** argv) {
     return kExitBadInput;
   }
 
+  install_interrupt_handlers();
   try {
     for (const auto& c : commands)
       if (c.app->parsed()) return c.run();
+  } catch (const Interrupted& e) {
+    std::cerr << "skyspec: " << e.what() << "\n";
+    return e.exit_code();
   } catch (const skyspec::InputError& e) {
     std::cerr << "skyspec: error: " << e.what() << "\n";
     return kExitBadInput;

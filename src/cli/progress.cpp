@@ -4,6 +4,8 @@
 
 #include <cstdio>
 
+#include "interrupt.hpp"
+
 namespace skyspec::cli {
 
 ProgressBar::ProgressBar(std::string label, bool quiet)
@@ -24,6 +26,7 @@ std::string format_seconds(double s) {
 }  // namespace
 
 void ProgressBar::update(int done, int total) {
+  throw_if_interrupted();  // every long loop reports progress: the place to stop on SIGINT/SIGTERM
   if (!active_ || total <= 0) return;
   const auto now = std::chrono::steady_clock::now();
   if (done < total && now - last_draw_ < std::chrono::milliseconds(100)) return;

@@ -1,0 +1,105 @@
+#!/usr/bin/python3
+"""Prints the benchmark table of bench/run_benchmarks.sh from its working folder.
+
+Relative error per pixel: the largest |L - L_ref| / L_ref over the pixel's channels (all spectral
+channels S0.*; for the baseline its R, G, B = 680, 550, 440 nm), over the pixels whose reference
+radiance (largest channel) exceeds 1e-6 of the image's largest. The baseline (512 x 512, pixel
+x = 2 (i + 0.5) / (W - 1) - 1) is compared with skyspec's seed preset rendered at 511 x 511 with
+reference settings, whose pixel x = 2 (i + 0.5) / 511 - 1 is the same direction for i < 511.
+Equirectangular: only the upper half (the sky above the horizon) is compared.
+"""
+import sys
+from pathlib import Path
+
+import numpy as np
+import OpenImageIO as oiio
+
+
+def read_exr(path):
+    inp = oiio.ImageInput.open(str(path))
+    if inp is None:
+        raise SystemExit(f"bench_stats.py: cannot read {path}: {oiio.geterror()}")
+    spec = inp.spec()
+    px = inp.read_image(0, 0, 0, spec.nchannels, oiio.FLOAT)
+    inp.close()
+    names = list(spec.channelnames)
+    idx = [k for k, n in enumerate(names) if n.startswith("S0.")]
+    wl = [float(names[k][3:-2].replace(",", ".")) for k in idx]
+    return np.asarray(px)[:, :, idx].astype(np.float64), wl
+
+
+def read_pfm(path):
+    data = Path(path).read_bytes()
+    head = data.split(b"\n", 3)
+    w, h = map(int, head[1].split())
+    return np.frombuffer(head[3], dtype="<f4", count=w * h * 3).reshape(h, w, 3).astype(np.float64)
+
+
+def rel_error(img, ref):
+    peak = ref.max(axis=-1)
+    mask = peak > 1e-6 * peak.max()
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rel = np.abs(img - ref) / np.abs(ref)
+    rel = np.where(ref > 0, rel, np.where(img == ref, 0.0, np.inf)).max(axis=-1)[mask]
+    return np.percentile(rel, 50), np.percentile(rel, 99)
+
+
+def time_of(out, name):
+    wall, rss = (out / f"{name}.time").read_text().split()[-2:]
+    return float(wall), int(rss) / 1024.0
+
+
+def main():
+    out = Path(sys.argv[1])
+    rows = [line.rstrip("\n").split("\t") for line in (out / "manifest.tsv").read_text().splitlines()]
+    base = {}
+    for kind, name, label, sun in rows:
+        if kind != "base":
+            continue
+        wall, rss = time_of(out, name)
+        img = read_pfm(out / f"{name}.pfm")[:511, :511]
+        ref, wl = read_exr(out / f"ref-base511-{sun}.exr")
+        ref = ref[:, :, [wl.index(680.0), wl.index(550.0), wl.index(440.0)]]
+        p50, p99 = rel_error(img, ref)
+        base[sun] = wall
+        print(f"baseline render time (its own clock, sun {sun}): "
+              + (out / f"{name}.log").read_text().strip().split(";")[0])
+        rows_out = base.setdefault("rows", [])
+        rows_out.append((label, sun, wall, 1.0, p50, p99, rss))
+    has_base = any(k != "rows" for k in base)
+    table = []
+    for kind, name, label, sun in rows:
+        if kind == "base":
+            continue
+        wall, rss = time_of(out, name)
+        p50 = p99 = None
+        if kind == "main":
+            img, _ = read_exr(out / f"{name}.exr")
+            ref, _ = read_exr(out / f"ref-{name}.exr")
+            if name.startswith("c4"):  # equirectangular: the sky above the horizon
+                h = img.shape[0] // 2
+                img, ref = img[:h], ref[:h]
+            p50, p99 = rel_error(img, ref)
+        ratio = wall / base[sun] if has_base and sun in base and not label.startswith(("5", "scale", "default")) else None
+        table.append((label, sun, wall, ratio, p50, p99, rss))
+    if has_base:
+        table = sorted(base["rows"], key=lambda r: -float(r[1])) + table
+
+    def f(v, fmt):
+        return "-" if v is None else format(v, fmt)
+
+    cols = ["case", "sun (deg)", "wall (s)"] + (["x baseline"] if has_base else []) + ["p50 rel. err.", "p99 rel. err.", "peak RSS (MB)"]
+    print()
+    print("| " + " | ".join(cols) + " |")
+    print("| --- | " + " | ".join("---:" for _ in cols[1:]) + " |")
+    for label, sun, wall, ratio, p50, p99, rss in table:
+        cells = [label, sun, f"{wall:.2f}"] + ([f(ratio, ".1f")] if has_base else []) + [f(p50, ".1e"), f(p99, ".1e"), f"{rss:.0f}"]
+        print("| " + " | ".join(cells) + " |")
+    refs = sorted(out.glob("ref-*.time"))
+    print()
+    print("reference renders (256 view segments, 1024 x 2048 sun table), wall s: "
+          + ", ".join(f"{p.name[4:-5]} {time_of(out, p.name[:-5])[0]:.1f}" for p in refs))
+
+
+if __name__ == "__main__":
+    main()

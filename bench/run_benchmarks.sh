@@ -1,0 +1,105 @@
+#!/usr/bin/env bash
+# skyspec benchmark against the seed tutorial's baseline program (the performance issue).
+# Not a unit test: it takes several minutes. Usage (from the repository root):
+#
+#   bench/run_benchmarks.sh [--skyspec PATH] [--baseline SEED.cpp] [--out DIR]
+#
+# --skyspec   the skyspec binary (default: build-bench/skyspec, else build/skyspec)
+# --baseline  the baseline source (default: ../shared/bench/seed_nishita.cpp); built with
+#             g++ -O3 -march=native -std=c++17. When it does not exist the ratio columns are skipped.
+# --out       working folder for renders and logs (default: /tmp/skyspec-bench)
+#
+# Times are process wall-clock times from GNU time (/usr/bin/time -f '%e %M': the same elapsed
+# time and maximum resident set size that /usr/bin/time -v prints), including start-up and
+# writing the output (skyspec: the spectral EXR, no PNG; baseline: its PFM). Errors are computed
+# by bench/bench_stats.py (/usr/bin/python3, numpy, OpenImageIO) against a reference render of
+# the same scene and resolution with 256 view segments and a 1024 x 2048 sun table.
+set -euo pipefail
+here="$(cd "$(dirname "$0")" && pwd)"; root="$(dirname "$here")"
+skyspec=""; baseline_src="$(cd "$root/.." && pwd)/shared/bench/seed_nishita.cpp"; out=/tmp/skyspec-bench
+while [[ $# -gt 0 ]]; do
+  case "$1" in
+    --skyspec) skyspec="$2"; shift 2 ;;
+    --baseline) baseline_src="$2"; shift 2 ;;
+    --out) out="$2"; shift 2 ;;
+    -h|--help) sed -n 2,17p "$0"; exit 0 ;;
+    *) echo "run_benchmarks.sh: unknown argument $1" >&2; exit 2 ;;
+  esac
+done
+if [[ -z "$skyspec" ]]; then
+  if [[ -x "$root/build-bench/skyspec" ]]; then skyspec="$root/build-bench/skyspec"; else skyspec="$root/build/skyspec"; fi
+fi
+[[ -x "$skyspec" ]] || { echo "run_benchmarks.sh: no skyspec binary at $skyspec (build it first)" >&2; exit 2; }
+[[ -x /usr/bin/time ]] || { echo "run_benchmarks.sh: needs GNU time (apt-get install time)" >&2; exit 2; }
+mkdir -p "$out"; manifest="$out/manifest.tsv"; : > "$manifest"
+scene="$here/seed-spectral.toml"
+REF=(--view-segments 256 --set render.table_altitude_samples=1024 --set render.table_zenith_samples=2048)
+
+echo "skyspec benchmark, $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
+echo "skyspec: $skyspec"
+echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
+
+baseline=""
+if [[ -f "$baseline_src" ]]; then
+  baseline="$out/seed_nishita"
+  g++ -O3 -march=native -std=c++17 "$baseline_src" -o "$baseline"
+  echo "baseline: $baseline_src, built with g++ -O3 -march=native -std=c++17"
+else
+  echo "baseline: $baseline_src does not exist; the ratio and baseline columns are skipped"
+fi
+
+# timed NAME CMD...: runs CMD under GNU time; appends "wall rss_kB" to $out/NAME.time.
+timed() {
+  local name="$1"; shift
+  /usr/bin/time -f '%e %M' -o "$out/$name.time" "$@" > "$out/$name.log" 2>&1
+}
+# sky ROW CASE SUN [ARGS...]: a timed skyspec render and, with a reference, a row of the table.
+# row kinds: main (with error vs the reference $out/ref-$name.exr), time (no error).
+sky() {
+  local kind="$1" name="$2" label="$3" sun="$4"; shift 4
+  local png=(--no-png); [[ "${WITH_PNG:-0}" == 1 ]] && png=()
+  timed "$name" "$skyspec" render -q "${png[@]}" --out "$out" --name "$name" --sun-elevation "$sun" "$@"
+  printf '%s\t%s\t%s\t%s\n' "$kind" "$name" "$label" "$sun" >> "$manifest"
+}
+ref() {  # ref NAME SUN ARGS...: the converged reference (not timed in the table)
+  local name="$1" sun="$2"; shift 2
+  timed "ref-$name" "$skyspec" render -q --no-png --out "$out" --name "ref-$name" --sun-elevation "$sun" "$@" "${REF[@]}"
+}
+
+for sun in 30 10 2; do
+  if [[ -n "$baseline" ]]; then
+    ( cd "$out" && timed "base-$sun" "$baseline" "$sun" && mv seed.pfm "base-$sun.pfm" )
+    printf 'base\tbase-%s\tbaseline (RGB 3 wl, 16/8 samples, 1 thread)\t%s\n' "$sun" "$sun" >> "$manifest"
+    ref "base511-$sun" "$sun" --preset seed --width 511 --height 511   # the baseline's directions
+  fi
+  echo "sun $sun: case 1 (spectral, 41 wavelengths) ..."
+  sky main "c1-$sun" "1: spectral 41 wl, 512 fisheye, 2 threads" "$sun" --scene "$scene"
+  ref "c1-$sun" "$sun" --scene "$scene"
+  echo "sun $sun: case 2 (seed preset, RGB-fast) ..."
+  sky main "c2-$sun" "2: seed preset RGB-fast, 512 fisheye, 2 threads" "$sun" --preset seed
+  ref "c2-$sun" "$sun" --preset seed
+done
+echo "case 3 (threads) ..."
+sky time "c3-1t" "3: case 1, 1 thread" 30 --scene "$scene" --threads 1
+sky time "c3-2t" "3: case 1, 2 threads" 30 --scene "$scene" --threads 2
+echo "case 4 (equirectangular) ..."
+sky main "c4-10" "4: spectral 41 wl, 512x512 equirect (upper half 512x256)" 10 --scene "$scene" --camera equirectangular
+ref "c4-10" 10 --scene "$scene" --camera equirectangular
+echo "case 5 (large EXR) ..."
+sky time "c5-10" "5: spectral 81 wl, 2048x1024 equirect EXR" 10 --scene "$scene" --camera equirectangular --width 2048 --height 1024 --lambda-step 5
+
+echo "scaling (case 1 scene, sun 30, 2 threads) ..."
+sky time "s-256" "scale: 256x256" 30 --scene "$scene" --width 256 --height 256
+sky time "s-1024" "scale: 1024x1024" 30 --scene "$scene" --width 1024 --height 1024
+sky time "s-wl3" "scale: 3 wl (440/550/680, spectral)" 30 --scene "$scene" --wavelengths 440,550,680
+sky time "s-wl81" "scale: 81 wl" 30 --scene "$scene" --lambda-step 5
+sky time "s-vs16" "scale: 16 view segments" 30 --scene "$scene" --view-segments 16
+sky time "s-vs256" "scale: 256 view segments" 30 --scene "$scene" --view-segments 256
+sky time "s-tab" "scale: 1024x2048 sun table" 30 --scene "$scene" --set render.table_altitude_samples=1024 --set render.table_zenith_samples=2048
+WITH_PNG=1 sky time "s-noexr" "scale: PNG instead of EXR" 30 --scene "$scene" --no-exr
+sky time "s-ms1" "default scene, 512 fisheye, 1 order" 30 --set render.scattering_orders=1
+sky time "s-ms6" "default scene, 512 fisheye, 6 orders" 30
+
+echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
+echo
+/usr/bin/python3 "$here/bench_stats.py" "$out"

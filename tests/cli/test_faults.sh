@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# Faults: a full disk and SIGINT / SIGTERM during a render. Each must end with a non-zero exit,
+# a clear message, and no partial or temporary file ("<name>.tmp-...") in the output folder.
+# The full-disk case mounts a 64 KiB tmpfs and needs root (CAP_SYS_ADMIN); without it that case
+# is reported as skipped. Usage: test_faults.sh SKYSPEC
+set -u
+skyspec=$1
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
+
+# --- full disk ---------------------------------------------------------------------------------
+full="$work/full"
+mkdir -p "$full"
+if mount -t tmpfs -o size=64k skyspec-test-full "$full" 2>/dev/null; then
+  trap 'umount "$full" 2>/dev/null; rm -rf "$work"' EXIT
+  # 64 x 64 pixels x 44 float channels is ~720 KB before compression: it cannot fit.
+  run_expecting_error full_disk_exr 3 "No space left on device" "$full/out" \
+    "$skyspec" render -q --out "$full/out" --width 64 --height 64 --set render.scattering_orders=1
+  # The PNG alone (the EXR is not written): still too big for what is left after filling.
+  head -c 60k /dev/zero >"$full/filler" 2>/dev/null
+  run_expecting_error full_disk_png 3 "No space left on device" "$full/out2" \
+    "$skyspec" render -q --out "$full/out2" --width 256 --height 256 --no-exr --set render.scattering_orders=1
+  rm -f "$full/filler"
+  umount "$full" && ok || bad "could not unmount the test tmpfs"
+  trap 'rm -rf "$work"' EXIT
+else
+  echo "SKIP full_disk: cannot mount a tmpfs here (needs root)"
+fi
+
+# --- signals -----------------------------------------------------------------------------------
+# render_and_signal NAME SIGNAL EXPECTED_EXIT: starts a render big enough to take a while, waits
+# until its EXR writer has created the temporary file (so the signal lands mid-render), sends the
+# signal, and checks exit code, message and that the folder is empty.
+render_and_signal() {
+  local name=$1 sig=$2 code=$3 out="$work/sig-$1"
+  "$skyspec" render -q --out "$out" --width 512 --height 512 --set render.scattering_orders=1 \
+    >"$work/stdout" 2>"$work/stderr" &
+  local pid=$! waited=0
+  until ls "$out" 2>/dev/null | grep -q '\.tmp-'; do
+    sleep 0.1
+    waited=$((waited + 1))
+    if [ $waited -gt 1200 ] || ! kill -0 $pid 2>/dev/null; then break; fi
+  done
+  sleep 0.3
+  kill -s "$sig" $pid 2>/dev/null
+  wait $pid
+  local rc=$?
+  if [ "$rc" != "$code" ]; then bad "$name: exit $rc, expected $code"; cat "$work/stderr"; return; fi
+  grep -q "interrupted by SIG$sig" "$work/stderr" && ok || { bad "$name: message missing"; cat "$work/stderr"; }
+  if [ -n "$(ls -A "$out" 2>/dev/null)" ]; then bad "$name: left files: $(ls -A "$out")"; else ok; fi
+}
+render_and_signal sigint INT 130
+render_and_signal sigterm TERM 143
+
+finish faults
