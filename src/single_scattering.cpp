@@ -12,7 +12,7 @@ namespace skyspec {
 ScatteringWorkspace::ScatteringWorkspace(int n)
     : tau_a(n), tau_b(n), tau_c(n), trans_a(n), trans_b(n), trans_c(n), f_a(n), f_b(n), x(n),
       view_tau(n), view_trans(n), ms_a(n), ms_b(n), ms_c(n), source(n),
-      sum_rayleigh(n), sum_mie(n), coarse_rayleigh(n), coarse_mie(n), sum_ms(n), coarse_ms(n) {}
+      sum_rayleigh(n), sum_mie(n), coarse_rayleigh(n), coarse_mie(n), sum_ms(n), coarse_ms(n), phase(n), parts(n) {}
 
 SingleScattering::SingleScattering(const AtmosphereModel& atm, const SunColumns& sun_columns,
                                    IntegratorSettings s)
@@ -43,6 +43,7 @@ struct Node {
   double r;
   double mu_sun;
   double log_rho[2];  // Rayleigh, Mie
+  double rho[2];      // exp(log_rho), once per node
   double rho_ozone;
 };
 
@@ -75,7 +76,32 @@ void SingleScattering::transmittance_to_space(const Vec3& o, const Vec3& d, Spec
 
 void SingleScattering::radiance(const Vec3& o, const Vec3& d, const Vec3& s, const Spectrum& sun_irradiance,
                                 const ScatteringSources& sources, ScatteringWorkspace& ws, Spectrum& out) const {
-  out.setZero();
+  radiance_parts(o, d, s, sources, ws, ws.parts);
+  combine(ws.parts, d.dot(s), sun_irradiance, ws, out);
+}
+
+void SingleScattering::combine(const RadianceParts& parts, double mu, const Spectrum& sun_irradiance,
+                               ScatteringWorkspace& ws, Spectrum& out) const {
+  const float phase_r = static_cast<float>(rayleigh_phase(mu));
+  if (atm_.mie_g_varies()) {
+    // A spectral aerosol: the phase function's asymmetry differs per wavelength.
+    AerosolPhase phase = atm_.mie_phase();
+    for (int i = 0; i < ws.phase.size(); ++i) {
+      phase.g = atm_.mie_g()[i];
+      ws.phase[i] = static_cast<float>(phase(mu));
+    }
+    out = (parts.rayleigh * phase_r + parts.mie * ws.phase + parts.isotropic) * sun_irradiance;
+  } else {
+    const float phase_m = static_cast<float>(atm_.mie_phase()(mu));
+    out = (parts.rayleigh * phase_r + parts.mie * phase_m + parts.isotropic) * sun_irradiance;
+  }
+}
+
+void SingleScattering::radiance_parts(const Vec3& o, const Vec3& d, const Vec3& s, const ScatteringSources& sources,
+                                      ScatteringWorkspace& ws, RadianceParts& parts) const {
+  parts.rayleigh.setZero();
+  parts.mie.setZero();
+  parts.isotropic.setZero();
   if (sources.transmittance) sources.transmittance->setOnes();
   const double R = atm_.planet_radius_m(), Rt = atm_.top_radius_m();
   if (o.norm() < R) {  // inside the planet
@@ -153,6 +179,8 @@ void SingleScattering::radiance(const Vec3& o, const Vec3& d, const Vec3& s, con
     const double alt = n.r - R;
     n.log_rho[0] = prof_r.log_relative(alt);
     n.log_rho[1] = prof_m.log_relative(alt);
+    n.rho[0] = std::exp(n.log_rho[0]);
+    n.rho[1] = std::exp(n.log_rho[1]);
     n.rho_ozone = ozone ? prof_o.relative(alt) : 0.0;
     return n;
   };
@@ -162,7 +190,7 @@ void SingleScattering::radiance(const Vec3& o, const Vec3& d, const Vec3& s, con
   auto advance_columns = [&](const Node& a, const Node& b) {
     const double dt = b.t - a.t;
     for (int k = 0; k < 2; ++k)
-      view_col[k] += dt * log_mean(std::exp(a.log_rho[k]), std::exp(b.log_rho[k]), a.log_rho[k] - b.log_rho[k]);
+      view_col[k] += dt * log_mean(a.rho[k], b.rho[k], a.log_rho[k] - b.log_rho[k]);
     view_col[kOzone] += 0.5 * dt * (a.rho_ozone + b.rho_ozone);
   };
   auto view_tau = [&](Spectrum& tau) {
@@ -180,7 +208,7 @@ void SingleScattering::radiance(const Vec3& o, const Vec3& d, const Vec3& s, con
   auto higher_integrand = [&](const Node& n, Spectrum& m) {
     sources.higher->source(n.r, n.mu_sun, ws.source.data());
     view_tau(ws.view_tau);
-    const float rho_r = static_cast<float>(std::exp(n.log_rho[0])), rho_m = static_cast<float>(std::exp(n.log_rho[1]));
+    const float rho_r = static_cast<float>(n.rho[0]), rho_m = static_cast<float>(n.rho[1]);
     m = (-ws.view_tau).exp() * ws.source * (sca_rayleigh_ * rho_r + sca_mie_ * rho_m);
   };
   // Single-scattering integrals over one segment [a, b] for both species, by the log-mean rule.
@@ -188,8 +216,8 @@ void SingleScattering::radiance(const Vec3& o, const Vec3& d, const Vec3& s, con
                                 const Spectrum& tau_b, const Spectrum& trans_b, Spectrum& sum_r, Spectrum& sum_m) {
     const float seg = static_cast<float>(nb.t - na.t);
     for (int sp = 0; sp < 2; ++sp) {
-      const float rho_a = static_cast<float>(std::exp(na.log_rho[sp]));
-      const float rho_b = static_cast<float>(std::exp(nb.log_rho[sp]));
+      const float rho_a = static_cast<float>(na.rho[sp]);
+      const float rho_b = static_cast<float>(nb.rho[sp]);
       ws.x = static_cast<float>(na.log_rho[sp] - nb.log_rho[sp]) - (tau_a - tau_b);
       ws.f_a = rho_a * trans_a;
       ws.f_b = rho_b * trans_b;
@@ -275,24 +303,10 @@ void SingleScattering::radiance(const Vec3& o, const Vec3& d, const Vec3& s, con
   // Richardson extrapolation: each rule's error is O(dt^2), so (4 fine - coarse) / 3 cancels the
   // leading term. Clamped at 0 in case a coarse pair is far off (it never is for smooth integrands).
   if (sources.single) {
-    ws.sum_rayleigh = ((4.0f * ws.sum_rayleigh - ws.coarse_rayleigh) * (1.0f / 3.0f)).max(0.0f);
-    ws.sum_mie = ((4.0f * ws.sum_mie - ws.coarse_mie) * (1.0f / 3.0f)).max(0.0f);
-    const double mu = d.dot(s);
-    const float phase_r = static_cast<float>(rayleigh_phase(mu));
-    if (atm_.mie_g_varies()) {
-      // A spectral aerosol: the phase function's asymmetry differs per wavelength.
-      AerosolPhase phase = atm_.mie_phase();
-      for (int i = 0; i < ws.f_a.size(); ++i) {
-        phase.g = atm_.mie_g()[i];
-        ws.f_a[i] = static_cast<float>(phase(mu));
-      }
-      out = sca_rayleigh_ * ws.sum_rayleigh * phase_r + sca_mie_ * ws.sum_mie * ws.f_a;
-    } else {
-      const float phase_m = static_cast<float>(atm_.mie_phase()(mu));
-      out = sca_rayleigh_ * ws.sum_rayleigh * phase_r + sca_mie_ * ws.sum_mie * phase_m;
-    }
+    parts.rayleigh = sca_rayleigh_ * ((4.0f * ws.sum_rayleigh - ws.coarse_rayleigh) * (1.0f / 3.0f)).max(0.0f);
+    parts.mie = sca_mie_ * ((4.0f * ws.sum_mie - ws.coarse_mie) * (1.0f / 3.0f)).max(0.0f);
   }
-  if (higher) out += ((4.0f * ws.sum_ms - ws.coarse_ms) * (1.0f / 3.0f)).max(0.0f);
+  if (higher) parts.isotropic = ((4.0f * ws.sum_ms - ws.coarse_ms) * (1.0f / 3.0f)).max(0.0f);
 
   if (sources.transmittance) {
     view_tau(ws.view_tau);
@@ -317,9 +331,8 @@ void SingleScattering::radiance(const Vec3& o, const Vec3& d, const Vec3& s, con
       sources.higher->ground_irradiance(g.mu_sun, ws.ms_c.data());
       ws.source += ws.ms_c;
     }
-    out += ws.view_trans * albedo_over_pi_ * ws.source;
+    parts.isotropic += ws.view_trans * albedo_over_pi_ * ws.source;
   }
-  out *= sun_irradiance;
 }
 
 }  // namespace skyspec

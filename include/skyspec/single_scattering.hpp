@@ -33,6 +33,23 @@ struct IntegratorSettings {
   int view_segments = 64;  ///< segments along each view ray, in total
 };
 
+/// Radiance divided by what depends on the scattering angle: along a straight ray towards a sun at
+/// infinity the angle between view and sun is the same at every point, so the phase functions
+/// factor out of the single-scattering integrals, and the radiance is
+///
+///   L(lambda) = E_sun(lambda) [p_R(mu) rayleigh(lambda) + p_M(mu, lambda) mie(lambda) + isotropic(lambda)]
+///
+/// with mu the cosine of the scattering angle. `rayleigh` and `mie` are beta_sca,s times the
+/// order-1 integral of species s; `isotropic` holds the higher orders and the ground (per unit
+/// solar irradiance). All three are smooth functions of the view direction, which is what makes
+/// them worth tabulating (sky_view_table.hpp); the phase functions, peaked near the sun, are
+/// evaluated exactly afterwards.
+struct RadianceParts {
+  explicit RadianceParts(int n_wavelengths = 0)
+      : rayleigh(Spectrum::Zero(n_wavelengths)), mie(Spectrum::Zero(n_wavelengths)), isotropic(Spectrum::Zero(n_wavelengths)) {}
+  Spectrum rayleigh, mie, isotropic;
+};
+
 /// Per-thread scratch memory (spectral arrays are allocated once and reused).
 struct ScatteringWorkspace {
   explicit ScatteringWorkspace(int n_wavelengths);
@@ -40,6 +57,8 @@ struct ScatteringWorkspace {
   Spectrum view_tau, view_trans, ms_a, ms_b, ms_c, source;
   Spectrum sum_rayleigh, sum_mie, coarse_rayleigh, coarse_mie;  // fine and coarse (paired) rules
   Spectrum sum_ms, coarse_ms;
+  Spectrum phase;  // per-wavelength aerosol phase (spectral asymmetry)
+  RadianceParts parts;
 };
 
 /// How the sun's columns are obtained at a point; the table in production, closed forms in tests.
@@ -94,6 +113,13 @@ class SingleScattering {
                 ScatteringWorkspace& ws, Spectrum& out) const {
     radiance(origin_m, dir, sun_dir, sun_irradiance, ScatteringSources{}, ws, out);
   }
+
+  /// The same radiance split into its phase-free parts (RadianceParts), per unit solar irradiance.
+  void radiance_parts(const Vec3& origin_m, const Vec3& dir, const Vec3& sun_dir, const ScatteringSources& sources,
+                      ScatteringWorkspace& ws, RadianceParts& parts) const;
+  /// L = E_sun [p_R(mu) rayleigh + p_M(mu) mie + isotropic] for mu = cos(scattering angle).
+  void combine(const RadianceParts& parts, double mu, const Spectrum& sun_irradiance, ScatteringWorkspace& ws,
+               Spectrum& out) const;
 
   /// Transmittance from origin_m along dir to the edge of the atmosphere (0 if the ray hits the
   /// ground): the attenuation of the sun's disk seen in that direction.

@@ -1,0 +1,73 @@
+// The sky seen from one point, tabulated over view directions.
+//
+// For a camera at a fixed point and a sun at infinity the radiance depends on the view direction
+// only, and the scene is mirror-symmetric about the vertical plane through the sun: two angles
+// describe every ray, the view zenith angle theta and the azimuth phi from the sun's azimuth, in
+// [0, pi]. A render asks for hundreds of thousands of directions; a table of a few thousand
+// marched rays, interpolated, gives the same image at a fraction of the cost (Hillaire 2020 does
+// this for real time; here it is held to the accuracy of the per-pixel march).
+//
+// What is tabulated are the phase-free parts of the radiance (RadianceParts in
+// single_scattering.hpp), which are smooth in direction; the phase functions, sharply peaked
+// around the sun for aerosols, are applied exactly per pixel. Rows crowd where the sky changes
+// fastest, near the horizon (sky_view_table.cpp, zenith_of), and the horizon is
+// a boundary of the table: directions above it are interpolated only from rays above it, and
+// directions below it (the ground, or the air in front of it) only from rays below it, so the
+// step in radiance at the horizon is not smeared.
+//
+// It applies to cameras inside the atmosphere and above the ground (see applicable()).
+#pragma once
+
+#include <vector>
+
+#include "skyspec/geometry.hpp"
+#include "skyspec/single_scattering.hpp"
+
+namespace skyspec {
+
+struct SkyViewResolution {
+  int sky_rows = 128;     ///< view zenith samples from the horizon to the zenith
+  int ground_rows = 48;   ///< view zenith samples from the horizon to the nadir
+  int azimuths = 64;      ///< azimuth samples from towards the sun (0) to away from it (pi)
+};
+
+class SkyViewTable {
+ public:
+  /// Whether a table represents the sky seen from origin_m: inside the atmosphere, above ground.
+  static bool applicable(const AtmosphereModel& atm, const Vec3& origin_m);
+
+  /// Marches every table ray with `integrator` (sources as for a pixel) from origin_m, for the sun
+  /// in direction sun_dir (unit), on `threads` threads. The entries do not depend on the number
+  /// of threads.
+  SkyViewTable(const SingleScattering& integrator, const ScatteringSources& sources, const Vec3& origin_m,
+               const Vec3& sun_dir, SkyViewResolution resolution, int threads);
+
+  /// The phase-free parts of the radiance along the unit direction dir, per unit solar irradiance,
+  /// interpolated bilinearly in (row, azimuth) on the side of the horizon dir is on.
+  void lookup(const Vec3& dir, RadianceParts& out) const;
+
+  /// The direction of table row `row` (of the sky side, or of the ground side) and azimuth
+  /// column `column`, for tests.
+  Vec3 direction(bool sky_side, int row, int column) const;
+
+  const SkyViewResolution& resolution() const { return res_; }
+
+ private:
+  // Row placement coordinate in [0, 1] of a zenith angle on one side of the horizon, its inverse,
+  // the variable rows are interpolated in, and the distance to the ground (sky_view_table.cpp).
+  double placement_of(bool sky_side, double theta) const;
+  double zenith_of(bool sky_side, double u) const;
+  double key_of(bool sky_side, double theta) const;
+  double ground_distance(double theta) const;
+
+  SkyViewResolution res_;
+  int n_ = 0;  // wavelengths
+  Vec3 up_, toward_sun_, across_;  // local frame: zenith, sun's azimuth, perpendicular
+  double horizon_zenith_rad_ = 0.0;
+  double r_m_ = 0.0, R_m_ = 0.0, rho_m_ = 0.0;  // camera and planet radii, distance to the horizon
+  std::vector<double> sky_theta_, ground_theta_, sky_key_, ground_key_;  // per row: zenith angle, key
+  // [side][row][column][part][lambda], part = rayleigh, mie, isotropic.
+  std::vector<float> sky_, ground_;
+};
+
+}  // namespace skyspec

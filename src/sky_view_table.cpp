@@ -1,0 +1,202 @@
+#include "skyspec/sky_view_table.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "skyspec/atmosphere.hpp"
+#include "skyspec/error.hpp"
+#include "skyspec/units.hpp"
+
+namespace skyspec {
+
+namespace {
+// Rays are never cast exactly along the horizon, where a ray grazes the ground and which side of
+// it the ray falls on is decided by rounding: the row at the horizon is cast this far from it.
+constexpr double kHorizonOffsetRad = 1e-6;
+constexpr int kParts = 3;
+
+// Weights of Lagrange's interpolating polynomial through the `count` nodes xs (distinct) at x.
+void lagrange_weights(const double* xs, int count, double x, double* w) {
+  for (int i = 0; i < count; ++i) {
+    double wi = 1.0;
+    for (int j = 0; j < count; ++j)
+      if (j != i) wi *= (x - xs[j]) / (xs[i] - xs[j]);
+    w[i] = wi;
+  }
+}
+}  // namespace
+
+bool SkyViewTable::applicable(const AtmosphereModel& atm, const Vec3& origin_m) {
+  const double r = origin_m.norm();
+  return r >= atm.planet_radius_m() && r < atm.top_radius_m();
+}
+
+// Placement of the rows. Sky side: by the square root of the angle above the horizon, so they
+// crowd where the sky brightens towards the horizon. Ground side: by the mean of two coordinates,
+// the angle below the horizon and the distance to the ground (Bruneton and Neyret's
+// parameterisation, from the horizon at distance rho = sqrt(r^2 - R^2) to the nadir at r - R):
+// the air in front of the ground adds light in proportion to that distance, and as a function of
+// angle the distance falls by orders of magnitude just below the horizon of a camera near the
+// ground; the angle keeps the rows from thinning out towards the nadir.
+double SkyViewTable::placement_of(bool sky_side, double theta) const {
+  const double th = horizon_zenith_rad_;
+  if (sky_side) return std::sqrt(std::clamp((th - theta) / th, 0.0, 1.0));
+  const double angle = std::clamp((theta - th) / (kPi - th), 0.0, 1.0);
+  if (rho_m_ <= 0.0) return angle;
+  return 0.5 * (angle + (rho_m_ - ground_distance(theta)) / (rho_m_ - (r_m_ - R_m_)));
+}
+
+// Interpolation variable between rows: the placement coordinate on the sky side; the distance to
+// the ground on the ground side (in which the light of the air in front of it is nearly linear).
+double SkyViewTable::key_of(bool sky_side, double theta) const {
+  if (sky_side || rho_m_ <= 0.0) return placement_of(sky_side, theta);
+  return ground_distance(theta);
+}
+
+// Distance along a ray of zenith angle theta (below the horizon) to the ground: the nearer root of
+// d^2 + 2 r mu d + r^2 - R^2 = 0, as (r^2 - R^2) / (far root), without cancellation.
+double SkyViewTable::ground_distance(double theta) const {
+  const double mu = std::cos(theta);
+  const double disc = std::max(0.0, r_m_ * r_m_ * mu * mu - rho_m_ * rho_m_);
+  const double far = -r_m_ * mu + std::sqrt(disc);
+  return far > 0.0 ? std::min(rho_m_, rho_m_ * rho_m_ / far) : rho_m_;
+}
+
+// The zenith angle of placement coordinate u in [0, 1] (by bisection: placement_of is
+// increasing away from the horizon), never closer to the horizon than kHorizonOffsetRad.
+double SkyViewTable::zenith_of(bool sky_side, double u) const {
+  const double th = horizon_zenith_rad_;
+  double lo = 0.0, hi = 1.0;  // fraction of the way from the horizon to the pole
+  for (int i = 0; i < 64; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    const double theta = sky_side ? th * (1.0 - mid) : th + mid * (kPi - th);
+    (placement_of(sky_side, theta) < u ? lo : hi) = mid;
+  }
+  const double f = 0.5 * (lo + hi);
+  return sky_side ? std::min(th * (1.0 - f), th - kHorizonOffsetRad)
+                  : std::max(th + f * (kPi - th), th + kHorizonOffsetRad);
+}
+
+Vec3 SkyViewTable::direction(bool sky_side, int row, int column) const {
+  const double theta = (sky_side ? sky_theta_ : ground_theta_)[static_cast<size_t>(row)];
+  const double phi = kPi * column / (res_.azimuths - 1);
+  return std::sin(theta) * (std::cos(phi) * toward_sun_ + std::sin(phi) * across_) + std::cos(theta) * up_;
+}
+
+SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringSources& sources, const Vec3& origin_m,
+                           const Vec3& sun_dir, SkyViewResolution resolution, int threads)
+    : res_(resolution), n_(integrator.atmosphere().grid().size()) {
+  const AtmosphereModel& atm = integrator.atmosphere();
+  if (!applicable(atm, origin_m)) throw Error("sky-view table: the camera is not inside the atmosphere");
+  if (res_.sky_rows < 2 || res_.ground_rows < 2 || res_.azimuths < 2)
+    throw Error("sky-view table: at least 2 rows and 2 azimuths on each side");
+  up_ = origin_m.normalized();
+  // The sun's azimuth; for a sun at the zenith (or nadir) every azimuth is the same.
+  Vec3 horizontal = sun_dir - sun_dir.dot(up_) * up_;
+  if (horizontal.norm() < 1e-12) horizontal = up_.unitOrthogonal();
+  toward_sun_ = horizontal.normalized();
+  across_ = up_.cross(toward_sun_);
+  // The geometric horizon: sin of its depression below the horizontal is sqrt(r^2 - R^2) / r,
+  // written without the cancellation of 1 - (R/r)^2 for a camera near the ground.
+  r_m_ = origin_m.norm();
+  R_m_ = atm.planet_radius_m();
+  rho_m_ = std::sqrt((r_m_ - R_m_) * (r_m_ + R_m_));
+  horizon_zenith_rad_ = 0.5 * kPi + std::asin(rho_m_ / r_m_);
+  for (bool sky_side : {true, false}) {
+    const int rows = sky_side ? res_.sky_rows : res_.ground_rows;
+    std::vector<double>& theta = sky_side ? sky_theta_ : ground_theta_;
+    std::vector<double>& key = sky_side ? sky_key_ : ground_key_;
+    for (int i = 0; i < rows; ++i) {
+      theta.push_back(zenith_of(sky_side, static_cast<double>(i) / (rows - 1)));
+      key.push_back(key_of(sky_side, theta.back()));
+    }
+  }
+
+  const size_t stride = static_cast<size_t>(res_.azimuths) * kParts * static_cast<size_t>(n_);
+  sky_.assign(static_cast<size_t>(res_.sky_rows) * stride, 0.0f);
+  ground_.assign(static_cast<size_t>(res_.ground_rows) * stride, 0.0f);
+  ScatteringSources src = sources;
+  src.transmittance = nullptr;
+  src.max_distance_m = std::numeric_limits<double>::infinity();
+  const int n = n_;
+  tbb::enumerable_thread_specific<ScatteringWorkspace> workspaces([n] { return ScatteringWorkspace(n); });
+  const int total_rows = res_.sky_rows + res_.ground_rows;
+  tbb::task_arena arena(std::max(1, threads));
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<int>(0, total_rows * res_.azimuths, 8), [&](const tbb::blocked_range<int>& range) {
+      ScatteringWorkspace& ws = workspaces.local();
+      for (int idx = range.begin(); idx != range.end(); ++idx) {
+        const int row_all = idx / res_.azimuths, column = idx % res_.azimuths;
+        const bool sky_side = row_all < res_.sky_rows;
+        const int row = sky_side ? row_all : row_all - res_.sky_rows;
+        integrator.radiance_parts(origin_m, direction(sky_side, row, column), sun_dir, src, ws, ws.parts);
+        float* entry = (sky_side ? sky_ : ground_).data() + row * stride +
+                       static_cast<size_t>(column) * kParts * static_cast<size_t>(n);
+        std::copy(ws.parts.rayleigh.data(), ws.parts.rayleigh.data() + n, entry);
+        std::copy(ws.parts.mie.data(), ws.parts.mie.data() + n, entry + n);
+        std::copy(ws.parts.isotropic.data(), ws.parts.isotropic.data() + n, entry + 2 * n);
+      }
+    });
+  });
+}
+
+void SkyViewTable::lookup(const Vec3& dir, RadianceParts& out) const {
+  const double x = dir.dot(toward_sun_), y = std::abs(dir.dot(across_)), z = dir.dot(up_);
+  const double theta = std::atan2(std::sqrt(x * x + y * y), z);
+  const double phi = std::atan2(y, x);  // in [0, pi]
+  const bool sky_side = theta < horizon_zenith_rad_;
+  const std::vector<float>& table = sky_side ? sky_ : ground_;
+
+  // The row pair around theta (placement_of says where to look; rounding is corrected by
+  // comparing with the rows' own angles), weighted linearly in the interpolation variable.
+  const std::vector<double>& row_theta = sky_side ? sky_theta_ : ground_theta_;
+  const std::vector<double>& row_key = sky_side ? sky_key_ : ground_key_;
+  const int rows = static_cast<int>(row_theta.size());
+  const double away = sky_side ? -1.0 : 1.0;  // rows run away from the horizon
+  int r0 = std::clamp(static_cast<int>(placement_of(sky_side, theta) * (rows - 1)), 0, rows - 2);
+  while (r0 > 0 && away * (theta - row_theta[static_cast<size_t>(r0)]) < 0.0) --r0;
+  while (r0 < rows - 2 && away * (theta - row_theta[static_cast<size_t>(r0 + 1)]) > 0.0) ++r0;
+  // Rows r0 - 1 .. r0 + 2 (three at the table's ends), weighted by Lagrange's cubic (or quadratic)
+  // in the interpolation variable; columns c0 - 1 .. c0 + 2 by the cubic in azimuth, where the
+  // mirror symmetry supplies the columns beyond 0 and pi.
+  const int first_row = std::max(0, r0 - 1), last_row = std::min(rows - 1, r0 + 2);
+  const int n_rows = last_row - first_row + 1;
+  double row_w[4];
+  lagrange_weights(row_key.data() + first_row, n_rows, key_of(sky_side, theta), row_w);
+
+  const int m = res_.azimuths;
+  const double f = std::clamp(phi / kPi * (m - 1), 0.0, static_cast<double>(m - 1));
+  const int c0 = std::min(static_cast<int>(f), m - 2);
+  const double column_x[4] = {c0 - 1.0, c0 + 0.0, c0 + 1.0, c0 + 2.0};
+  double column_w[4];
+  lagrange_weights(column_x, 4, f, column_w);
+  int columns[4];
+  for (int j = 0; j < 4; ++j) {
+    int c = c0 - 1 + j;
+    if (c < 0) c = -c;                  // phi -> -phi
+    if (c > m - 1) c = 2 * (m - 1) - c;  // pi + phi -> pi - phi
+    columns[j] = std::clamp(c, 0, m - 1);
+  }
+
+  const Eigen::Index n = n_;
+  const size_t stride = static_cast<size_t>(m) * kParts * static_cast<size_t>(n);
+  const size_t part = static_cast<size_t>(n);
+  Spectrum* dest[kParts] = {&out.rayleigh, &out.mie, &out.isotropic};
+  for (Spectrum* d : dest) d->setZero();
+  using Map = Eigen::Map<const Eigen::ArrayXf>;
+  for (int i = 0; i < n_rows; ++i)
+    for (int j = 0; j < 4; ++j) {
+      const float w = static_cast<float>(row_w[i] * column_w[j]);
+      const float* e = table.data() + static_cast<size_t>(first_row + i) * stride +
+                       static_cast<size_t>(columns[j]) * kParts * part;
+      for (int p = 0; p < kParts; ++p) *dest[p] += w * Map(e + static_cast<size_t>(p) * part, n);
+    }
+  // A cubic may undershoot where a part falls steeply to 0 (the planet's shadow); light is not negative.
+  for (Spectrum* d : dest) *d = d->max(0.0f);
+}
+
+}  // namespace skyspec
