@@ -8,6 +8,7 @@
 #include "skyspec/atomic_file.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/png_image.hpp"
+#include "skyspec/provenance.hpp"
 #include "skyspec/rgb_exr.hpp"
 #include "skyspec/version.hpp"
 
@@ -75,12 +76,14 @@ ConversionOutputs convert_exr_for_display(const std::filesystem::path& input, co
   try {
     if (png) {
       out.png = directory / (name + ".png");
+      std::vector<std::pair<std::string, std::string>> text = {{"Software", std::string("skyspec ") + version_string()},
+                                                               {"skyspec:display", out.display},
+                                                               {"skyspec:exposure", out.exposure.description},
+                                                               {"skyspec:convertedFrom", input.string()}};
+      for (const char* key : {kVersionAttribute, kSceneAttribute, kDataAttribute})  // the render's provenance
+        if (const auto it = provenance.find(key); it != provenance.end()) text.emplace_back(key, it->second);
       write_png_display(out.png, image.width, image.height, pipeline.encode(image.rgb, out.exposure.scale),
-                        settings.png_bit_depth, pipeline.png_tag(),
-                        {{"Software", std::string("skyspec ") + version_string()},
-                         {"skyspec:display", out.display},
-                         {"skyspec:exposure", out.exposure.description},
-                         {"skyspec:convertedFrom", input.string()}});
+                        settings.png_bit_depth, pipeline.png_tag(), text);
     }
     if (!settings.exr_space.empty()) {
       const WorkingSpace& space = find_working_space(settings.exr_space);

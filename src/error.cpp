@@ -30,4 +30,8 @@ InputError InputError::unknown_key(std::string key, std::string hint, std::strin
   return InputError(Composed{}, std::move(msg), std::move(key), std::move(origin));
 }
 
+InputError InputError::refused(std::string setting, std::string message) {
+  return InputError(Composed{}, std::move(message), std::move(setting), {});
+}
+
 }  // namespace skyspec

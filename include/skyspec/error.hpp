@@ -22,6 +22,8 @@ class InputError : public Error {
   InputError(std::string setting, std::string value, std::string allowed, std::string origin = {});
   /// A setting that does not exist: "<origin>: unknown key "<key>"<hint>".
   static InputError unknown_key(std::string key, std::string hint, std::string origin);
+  /// A request refused as a whole (e.g. a render too big for the disk): what() is `message`.
+  static InputError refused(std::string setting, std::string message);
   const std::string& setting() const { return setting_; }
   const std::string& value() const { return value_; }
   const std::string& allowed() const { return allowed_; }

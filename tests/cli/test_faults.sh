@@ -13,12 +13,13 @@ mkdir -p "$full"
 if mount -t tmpfs -o size=64k skyspec-test-full "$full" 2>/dev/null; then
   trap 'umount "$full" 2>/dev/null; rm -rf "$work"' EXIT
   # 64 x 64 pixels x 44 float channels is ~720 KB before compression: it cannot fit.
+  # --force: past the up-front check of the free space (test_budget.sh), into the full disk.
   run_expecting_error full_disk_exr 3 "No space left on device" "$full/out" \
-    "$skyspec" render -q --out "$full/out" --width 64 --height 64 --set render.scattering_orders=1
+    "$skyspec" render -q --force --out "$full/out" --width 64 --height 64 --set render.scattering_orders=1
   # The PNG alone (the EXR is not written): still too big for what is left after filling.
   head -c 60k /dev/zero >"$full/filler" 2>/dev/null
   run_expecting_error full_disk_png 3 "No space left on device" "$full/out2" \
-    "$skyspec" render -q --out "$full/out2" --width 256 --height 256 --no-exr --set render.scattering_orders=1
+    "$skyspec" render -q --force --out "$full/out2" --width 256 --height 256 --no-exr --set render.scattering_orders=1
   rm -f "$full/filler"
   umount "$full" && ok || bad "could not unmount the test tmpfs"
   trap 'rm -rf "$work"' EXIT

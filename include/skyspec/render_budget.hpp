@@ -1,0 +1,94 @@
+// What a render will cost before it starts: the bytes it writes, the memory it holds and the time
+// it takes, against the free disk, the available memory and a day. Absurd but legal requests (an
+// EXR bigger than the disk, a render of several days) are refused up front, unless forced.
+//
+// Sizes are upper bounds from the image size (uncompressed pixel data plus room for the headers);
+// memory follows what render_scene_to_files keeps (a whole-image float RGB buffer for the PNG and
+// the working-space EXR, one band of spectral rows, OpenEXR's line buffers); the time is measured,
+// not guessed: radiance() is timed on a sample of the camera's own pixels and extrapolated to the
+// image, the frames and the threads.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace skyspec {
+
+class SkyRenderer;
+struct Scene;
+
+/// Upper bound of a spectral EXR's size: width x height x (wavelengths + 3 RGB channels) floats,
+/// the scan-line offset table and 64 KiB for the header.
+std::uint64_t spectral_exr_bytes(int width, int height, int wavelengths);
+/// Upper bound of an RGB float EXR's size (the working-space EXR).
+std::uint64_t rgb_exr_bytes(int width, int height);
+/// Upper bound of a PNG's size: 3 samples of bit_depth bits per pixel, a filter byte per row
+/// (stored without compression) and 64 KiB for the chunks.
+std::uint64_t png_bytes(int width, int height, int bit_depth);
+
+/// A size for messages, in SI units: "41 GB", "720 kB", "12 bytes".
+std::string format_bytes(std::uint64_t bytes);
+/// "0.8 s", "12 min", "3.5 h", "3.2 days".
+std::string format_duration(double seconds);
+
+/// What a request asks for: image size, grid, outputs and how many frames.
+struct RenderPlan {
+  int width = 0, height = 0, wavelengths = 0, view_segments = 0, threads = 1;
+  int frames = 1;
+  bool spectral_exr = true, png = true, working_exr = false;
+  int png_bit_depth = 8;
+  std::filesystem::path directory;
+  /// What a caller writes and holds besides what render_scene_to_files does (aerial perspective
+  /// writes several spectral EXRs and keeps whole spectral images): added to output_bytes() once
+  /// per frame, and to peak_memory_bytes() per pixel. 0 for render and timelapse.
+  std::uint64_t extra_output_bytes = 0;
+  double extra_bytes_per_pixel = 0.0;
+
+  /// The plan of render_scene_to_files for a scene: its size, grid, outputs and directory;
+  /// threads as the renderer will use them (render.threads, at most the cores available).
+  static RenderPlan for_scene(const Scene& scene, bool working_exr = false, int png_bit_depth = 8, int frames = 1);
+  /// All files of all frames.
+  std::uint64_t output_bytes() const;
+  /// Peak memory of one frame.
+  std::uint64_t peak_memory_bytes() const;
+  /// "41 wavelengths, 64 view segments, 16384x8192, 2 threads[, 300 frames]".
+  std::string settings() const;
+};
+
+/// The estimate of one request and what the machine has.
+struct RenderEstimate {
+  RenderPlan plan;
+  std::uint64_t output_bytes = 0, peak_memory_bytes = 0;
+  std::optional<std::uint64_t> disk_available_bytes;    ///< unknown: not checked
+  std::optional<std::uint64_t> memory_available_bytes;  ///< unknown: not checked
+  std::optional<double> seconds;                        ///< wall time; unknown until measured
+  /// "outputs up to 46 MB (74 GB free), peak memory about 6 MB (22 GB available), about 2.1 s".
+  std::string describe() const;
+  /// One sentence per limit exceeded: output > free disk, memory > MemAvailable, time > 24 h.
+  std::vector<std::string> problems() const;
+};
+
+/// Sizes and memory of the plan against the disk of plan.directory and /proc/meminfo.
+RenderEstimate estimate_render(const RenderPlan& plan);
+
+/// Seconds to render the plan's pixels (all frames) with the renderer, from CPU time measured on
+/// it: render_rows on one or two of the image's rows, scaled to width x height x frames / threads.
+/// When a row would take over a second even so, the cost of radiance() (every pixel marched),
+/// timed on up to 64 pixels spread over the image, is scaled instead. With a spectral EXR, the
+/// cost of compressing a rendered row into one (in the temporary folder) is added. Building the
+/// renderer and the PNG are not included. Takes about 0.1 s.
+double measure_render_seconds(const SkyRenderer& renderer, const RenderPlan& plan);
+
+/// Throws InputError::refused naming every limit exceeded, the estimate and `force_flag`.
+void refuse_if_over_budget(const RenderEstimate& estimate, const std::string& force_flag = "--force");
+
+/// MemAvailable of /proc/meminfo, if readable.
+std::optional<std::uint64_t> available_memory_bytes();
+/// Free bytes for an unprivileged writer on the file system of `dir` (or of its nearest existing
+/// parent, when dir does not exist yet), if known.
+std::optional<std::uint64_t> available_disk_bytes(const std::filesystem::path& dir);
+
+}  // namespace skyspec
