@@ -2,7 +2,8 @@
 # Installs what is missing, builds, and runs every test through CTest; then builds again with
 # AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/) and runs the Boost.Test suites and
 # the command-line tests there (no Python or notebooks: that build has no Python module). Any
-# sanitizer report aborts the process under test and fails its test.
+# sanitizer report aborts the process under test and fails its test. Last, it fuzzes the scene
+# loader and the command line with libFuzzer for a bounded time (build-fuzz/, tests/fuzz/).
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 # Tests keep their multiple-scattering table cache inside the build folder, not in ~/.cache.
 export SKYSPEC_CACHE_DIR="$PWD/build/test-cache"
@@ -13,3 +14,6 @@ build_sanitized
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan --output-on-failure -j"$(nproc)" -E '^(python_|notebook_)'
+# Fuzz the scene loader and the command line for a bounded time each (tests/fuzz/), with clang.
+build_fuzz
+ctest --test-dir build-fuzz --output-on-failure -j"$(nproc)" -R '^fuzz_'

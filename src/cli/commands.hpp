@@ -1,6 +1,6 @@
 // The subcommands of the skyspec CLI. Each lives in its own file (command_<name>.cpp) and
-// registers itself on the application; main() parses, finds the parsed one, runs it and maps
-// exceptions to exit codes.
+// registers itself on the application; run_cli() (app.hpp) parses, finds the parsed one, runs it
+// and maps exceptions to exit codes.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -18,6 +18,10 @@ constexpr int kExitIo = 3;
 struct Command {
   CLI::App* app;             ///< the subcommand, to ask whether it was parsed
   std::function<int()> run;  ///< runs it after parsing; returns the exit code
+  /// The checks run() makes before any real work (scene, display names, value syntax), without
+  /// rendering, reading images or writing files; throws what run() would. Used by the fuzzer
+  /// (tests/fuzz/fuzz_cli.cpp, through run_cli with CliMode::ValidateOnly).
+  std::function<void()> validate;
 };
 
 Command add_render_command(CLI::App& app);
