@@ -13,7 +13,7 @@
 # time and maximum resident set size that /usr/bin/time -v prints), including start-up and
 # writing the output (skyspec: the spectral EXR, no PNG; baseline: its PFM). Errors are computed
 # by bench/bench_stats.py (/usr/bin/python3, numpy, OpenImageIO) against a reference render of
-# the same scene and resolution with 256 view segments and a 1024 x 2048 sun table.
+# the same scene and resolution (REF below).
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"; root="$(dirname "$here")"
 skyspec=""; baseline_src="$(cd "$root/.." && pwd)/shared/bench/seed_nishita.cpp"; out=/tmp/skyspec-bench
@@ -33,8 +33,13 @@ fi
 [[ -x /usr/bin/time ]] || { echo "run_benchmarks.sh: needs GNU time (apt-get install time)" >&2; exit 2; }
 mkdir -p "$out"; manifest="$out/manifest.tsv"; : > "$manifest"
 scene="$here/seed-spectral.toml"
-REF=(--view-segments 256 --set render.table_altitude_samples=1024 --set render.table_zenith_samples=2048)
-
+# The converged reference: every pixel marched (no sky-view table) with 256 view segments and a
+# 1024 x 2048 sun table; the run checks it against 512 segments (last line of the report).
+REF=(--view-segments 256 --set render.table_altitude_samples=1024 --set render.table_zenith_samples=2048
+     --set render.sky_view_table=false)
+# The table cache lives in the output folder, emptied first, so that the multiple-scattering case
+# measures a cold build and then a warm one.
+export SKYSPEC_CACHE_DIR="$out/cache"; rm -rf "$SKYSPEC_CACHE_DIR"
 echo "skyspec benchmark, $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')"
 echo "skyspec: $skyspec"
 echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
@@ -66,6 +71,7 @@ ref() {  # ref NAME SUN ARGS...: the converged reference (not timed in the table
   timed "ref-$name" "$skyspec" render -q --no-png --out "$out" --name "ref-$name" --sun-elevation "$sun" "$@" "${REF[@]}"
 }
 
+NONE=(--set output.exr_compression=none)
 for sun in 30 10 2; do
   if [[ -n "$baseline" ]]; then
     ( cd "$out" && timed "base-$sun" "$baseline" "$sun" && mv seed.pfm "base-$sun.pfm" )
@@ -73,11 +79,15 @@ for sun in 30 10 2; do
     ref "base511-$sun" "$sun" --preset seed --width 511 --height 511   # the baseline's directions
   fi
   echo "sun $sun: case 1 (spectral, 41 wavelengths) ..."
-  sky main "c1-$sun" "1: spectral 41 wl, 512 fisheye, 2 threads" "$sun" --scene "$scene"
+  sky main "c1-$sun" "1: spectral 41 wl, 512 fisheye, 2 threads, EXR (PIZ)" "$sun" --scene "$scene"
+  sky main "c1n-$sun" "1: the same, EXR uncompressed" "$sun" --scene "$scene" "${NONE[@]}"
   ref "c1-$sun" "$sun" --scene "$scene"
+  cp "$out/ref-c1-$sun.exr" "$out/ref-c1n-$sun.exr"
   echo "sun $sun: case 2 (seed preset, RGB-fast) ..."
-  sky main "c2-$sun" "2: seed preset RGB-fast, 512 fisheye, 2 threads" "$sun" --preset seed
+  sky main "c2-$sun" "2: seed preset RGB-fast, 512 fisheye, 2 threads, EXR (PIZ)" "$sun" --preset seed
+  sky main "c2n-$sun" "2: the same, EXR uncompressed" "$sun" --preset seed "${NONE[@]}"
   ref "c2-$sun" "$sun" --preset seed
+  cp "$out/ref-c2-$sun.exr" "$out/ref-c2n-$sun.exr"
 done
 echo "case 3 (threads) ..."
 sky time "c3-1t" "3: case 1, 1 thread" 30 --scene "$scene" --threads 1
@@ -86,19 +96,30 @@ echo "case 4 (equirectangular) ..."
 sky main "c4-10" "4: spectral 41 wl, 512x512 equirect (upper half 512x256)" 10 --scene "$scene" --camera equirectangular
 ref "c4-10" 10 --scene "$scene" --camera equirectangular
 echo "case 5 (large EXR) ..."
-sky time "c5-10" "5: spectral 81 wl, 2048x1024 equirect EXR" 10 --scene "$scene" --camera equirectangular --width 2048 --height 1024 --lambda-step 5
+sky time "c5-10" "5: spectral 81 wl, 8192x4096 equirect EXR" 10 --scene "$scene" --camera equirectangular --width 8192 --height 4096 --lambda-step 5
+rm -f "$out/c5-10.exr"
+echo "case 6 (multiple scattering tables, cold then cached) ..."
+sky time "c6-cold" "6: default scene (6 orders), tables built" 30 --width 256 --height 256
+sky time "c6-warm" "6: the same, tables from the disk cache" 30 --width 256 --height 256
+sky time "c6-single" "6: the same, single scattering (no tables)" 30 --width 256 --height 256 --set render.scattering_orders=1
 
 echo "scaling (case 1 scene, sun 30, 2 threads) ..."
 sky time "s-256" "scale: 256x256" 30 --scene "$scene" --width 256 --height 256
 sky time "s-1024" "scale: 1024x1024" 30 --scene "$scene" --width 1024 --height 1024
+sky time "s-2048" "scale: 2048x2048" 30 --scene "$scene" --width 2048 --height 2048
 sky time "s-wl3" "scale: 3 wl (440/550/680, spectral)" 30 --scene "$scene" --wavelengths 440,550,680
 sky time "s-wl81" "scale: 81 wl" 30 --scene "$scene" --lambda-step 5
+sky time "s-wl401" "scale: 401 wl" 30 --scene "$scene" --lambda-step 1
 sky time "s-vs16" "scale: 16 view segments" 30 --scene "$scene" --view-segments 16
 sky time "s-vs256" "scale: 256 view segments" 30 --scene "$scene" --view-segments 256
-sky time "s-tab" "scale: 1024x2048 sun table" 30 --scene "$scene" --set render.table_altitude_samples=1024 --set render.table_zenith_samples=2048
+sky time "s-sv256" "scale: sky-view table 256 x 128" 30 --scene "$scene" --set render.sky_view_zenith_samples=256 --set render.sky_view_azimuth_samples=128
+sky time "s-nosv" "scale: no sky-view table (every pixel marched)" 30 --scene "$scene" --set render.sky_view_table=false
 WITH_PNG=1 sky time "s-noexr" "scale: PNG instead of EXR" 30 --scene "$scene" --no-exr
-sky time "s-ms1" "default scene, 512 fisheye, 1 order" 30 --set render.scattering_orders=1
-sky time "s-ms6" "default scene, 512 fisheye, 6 orders" 30
+
+echo "reference check (sun 2: 512 instead of 256 view segments) ..."
+timed "ref2-c1-2" "$skyspec" render -q --no-png --out "$out" --name "ref2-c1-2" --sun-elevation 2 --scene "$scene" \
+  "${REF[@]}" --view-segments 512
+printf 'refcheck\tref2-c1-2\treference check\t2\n' >> "$manifest"
 
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo

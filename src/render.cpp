@@ -9,6 +9,7 @@
 #include <limits>
 #include <cstdint>
 #include <filesystem>
+#include <future>
 #include <cstdio>
 #include <cstdlib>
 #include <mutex>
@@ -17,17 +18,21 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
 #include <tbb/task_arena.h>
 
 #include "skyspec/atomic_file.hpp"
 #include "skyspec/colour.hpp"
 #include "skyspec/display_pipeline.hpp"
+#include "skyspec/embedded_data.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/exposure.hpp"
 #include "skyspec/png_image.hpp"
+#include "skyspec/provenance.hpp"
 #include "skyspec/rgb_exr.hpp"
 #include "skyspec/multiple_scattering.hpp"
 #include "skyspec/single_scattering.hpp"
+#include "skyspec/sky_view_table.hpp"
 #include "skyspec/solar_spectrum.hpp"
 #include "skyspec/spectral_exr.hpp"
 #include "skyspec/sun_disk.hpp"
@@ -107,8 +112,7 @@ std::string table_cache_path(const std::string& key) {
   else if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) dir = std::filesystem::path(x) / "skyspec";
   else if (const char* h = std::getenv("HOME"); h && *h) dir = std::filesystem::path(h) / ".cache" / "skyspec";
   else return {};
-  uint64_t hash = 1469598103934665603ull;  // FNV-1a, 64 bit
-  for (unsigned char c : key) hash = (hash ^ c) * 1099511628211ull;
+  const uint64_t hash = fnv1a64(key);
   char name[64];
   std::snprintf(name, sizeof name, "orders-%016llx.bin", static_cast<unsigned long long>(hash));
   return (dir / name).string();
@@ -159,6 +163,7 @@ struct SkyRenderer::Impl {
   std::shared_ptr<const ScatteringOrders> orders;  // null for single scattering
   ScatteringSources sources;
   std::unique_ptr<Camera> camera;
+  std::unique_ptr<SkyViewTable> sky_view;  // null: every pixel is marched
   Vec3 sun_dir;
   Spectrum sun_irradiance;
   double sun_radius_rad;
@@ -196,11 +201,33 @@ struct SkyRenderer::Impl {
     radiance += disk * (1.0f / (n * n)) * trans * sun_irradiance;
   }
 
+  // Whether any pixel of the image looks below the geometric horizon (a fisheye of the sky does
+  // not, so the sky-view table can leave out that side).
+  bool image_sees_below_horizon() const {
+    const Vec3 up = camera->origin_m().normalized();
+    const double r = camera->origin_m().norm(), R = atmosphere.planet_radius_m();
+    const double below = -std::sqrt(std::max(0.0, (r - R) * (r + R))) / r;  // cos of the horizon's zenith angle
+    const int w = camera->width(), h = camera->height();
+    tbb::task_arena arena(threads);
+    return arena.execute([&] {
+      return tbb::parallel_reduce(
+          tbb::blocked_range<int>(0, h), false,
+          [&](const tbb::blocked_range<int>& rows, bool seen) {
+            Vec3 d;
+            for (int y = rows.begin(); y != rows.end() && !seen; ++y)
+              for (int x = 0; x < w && !seen; ++x)
+                seen = camera->direction(x + 0.5, y + 0.5, d) && d.dot(up) <= below + 1e-9;
+            return seen;
+          },
+          [](bool a, bool b) { return a || b; });
+    });
+  }
+
   explicit Impl(const Scene& s)
       : scene(s),
         grid(make_wavelength_grid(s)),
         atmosphere(s.atmosphere, grid),
-        table(atmosphere, SunColumnTable::Resolution{s.render.table_altitude_samples, s.render.table_zenith_samples, 128}),
+        table(atmosphere, SunColumnTable::Resolution{s.render.table_altitude_samples, s.render.table_zenith_samples, 64}),
         sun_columns(table),
         integrator(atmosphere, sun_columns, IntegratorSettings{s.render.view_segments}),
         orders(s.render.scattering_orders >= 2 ? build_orders(s, integrator) : nullptr),
@@ -211,6 +238,17 @@ struct SkyRenderer::Impl {
         sun_radius_rad(skyspec::sun_angular_radius_rad(s.sun.distance_au)),
         rgb_fast(s.render.path == RenderSpec::Path::RgbFast),
         threads(s.render.threads > 0 ? s.render.threads : tbb::this_task_arena::max_concurrency()) {
+    if (s.render.sky_view_table && SkyViewTable::applicable(atmosphere, camera->origin_m())) {
+      const int rows = s.render.sky_view_zenith_samples;
+      try {
+        sky_view = std::make_unique<SkyViewTable>(
+            integrator, sources, camera->origin_m(), sun_dir,
+            SkyViewResolution{rows, std::max(2, rows / 2), s.render.sky_view_azimuth_samples, image_sees_below_horizon()},
+            threads);
+      } catch (const Error&) {
+        sky_view.reset();  // a geometry the table cannot resolve (rows that coincide): march every pixel
+      }
+    }
     if (rgb_fast) {
       rgb_index[0] = grid.index_of(680);
       rgb_index[1] = grid.index_of(550);
@@ -256,7 +294,12 @@ void SkyRenderer::radiance(const Vec3& dir, float* spectrum) const {
   const auto& m = *impl_;
   ScatteringWorkspace ws(m.grid.size());
   Spectrum out(m.grid.size());
-  m.integrator.radiance(m.camera->origin_m(), dir.normalized(), m.sun_dir, m.sun_irradiance, m.sources, ws, out);
+  const Vec3 d = dir.normalized();
+  if (m.sky_view && m.sky_view->lookup(d, ws.parts)) {  // the sky as the image shows it
+    m.integrator.combine(ws.parts, d.dot(m.sun_dir), m.sun_irradiance, ws, out);
+  } else {
+    m.integrator.radiance(m.camera->origin_m(), d, m.sun_dir, m.sun_irradiance, m.sources, ws, out);
+  }
   std::copy(out.data(), out.data() + out.size(), spectrum);
 }
 
@@ -319,7 +362,11 @@ void SkyRenderer::render_rows(int y0, int rows, float* spectral, float* rgb) con
         Vec3 dir;
         float* px = spectral + static_cast<size_t>(idx) * n;
         if (m.camera->direction(x + 0.5, y0 + row + 0.5, dir)) {
-          m.integrator.radiance(m.camera->origin_m(), dir, m.sun_dir, m.sun_irradiance, m.sources, sc.ws, sc.radiance);
+          if (m.sky_view && m.sky_view->lookup(dir, sc.ws.parts)) {
+            m.integrator.combine(sc.ws.parts, dir.dot(m.sun_dir), m.sun_irradiance, sc.ws, sc.radiance);
+          } else {
+            m.integrator.radiance(m.camera->origin_m(), dir, m.sun_dir, m.sun_irradiance, m.sources, sc.ws, sc.radiance);
+          }
           if (m.scene.sun.disk) m.add_sun_disk(x, y0 + row, dir, sc.radiance, sc.disk, sc.trans);
           std::copy(sc.radiance.data(), sc.radiance.data() + n, px);
         } else {
@@ -391,7 +438,8 @@ RenderOutputs render_scene_to_files(const Scene& scene, const ProgressFn& progre
   return render_scene_to_files(scene, DisplaySettings{}, progress);
 }
 
-RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& display, const ProgressFn& progress) {
+RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& display, const ProgressFn& progress,
+                                    const PreparedFn& prepared) {
   const auto t_start = std::chrono::steady_clock::now();
   ensure_writable_directory(scene.output.directory, "output.directory");
   const std::filesystem::path dir(scene.output.directory);
@@ -404,6 +452,7 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
   if (scene.output.png || working_exr) pipeline.emplace(display);
 
   SkyRenderer r(scene);
+  if (prepared) prepared(r);
   const int w = r.width(), h = r.height(), n = r.grid().size();
   const bool rgb_fast = scene.render.path == RenderSpec::Path::RgbFast;
 
@@ -420,9 +469,8 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
   float sun_rgb[3];
   r.spectrum_to_rgb(r.sun_irradiance().data(), sun_rgb);
 
-  std::map<std::string, std::string> provenance;
-  provenance["skyspec:version"] = version_string();
-  provenance["skyspec:scene"] = scene_to_toml(scene);
+  // skyspec:version, skyspec:scene, skyspec:data (provenance.hpp), then what this render chose.
+  std::map<std::string, std::string> provenance = provenance_attributes(scene, pipeline && pipeline->config().is_builtin());
   provenance["skyspec:renderPath"] = rgb_fast ? "rgb-fast" : "spectral";
   provenance["skyspec:wavelengths"] = r.grid().describe();
   provenance["skyspec:exposure"] = chosen.description;
@@ -433,6 +481,7 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
   if (scene.output.exr) {
     SpectralExrMetadata meta;
     meta.strings = provenance;
+    meta.compression = scene.output.exr_compression;
     meta.strings["skyspec:units"] =
         rgb_fast ? "RGB-fast path: S0 channels and R,G,B in the sun's units (spectral_irradiance x sr^-1); "
                    "R,G,B are the 680, 550, 440 nm values read as linear Rec.709"
@@ -442,21 +491,36 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
     exr = std::make_unique<SpectralExrWriter>(out.exr, w, h, r.grid().nanometres(), meta);
   }
 
-  const int band = 32;  // two ZIP line blocks per write, compressed in parallel
-  std::vector<float> spectral(static_cast<size_t>(band) * w * n), band_rgb(static_cast<size_t>(band) * w * 3);
+  // The image goes out in bands of rows, each rendered while the one before is compressed and
+  // written (OpenEXR compresses a band's line blocks in parallel on its own threads), so that
+  // rendering and compression overlap. 64 rows are two PIZ or four ZIP line blocks; wide images
+  // take fewer rows so that a band stays near 64 MB.
+  const size_t band_row_bytes = static_cast<size_t>(w) * static_cast<size_t>(n + 3) * sizeof(float);
+  const int band = static_cast<int>(std::clamp<size_t>((size_t{64} << 20) / band_row_bytes, 8, 64));
+  struct Band {
+    std::vector<float> spectral, rgb;
+  };
+  Band bands[2];
+  for (Band& b : bands) {
+    b.spectral.resize(static_cast<size_t>(band) * w * n);
+    b.rgb.resize(static_cast<size_t>(band) * w * 3);
+  }
   std::vector<float> rgb;  // whole image, for the PNG and the working-space EXR
   if (pipeline) rgb.resize(static_cast<size_t>(w) * h * 3);
-  for (int y = 0; y < h; y += band) {
+  std::future<void> writing;  // the previous band on its way to the file
+  for (int y = 0, k = 0; y < h; y += band, k ^= 1) {
     const int rows = std::min(band, h - y);
-    r.render_rows(y, rows, spectral.data(), band_rgb.data());
-    check_finite(spectral.data(), static_cast<size_t>(rows) * w * n, "radiance");
-    check_finite(band_rgb.data(), static_cast<size_t>(rows) * w * 3, "RGB");
-    if (exr) exr->write_rows(rows, spectral.data(), band_rgb.data());
+    Band& b = bands[k];
+    r.render_rows(y, rows, b.spectral.data(), b.rgb.data());
+    check_finite(b.spectral.data(), static_cast<size_t>(rows) * w * n, "radiance");
+    check_finite(b.rgb.data(), static_cast<size_t>(rows) * w * 3, "RGB");
+    if (writing.valid()) writing.get();  // rethrows a write error
+    if (exr) writing = std::async(std::launch::async, [&exr, &b, rows] { exr->write_rows(rows, b.spectral.data(), b.rgb.data()); });
     if (!rgb.empty())
-      std::copy(band_rgb.begin(), band_rgb.begin() + static_cast<long>(rows) * w * 3,
-                rgb.begin() + static_cast<long>(y) * w * 3);
+      std::copy(b.rgb.begin(), b.rgb.begin() + static_cast<long>(rows) * w * 3, rgb.begin() + static_cast<long>(y) * w * 3);
     if (progress) progress(y + rows, h);
   }
+  if (writing.valid()) writing.get();
 
   if (exr) exr->finish();
   try {
@@ -466,7 +530,10 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
       const std::vector<std::pair<std::string, std::string>> text = {
           {"Software", std::string("skyspec ") + version_string()},
           {"skyspec:display", out.display},
-          {"skyspec:exposure", chosen.description}};
+          {"skyspec:exposure", chosen.description},
+          {kVersionAttribute, provenance[kVersionAttribute]},
+          {kSceneAttribute, provenance[kSceneAttribute]},
+          {kDataAttribute, provenance[kDataAttribute]}};
       write_png_display(out.png, w, h, pipeline->encode(rgb, chosen.scale), display.png_bit_depth, pipeline->png_tag(), text);
     }
     if (working_exr) {

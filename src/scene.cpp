@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <functional>
 #include <iomanip>
@@ -58,6 +59,20 @@ std::string origin_of_key(const toml::key& k, const std::string& fallback) {
   return s.str();
 }
 
+// A number for scene_to_toml that reads back as exactly the stored value: the shortest of 10 to 17
+// significant digits whose value times scale is stored_value (so a scene written into a file's
+// header and loaded again is the same scene, bit for bit).
+std::string exact_number(double stored_value, double scale = 1.0) {
+  std::string text;
+  for (int digits = 10; digits <= 17; ++digits) {
+    std::ostringstream s;
+    s << std::setprecision(digits) << stored_value / scale;
+    text = s.str();
+    if (std::strtod(text.c_str(), nullptr) * scale == stored_value) break;
+  }
+  return text;
+}
+
 // Levenshtein distance, for "did you mean".
 size_t edit_distance(const std::string& a, const std::string& b) {
   std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);
@@ -79,6 +94,7 @@ struct KeyDef {
   std::string doc;  // "(unit, range) help"
   std::function<void(Scene&, const toml::node&, const std::string& origin)> set;
   std::function<std::string(const Scene&)> get;  // TOML value text
+  bool text = false;  // the value is a string (a flag's bare word is taken as one, even "nan" or "1")
 };
 
 double get_number(const KeyDef& k, const toml::node& n, const std::string& origin, const std::string& allowed) {
@@ -111,7 +127,7 @@ KeyDef number_key(std::string key, std::string unit, Range range, std::string he
     if (!range.contains(v)) throw InputError(k.key, node_text(n), allowed, origin);
     ref(s) = v * scale;
   };
-  k.get = [ref, scale](const Scene& s) { return format_number(ref(const_cast<Scene&>(s)) / scale); };
+  k.get = [ref, scale](const Scene& s) { return exact_number(ref(const_cast<Scene&>(s)), scale); };
   return k;
 }
 
@@ -154,6 +170,7 @@ KeyDef choice_key(std::string key, std::vector<std::string> choices, std::string
                   std::function<std::string(const Scene&)> get_value) {
   KeyDef k;
   k.key = std::move(key);
+  k.text = true;
   const std::string allowed = "one of: " + join(choices, ", ");
   k.doc = "(" + allowed + ") " + help;
   k.set = [k, allowed, choices, set_value](Scene& s, const toml::node& n, const std::string& origin) {
@@ -170,6 +187,7 @@ KeyDef text_key(std::string key, std::string help, std::function<std::string&(Sc
                 bool file_name_only) {
   KeyDef k;
   k.key = std::move(key);
+  k.text = true;
   const std::string allowed = file_name_only ? "a non-empty file name without '/' (letters, digits, '-', '_', '.')"
                                              : "a non-empty path";
   k.doc = "(" + allowed + ") " + help;
@@ -211,7 +229,7 @@ KeyDef vec3_key(std::string key, std::string unit, double bound, std::string hel
   };
   k.get = [ref](const Scene& s) {
     const Vec3& v = ref(const_cast<Scene&>(s));
-    return "[" + format_number(v[0]) + ", " + format_number(v[1]) + ", " + format_number(v[2]) + "]";
+    return "[" + exact_number(v[0]) + ", " + exact_number(v[1]) + ", " + exact_number(v[2]) + "]";
   };
   return k;
 }
@@ -237,7 +255,7 @@ KeyDef list_key(std::string key, std::string unit, Range range, size_t max_count
   k.get = [ref](const Scene& s) {
     const auto& v = ref(const_cast<Scene&>(s));
     std::string out = "[";
-    for (size_t i = 0; i < v.size(); ++i) out += (i ? ", " : "") + format_number(v[i]);
+    for (size_t i = 0; i < v.size(); ++i) out += (i ? ", " : "") + exact_number(v[i]);
     return out + "]";
   };
   return k;
@@ -485,6 +503,16 @@ const std::vector<KeyDef>& registry() {
                          "keep multiple-scattering tables on disk ($SKYSPEC_CACHE_DIR, $XDG_CACHE_HOME/skyspec or "
                          "~/.cache/skyspec) and reuse them for the same atmosphere",
                          [](Scene& s) -> bool& { return s.render.cache_tables; }));
+    r.push_back(bool_key("render.sky_view_table",
+                         "interpolate the image from a table of marched view directions where the camera is "
+                         "inside the atmosphere (false: march a ray for every pixel)",
+                         [](Scene& s) -> bool& { return s.render.sky_view_table; }));
+    r.push_back(integer_key("render.sky_view_zenith_samples", 8, 4096,
+                            "sky-view table: rows from the horizon to the zenith (half as many below it)",
+                            [](Scene& s) -> int& { return s.render.sky_view_zenith_samples; }));
+    r.push_back(integer_key("render.sky_view_azimuth_samples", 4, 4096,
+                            "sky-view table: columns from towards the sun to away from it",
+                            [](Scene& s) -> int& { return s.render.sky_view_azimuth_samples; }));
     // output
     r.push_back(text_key("output.directory", "folder for the output files",
                          [](Scene& s) -> std::string& { return s.output.directory; }, false));
@@ -492,6 +520,12 @@ const std::vector<KeyDef>& registry() {
                          [](Scene& s) -> std::string& { return s.output.name; }, true));
     r.push_back(bool_key("output.exr", "write the spectral OpenEXR", [](Scene& s) -> bool& { return s.output.exr; }));
     r.push_back(bool_key("output.png", "write the sRGB PNG preview", [](Scene& s) -> bool& { return s.output.png; }));
+    r.push_back(choice_key(
+        "output.exr_compression", {"piz", "zip", "zips", "rle", "none"},
+        "lossless compression of the spectral EXR: piz (wavelet, smallest and fastest to write for sky "
+        "images), zip (16 rows per block), zips (1 row), rle, none",
+        [](Scene& s, const std::string& v) { s.output.exr_compression = v; },
+        [](const Scene& s) { return s.output.exr_compression; }));
     {
       KeyDef k;
       k.key = "output.exposure_ev";
@@ -502,7 +536,7 @@ const std::vector<KeyDef>& registry() {
         if (!std::isfinite(v) || v < -64 || v > 64) throw InputError(k.key, node_text(n), allowed, origin);
         s.output.exposure_ev = v;
       };
-      k.get = [](const Scene& s) { return s.output.exposure_ev ? format_number(*s.output.exposure_ev) : std::string(); };
+      k.get = [](const Scene& s) { return s.output.exposure_ev ? exact_number(*s.output.exposure_ev) : std::string(); };
       r.push_back(k);
     }
     return r;
@@ -589,6 +623,15 @@ SceneLoader::SceneLoader(const std::string& preset) {
   if (preset != "default") apply_toml(std::string(embedded_file("scenes/" + preset + ".toml")), "preset " + preset);
 }
 
+std::vector<std::string> quality_names() { return {"draft", "default", "high", "reference"}; }
+
+void SceneLoader::apply_quality(const std::string& name, const std::string& origin) {
+  const auto names = quality_names();
+  if (std::find(names.begin(), names.end(), name) == names.end())
+    throw InputError(origin, "\"" + name + "\"", "one of: " + join(names, ", "));
+  apply_toml(std::string(embedded_file("quality/" + name + ".toml")), "quality " + name);
+}
+
 void SceneLoader::apply_toml(const std::string& text, const std::string& origin) {
   const toml::table tbl = parse_toml(text, origin);
   apply_table(scene_, tbl, "", origin);
@@ -623,6 +666,9 @@ void SceneLoader::apply_override(const std::string& key, const std::string& toml
     // Not a TOML literal: take it as a bare string (e.g. --camera fisheye).
     tbl = toml::table{{"v", toml_value}};
   }
+  // A bare word for a text key is that word, even where TOML reads a number or a boolean
+  // (--name nan, --name 2026, --out true).
+  if (def->text && !tbl.get("v")->is_string()) tbl = toml::table{{"v", toml_value}};
   const toml::node* n = tbl.get("v");
   // Strip source positions: the origin is the flag, not a line of a file.
   if (auto s = n->as_string()) {

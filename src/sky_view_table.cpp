@@ -67,7 +67,7 @@ double SkyViewTable::ground_distance(double theta) const {
 }
 
 // The zenith angle of placement coordinate u in [0, 1] (by bisection: placement_of is
-// increasing away from the horizon), never closer to the horizon than kHorizonOffsetRad.
+// increasing away from the horizon).
 double SkyViewTable::zenith_of(bool sky_side, double u) const {
   const double th = horizon_zenith_rad_;
   double lo = 0.0, hi = 1.0;  // fraction of the way from the horizon to the pole
@@ -77,8 +77,22 @@ double SkyViewTable::zenith_of(bool sky_side, double u) const {
     (placement_of(sky_side, theta) < u ? lo : hi) = mid;
   }
   const double f = 0.5 * (lo + hi);
-  return sky_side ? std::min(th * (1.0 - f), th - kHorizonOffsetRad)
-                  : std::max(th + f * (kPi - th), th + kHorizonOffsetRad);
+  return sky_side ? th * (1.0 - f) : th + f * (kPi - th);
+}
+
+// The first row of each side is cast just off the horizon, where a ray grazes the ground and
+// rounding would decide which side it falls on: above it, by at most 1e-6 rad and a hundredth
+// of the way to the next row; below it, where the distance to the ground is 1 - 1e-6 of the
+// horizon's (so that its key differs from the next row's however the distance falls with angle).
+double SkyViewTable::first_row_zenith(bool sky_side, int rows) const {
+  const double th = horizon_zenith_rad_;
+  if (sky_side) {
+    const double spacing = th / ((rows - 1.0) * (rows - 1.0));  // to the next row (placement 1/(rows-1))
+    return th - std::min(kHorizonOffsetRad, 0.01 * spacing);
+  }
+  if (rho_m_ <= 0.0) return th + std::min(kHorizonOffsetRad, 0.01 * (kPi - th) / ((rows - 1.0) * (rows - 1.0)));
+  const double d = rho_m_ * (1.0 - 1e-6);
+  return std::acos(std::clamp(-(rho_m_ * rho_m_ + d * d) / (2.0 * r_m_ * d), -1.0, 1.0));
 }
 
 Vec3 SkyViewTable::direction(bool sky_side, int row, int column) const {
@@ -111,20 +125,23 @@ SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringS
     std::vector<double>& theta = sky_side ? sky_theta_ : ground_theta_;
     std::vector<double>& key = sky_side ? sky_key_ : ground_key_;
     for (int i = 0; i < rows; ++i) {
-      theta.push_back(zenith_of(sky_side, static_cast<double>(i) / (rows - 1)));
+      theta.push_back(i == 0 ? first_row_zenith(sky_side, rows) : zenith_of(sky_side, static_cast<double>(i) / (rows - 1)));
       key.push_back(key_of(sky_side, theta.back()));
+      if (i > 0 && !(key[static_cast<size_t>(i)] != key[static_cast<size_t>(i - 1)]))
+        throw Error("sky-view table: rows " + std::to_string(i - 1) + " and " + std::to_string(i) +
+                    " coincide (too many rows for this geometry)");
     }
   }
 
   const size_t stride = static_cast<size_t>(res_.azimuths) * kParts * static_cast<size_t>(n_);
   sky_.assign(static_cast<size_t>(res_.sky_rows) * stride, 0.0f);
-  ground_.assign(static_cast<size_t>(res_.ground_rows) * stride, 0.0f);
+  if (res_.ground_side) ground_.assign(static_cast<size_t>(res_.ground_rows) * stride, 0.0f);
   ScatteringSources src = sources;
   src.transmittance = nullptr;
   src.max_distance_m = std::numeric_limits<double>::infinity();
   const int n = n_;
   tbb::enumerable_thread_specific<ScatteringWorkspace> workspaces([n] { return ScatteringWorkspace(n); });
-  const int total_rows = res_.sky_rows + res_.ground_rows;
+  const int total_rows = res_.sky_rows + (res_.ground_side ? res_.ground_rows : 0);
   tbb::task_arena arena(std::max(1, threads));
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<int>(0, total_rows * res_.azimuths, 8), [&](const tbb::blocked_range<int>& range) {
@@ -144,11 +161,12 @@ SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringS
   });
 }
 
-void SkyViewTable::lookup(const Vec3& dir, RadianceParts& out) const {
+bool SkyViewTable::lookup(const Vec3& dir, RadianceParts& out) const {
   const double x = dir.dot(toward_sun_), y = std::abs(dir.dot(across_)), z = dir.dot(up_);
   const double theta = std::atan2(std::sqrt(x * x + y * y), z);
   const double phi = std::atan2(y, x);  // in [0, pi]
   const bool sky_side = theta < horizon_zenith_rad_;
+  if (!sky_side && !res_.ground_side) return false;
   const std::vector<float>& table = sky_side ? sky_ : ground_;
 
   // The row pair around theta (placement_of says where to look; rounding is corrected by
@@ -161,8 +179,8 @@ void SkyViewTable::lookup(const Vec3& dir, RadianceParts& out) const {
   while (r0 > 0 && away * (theta - row_theta[static_cast<size_t>(r0)]) < 0.0) --r0;
   while (r0 < rows - 2 && away * (theta - row_theta[static_cast<size_t>(r0 + 1)]) > 0.0) ++r0;
   // Rows r0 - 1 .. r0 + 2 (three at the table's ends), weighted by Lagrange's cubic (or quadratic)
-  // in the interpolation variable; columns c0 - 1 .. c0 + 2 by the cubic in azimuth, where the
-  // mirror symmetry supplies the columns beyond 0 and pi.
+  // in the interpolation variable; columns c0 and c0 + 1 linearly in azimuth, in which the parts
+  // change slowly (a cubic there halves the error at twice the cost: not worth it).
   const int first_row = std::max(0, r0 - 1), last_row = std::min(rows - 1, r0 + 2);
   const int n_rows = last_row - first_row + 1;
   double row_w[4];
@@ -171,16 +189,9 @@ void SkyViewTable::lookup(const Vec3& dir, RadianceParts& out) const {
   const int m = res_.azimuths;
   const double f = std::clamp(phi / kPi * (m - 1), 0.0, static_cast<double>(m - 1));
   const int c0 = std::min(static_cast<int>(f), m - 2);
-  const double column_x[4] = {c0 - 1.0, c0 + 0.0, c0 + 1.0, c0 + 2.0};
-  double column_w[4];
-  lagrange_weights(column_x, 4, f, column_w);
-  int columns[4];
-  for (int j = 0; j < 4; ++j) {
-    int c = c0 - 1 + j;
-    if (c < 0) c = -c;                  // phi -> -phi
-    if (c > m - 1) c = 2 * (m - 1) - c;  // pi + phi -> pi - phi
-    columns[j] = std::clamp(c, 0, m - 1);
-  }
+  constexpr int n_columns = 2;
+  const double column_w[n_columns] = {1.0 - (f - c0), f - c0};
+  const int columns[n_columns] = {c0, c0 + 1};
 
   const Eigen::Index n = n_;
   const size_t stride = static_cast<size_t>(m) * kParts * static_cast<size_t>(n);
@@ -189,7 +200,7 @@ void SkyViewTable::lookup(const Vec3& dir, RadianceParts& out) const {
   for (Spectrum* d : dest) d->setZero();
   using Map = Eigen::Map<const Eigen::ArrayXf>;
   for (int i = 0; i < n_rows; ++i)
-    for (int j = 0; j < 4; ++j) {
+    for (int j = 0; j < n_columns; ++j) {
       const float w = static_cast<float>(row_w[i] * column_w[j]);
       const float* e = table.data() + static_cast<size_t>(first_row + i) * stride +
                        static_cast<size_t>(columns[j]) * kParts * part;
@@ -197,6 +208,7 @@ void SkyViewTable::lookup(const Vec3& dir, RadianceParts& out) const {
     }
   // A cubic may undershoot where a part falls steeply to 0 (the planet's shadow); light is not negative.
   for (Spectrum* d : dest) *d = d->max(0.0f);
+  return true;
 }
 
 }  // namespace skyspec

@@ -231,10 +231,20 @@ struct SpectralExrWriter::Impl {
 
 namespace {
 
+// The lossless compressions a spectral EXR may use (lossy ones would change the radiances).
+Imf::Compression compression_of(const std::string& name) {
+  if (name == "piz") return Imf::PIZ_COMPRESSION;
+  if (name == "zip") return Imf::ZIP_COMPRESSION;
+  if (name == "zips") return Imf::ZIPS_COMPRESSION;
+  if (name == "rle") return Imf::RLE_COMPRESSION;
+  if (name == "none") return Imf::NO_COMPRESSION;
+  throw IoError("spectral EXR: unknown compression \"" + name + "\" (allowed: piz, zip, zips, rle, none)");
+}
+
 Imf::Header spectral_header(int width, int height, const std::vector<std::string>& channel_names,
                             const SpectralExrMetadata& meta) {
   Imf::Header header(width, height);
-  header.compression() = Imf::ZIP_COMPRESSION;
+  header.compression() = compression_of(meta.compression);
   header.lineOrder() = Imf::INCREASING_Y;
   for (const std::string& name : channel_names) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
   for (const char* name : kRgbNames) header.channels().insert(name, Imf::Channel(Imf::FLOAT));

@@ -143,3 +143,37 @@ BOOST_AUTO_TEST_CASE(every_preset_is_valid) {
   BOOST_TEST(m.mie().scattering_per_m[blue] / m.mie().extinction_per_m[blue] <
              m.mie().scattering_per_m[red] / m.mie().extinction_per_m[red]);
 }
+
+// Quality levels: "default" is the default scene's sample counts (the two files must agree), the
+// levels grow monotonically, keys applied afterwards win, and an unknown level is an error that
+// names the flag and the allowed values.
+BOOST_AUTO_TEST_CASE(quality_levels) {
+  const RenderSpec base = SceneLoader().finish().render;
+  auto at = [](const std::string& q) {
+    SceneLoader l;
+    l.apply_quality(q);
+    return l.finish().render;
+  };
+  const RenderSpec d = at("default");
+  BOOST_TEST(scene_to_toml(SceneLoader().finish()) == [] { SceneLoader l; l.apply_quality("default"); return scene_to_toml(l.finish()); }());
+  BOOST_TEST(d.view_segments == base.view_segments);
+  const auto names = quality_names();
+  for (size_t i = 1; i < names.size(); ++i) {
+    const RenderSpec lo = at(names[i - 1]), hi = at(names[i]);
+    BOOST_TEST_CONTEXT(names[i - 1] << " -> " << names[i]) {
+      BOOST_TEST(lo.view_segments < hi.view_segments);
+      BOOST_TEST(lo.table_altitude_samples < hi.table_altitude_samples);
+      BOOST_TEST(lo.table_zenith_samples < hi.table_zenith_samples);
+      BOOST_TEST(lo.ms_altitude_samples < hi.ms_altitude_samples);
+      BOOST_TEST(lo.scattering_orders < hi.scattering_orders);
+    }
+  }
+  BOOST_TEST(!at("reference").sky_view_table);
+  SceneLoader l;
+  l.apply_quality("draft");
+  l.apply_override("render.view_segments", "100", "--view-segments");
+  BOOST_TEST(l.finish().render.view_segments == 100);
+  const std::string e = error_of([] { SceneLoader().apply_quality("ultra"); });
+  BOOST_TEST(contains(e, "--quality = \"ultra\""));
+  BOOST_TEST(contains(e, "one of: draft, default, high, reference"));
+}

@@ -93,10 +93,23 @@ BOOST_AUTO_TEST_CASE(reproduces_its_nodes) {
         const Vec3 d = t.direction(sky, row, col);
         BOOST_TEST_CONTEXT("sky side " << sky << " row " << row << " column " << col) {
           BOOST_TEST((d.dot(o.normalized()) > -std::sqrt(1.0 - R * R / (o.norm() * o.norm()))) == sky);  // the horizon
-          t.lookup(d, p);
+          BOOST_TEST(t.lookup(d, p));
           BOOST_TEST(relative_difference(p, f.direct(o, d, s)) < 2e-5);
         }
       }
+}
+
+// A table of the sky alone answers for directions above the horizon only.
+BOOST_AUTO_TEST_CASE(sky_side_only) {
+  const Fixture f;
+  const Vec3 o(0, 0, R + 100), s = direction_from_angles(0, 20);
+  SkyViewResolution res{16, 8, 8};
+  res.ground_side = false;
+  const SkyViewTable t(f.integrator, f.sources, o, s, res, 1);
+  RadianceParts p(3);
+  BOOST_TEST(t.lookup(direction_from_angles(10, 0.0), p));  // the horizon is 0.32 deg below
+  BOOST_TEST(!t.lookup(direction_from_angles(10, -0.5), p));
+  BOOST_TEST(!t.lookup(Vec3(0, 0, -1), p));
 }
 
 // Mirror symmetry about the vertical plane through the sun, and no dependence on thread count.

@@ -40,7 +40,7 @@ class SkyRenderer {
 
   /// Spectral radiance (grid size floats) of the sky, without the sun's disk, seen from the
   /// scene's camera position looking along the world-space unit direction dir, and the same as
-  /// linear Rec.709.
+  /// linear Rec.709. Where the image is interpolated from a sky-view table, so is this.
   void radiance(const Vec3& dir, float* spectrum) const;
   void radiance_rgb(const Vec3& dir, float rgb[3]) const;
 
@@ -99,8 +99,11 @@ RenderOutputs render_scene_to_files(const Scene& scene, const ProgressFn& progre
 /// recorded in both EXRs' headers ("skyspec:exposure", "skyspec:exposureScale"); the EXR values
 /// stay scene-linear. scene.output.exposure_ev, when set, is a manual exposure unless the settings
 /// ask for a camera exposure. Without settings: sRGB, Un-tone-mapped, skyspec's built-in config.
+/// `prepared`, when given, is called with the renderer once it is built, before the exposure is
+/// metered and before any file is created: it may throw to refuse the render (render_budget.hpp).
+using PreparedFn = std::function<void(const SkyRenderer& renderer)>;
 RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& display,
-                                    const ProgressFn& progress = {});
+                                    const ProgressFn& progress = {}, const PreparedFn& prepared = {});
 
 
 }  // namespace skyspec

@@ -59,8 +59,8 @@ struct RenderSpec {
   enum class Path { Spectral, RgbFast };
   Path path = Path::Spectral;
   int view_segments = 64;
-  int table_altitude_samples = 256;
-  int table_zenith_samples = 512;
+  int table_altitude_samples = 128;
+  int table_zenith_samples = 256;
   int threads = 0;  ///< 0: all cores
   /// Highest scattering order (1: single scattering); orders >= 2 come from precomputed tables.
   int scattering_orders = 6;
@@ -68,6 +68,11 @@ struct RenderSpec {
   int ms_sun_samples = 48;
   /// Keep the multiple-scattering tables on disk and reuse them for the same atmosphere.
   bool cache_tables = true;
+  /// Interpolate images from a table of the sky over view directions (sky_view_table.hpp) rather
+  /// than march a ray per pixel; used where it applies (a camera inside the atmosphere).
+  bool sky_view_table = true;
+  int sky_view_zenith_samples = 128;   ///< rows from the horizon to the zenith (half as many below)
+  int sky_view_azimuth_samples = 64;   ///< columns from towards the sun to away from it
 };
 
 struct OutputSpec {
@@ -75,6 +80,8 @@ struct OutputSpec {
   std::string name = "sky";
   bool exr = true;
   bool png = true;
+  /// Lossless compression of the spectral EXR: none, rle, zips, zip or piz.
+  std::string exr_compression = "piz";
   std::optional<double> exposure_ev;  ///< preview exposure; automatic when absent
 };
 
@@ -100,6 +107,9 @@ class SceneLoader {
   void apply_file(const std::string& path);
   /// Applies TOML text (origin names it in messages).
   void apply_toml(const std::string& text, const std::string& origin);
+  /// Applies a quality level's sample counts (data/quality/<name>.toml; quality_names()); keys
+  /// applied afterwards override them. InputError naming `origin` for an unknown name.
+  void apply_quality(const std::string& name, const std::string& origin = "--quality");
   /// Applies one key = value given as TOML value text, e.g. ("camera.width", "1024"); origin is
   /// the flag that supplied it, e.g. "--width".
   void apply_override(const std::string& key, const std::string& toml_value, const std::string& origin);
@@ -110,6 +120,9 @@ class SceneLoader {
  private:
   Scene scene_;
 };
+
+/// The quality levels, fastest first: draft, default, high, reference.
+std::vector<std::string> quality_names();
 
 /// The effective scene as TOML (every key), for provenance and `--from` style reproduction.
 std::string scene_to_toml(const Scene& scene);

@@ -29,6 +29,7 @@ struct SkyViewResolution {
   int sky_rows = 128;     ///< view zenith samples from the horizon to the zenith
   int ground_rows = 48;   ///< view zenith samples from the horizon to the nadir
   int azimuths = 64;      ///< azimuth samples from towards the sun (0) to away from it (pi)
+  bool ground_side = true;  ///< tabulate below the horizon too (false: an image of the sky alone)
 };
 
 class SkyViewTable {
@@ -43,8 +44,11 @@ class SkyViewTable {
                const Vec3& sun_dir, SkyViewResolution resolution, int threads);
 
   /// The phase-free parts of the radiance along the unit direction dir, per unit solar irradiance,
-  /// interpolated bilinearly in (row, azimuth) on the side of the horizon dir is on.
-  void lookup(const Vec3& dir, RadianceParts& out) const;
+  /// interpolated (cubic across rows, linear in azimuth) on the side of the horizon dir is on.
+  /// False (and `out` untouched) for a direction below the horizon when that side was not built.
+  bool lookup(const Vec3& dir, RadianceParts& out) const;
+  /// The zenith angle of the horizon seen from the table's point (> pi/2 above the ground).
+  double horizon_zenith_rad() const { return horizon_zenith_rad_; }
 
   /// The direction of table row `row` (of the sky side, or of the ground side) and azimuth
   /// column `column`, for tests.
@@ -57,6 +61,7 @@ class SkyViewTable {
   // the variable rows are interpolated in, and the distance to the ground (sky_view_table.cpp).
   double placement_of(bool sky_side, double theta) const;
   double zenith_of(bool sky_side, double u) const;
+  double first_row_zenith(bool sky_side, int rows) const;
   double key_of(bool sky_side, double theta) const;
   double ground_distance(double theta) const;
 

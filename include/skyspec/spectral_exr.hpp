@@ -26,6 +26,7 @@ std::optional<double> parse_spectral_channel_name(const std::string& name);
 struct SpectralExrMetadata {
   std::map<std::string, std::string> strings;  ///< extra string attributes, e.g. "skyspec:scene"
   std::optional<float> ev;                     ///< the layout's optional EV attribute
+  std::string compression = "piz";             ///< lossless: piz, zip, zips, rle or none
 };
 
 class SpectralExrWriter {

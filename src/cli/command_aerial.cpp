@@ -17,10 +17,11 @@
 #include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/exr_channels.hpp"
+#include "skyspec/provenance.hpp"
 #include "skyspec/render.hpp"
+#include "skyspec/render_budget.hpp"
 #include "skyspec/spectral_exr.hpp"
 #include "skyspec/units.hpp"
-#include "skyspec/version.hpp"
 
 namespace skyspec::cli {
 namespace {
@@ -39,7 +40,7 @@ struct AerialOptions {
   SceneOptions scene{"default", {}, {}, aerial_flags()};
   std::string image, depth, depth_channel = "Z", depth_is = "distance";
   std::optional<double> distance_m;
-  bool quiet = false;
+  bool quiet = false, force = false;
 };
 
 int run(AerialOptions& o) {
@@ -83,7 +84,25 @@ int run(AerialOptions& o) {
   });
   if (scene.render.path != RenderSpec::Path::Spectral)
     throw InputError("render.path", "\"rgb-fast\"", "\"spectral\" for aerial perspective");
+  // Absurd requests are refused up front (render_budget.hpp): two or three spectral EXRs (or an RGB
+  // composite), and whole images in memory: distances, transmittance and inscatter (spectral and
+  // RGB), the composite and the input image; the time once the renderer is built.
+  RenderPlan plan = RenderPlan::for_scene(scene);
+  plan.png = false;
+  const double n_lambda = plan.wavelengths;
+  plan.extra_output_bytes = spectral_image ? 2 * spectral_exr_bytes(width, height, plan.wavelengths)
+                                           : spectral_exr_bytes(width, height, plan.wavelengths) +
+                                                 (image ? rgb_exr_bytes(width, height) : 0);
+  plan.extra_bytes_per_pixel = 4 + 2 * 4 * n_lambda + 2 * 12 +
+                               (spectral_image ? 2 * (4 * n_lambda + 12) : image ? 2 * 12 : 0) + (depth ? 4 : 0);
+  ensure_writable_directory(scene.output.directory, "output.directory");  // its errors first
+  RenderEstimate estimate = estimate_render(plan);
+  if (!o.force) refuse_if_over_budget(estimate);
   const SkyRenderer r(scene);
+  if (!o.force) {
+    estimate.seconds = measure_render_seconds(r, plan);
+    refuse_if_over_budget(estimate);
+  }
   const int n = r.grid().size();
   if (spectral_image && spectral.wavelengths_nm != r.grid().nanometres())
     throw InputError("--image", "its " + std::to_string(spectral.wavelengths_nm.size()) + " wavelengths",
@@ -141,8 +160,7 @@ int run(AerialOptions& o) {
   ensure_writable_directory(scene.output.directory, "output.directory");
   const std::filesystem::path dir(scene.output.directory);
   SpectralExrMetadata meta;
-  meta.strings["skyspec:version"] = version_string();
-  meta.strings["skyspec:scene"] = scene_to_toml(scene);
+  meta.strings = provenance_attributes(scene, false);  // version, scene, data tables
   auto write_spectral = [&](const std::string& suffix, const std::vector<float>& s, const std::vector<float>& rgb,
                             const std::string& what) {
     SpectralExrMetadata m = meta;
@@ -174,7 +192,9 @@ int run(AerialOptions& o) {
     const auto path = dir / (scene.output.name + "_composite.exr");
     write_exr_channels(path, width, height, {{"R", &ch[0]}, {"G", &ch[1]}, {"B", &ch[2]}},
                        {{"skyspec:content", "aerial perspective: image x transmittance + inscatter (linear Rec.709)"},
-                        {"skyspec:version", version_string()}});
+                        {kVersionAttribute, meta.strings[kVersionAttribute]},
+                        {kSceneAttribute, meta.strings[kSceneAttribute]},
+                        {kDataAttribute, meta.strings[kDataAttribute]}});
     if (!o.quiet) std::cout << "wrote " << path.string() << "\n";
   }
   return kExitOk;
@@ -193,13 +213,20 @@ Command add_aerial_command(CLI::App& app) {
       "<name>_composite.exr = image x transmittance + inscatter. Depth: distance along each ray in metres\n"
       "(--depth-is z: along the view axis); infinite depth is sky. Use the camera the image was made with.");
   add_scene_options(*cmd, o->scene);
+  add_quality_option(*cmd, o->scene);
   cmd->add_option("--image", o->image, "the scene's image: linear Rec.709 R,G,B or spectral S0 channels");
   cmd->add_option("--depth", o->depth, "EXR with the depth pass");
   cmd->add_option("--depth-channel", o->depth_channel, "channel of the depth pass")->capture_default_str();
   cmd->add_option("--depth-is", o->depth_is, "distance (along each ray) or z (along the view axis)")->capture_default_str();
   cmd->add_option("--distance", o->distance_m, "instead of a depth pass: one distance in metres for every pixel");
   cmd->add_flag("-q,--quiet", o->quiet, "no progress bar and no summary");
-  return {cmd, [o] { return run(*o); }};
+  cmd->add_flag("--force", o->force,
+                "compute even if the outputs exceed the free disk, the images need more memory than is available "
+                "or the estimated time exceeds 24 hours");
+  return {cmd, [o] { return run(*o); },
+          [o] {  // run's scene checks, without reading the images (Command::validate)
+            load_scene(o->scene, [](SceneLoader& l) { l.apply_override("camera.width", "1", "the input's size"); });
+          }};
 }
 
 }  // namespace skyspec::cli

@@ -191,7 +191,14 @@ Command add_coefficients_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--format", opts->format, "md, csv, json or html");
   cmd->add_option("--out", opts->out, "output file (written atomically); default: standard output");
-  return {cmd, [opts] { return run_coefficients(*opts); }};
+  return {cmd, [opts] { return run_coefficients(*opts); },
+          [opts] {  // run_coefficients' checks, without computing the report (Command::validate)
+            choose_format(*opts);
+            const Scene scene = load_scene(opts->scene);
+            parse_altitudes_m(opts->altitudes, scene.atmosphere.top_altitude_m);
+            if (opts->pressure) parse_pressure_Pa(*opts->pressure);
+            if (opts->temperature) parse_temperature_K(*opts->temperature);
+          }};
 }
 
 }  // namespace skyspec::cli

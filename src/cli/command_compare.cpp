@@ -1,6 +1,7 @@
 // `skyspec compare`: the RGB-fast sky against the spectral one (or two existing EXRs), with a
 // report, a Delta E map, a side-by-side preview and optionally a sweep over sun elevations.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -65,7 +66,10 @@ std::vector<double> parse_sweep(const std::string& text) {
     if (parts.size() != 3) throw fail();
     const double a = number(parts[0]), b = number(parts[1]), step = number(parts[2]);
     if (!(step > 0) || b < a || (b - a) / step > 1000) throw fail();
-    for (int i = 0; a + i * step <= b + 1e-9 * step; ++i) values.push_back(a + i * step);
+    // Counted, not "while a + i * step <= b": a step below the spacing of doubles near a (e.g.
+    // 90:90:1e-300) leaves a + i * step == a for ever (tests/fuzz/regressions/cli/).
+    const int count = static_cast<int>(std::floor((b - a) / step + 1e-9)) + 1;
+    for (int i = 0; i < count; ++i) values.push_back(std::min(a + i * step, b));
   } else {
     std::string part;
     std::istringstream in(text);
@@ -246,6 +250,7 @@ Command add_compare_command(CLI::App& app) {
       "Outputs in --out: NAME.md, NAME.json, NAME-delta-e.png, NAME-side-by-side.png, NAME-sweep.svg (with --sweep).\n"
       "The rules (common white: the sun; common exposure: the spectral image's automatic exposure) are in the report.");
   add_scene_options(*compare, opts->scene);
+  add_quality_option(*compare, opts->scene);
   compare->add_option("EXR", opts->exrs, "two skyspec EXRs instead of a scene: the spectral one is the reference");
   compare->add_option("--out", opts->out, "output folder (created if missing)")->capture_default_str();
   compare->add_option("--name", opts->name, "base name of the outputs")->capture_default_str();
@@ -257,7 +262,14 @@ Command add_compare_command(CLI::App& app) {
   compare->add_flag("--keep-sun-disk", opts->keep_sun_disk, "draw the sun's disk (default: off, the sky is compared)");
   compare->add_flag("-q,--quiet", opts->quiet, "no progress bar and no summary");
   add_display_options(*compare, opts->display, DisplayOptionSet{false, false});
-  return {compare, [opts] { return run_compare(*opts); }};
+  return {compare, [opts] { return run_compare(*opts); },
+          [opts] {  // run_compare's checks, without rendering or reading EXRs (Command::validate)
+            if (opts->display.list) return void(OcioConfig(display_settings(opts->display).config));
+            check_regions(opts->regions);
+            if (!opts->sweep.empty()) parse_sweep(opts->sweep);
+            DisplayPipeline{display_settings(opts->display)};
+            if (opts->exrs.empty()) load_scene(opts->scene);
+          }};
 }
 
 }  // namespace skyspec::cli

@@ -57,7 +57,11 @@ Command add_convert_command(CLI::App& app) {
   convert->add_flag("--no-png", opts->no_png, "write no PNG (with --exr-space)");
   convert->add_flag("-q,--quiet", opts->quiet, "no summary");
   add_display_options(*convert, opts->display);
-  return {convert, [opts] { return run_convert(*opts); }};
+  return {convert, [opts] { return run_convert(*opts); },
+          [opts] {  // run_convert's checks, without reading the EXR (Command::validate)
+            if (opts->display.list) return void(OcioConfig(display_settings(opts->display).config));
+            DisplayPipeline{display_settings(opts->display, opts->exposure_ev.has_value())};
+          }};
 }
 
 }  // namespace skyspec::cli

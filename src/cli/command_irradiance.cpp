@@ -110,10 +110,15 @@ Command add_irradiance_command(CLI::App& app) {
   o->scene.flags.push_back({"--position", "camera.position_m", "measuring point east,north,height in m", {}, true});
   o->scene.flags.push_back({"--sun-azimuth", "sun.azimuth_deg", "sun azimuth, degrees", {}, false});
   add_scene_options(*cmd, o->scene);
+  add_quality_option(*cmd, o->scene);
   cmd->add_option("--sun-elevations", o->elevations, "comma-separated sun elevations in degrees (default: the scene's)");
   cmd->add_option("--format", o->format, "md (Markdown table) or csv")->capture_default_str();
   cmd->add_option("--out", o->out, "write to this file instead of standard output");
-  return {cmd, [o] { return run(*o); }};
+  return {cmd, [o] { return run(*o); },
+          [o] {  // run's checks, without computing (Command::validate)
+            load_scene(o->scene, [](SceneLoader& l) { l.apply_override("camera.width", "1", "irradiance"); });
+            if (!o->elevations.empty()) parse_elevations(o->elevations);
+          }};
 }
 
 }  // namespace skyspec::cli

@@ -11,9 +11,11 @@
 #include "display_options.hpp"
 #include "progress.hpp"
 #include "scene_options.hpp"
+#include "skyspec/atomic_file.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/irradiance.hpp"
 #include "skyspec/render.hpp"
+#include "skyspec/render_budget.hpp"
 #include "skyspec/scene.hpp"
 
 namespace skyspec::cli {
@@ -37,6 +39,7 @@ struct RenderOptions {
   SceneOptions scene{"default", {}, {}, render_flags()};
   DisplayOptions display;
   bool no_exr = false, no_png = false, quiet = false, help_keys = false, print_scene = false;
+  bool force = false, dry_run = false;
 };
 
 Scene load_scene(const RenderOptions& o) {
@@ -77,8 +80,24 @@ int run_render(RenderOptions& o) {
     return kExitOk;
   }
   const DisplaySettings display = display_settings(o.display, exposure_flag_given(o));
+  // Absurd requests are refused up front (render_budget.hpp): the sizes and the memory before the
+  // renderer is built, the time once it is (measured on it, inside render_scene_to_files).
+  const RenderPlan plan = RenderPlan::for_scene(scene, !display.exr_space.empty(), display.png_bit_depth);
+  if (!o.dry_run) ensure_writable_directory(scene.output.directory, "output.directory");  // its errors first
+  RenderEstimate estimate = estimate_render(plan);
+  if (!o.force) refuse_if_over_budget(estimate);
+  const auto measure = [&](const SkyRenderer& r) {
+    estimate.seconds = measure_render_seconds(r, plan);
+    if (!o.force) refuse_if_over_budget(estimate);
+  };
+  if (o.dry_run) {
+    measure(SkyRenderer(scene));
+    std::cout << "estimate: " << estimate.describe() << " (" << plan.settings() << ")\n";
+    return kExitOk;
+  }
   ProgressBar bar("rendering", o.quiet);
-  const auto out = render_scene_to_files(scene, display, [&](int done, int total) { bar.update(done, total); });
+  const auto out = render_scene_to_files(scene, display, [&](int done, int total) { bar.update(done, total); },
+                                         measure);
   bar.finish();
   if (!o.quiet) {
     if (!out.exr.empty()) std::cout << "wrote " << out.exr.string() << "\n";
@@ -86,6 +105,7 @@ int run_render(RenderOptions& o) {
     if (!out.working_exr.empty()) std::cout << "wrote " << out.working_exr.string() << "\n";
     if (!out.png.empty()) std::cout << "display: " << out.display << "\n";
     std::cout << "exposure: " << out.exposure << "\n";
+    std::cout << "estimate: " << estimate.describe() << "\n";
     std::printf("rendered %dx%d, %s, in %.2f s\n", scene.camera.width, scene.camera.height,
                 make_wavelength_grid(scene).describe().c_str(), out.seconds);
     if (scene.render.path == RenderSpec::Path::Spectral) print_photometry(scene);
@@ -103,21 +123,39 @@ Command add_render_command(CLI::App& app) {
       "  skyspec render                                  # built-in default scene -> skyspec-out/sky.exr, sky.png\n"
       "  skyspec render --sun-elevation 5 --out dusk     # low sun\n"
       "  skyspec render --preset seed                    # the seed tutorial's RGB-fast sky\n"
+      "  skyspec render --quality draft                  # quick look (also: default, high, reference)\n"
       "  skyspec render --scene my.toml --set atmosphere.mie.g=0.8\n"
       "  skyspec render --camera equirectangular --width 1024 --height 512\n"
       "  skyspec render --display \"Display P3\"            # the PNG for a Display P3 screen\n"
       "  skyspec render --display Rec.2100-PQ --view \"ACES 1.1 - HDR Video (1000 nits & Rec.2020 lim)\" --png-bits 16\n"
       "  skyspec render --shutter 1/250 --f-number 8 --iso 100   # physical camera exposure\n"
       "  skyspec render --list-displays                  # displays, views and looks of the OCIO config\n"
+      "  skyspec render --from skyspec-out/sky.exr --out again   # the scene recorded in an EXR, rendered again\n"
       "Scene files are TOML; data/scenes/default.toml documents every key, --help-keys lists units and ranges.");
   add_scene_options(*render, opts->scene);
+  add_quality_option(*render, opts->scene);
+  add_from_option(*render, opts->scene);
   render->add_flag("--no-exr", opts->no_exr, "do not write the spectral EXR");
   render->add_flag("--no-png", opts->no_png, "do not write the PNG preview");
   render->add_flag("-q,--quiet", opts->quiet, "no progress bar and no summary");
   render->add_flag("--help-keys", opts->help_keys, "list every scene key with its unit and range, then exit");
   render->add_flag("--print-scene", opts->print_scene, "print the effective scene as TOML, then exit");
+  render->add_flag("--force", opts->force,
+                   "render even if the outputs exceed the free disk, the memory needed exceeds what is available "
+                   "or the estimated time exceeds 24 hours");
+  render->add_flag("--dry-run", opts->dry_run,
+                   "estimate the outputs' size, the memory and the time (refusing as a render would), print the "
+                   "estimate and exit");
   add_display_options(*render, opts->display);
-  return {render, [opts] { return run_render(*opts); }};
+  return {render, [opts] { return run_render(*opts); },
+          [opts] {  // run_render's checks, up to the rendering (Command::validate)
+            if (opts->display.list) return void(OcioConfig(display_settings(opts->display).config));
+            if (opts->help_keys) return;
+            const Scene scene = load_scene(*opts);
+            if (opts->print_scene) return void(scene_to_toml(scene));
+            const DisplaySettings display = display_settings(opts->display, exposure_flag_given(*opts));
+            if (scene.output.png || !display.exr_space.empty()) DisplayPipeline{display};
+          }};
 }
 
 }  // namespace skyspec::cli

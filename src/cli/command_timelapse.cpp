@@ -13,9 +13,12 @@
 #include "progress.hpp"
 #include "scene_options.hpp"
 #include "skyspec/date_time.hpp"
+#include "skyspec/display_pipeline.hpp"
+#include "skyspec/atomic_file.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/exposure.hpp"
 #include "skyspec/render.hpp"
+#include "skyspec/render_budget.hpp"
 #include "skyspec/solar_position.hpp"
 
 namespace skyspec::cli {
@@ -40,7 +43,7 @@ struct TimelapseOptions {
   SceneOptions scene{"default", {}, {}, timelapse_flags()};
   std::string start, end;
   double step_minutes = 0.0;
-  bool resume = false, quiet = false;
+  bool resume = false, quiet = false, force = false;
 };
 
 std::string frame_name(const std::string& base, int k) {
@@ -78,6 +81,13 @@ int run(TimelapseOptions& o) {
     });
   };
   Scene first = frame_scene(0);
+  // Absurd requests are refused up front (render_budget.hpp): all frames' files and one frame's
+  // memory now, the time of all frames once the first frame's renderer is built.
+  const RenderPlan plan = RenderPlan::for_scene(first, false, 8, frames);
+  ensure_writable_directory(first.output.directory, "output.directory");  // its errors first
+  RenderEstimate estimate = estimate_render(plan);
+  if (!o.force) refuse_if_over_budget(estimate);
+  bool measured = o.force;
   // One exposure for all frames: the one given, or the automatic exposure of the frame with the
   // highest sun, metered on a 64 x 64 render of it.
   std::string ev_text;
@@ -110,7 +120,14 @@ int run(TimelapseOptions& o) {
     if (o.resume && frame_done(s)) {
       ++skipped;
     } else {
-      render_scene_to_files(s);
+      render_scene_to_files(s, DisplaySettings{}, {}, [&](const SkyRenderer& r) {
+        if (measured) return;
+        RenderPlan rest = plan;
+        rest.frames = frames - k;
+        estimate.seconds = measure_render_seconds(r, rest);
+        refuse_if_over_budget(estimate);
+        measured = true;
+      });
       ++written;
     }
     bar.update(k + 1, frames);
@@ -134,12 +151,23 @@ Command add_timelapse_command(CLI::App& app) {
       "Frames are <name>_0000.exr/.png ...; all share one exposure (--exposure, or metered once on the frame\n"
       "with the highest sun). Finished frames are complete files (written atomically): --resume keeps them.");
   add_scene_options(*cmd, o->scene);
+  add_quality_option(*cmd, o->scene);
   cmd->add_option("--start", o->start, "first frame, ISO 8601 with UTC offset (e.g. 2026-06-21T19:00:00+02:00)");
   cmd->add_option("--end", o->end, "last frame at or before this time");
   cmd->add_option("--step-minutes", o->step_minutes, "time between frames, minutes");
   cmd->add_flag("--resume", o->resume, "keep frames whose files exist (from an interrupted run)");
+  cmd->add_flag("--force", o->force,
+                "render even if the frames exceed the free disk, a frame needs more memory than is available or "
+                "the estimated time exceeds 24 hours");
   cmd->add_flag("-q,--quiet", o->quiet, "no progress bar and no summary");
-  return {cmd, [o] { return run(*o); }};
+  return {cmd, [o] { return run(*o); },
+          [o] {  // run's checks of the times and the scene, without rendering (Command::validate)
+            const std::string when = o->start.empty() ? "" : to_iso8601(parse_iso8601(o->start, "--start"));
+            if (!o->end.empty()) parse_iso8601(o->end, "--end");
+            load_scene(o->scene, [&](SceneLoader& l) {
+              if (!when.empty()) l.apply_override("sun.date_time", "\"" + when + "\"", "--start/--step-minutes");
+            });
+          }};
 }
 
 }  // namespace skyspec::cli

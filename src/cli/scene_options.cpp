@@ -1,6 +1,10 @@
 #include "scene_options.hpp"
 
+#include <iostream>
+
 #include "skyspec/error.hpp"
+#include "skyspec/provenance.hpp"
+#include "skyspec/version.hpp"
 
 namespace skyspec::cli {
 
@@ -62,8 +66,50 @@ void add_scene_options(CLI::App& app, SceneOptions& o) {
   app.add_option("--set", o.sets, "override any scene key: KEY=VALUE (repeatable)");
 }
 
+void add_quality_option(CLI::App& app, SceneOptions& o) {
+  std::string names;
+  for (const auto& q : quality_names()) names += (names.empty() ? "" : ", ") + q;
+  app.add_option("--quality", o.quality,
+                 "sample counts of a quality level: " + names +
+                     " (data/quality/*.toml; explicit render.* keys and flags override it)");
+}
+
+void add_from_option(CLI::App& app, SceneOptions& o) {
+  app.add_option("--from", o.from_file,
+                 "render the scene recorded in a skyspec EXR (its skyspec:scene header); other flags override it")
+      ->excludes(app.get_option("--scene"))
+      ->excludes(app.get_option("--preset"));
+}
+
+namespace {
+// The skyspec:scene of the --from file. Not an OpenEXR file: IoError (exit 3); no scene in it:
+// InputError (exit 2); another skyspec version: a warning, since the scene is still valid input.
+std::string recorded_scene(const std::string& path) {
+  FileProvenance p;
+  try {
+    p = read_exr_provenance(path);
+  } catch (const IoError& e) {
+    throw IoError("--from: " + std::string(e.what()));
+  }
+  if (p.scene.empty())
+    throw InputError("--from", "\"" + path + "\"",
+                     "an OpenEXR file written by skyspec, with the scene in its header (this one has no " +
+                         std::string(kSceneAttribute) + " attribute)");
+  if (p.version != version_string())
+    std::cerr << "skyspec: warning: --from " << path << " was written by skyspec "
+              << (p.version.empty() ? std::string("of an unknown version") : p.version) << ", this is skyspec "
+              << version_string() << ": the same scene may not give the same pixels\n";
+  return p.scene;
+}
+}  // namespace
+
 Scene load_scene(const SceneOptions& o, const std::function<void(SceneLoader&)>& before_sets) {
   SceneLoader loader(o.preset);
+  if (!o.from_file.empty()) {
+    if (!o.from_scene) o.from_scene = recorded_scene(o.from_file);
+    loader.apply_toml(*o.from_scene, "--from " + o.from_file);
+  }
+  if (!o.quality.empty()) loader.apply_quality(o.quality, "--quality");
   if (!o.scene_file.empty()) loader.apply_file(o.scene_file);
   for (const auto& f : o.flags)
     if (f.value) loader.apply_override(f.key, f.is_list ? as_toml_array(*f.value) : *f.value, f.flag);

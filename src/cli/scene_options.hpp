@@ -7,6 +7,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "skyspec/scene.hpp"
@@ -22,9 +23,17 @@ struct KeyFlag {
 };
 
 struct SceneOptions {
+  SceneOptions() = default;
+  SceneOptions(std::string preset_name, std::string file, std::vector<std::string> set_values,
+               std::vector<KeyFlag> key_flags)
+      : preset(std::move(preset_name)), scene_file(std::move(file)), sets(std::move(set_values)),
+        flags(std::move(key_flags)) {}
   std::string preset = "default", scene_file;
   std::vector<std::string> sets;
   std::vector<KeyFlag> flags;
+  std::string quality;    ///< --quality: sample counts of a quality level (data/quality/)
+  std::string from_file;  ///< --from: a skyspec EXR whose recorded scene replaces the scene file
+  mutable std::optional<std::string> from_scene;  ///< its skyspec:scene, read once
 };
 
 /// The flags of the wavelength grid (spectrum.*), shared by every command that takes a grid.
@@ -42,8 +51,19 @@ void append_flags(std::vector<KeyFlag>& flags, const std::vector<KeyFlag>& more)
 /// twice takes its last value, so a command can be amended by appending to it.
 void add_scene_options(CLI::App& app, SceneOptions& o);
 
-/// Loads the scene: preset, scene file, flags, then `before_sets` (e.g. --no-exr), then --set.
+/// Registers --from FILE.exr (after add_scene_options): the scene recorded in a skyspec EXR's
+/// header takes the place of --scene (and excludes --scene and --preset); flags and --set still
+/// override it.
+void add_from_option(CLI::App& app, SceneOptions& o);
+
+/// Loads the scene: preset, scene file (or --from), flags, then `before_sets` (e.g. --no-exr),
+/// then --set.
 Scene load_scene(const SceneOptions& o, const std::function<void(SceneLoader&)>& before_sets = {});
+
+/// --quality draft|default|high|reference, for the commands that render a sky: the sample counts
+/// of that level, applied after the preset (and --from) and before the scene file, flags and --set,
+/// so that sample counts given explicitly win.
+void add_quality_option(CLI::App& app, SceneOptions& o);
 
 /// "a,b,c" as a TOML array "[a,b,c]" (unchanged when it already is one).
 std::string as_toml_array(const std::string& csv);

@@ -31,6 +31,16 @@ printf '[camera]\nwidth = 8\nheigth = 8\n' >"$work/typo.toml"
 expect_error scene_typo 2 "typo.toml:3:1: unknown key \"camera.heigth\" (did you mean \"camera.height\"?)" --scene "$work/typo.toml"
 expect_error unwritable_out 2 "output.directory" --set "output.directory=\"/proc/skyspec\""
 expect_error no_outputs 2 "at least one output" --no-exr --no-png
+expect_error unknown_quality 2 "--quality = \"ultra\" is not allowed: one of: draft, default, high, reference" --quality ultra
+expect_error bad_compression 2 "output.exr_compression = \"dwaa\" is not allowed: one of: piz, zip, zips, rle, none" --set output.exr_compression=dwaa
+
+# --quality sets the sample counts that are not given explicitly; explicit ones win.
+"$skyspec" render --quality draft --print-scene | grep -qx "view_segments = 16" && ok || bad "--quality draft: view_segments"
+"$skyspec" render --quality draft --view-segments 40 --print-scene | grep -qx "view_segments = 40" && ok || bad "--quality draft --view-segments 40"
+"$skyspec" render --quality reference --print-scene | grep -qx "sky_view_table = false" && ok || bad "--quality reference: sky_view_table"
+# A bare word for a text key stays a word, even one TOML would read as a number.
+"$skyspec" render --name nan --print-scene | grep -qxE "name = [\"']nan[\"']" && ok || bad "--name nan"
+"$skyspec" render --name 2026 --print-scene | grep -qxE "name = [\"']2026[\"']" && ok || bad "--name 2026"
 
 # A good render: exit 0, both files, nothing else left in the folder, quiet stderr when piped.
 out="$work/good"
