@@ -92,9 +92,13 @@ done
 echo "case 3 (threads) ..."
 sky time "c3-1t" "3: case 1, 1 thread" 30 --scene "$scene" --threads 1
 sky time "c3-2t" "3: case 1, 2 threads" 30 --scene "$scene" --threads 2
+sky time "c3n-1t" "3: case 1 uncompressed, 1 thread" 30 --scene "$scene" --threads 1 "${NONE[@]}"
+sky time "c3n-2t" "3: case 1 uncompressed, 2 threads" 30 --scene "$scene" --threads 2 "${NONE[@]}"
 echo "case 4 (equirectangular) ..."
 sky main "c4-10" "4: spectral 41 wl, 512x512 equirect (upper half 512x256)" 10 --scene "$scene" --camera equirectangular
+sky main "c4n-10" "4: the same, EXR uncompressed" 10 --scene "$scene" --camera equirectangular "${NONE[@]}"
 ref "c4-10" 10 --scene "$scene" --camera equirectangular
+cp "$out/ref-c4-10.exr" "$out/ref-c4n-10.exr"
 echo "case 5 (large EXR) ..."
 sky time "c5-10" "5: spectral 81 wl, 8192x4096 equirect EXR" 10 --scene "$scene" --camera equirectangular --width 8192 --height 4096 --lambda-step 5
 rm -f "$out/c5-10.exr"

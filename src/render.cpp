@@ -260,7 +260,13 @@ struct SkyRenderer::Impl {
   }
 };
 
-SkyRenderer::SkyRenderer(const Scene& scene) : impl_(std::make_unique<Impl>(scene)) {}
+SkyRenderer::SkyRenderer(const Scene& scene) {
+  // The tables (sun columns, scattering orders, sky view) are built in parallel too: within
+  // render.threads, like the image.
+  const int threads = scene.render.threads > 0 ? scene.render.threads : tbb::this_task_arena::max_concurrency();
+  tbb::task_arena arena(threads);
+  arena.execute([&] { impl_ = std::make_unique<Impl>(scene); });
+}
 SkyRenderer::~SkyRenderer() = default;
 const Scene& SkyRenderer::scene() const { return impl_->scene; }
 const WavelengthGrid& SkyRenderer::grid() const { return impl_->grid; }

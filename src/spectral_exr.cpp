@@ -289,8 +289,15 @@ SpectralExrWriter::SpectralExrWriter(const fs::path& final_path, int width, int 
   try {
     const Imf::Header header = spectral_header(width, height, impl_->channel_names, meta);
     impl_->stream = std::make_unique<StdioOStream>(impl_->file.temporary_path());
-    // Compression runs on OpenEXR's thread pool, one line block (16 rows for ZIP) per task.
-    const int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    // Compression runs on OpenEXR's thread pool, one line block (32 rows for PIZ, 16 for ZIP) per
+    // task. The file keeps two line buffers per thread, each a block of uncompressed rows plus its
+    // compressed copy: for very wide images (8192 x 84 channels: 88 MB a PIZ block) the thread
+    // count is lowered so that they stay within about 256 MiB.
+    const Imf::Compression c = header.compression();
+    const size_t block_rows = c == Imf::PIZ_COMPRESSION ? 32 : c == Imf::ZIP_COMPRESSION ? 16 : 1;
+    const size_t block_bytes = block_rows * static_cast<size_t>(width) * (impl_->channel_names.size() + 3) * sizeof(float);
+    const size_t by_memory = (size_t{256} << 20) / std::max<size_t>(1, 4 * block_bytes);
+    const int threads = static_cast<int>(std::clamp<size_t>(by_memory, 1, std::max(1u, std::thread::hardware_concurrency())));
     impl_->exr = std::make_unique<Imf::OutputFile>(*impl_->stream, header, threads);
   } catch (const IoError&) {
     throw;
