@@ -3,16 +3,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <map>
-#include <optional>
-#include <limits>
 #include <cstdint>
-#include <filesystem>
-#include <future>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <future>
+#include <limits>
+#include <map>
 #include <mutex>
+#include <optional>
 #include <sstream>
 
 #include <tbb/enumerable_thread_specific.h>
@@ -118,6 +117,11 @@ std::string table_cache_path(const std::string& key) {
   return (dir / name).string();
 }
 
+// render.threads, or all cores for 0.
+int thread_count(const Scene& s) {
+  return s.render.threads > 0 ? s.render.threads : tbb::this_task_arena::max_concurrency();
+}
+
 // Tables are reused across renders of the same atmosphere in one process (a time-lapse changes
 // only the sun). The last few are kept.
 std::shared_ptr<const ScatteringOrders> build_orders(const Scene& s, const SingleScattering& integrator) {
@@ -201,6 +205,15 @@ struct SkyRenderer::Impl {
     radiance += disk * (1.0f / (n * n)) * trans * sun_irradiance;
   }
 
+  // The sky's radiance along dir (unit) without the sun's disk: interpolated from the sky-view
+  // table where there is one for that direction, marched otherwise.
+  void sky_radiance(const Vec3& dir, ScatteringWorkspace& ws, Spectrum& out) const {
+    if (sky_view && sky_view->lookup(dir, ws.parts))
+      integrator.combine(ws.parts, dir.dot(sun_dir), sun_irradiance, ws, out);
+    else
+      integrator.radiance(camera->origin_m(), dir, sun_dir, sun_irradiance, sources, ws, out);
+  }
+
   // Whether any pixel of the image looks below the geometric horizon (a fisheye of the sky does
   // not, so the sky-view table can leave out that side).
   bool image_sees_below_horizon() const {
@@ -237,7 +250,7 @@ struct SkyRenderer::Impl {
         sun_irradiance(make_sun_irradiance(s, grid)),
         sun_radius_rad(skyspec::sun_angular_radius_rad(s.sun.distance_au)),
         rgb_fast(s.render.path == RenderSpec::Path::RgbFast),
-        threads(s.render.threads > 0 ? s.render.threads : tbb::this_task_arena::max_concurrency()) {
+        threads(thread_count(s)) {
     if (s.render.sky_view_table && SkyViewTable::applicable(atmosphere, camera->origin_m())) {
       const int rows = s.render.sky_view_zenith_samples;
       try {
@@ -263,8 +276,7 @@ struct SkyRenderer::Impl {
 SkyRenderer::SkyRenderer(const Scene& scene) {
   // The tables (sun columns, scattering orders, sky view) are built in parallel too: within
   // render.threads, like the image.
-  const int threads = scene.render.threads > 0 ? scene.render.threads : tbb::this_task_arena::max_concurrency();
-  tbb::task_arena arena(threads);
+  tbb::task_arena arena(thread_count(scene));
   arena.execute([&] { impl_ = std::make_unique<Impl>(scene); });
 }
 SkyRenderer::~SkyRenderer() = default;
@@ -300,12 +312,7 @@ void SkyRenderer::radiance(const Vec3& dir, float* spectrum) const {
   const auto& m = *impl_;
   ScatteringWorkspace ws(m.grid.size());
   Spectrum out(m.grid.size());
-  const Vec3 d = dir.normalized();
-  if (m.sky_view && m.sky_view->lookup(d, ws.parts)) {  // the sky as the image shows it
-    m.integrator.combine(ws.parts, d.dot(m.sun_dir), m.sun_irradiance, ws, out);
-  } else {
-    m.integrator.radiance(m.camera->origin_m(), d, m.sun_dir, m.sun_irradiance, m.sources, ws, out);
-  }
+  m.sky_radiance(dir.normalized(), ws, out);  // the sky as the image shows it
   std::copy(out.data(), out.data() + out.size(), spectrum);
 }
 
@@ -368,11 +375,7 @@ void SkyRenderer::render_rows(int y0, int rows, float* spectral, float* rgb) con
         Vec3 dir;
         float* px = spectral + static_cast<size_t>(idx) * n;
         if (m.camera->direction(x + 0.5, y0 + row + 0.5, dir)) {
-          if (m.sky_view && m.sky_view->lookup(dir, sc.ws.parts)) {
-            m.integrator.combine(sc.ws.parts, dir.dot(m.sun_dir), m.sun_irradiance, sc.ws, sc.radiance);
-          } else {
-            m.integrator.radiance(m.camera->origin_m(), dir, m.sun_dir, m.sun_irradiance, m.sources, sc.ws, sc.radiance);
-          }
+          m.sky_radiance(dir, sc.ws, sc.radiance);
           if (m.scene.sun.disk) m.add_sun_disk(x, y0 + row, dir, sc.radiance, sc.disk, sc.trans);
           std::copy(sc.radiance.data(), sc.radiance.data() + n, px);
         } else {

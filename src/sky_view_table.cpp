@@ -127,7 +127,7 @@ SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringS
     for (int i = 0; i < rows; ++i) {
       theta.push_back(i == 0 ? first_row_zenith(sky_side, rows) : zenith_of(sky_side, static_cast<double>(i) / (rows - 1)));
       key.push_back(key_of(sky_side, theta.back()));
-      if (i > 0 && !(key[static_cast<size_t>(i)] != key[static_cast<size_t>(i - 1)]))
+      if (i > 0 && key[static_cast<size_t>(i)] == key[static_cast<size_t>(i - 1)])
         throw Error("sky-view table: rows " + std::to_string(i - 1) + " and " + std::to_string(i) +
                     " coincide (too many rows for this geometry)");
     }

@@ -1,9 +1,17 @@
 // Small atmospheres with known closed-form answers, shared by the physics tests.
 #pragma once
 
+#include <vector>
+
 #include "skyspec/atmosphere.hpp"
+#include "skyspec/optical_depth.hpp"
+#include "skyspec/single_scattering.hpp"
 
 namespace skyspec::test {
+
+/// The seed tutorial's three wavelengths and its typed-in Rayleigh coefficients at them.
+inline const std::vector<double> kSeedNm = {440, 550, 680};
+inline const std::vector<double> kSeedBetaRayleigh = {33.1e-6, 13.5e-6, 5.8e-6};
 
 /// Typed-in Rayleigh coefficients on the grid (so a test controls beta exactly), Mie optional.
 inline AtmosphereSpec simple_atmosphere(ProfileKind profile, double top_m, const std::vector<double>& nm,
@@ -25,5 +33,18 @@ inline AtmosphereSpec simple_atmosphere(ProfileKind profile, double top_m, const
   a.mie.extinction_to_scattering = mie_ratio;
   return a;
 }
+
+/// The whole chain a radiance needs: the atmosphere on a wavelength list, its sun-column table and
+/// an integrator over them (members in that order, each referring to the ones before).
+struct IntegratorChain {
+  IntegratorChain(const AtmosphereSpec& spec, const std::vector<double>& nm, SunColumnTable::Resolution resolution,
+                  int view_segments)
+      : atm(spec, WavelengthGrid::from_list(nm)), table(atm, resolution), columns(table),
+        integrator(atm, columns, {view_segments}) {}
+  AtmosphereModel atm;
+  SunColumnTable table;
+  TableSunColumns columns;
+  SingleScattering integrator;
+};
 
 }  // namespace skyspec::test

@@ -15,8 +15,8 @@
 using namespace skyspec;
 
 namespace {
-const std::vector<double> kNm = {440, 550, 680};
-const std::vector<double> kBetaR = {33.1e-6, 13.5e-6, 5.8e-6};
+const std::vector<double>& kNm = test::kSeedNm;
+const std::vector<double>& kBetaR = test::kSeedBetaRayleigh;
 
 // Upward flux leaving the top of the atmosphere at the sub-solar point:
 // F_up = integral over downward directions of L |mu| d omega (Gauss-Legendre in mu, azimuth
@@ -44,10 +44,8 @@ BOOST_AUTO_TEST_CASE(conservative_atmosphere_over_white_ground_conserves_energy)
   AtmosphereSpec spec = test::simple_atmosphere(ProfileKind::Exponential, 60e3, kNm, kBetaR, 21e-6, 1.0);
   spec.planet_radius_m = 1e9;
   spec.ground.albedo = 1.0;
-  const AtmosphereModel atm(spec, WavelengthGrid::from_list(kNm));
-  const SunColumnTable table(atm, {128, 256, 64});
-  const TableSunColumns cols(table);
-  const SingleScattering ss(atm, cols, {64});
+  const test::IntegratorChain chain(spec, kNm, {128, 256, 64}, 64);
+  const SingleScattering& ss = chain.integrator;
   MultipleScatteringSettings ms;
   ms.orders = 30;
   ms.altitude_samples = 16;
@@ -65,11 +63,9 @@ BOOST_AUTO_TEST_CASE(conservative_atmosphere_over_white_ground_conserves_energy)
 
 // Each order carries less light than the one before (Earth-like atmosphere, black ground).
 BOOST_AUTO_TEST_CASE(orders_decrease) {
-  const AtmosphereModel atm(test::simple_atmosphere(ProfileKind::Exponential, 60e3, kNm, kBetaR, 21e-6),
-                            WavelengthGrid::from_list(kNm));
-  const SunColumnTable table(atm, {64, 128, 64});
-  const TableSunColumns cols(table);
-  const SingleScattering ss(atm, cols, {32});
+  const test::IntegratorChain chain(test::simple_atmosphere(ProfileKind::Exponential, 60e3, kNm, kBetaR, 21e-6), kNm,
+                                    {64, 128, 64}, 32);
+  const SingleScattering& ss = chain.integrator;
   MultipleScatteringSettings ms;
   ms.orders = 6;
   ms.altitude_samples = 12;
@@ -91,10 +87,8 @@ BOOST_AUTO_TEST_CASE(orders_decrease) {
 BOOST_AUTO_TEST_CASE(single_scattering_part_is_unchanged) {
   AtmosphereSpec spec = test::simple_atmosphere(ProfileKind::Exponential, 60e3, kNm, kBetaR, 21e-6);
   spec.ground.albedo = 0.3;
-  const AtmosphereModel atm(spec, WavelengthGrid::from_list(kNm));
-  const SunColumnTable table(atm, {64, 128, 64});
-  const TableSunColumns cols(table);
-  const SingleScattering ss(atm, cols, {64});
+  const test::IntegratorChain chain(spec, kNm, {64, 128, 64}, 64);
+  const SingleScattering& ss = chain.integrator;
   MultipleScatteringSettings ms;
   ms.orders = 3;
   ms.altitude_samples = 8;
@@ -127,11 +121,10 @@ BOOST_AUTO_TEST_CASE(gauss_legendre_integrates_polynomials_exactly) {
 // The disk cache gives back exactly the tables it was given, and nothing for another key or a
 // damaged file.
 BOOST_AUTO_TEST_CASE(tables_round_trip_through_the_cache) {
-  const AtmosphereModel atm(test::simple_atmosphere(ProfileKind::Exponential, 60e3, kNm, kBetaR, 21e-6),
-                            WavelengthGrid::from_list(kNm));
-  const SunColumnTable table(atm, {32, 64, 32});
-  const TableSunColumns cols(table);
-  const SingleScattering ss(atm, cols, {16});
+  const test::IntegratorChain chain(test::simple_atmosphere(ProfileKind::Exponential, 60e3, kNm, kBetaR, 21e-6), kNm,
+                                    {32, 64, 32}, 16);
+  const AtmosphereModel& atm = chain.atm;
+  const SingleScattering& ss = chain.integrator;
   MultipleScatteringSettings ms;
   ms.orders = 3;
   ms.altitude_samples = 6;

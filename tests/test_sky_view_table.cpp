@@ -14,8 +14,6 @@ using namespace skyspec;
 
 namespace {
 constexpr double R = 6360e3;
-const std::vector<double> kNm = {440, 550, 680};
-const std::vector<double> kBetaR = {33.1e-6, 13.5e-6, 5.8e-6};
 
 // An isotropic higher-order source that varies with altitude and sun angle, and lights the ground.
 struct SmoothSource : InScatteringSource {
@@ -29,20 +27,19 @@ struct SmoothSource : InScatteringSource {
 };
 
 struct Fixture {
-  AtmosphereModel atm;
-  SunColumnTable table;
-  TableSunColumns columns;
-  SingleScattering integrator;
+  test::IntegratorChain chain;
+  const AtmosphereModel& atm;
+  const SingleScattering& integrator;
   SmoothSource higher;
   ScatteringSources sources;
   explicit Fixture(double albedo = 0.3)
-      : atm(make_spec(albedo), WavelengthGrid::from_list(kNm)),
-        table(atm),
-        columns(table),
-        integrator(atm, columns, {64}),
+      : chain(make_spec(albedo), test::kSeedNm, SunColumnTable::Resolution{}, 64),
+        atm(chain.atm),
+        integrator(chain.integrator),
         sources{true, &higher} {}
   static AtmosphereSpec make_spec(double albedo) {
-    AtmosphereSpec a = test::simple_atmosphere(ProfileKind::Exponential, 60e3, kNm, kBetaR, 21e-6);
+    AtmosphereSpec a =
+        test::simple_atmosphere(ProfileKind::Exponential, 60e3, test::kSeedNm, test::kSeedBetaRayleigh, 21e-6);
     a.ground.albedo = albedo;
     return a;
   }
