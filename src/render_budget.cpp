@@ -172,9 +172,9 @@ double measure_render_seconds(const SkyRenderer& renderer, const RenderPlan& pla
   const int w = renderer.width(), h = renderer.height();
   const double threads = std::max(plan.threads, 1);
   const double work = static_cast<double>(pixels(w, h)) * std::max(plan.frames, 1);
-  // First a bound: radiance() marches the view ray (what render_rows does for a pixel when the
-  // renderer has no precomputed table for it), timed on a few pixels spread over the image by the
-  // R2 low-discrepancy sequence (Roberts 2018). CPU time of the thread: what the work costs,
+  // First a bound: radiance() does a pixel's work without the sun's disk (a sky-view table lookup
+  // where the renderer has one, a march of the view ray otherwise), timed on a few pixels spread
+  // over the image by the R2 low-discrepancy sequence (Roberts 2018). CPU time of the thread: what the work costs,
   // whatever else the machine is doing.
   const auto camera = make_camera(renderer.scene());
   std::vector<float> spectrum(static_cast<size_t>(renderer.grid().size()));
@@ -207,8 +207,8 @@ double measure_render_seconds(const SkyRenderer& renderer, const RenderPlan& pla
     rendered += w;
     if (cpu > 0.05 || h < 4) break;
   }
-  // And writing: the last row rendered, 16 times (one ZIP line block), into a spectral EXR in the
-  // temporary folder that is never finished (so removed), timed the same way.
+  // And writing: the last row rendered, 16 times, into a spectral EXR with the scene's compression
+  // in the temporary folder, never finished (so removed), timed the same way.
   double write = 0.0;
   if (plan.spectral_exr) {
     const int rows = 16;
