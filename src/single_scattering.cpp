@@ -10,7 +10,7 @@
 namespace skyspec {
 
 ScatteringWorkspace::ScatteringWorkspace(int n)
-    : tau_a(n), tau_b(n), tau_c(n), trans_a(n), trans_b(n), trans_c(n), f_a(n), f_b(n), x(n),
+    : tau_a(n), tau_b(n), tau_c(n), trans_a(n), trans_b(n), trans_c(n),
       view_tau(n), view_trans(n), ms_a(n), ms_b(n), ms_c(n), source(n),
       sum_rayleigh(n), sum_mie(n), coarse_rayleigh(n), coarse_mie(n), sum_ms(n), coarse_ms(n), phase(n), parts(n) {}
 
@@ -29,12 +29,39 @@ SingleScattering::SingleScattering(const AtmosphereModel& atm, const SunColumns&
 
 namespace {
 
-// Add dt * logmean(f_a, f_b) to sum, elementwise, with x = ln f_a - ln f_b. Where |x| is small the
-// series b (1 + x/2 + x^2/6 + x^3/24) avoids the cancellation in (a - b) / x.
-void accumulate_log_mean(const Spectrum& f_a, const Spectrum& f_b, const Spectrum& x, float dt, Spectrum& sum) {
-  sum += dt * (x.abs() < 1e-2f)
-                  .select(f_b * (1.0f + x * (0.5f + x * (1.0f / 6.0f + x * (1.0f / 24.0f)))),
-                          (f_a - f_b) / x);
+// The single-scattering integrand of species s on a segment [a, b] of the view ray is
+// f(t) = rho_s(t) T(t), T the transmittance along view and sun paths; ln f is nearly linear in t,
+// so its integral over the segment is dt * logmean(f_a, f_b) with x = ln f_a - ln f_b
+// = (ln rho_a - ln rho_b) - (tau_a - tau_b). This adds that to sum_rayleigh and sum_mie, for every
+// wavelength. Where |x| is small the series b (1 + x/2 + x^2/6 + x^3/24) avoids the cancellation
+// in (a - b) / x: both forms are computed and mixed with a weight w of 0 or 1 (the division by
+// x + w is safe either way), with no branch, so that this one loop, the innermost operation of
+// every march, vectorises (Eigen's select() would be evaluated one element at a time).
+struct SpeciesAtNodes {
+  float log_ratio;     // ln rho_a - ln rho_b
+  float rho_a, rho_b;  // relative densities at the two nodes
+};
+inline float log_mean_term(float x, float f_a, float f_b) {
+  const float w = std::fabs(x) < 1e-2f ? 1.0f : 0.0f;  // 1: the series
+  const float series = f_b * (1.0f + x * (0.5f + x * (1.0f / 6.0f + x * (1.0f / 24.0f))));
+  const float exact = (f_a - f_b) / (x + w);
+  return exact + w * (series - exact);
+}
+void accumulate_segment_integrals(const Spectrum& tau_a, const Spectrum& trans_a, const Spectrum& tau_b,
+                                  const Spectrum& trans_b, SpeciesAtNodes rayleigh, SpeciesAtNodes mie, float dt,
+                                  Spectrum& sum_rayleigh, Spectrum& sum_mie) {
+  const float* __restrict ta = tau_a.data();
+  const float* __restrict tb = tau_b.data();
+  const float* __restrict ea = trans_a.data();
+  const float* __restrict eb = trans_b.data();
+  float* __restrict out_r = sum_rayleigh.data();
+  float* __restrict out_m = sum_mie.data();
+  const Eigen::Index n = sum_rayleigh.size();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const float dtau = ta[i] - tb[i];
+    out_r[i] += dt * log_mean_term(rayleigh.log_ratio - dtau, rayleigh.rho_a * ea[i], rayleigh.rho_b * eb[i]);
+    out_m[i] += dt * log_mean_term(mie.log_ratio - dtau, mie.rho_a * ea[i], mie.rho_b * eb[i]);
+  }
 }
 
 // A node of the quadrature: a point on the view ray.
@@ -214,15 +241,12 @@ void SingleScattering::radiance_parts(const Vec3& o, const Vec3& d, const Vec3& 
   // Single-scattering integrals over one segment [a, b] for both species, by the log-mean rule.
   auto accumulate_segment = [&](const Node& na, const Node& nb, const Spectrum& tau_a, const Spectrum& trans_a,
                                 const Spectrum& tau_b, const Spectrum& trans_b, Spectrum& sum_r, Spectrum& sum_m) {
-    const float seg = static_cast<float>(nb.t - na.t);
-    for (int sp = 0; sp < 2; ++sp) {
-      const float rho_a = static_cast<float>(na.rho[sp]);
-      const float rho_b = static_cast<float>(nb.rho[sp]);
-      ws.x = static_cast<float>(na.log_rho[sp] - nb.log_rho[sp]) - (tau_a - tau_b);
-      ws.f_a = rho_a * trans_a;
-      ws.f_b = rho_b * trans_b;
-      accumulate_log_mean(ws.f_a, ws.f_b, ws.x, seg, sp == 0 ? sum_r : sum_m);
-    }
+    auto species = [&](int sp) {
+      return SpeciesAtNodes{static_cast<float>(na.log_rho[sp] - nb.log_rho[sp]), static_cast<float>(na.rho[sp]),
+                            static_cast<float>(nb.rho[sp])};
+    };
+    accumulate_segment_integrals(tau_a, trans_a, tau_b, trans_b, species(0), species(1),
+                                 static_cast<float>(nb.t - na.t), sum_r, sum_m);
   };
 
   double total_len = 0.0;

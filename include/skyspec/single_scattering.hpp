@@ -53,7 +53,7 @@ struct RadianceParts {
 /// Per-thread scratch memory (spectral arrays are allocated once and reused).
 struct ScatteringWorkspace {
   explicit ScatteringWorkspace(int n_wavelengths);
-  Spectrum tau_a, tau_b, tau_c, trans_a, trans_b, trans_c, f_a, f_b, x;
+  Spectrum tau_a, tau_b, tau_c, trans_a, trans_b, trans_c;
   Spectrum view_tau, view_trans, ms_a, ms_b, ms_c, source;
   Spectrum sum_rayleigh, sum_mie, coarse_rayleigh, coarse_mie;  // fine and coarse (paired) rules
   Spectrum sum_ms, coarse_ms;
