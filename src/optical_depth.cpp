@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Core>
 #include <tbb/parallel_for.h>
 
 namespace skyspec {
@@ -15,43 +16,67 @@ double distance_to_top_m(double r_m, double mu, double top_r_m) {
 }
 
 namespace {
+// ln rho at every altitude of `alt` (one call per path, so that exponential profiles, the common
+// case, are evaluated as one vector expression).
+void log_relative_all(const DensityProfile& profile, const Eigen::ArrayXd& alt, Eigen::ArrayXd& out) {
+  if (profile.kind() == DensityProfile::Kind::Exponential) {
+    out = alt * (-1.0 / profile.scale_height_m());
+    return;
+  }
+  for (Eigen::Index k = 0; k < alt.size(); ++k) out[k] = profile.log_relative(alt[k]);
+}
+
+// Sum over k < count of log_mean(e[k s], e[(k + 1) s], l[k s] - l[(k + 1) s]): the log-mean rule on
+// the pieces between nodes `stride` apart. Each term is computed without a branch (both forms,
+// mixed by a weight of 0 or 1, the division by x + w safe either way) so that the loop vectorises;
+// the terms are then summed by Eigen's (vectorised) reduction.
+double log_mean_sum(const Eigen::ArrayXd& e, const Eigen::ArrayXd& l, Eigen::Index count, Eigen::Index stride,
+                    Eigen::ArrayXd& terms) {
+  terms.resize(count);
+  const double* __restrict ep = e.data();
+  const double* __restrict lp = l.data();
+  double* __restrict out = terms.data();
+  for (Eigen::Index k = 0; k < count; ++k) {
+    const double a = ep[k * stride], b = ep[(k + 1) * stride];
+    const double x = lp[k * stride] - lp[(k + 1) * stride];
+    const double w = std::fabs(x) < 1e-3 ? 1.0 : 0.0;  // 1: the series of log_mean()
+    const double series = b * (1.0 + x * (0.5 + x * (1.0 / 6.0 + x / 24.0)));
+    const double exact = (a - b) / (x + w);
+    out[k] = exact + w * (series - exact);
+  }
+  return terms.sum();
+}
+
 // Column of one profile along the straight path from radius r, zenith cosine mu, over [ta, tb]:
 // on each of `segments` pieces ln rho is taken as linear in t (exact for an exponential profile
 // along a radial path, second order otherwise), and the result is Richardson-extrapolated against
-// the same rule on pairs of pieces, which cancels the second-order error term.
+// the same rule on pairs of pieces, which cancels the second-order error term. The nodes are
+// evaluated together, as arrays, so that the square roots and exponentials vectorise.
 double column_piece(const DensityProfile& profile, double planet_radius_m, double r_m, double mu,
                     double ta, double tb, int segments) {
   if (!(tb > ta) || segments < 1) return 0.0;
   segments += segments % 2;
   const double dt = (tb - ta) / segments;
-  auto log_rho = [&](double t) {
-    const double rt = std::sqrt(std::max(r_m * r_m + t * t + 2.0 * r_m * mu * t, 0.0));
-    return profile.log_relative(rt - planet_radius_m);
-  };
-  double fine = 0.0, coarse = 0.0;
+  thread_local Eigen::ArrayXd t, alt, l, e, terms;  // reused: this runs for every table entry
+  const Eigen::Index n = segments + 1;
+  t = ta + dt * Eigen::ArrayXd::LinSpaced(n, 0.0, static_cast<double>(segments));
+  t[n - 1] = tb;
+  alt = (r_m * r_m + t * t + 2.0 * r_m * mu * t).max(0.0).sqrt() - planet_radius_m;
   if (!profile.positive_everywhere()) {
     // A layer with zero density outside: trapezoid rule on rho itself, extrapolated (Simpson).
-    auto rho = [&](double t) {
-      const double rt = std::sqrt(std::max(r_m * r_m + t * t + 2.0 * r_m * mu * t, 0.0));
-      return profile.relative(rt - planet_radius_m);
-    };
-    double q0 = rho(ta);
-    for (int k = 2; k <= segments; k += 2) {
-      const double q1 = rho(ta + dt * (k - 1)), q2 = rho(ta + dt * k);
-      fine += 0.5 * dt * (q0 + 2.0 * q1 + q2);
-      coarse += dt * (q0 + q2);
-      q0 = q2;
-    }
+    e.resize(n);
+    for (Eigen::Index k = 0; k < n; ++k) e[k] = profile.relative(alt[k]);
+    const double ends = 0.5 * (e[0] + e[n - 1]);
+    const double fine = dt * (e.sum() - ends);
+    const double even = Eigen::Map<const Eigen::ArrayXd, 0, Eigen::InnerStride<2>>(e.data(), segments / 2 + 1).sum();
+    const double coarse = 2.0 * dt * (even - ends);
     return std::max(0.0, (4.0 * fine - coarse) / 3.0);
   }
-  double l0 = log_rho(ta);
-  for (int k = 2; k <= segments; k += 2) {
-    const double l1 = log_rho(ta + dt * (k - 1)), l2 = log_rho(ta + dt * k);
-    const double e0 = std::exp(l0), e1 = std::exp(l1), e2 = std::exp(l2);
-    fine += dt * (log_mean(e0, e1, l0 - l1) + log_mean(e1, e2, l1 - l2));
-    coarse += 2.0 * dt * log_mean(e0, e2, l0 - l2);
-    l0 = l2;
-  }
+  l.resize(n);
+  log_relative_all(profile, alt, l);
+  e = l.exp();
+  const double fine = dt * log_mean_sum(e, l, segments, 1, terms);
+  const double coarse = 2.0 * dt * log_mean_sum(e, l, segments / 2, 2, terms);
   return std::max(0.0, (4.0 * fine - coarse) / 3.0);
 }
 }  // namespace
