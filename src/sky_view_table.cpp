@@ -196,18 +196,22 @@ bool SkyViewTable::lookup(const Vec3& dir, RadianceParts& out) const {
   const Eigen::Index n = n_;
   const size_t stride = static_cast<size_t>(m) * kParts * static_cast<size_t>(n);
   const size_t part = static_cast<size_t>(n);
-  Spectrum* dest[kParts] = {&out.rayleigh, &out.mie, &out.isotropic};
-  for (Spectrum* d : dest) d->setZero();
+  // The three parts of an entry are contiguous: one vector operation per entry accumulates them
+  // all (this runs for every pixel).
+  thread_local Eigen::ArrayXf sum;
+  sum.setZero(kParts * n);
   using Map = Eigen::Map<const Eigen::ArrayXf>;
   for (int i = 0; i < n_rows; ++i)
     for (int j = 0; j < n_columns; ++j) {
       const float w = static_cast<float>(row_w[i] * column_w[j]);
       const float* e = table.data() + static_cast<size_t>(first_row + i) * stride +
                        static_cast<size_t>(columns[j]) * kParts * part;
-      for (int p = 0; p < kParts; ++p) *dest[p] += w * Map(e + static_cast<size_t>(p) * part, n);
+      sum += w * Map(e, kParts * n);
     }
   // A cubic may undershoot where a part falls steeply to 0 (the planet's shadow); light is not negative.
-  for (Spectrum* d : dest) *d = d->max(0.0f);
+  out.rayleigh = sum.segment(0, n).max(0.0f);
+  out.mie = sum.segment(n, n).max(0.0f);
+  out.isotropic = sum.segment(2 * n, n).max(0.0f);
   return true;
 }
 
