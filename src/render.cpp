@@ -1,6 +1,7 @@
 #include "skyspec/render.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -171,7 +172,7 @@ struct SkyRenderer::Impl {
   Vec3 sun_dir;
   Spectrum sun_irradiance;
   double sun_radius_rad;
-  Eigen::Matrix<float, 3, Eigen::Dynamic> to_rgb;  // spectrum -> linear Rec.709
+  Spectrum to_rgb[3];  // spectrum -> linear Rec.709: R, G, B are the dot products with these rows
   int rgb_index[3] = {0, 0, 0};                     // RGB-fast: indices of 680, 550, 440 nm
   bool rgb_fast;
   int threads;
@@ -253,10 +254,11 @@ struct SkyRenderer::Impl {
         threads(thread_count(s)) {
     if (s.render.sky_view_table && SkyViewTable::applicable(atmosphere, camera->origin_m())) {
       const int rows = s.render.sky_view_zenith_samples;
+      const bool below = image_sees_below_horizon();
       try {
         sky_view = std::make_unique<SkyViewTable>(
             integrator, sources, camera->origin_m(), sun_dir,
-            SkyViewResolution{rows, std::max(2, rows / 2), s.render.sky_view_azimuth_samples, image_sees_below_horizon()},
+            SkyViewResolution{rows, std::max(2, rows / 2), s.render.sky_view_azimuth_samples, below},
             threads);
       } catch (const Error&) {
         sky_view.reset();  // a geometry the table cannot resolve (rows that coincide): march every pixel
@@ -268,7 +270,8 @@ struct SkyRenderer::Impl {
       rgb_index[2] = grid.index_of(440);
     } else {
       const SpectrumToXyz xyz(grid, constants::kMaxLuminousEfficacy_lm_per_W);
-      to_rgb = (xyz_to_linear_rec709() * xyz.weights()).cast<float>();
+      const Eigen::MatrixXf m = (xyz_to_linear_rec709() * xyz.weights()).cast<float>();
+      for (int c = 0; c < 3; ++c) to_rgb[c] = m.row(c).transpose().array();
     }
   }
 };
@@ -303,17 +306,20 @@ void SkyRenderer::spectrum_to_rgb(const float* spectrum, float rgb[3]) const {
     for (int c = 0; c < 3; ++c) rgb[c] = spectrum[m.rgb_index[c]];
     return;
   }
-  const Eigen::Map<const Eigen::VectorXf> s(spectrum, m.grid.size());
-  const Eigen::Vector3f v = m.to_rgb * s;
-  for (int c = 0; c < 3; ++c) rgb[c] = v[c];
+  const Eigen::Map<const Spectrum> s(spectrum, m.grid.size());
+  for (int c = 0; c < 3; ++c) rgb[c] = (m.to_rgb[c] * s).sum();
 }
 
 void SkyRenderer::radiance(const Vec3& dir, float* spectrum) const {
   const auto& m = *impl_;
-  ScatteringWorkspace ws(m.grid.size());
-  Spectrum out(m.grid.size());
-  m.sky_radiance(dir.normalized(), ws, out);  // the sky as the image shows it
-  std::copy(out.data(), out.data() + out.size(), spectrum);
+  const int n = m.grid.size();
+  // Scratch kept per thread: callers (the exposure meter, tests) ask for many directions.
+  thread_local std::optional<ScatteringWorkspace> ws;
+  thread_local Spectrum out;
+  if (!ws || ws->tau_a.size() != n) ws.emplace(n);
+  out.resize(n);
+  m.sky_radiance(dir.normalized(), *ws, out);  // the sky as the image shows it
+  std::copy(out.data(), out.data() + n, spectrum);
 }
 
 void SkyRenderer::radiance_rgb(const Vec3& dir, float rgb[3]) const {
@@ -366,6 +372,7 @@ void SkyRenderer::render_rows(int y0, int rows, float* spectral, float* rgb) con
     explicit Scratch(int k) : ws(k), radiance(k), disk(k), trans(k) {}
   };
   tbb::enumerable_thread_specific<Scratch> scratch([n] { return Scratch(n); });
+  std::atomic<bool> non_finite{false};
   tbb::task_arena arena(m.threads);
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<int>(0, rows * w, 64), [&](const tbb::blocked_range<int>& r) {
@@ -381,10 +388,17 @@ void SkyRenderer::render_rows(int y0, int rows, float* spectral, float* rgb) con
         } else {
           std::fill(px, px + n, 0.0f);
         }
-        spectrum_to_rgb(px, rgb + static_cast<size_t>(idx) * 3);
+        float* px_rgb = rgb + static_cast<size_t>(idx) * 3;
+        spectrum_to_rgb(px, px_rgb);
+        // Checked here, while the pixel is in cache, rather than in a pass over the band.
+        if (!std::isfinite(px_rgb[0]) || !std::isfinite(px_rgb[1]) || !std::isfinite(px_rgb[2]) ||
+            !Eigen::Map<const Spectrum>(px, n).allFinite())
+          non_finite.store(true, std::memory_order_relaxed);
       }
     });
   });
+  if (non_finite.load())
+    throw Error("internal error: a non-finite radiance or RGB value was computed; no file was written");
 }
 
 SpectralImageBuffer render_to_memory(const Scene& scene, const ProgressFn& progress) {
@@ -407,27 +421,25 @@ SpectralImageBuffer render_to_memory(const Scene& scene, const ProgressFn& progr
 }
 
 namespace {
-void check_finite(const float* p, size_t n, const char* what) {
-  for (size_t i = 0; i < n; ++i)
-    if (!std::isfinite(p[i]))
-      throw Error(std::string("internal error: a non-finite ") + what + " value was computed; no file was written");
-}
-}  // namespace
-
-namespace {
 
 /// The automatic exposure, metered before rendering so that the EXR header can record it: the
 /// sky's radiance (without the sun's disk) at the pixels metering_pixels() picks (exposure.hpp).
 double meter_before_rendering(const SkyRenderer& r) {
   const auto camera = make_camera(r.scene());
-  std::vector<double> luminance;
-  for (const auto& [x, y] : metering_pixels(r.width(), r.height())) {
-    Vec3 dir;
-    if (!camera->direction(x + 0.5, y + 0.5, dir)) continue;  // outside the image circle: black
-    float rgb[3];
-    r.radiance_rgb(dir, rgb);
-    luminance.push_back(rec709_luminance(rgb));
-  }
+  const auto pixels = metering_pixels(r.width(), r.height());
+  std::vector<double> luminance(pixels.size(), 0.0);  // 0 (ignored by the meter): outside the image circle
+  tbb::task_arena arena(thread_count(r.scene()));
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels.size(), 256), [&](const tbb::blocked_range<size_t>& range) {
+      for (size_t i = range.begin(); i != range.end(); ++i) {
+        Vec3 dir;
+        if (!camera->direction(pixels[i].first + 0.5, pixels[i].second + 0.5, dir)) continue;
+        float rgb[3];
+        r.radiance_rgb(dir, rgb);
+        luminance[i] = rec709_luminance(rgb);
+      }
+    });
+  });
   return key_exposure_scale(luminance);
 }
 
@@ -450,9 +462,9 @@ RenderOutputs render_scene_to_files(const Scene& scene, const ProgressFn& progre
 RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& display, const ProgressFn& progress,
                                     const PreparedFn& prepared) {
   const auto t_start = std::chrono::steady_clock::now();
+  RenderOutputs out;
   ensure_writable_directory(scene.output.directory, "output.directory");
   const std::filesystem::path dir(scene.output.directory);
-  RenderOutputs out;
   const bool working_exr = !display.exr_space.empty();
   if (!scene.output.exr && !scene.output.png && !working_exr)
     throw InputError("output.exr and output.png", "false", "at least one output to be true");
@@ -460,8 +472,12 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
   std::optional<DisplayPipeline> pipeline;
   if (scene.output.png || working_exr) pipeline.emplace(display);
 
+  using Clock = std::chrono::steady_clock;
+  const auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   SkyRenderer r(scene);
+  out.tables_seconds = since(t_start);
   if (prepared) prepared(r);
+  const auto t_image = Clock::now();
   const int w = r.width(), h = r.height(), n = r.grid().size();
   const bool rgb_fast = scene.render.path == RenderSpec::Path::RgbFast;
 
@@ -491,6 +507,7 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
     SpectralExrMetadata meta;
     meta.strings = provenance;
     meta.compression = scene.output.exr_compression;
+    meta.threads = thread_count(scene);
     meta.strings["skyspec:units"] =
         rgb_fast ? "RGB-fast path: S0 channels and R,G,B in the sun's units (spectral_irradiance x sr^-1); "
                    "R,G,B are the 680, 550, 440 nm values read as linear Rec.709"
@@ -502,8 +519,9 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
 
   // The image goes out in bands of rows, each rendered while the one before is compressed and
   // written (OpenEXR compresses a band's line blocks in parallel on its own threads), so that
-  // rendering and compression overlap. 64 rows are two PIZ or four ZIP line blocks; wide images
-  // take fewer rows so that a band stays near 64 MB.
+  // rendering and compression overlap. With render.threads = 1 nothing overlaps: each band is
+  // written on the same thread, so that the render uses one core, as asked. 64 rows are two PIZ
+  // or four ZIP line blocks; wide images take fewer rows so that a band stays near 64 MB.
   const size_t band_row_bytes = static_cast<size_t>(w) * static_cast<size_t>(n + 3) * sizeof(float);
   const int band = static_cast<int>(std::clamp<size_t>((size_t{64} << 20) / band_row_bytes, 8, 64));
   struct Band {
@@ -517,20 +535,23 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
   std::vector<float> rgb;  // whole image, for the PNG and the working-space EXR
   if (pipeline) rgb.resize(static_cast<size_t>(w) * h * 3);
   std::future<void> writing;  // the previous band on its way to the file
+  const bool overlap = thread_count(scene) > 1;
   for (int y = 0, k = 0; y < h; y += band, k ^= 1) {
     const int rows = std::min(band, h - y);
     Band& b = bands[k];
     r.render_rows(y, rows, b.spectral.data(), b.rgb.data());
-    check_finite(b.spectral.data(), static_cast<size_t>(rows) * w * n, "radiance");
-    check_finite(b.rgb.data(), static_cast<size_t>(rows) * w * 3, "RGB");
     if (writing.valid()) writing.get();  // rethrows a write error
-    if (exr) writing = std::async(std::launch::async, [&exr, &b, rows] { exr->write_rows(rows, b.spectral.data(), b.rgb.data()); });
+    if (exr && overlap)
+      writing = std::async(std::launch::async, [&exr, &b, rows] { exr->write_rows(rows, b.spectral.data(), b.rgb.data()); });
+    else if (exr)
+      exr->write_rows(rows, b.spectral.data(), b.rgb.data());
     if (!rgb.empty())
       std::copy(b.rgb.begin(), b.rgb.begin() + static_cast<long>(rows) * w * 3, rgb.begin() + static_cast<long>(y) * w * 3);
     if (progress) progress(y + rows, h);
   }
   if (writing.valid()) writing.get();
-
+  out.image_seconds = since(t_image);
+  const auto t_output = Clock::now();
   if (exr) exr->finish();
   try {
     if (scene.output.png) {
@@ -566,7 +587,8 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
       if (!path.empty()) std::filesystem::remove(path, ec);
     throw;
   }
-  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  out.output_seconds = since(t_output);
+  out.seconds = since(t_start);
   return out;
 }
 

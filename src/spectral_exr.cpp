@@ -24,6 +24,10 @@
 #include <thread>
 #include <utility>
 
+#ifdef __linux__
+#include <fcntl.h>  // sync_file_range
+#endif
+
 #include "skyspec/atomic_file.hpp"
 #include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
@@ -119,6 +123,16 @@ class StdioOStream : public Imf::OStream {
   }
   void seekp(uint64_t position) override {
     if (::fseeko(file_, static_cast<off_t>(position), SEEK_SET) != 0) fail("cannot seek in");
+  }
+  /// Hands what has been written so far to the kernel and asks it to start writing it to the disk
+  /// now, without waiting (Linux: sync_file_range), so that the fsync when the file is committed
+  /// finds little left to do: the disk works while the next rows are rendered. Only a hint: errors
+  /// are left to the writes, close and fsync that report them.
+  void start_writeback() {
+    if (std::fflush(file_) != 0) fail("cannot write");
+#ifdef __linux__
+    (void)::sync_file_range(::fileno(file_), 0, 0, SYNC_FILE_RANGE_WRITE);
+#endif
   }
   /// Flush and close; throws IoError if this or any earlier write failed.
   void close() {
@@ -297,7 +311,9 @@ SpectralExrWriter::SpectralExrWriter(const fs::path& final_path, int width, int 
     const size_t block_rows = c == Imf::PIZ_COMPRESSION ? 32 : c == Imf::ZIP_COMPRESSION ? 16 : 1;
     const size_t block_bytes = block_rows * static_cast<size_t>(width) * (impl_->channel_names.size() + 3) * sizeof(float);
     const size_t by_memory = (size_t{256} << 20) / std::max<size_t>(1, 4 * block_bytes);
-    const int threads = static_cast<int>(std::clamp<size_t>(by_memory, 1, std::max(1u, std::thread::hardware_concurrency())));
+    const size_t cores = meta.threads > 0 ? static_cast<size_t>(meta.threads) : std::max(1u, std::thread::hardware_concurrency());
+    // OpenEXR's count is of pool threads besides the caller's: 0 compresses on the calling thread.
+    const int threads = cores <= 1 ? 0 : static_cast<int>(std::clamp<size_t>(by_memory, 1, cores));
     impl_->exr = std::make_unique<Imf::OutputFile>(*impl_->stream, header, threads);
   } catch (const IoError&) {
     throw;
@@ -339,6 +355,7 @@ void SpectralExrWriter::write_rows(int rows, const float* spectral, const float*
   try {
     w.exr->setFrameBuffer(frame);
     w.exr->writePixels(rows);
+    w.stream->start_writeback();
   } catch (const std::exception& e) {
     w.broken = true;
     w.exr.reset();

@@ -35,7 +35,7 @@ class SkyRenderer {
 
   /// Renders rows [y0, y0 + rows): spectral radiance ([row][x][lambda]) and linear Rec.709
   /// preview RGB ([row][x][c]); uses all threads allowed by render.threads. Results do not depend
-  /// on the number of threads.
+  /// on the number of threads. Throws Error if any value is not finite.
   void render_rows(int y0, int rows, float* spectral, float* rgb) const;
 
   /// Spectral radiance (grid size floats) of the sky, without the sun's disk, seen from the
@@ -87,7 +87,11 @@ struct RenderOutputs {
   double preview_ev = 0.0;         ///< log2(preview_scale)
   std::string exposure;            ///< how the exposure was chosen (also in the files' headers)
   std::string display;             ///< the display pipeline used for the PNG
-  double seconds = 0.0;
+  double seconds = 0.0;            ///< wall time of the whole call
+  // Where it went (wall time; the rest is the render-budget sample, if asked for):
+  double tables_seconds = 0.0;  ///< set-up: atmosphere, optical-depth, scattering-order and sky-view tables
+  double image_seconds = 0.0;   ///< exposure metering and the image's rows (with the EXR's bands, written meanwhile)
+  double output_seconds = 0.0;  ///< completing the files: the EXR's offset table, fsync and rename; PNG
 };
 
 /// Renders the scene and writes its outputs (spectral EXR streamed in bands, PNG preview), each

@@ -27,6 +27,9 @@ struct SpectralExrMetadata {
   std::map<std::string, std::string> strings;  ///< extra string attributes, e.g. "skyspec:scene"
   std::optional<float> ev;                     ///< the layout's optional EV attribute
   std::string compression = "piz";             ///< lossless: piz, zip, zips, rle or none
+  /// Not stored in the file: how many cores compression may use (0: all; 1: the calling thread
+  /// only, as for a render limited to one thread).
+  int threads = 0;
 };
 
 class SpectralExrWriter {

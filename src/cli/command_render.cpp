@@ -106,8 +106,9 @@ int run_render(RenderOptions& o) {
     if (!out.png.empty()) std::cout << "display: " << out.display << "\n";
     std::cout << "exposure: " << out.exposure << "\n";
     std::cout << "estimate: " << estimate.describe() << "\n";
-    std::printf("rendered %dx%d, %s, in %.2f s\n", scene.camera.width, scene.camera.height,
-                make_wavelength_grid(scene).describe().c_str(), out.seconds);
+    std::printf("rendered %dx%d, %s, in %.2f s (tables %.3f s, image %.3f s, completing the files %.3f s)\n",
+                scene.camera.width, scene.camera.height, make_wavelength_grid(scene).describe().c_str(), out.seconds,
+                out.tables_seconds, out.image_seconds, out.output_seconds);
     if (scene.render.path == RenderSpec::Path::Spectral) print_photometry(scene);
   }
   return kExitOk;
