@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 #include "skyspec/units.hpp"
 
@@ -55,16 +56,26 @@ std::string PerspectiveCamera::describe() const {
   return s.str();
 }
 
+EquirectangularCamera::EquirectangularCamera(int width, int height, Vec3 origin_m, double min_elevation_deg)
+    : Camera(width, height, std::move(origin_m)), min_elevation_deg_(min_elevation_deg) {
+  if (!(min_elevation_deg >= -90.0 && min_elevation_deg < 90.0))
+    throw std::invalid_argument("EquirectangularCamera: min_elevation_deg must be in [-90, 90)");
+}
+
 bool EquirectangularCamera::direction(double x, double y, Vec3& dir) const {
   const double azimuth_deg = 360.0 * x / width_;
-  const double elevation_deg = 90.0 - 180.0 * y / height_;
+  const double elevation_deg = 90.0 - (90.0 - min_elevation_deg_) * y / height_;
   dir = direction_from_angles(azimuth_deg, elevation_deg);
   return true;
 }
 
 std::string EquirectangularCamera::describe() const {
   std::ostringstream s;
-  s << "equirectangular (latitude-longitude, full sphere), " << width_ << "x" << height_;
+  s << "equirectangular (latitude-longitude, ";
+  if (min_elevation_deg_ == -90.0) s << "full sphere";
+  else if (min_elevation_deg_ == 0.0) s << "upper hemisphere";
+  else s << "elevation 90 down to " << min_elevation_deg_ << " deg";
+  s << "), " << width_ << "x" << height_;
   return s.str();
 }
 

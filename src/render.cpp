@@ -52,7 +52,7 @@ std::unique_ptr<Camera> make_camera(const Scene& scene) {
     case CameraSpec::Type::Perspective:
       return std::make_unique<PerspectiveCamera>(c.width, c.height, world(c.position_m), world(c.look_at_m), c.fov_deg);
     case CameraSpec::Type::Equirectangular:
-      return std::make_unique<EquirectangularCamera>(c.width, c.height, world(c.position_m));
+      return std::make_unique<EquirectangularCamera>(c.width, c.height, world(c.position_m), c.min_elevation_deg);
   }
   return nullptr;
 }

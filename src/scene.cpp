@@ -463,6 +463,10 @@ const std::vector<KeyDef>& registry() {
                          [](Scene& s) -> Vec3& { return s.camera.look_at_m; }));
     r.push_back(number_key("camera.fov_deg", "degrees", {0.0, 179.0, true}, "perspective: vertical field of view",
                            [](Scene& s) -> double& { return s.camera.fov_deg; }));
+    r.push_back(number_key("camera.min_elevation_deg", "degrees", {-90.0, 89.0},
+                           "equirectangular: elevation of the bottom edge (-90: the whole sphere; 0: the upper "
+                           "hemisphere only, as sky-dome textures are)",
+                           [](Scene& s) -> double& { return s.camera.min_elevation_deg; }));
     // spectrum
     r.push_back(number_key("spectrum.min_nm", "nm", {1.0, 1e5}, "first wavelength",
                            [](Scene& s) -> double& { return s.spectrum.min_nm; }));

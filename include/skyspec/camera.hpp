@@ -62,14 +62,18 @@ class PerspectiveCamera : public Camera {
   double fov_deg_;
 };
 
-/// Latitude-longitude panorama of the whole sphere of directions (the HDRI format renderers load):
-/// column -> azimuth from 0 (north, left edge) through 90 (east) to 360, row -> elevation from +90
-/// (top) to -90 (bottom).
+/// Latitude-longitude panorama (the HDRI format renderers load): column -> azimuth from 0 (north,
+/// left edge) through 90 (east) to 360, row -> elevation linearly from +90 (top) down to
+/// min_elevation_deg (bottom): -90 for the whole sphere of directions, 0 for the upper hemisphere
+/// (a sky-dome texture).
 class EquirectangularCamera : public Camera {
  public:
-  EquirectangularCamera(int width, int height, Vec3 origin_m) : Camera(width, height, std::move(origin_m)) {}
+  EquirectangularCamera(int width, int height, Vec3 origin_m, double min_elevation_deg = -90.0);
   bool direction(double x, double y, Vec3& dir) const override;
   std::string describe() const override;
+
+ private:
+  double min_elevation_deg_;
 };
 
 }  // namespace skyspec

@@ -47,6 +47,7 @@ struct CameraSpec {
   Vec3 position_m = Vec3(0, 0, 1);  ///< east, north, height above sea level at the reference point
   Vec3 look_at_m = Vec3(0, 1000, 1);
   double fov_deg = 60.0;            ///< perspective: vertical field of view
+  double min_elevation_deg = -90.0;  ///< equirectangular: elevation of the bottom edge (0: upper hemisphere)
 };
 
 struct SpectrumSpec {
