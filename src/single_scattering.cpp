@@ -11,8 +11,9 @@ namespace skyspec {
 
 ScatteringWorkspace::ScatteringWorkspace(int n)
     : tau_a(n), tau_b(n), tau_c(n), trans_a(n), trans_b(n), trans_c(n),
-      view_tau(n), view_trans(n), ms_a(n), ms_b(n), ms_c(n), source(n),
-      sum_rayleigh(n), sum_mie(n), coarse_rayleigh(n), coarse_mie(n), sum_ms(n), coarse_ms(n), phase(n), parts(n) {}
+      view_tau(n), view_trans(n), source(n), ms_a(n), ms_b(n), ms_c(n), ms_trans_a(n), ms_trans_b(n), ms_trans_c(n),
+      sum_rayleigh(n), sum_mie(n), coarse_rayleigh(n), coarse_mie(n), sum_ms_rayleigh(n), sum_ms_mie(n),
+      coarse_ms_rayleigh(n), coarse_ms_mie(n), phase(n), parts(n) {}
 
 SingleScattering::SingleScattering(const AtmosphereModel& atm, const SunColumns& sun_columns,
                                    IntegratorSettings s)
@@ -231,12 +232,17 @@ void SingleScattering::radiance_parts(const Vec3& o, const Vec3& d, const Vec3& 
           ext_[kMie] * static_cast<float>(view_col[kMie] + sun[kMie]);
     if (ozone) tau += ext_[kOzone] * static_cast<float>(view_col[kOzone] + sun[kOzone]);
   };
-  // Higher-order integrand exp(-tau_view) sum_s beta_sca,s rho_s J at a node.
-  auto higher_integrand = [&](const Node& n, Spectrum& m) {
+  // Higher orders: the integrand of species s is beta_sca,s rho_s exp(-tau_view) J, J the
+  // higher-order source. It is integrated by the same log-mean rule as single scattering, with
+  // tau' = tau_view - ln J in the place of the optical depth and T' = exp(-tau_view) J in the
+  // place of the transmittance (ln of the integrand is ln rho_s - tau' + const). J is floored at
+  // a tiny positive value so that its logarithm is finite where the tables hold no light.
+  auto higher_node = [&](const Node& n, Spectrum& tau, Spectrum& trans) {
     sources.higher->source(n.r, n.mu_sun, ws.source.data());
     view_tau(ws.view_tau);
-    const float rho_r = static_cast<float>(n.rho[0]), rho_m = static_cast<float>(n.rho[1]);
-    m = (-ws.view_tau).exp() * ws.source * (sca_rayleigh_ * rho_r + sca_mie_ * rho_m);
+    ws.source = ws.source.max(1e-30f);
+    tau = ws.view_tau - ws.source.log();
+    trans = (-ws.view_tau).exp() * ws.source;
   };
   // Single-scattering integrals over one segment [a, b] for both species, by the log-mean rule.
   auto accumulate_segment = [&](const Node& na, const Node& nb, const Spectrum& tau_a, const Spectrum& trans_a,
@@ -256,8 +262,10 @@ void SingleScattering::radiance_parts(const Vec3& o, const Vec3& d, const Vec3& 
   ws.sum_mie.setZero();
   ws.coarse_rayleigh.setZero();
   ws.coarse_mie.setZero();
-  ws.sum_ms.setZero();
-  ws.coarse_ms.setZero();
+  ws.sum_ms_rayleigh.setZero();
+  ws.sum_ms_mie.setZero();
+  ws.coarse_ms_rayleigh.setZero();
+  ws.coarse_ms_mie.setZero();
 
   Node prev = make_node(t_begin);
   for (int i = 0; i < n_pieces; ++i) {
@@ -285,22 +293,23 @@ void SingleScattering::radiance_parts(const Vec3& o, const Vec3& d, const Vec3& 
       ws.trans_c = ws.trans_a;
     }
     if (higher) {
-      higher_integrand(prev, ws.ms_a);
+      higher_node(prev, ws.ms_a, ws.ms_trans_a);
       ws.ms_c = ws.ms_a;
+      ws.ms_trans_c = ws.ms_trans_a;
     }
     Node pair_start = prev;
     for (int k = 1; k <= segs; ++k) {
       const Node next = make_node(k == segs ? pc.t1 : pc.t0 + dt * k);
       advance_columns(prev, next);
-      const float seg = static_cast<float>(next.t - prev.t);
       if (single_here) {
         total_tau(next, ws.tau_b);
         ws.trans_b = (-ws.tau_b).exp();
         accumulate_segment(prev, next, ws.tau_a, ws.trans_a, ws.tau_b, ws.trans_b, ws.sum_rayleigh, ws.sum_mie);
       }
       if (higher) {
-        higher_integrand(next, ws.ms_b);
-        ws.sum_ms += (0.5f * seg) * (ws.ms_a + ws.ms_b);
+        higher_node(next, ws.ms_b, ws.ms_trans_b);
+        accumulate_segment(prev, next, ws.ms_a, ws.ms_trans_a, ws.ms_b, ws.ms_trans_b, ws.sum_ms_rayleigh,
+                           ws.sum_ms_mie);
       }
       if (k % 2 == 0) {
         if (single_here) {
@@ -310,8 +319,10 @@ void SingleScattering::radiance_parts(const Vec3& o, const Vec3& d, const Vec3& 
           ws.trans_c = ws.trans_b;
         }
         if (higher) {
-          ws.coarse_ms += static_cast<float>(0.5 * (next.t - pair_start.t)) * (ws.ms_c + ws.ms_b);
+          accumulate_segment(pair_start, next, ws.ms_c, ws.ms_trans_c, ws.ms_b, ws.ms_trans_b, ws.coarse_ms_rayleigh,
+                             ws.coarse_ms_mie);
           ws.ms_c = ws.ms_b;
+          ws.ms_trans_c = ws.ms_trans_b;
         }
         pair_start = next;
       }
@@ -320,7 +331,10 @@ void SingleScattering::radiance_parts(const Vec3& o, const Vec3& d, const Vec3& 
         ws.tau_a.swap(ws.tau_b);
         ws.trans_a.swap(ws.trans_b);
       }
-      if (higher) ws.ms_a.swap(ws.ms_b);
+      if (higher) {
+        ws.ms_a.swap(ws.ms_b);
+        ws.ms_trans_a.swap(ws.ms_trans_b);
+      }
     }
   }
 
@@ -330,7 +344,9 @@ void SingleScattering::radiance_parts(const Vec3& o, const Vec3& d, const Vec3& 
     parts.rayleigh = sca_rayleigh_ * ((4.0f * ws.sum_rayleigh - ws.coarse_rayleigh) * (1.0f / 3.0f)).max(0.0f);
     parts.mie = sca_mie_ * ((4.0f * ws.sum_mie - ws.coarse_mie) * (1.0f / 3.0f)).max(0.0f);
   }
-  if (higher) parts.isotropic = ((4.0f * ws.sum_ms - ws.coarse_ms) * (1.0f / 3.0f)).max(0.0f);
+  if (higher)
+    parts.isotropic = sca_rayleigh_ * ((4.0f * ws.sum_ms_rayleigh - ws.coarse_ms_rayleigh) * (1.0f / 3.0f)).max(0.0f) +
+                      sca_mie_ * ((4.0f * ws.sum_ms_mie - ws.coarse_ms_mie) * (1.0f / 3.0f)).max(0.0f);
 
   if (sources.transmittance) {
     view_tau(ws.view_tau);

@@ -54,9 +54,10 @@ struct RadianceParts {
 struct ScatteringWorkspace {
   explicit ScatteringWorkspace(int n_wavelengths);
   Spectrum tau_a, tau_b, tau_c, trans_a, trans_b, trans_c;
-  Spectrum view_tau, view_trans, ms_a, ms_b, ms_c, source;
+  Spectrum view_tau, view_trans, source;
+  Spectrum ms_a, ms_b, ms_c, ms_trans_a, ms_trans_b, ms_trans_c;  // higher orders: tau - ln J, exp(-tau) J
   Spectrum sum_rayleigh, sum_mie, coarse_rayleigh, coarse_mie;  // fine and coarse (paired) rules
-  Spectrum sum_ms, coarse_ms;
+  Spectrum sum_ms_rayleigh, sum_ms_mie, coarse_ms_rayleigh, coarse_ms_mie;
   Spectrum phase;  // per-wavelength aerosol phase (spectral asymmetry)
   RadianceParts parts;
 };
