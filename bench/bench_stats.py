@@ -6,8 +6,13 @@ channels S0.*; for the baseline its R, G, B = 680, 550, 440 nm), over the pixels
 radiance (largest channel) exceeds 1e-6 of the image's largest. The baseline (512 x 512, pixel
 x = 2 (i + 0.5) / (W - 1) - 1) is compared with skyspec's seed preset rendered at 511 x 511 with
 reference settings, whose pixel x = 2 (i + 0.5) / 511 - 1 is the same direction for i < 511.
-Equirectangular: only the upper half (the sky above the horizon) is compared.
+Case 4 is the upper hemisphere only (camera.min_elevation_deg = 0): the whole image is compared.
+The "tables / image / files" column is skyspec's own split of its wall time, from the line
+"rendered ... (tables T s, image I s, completing the files F s)" of its log: set-up and tables;
+metering and the image's rows (with the EXR's bands written meanwhile); the EXR's offset table,
+fsync and rename.
 """
+import re
 import sys
 from pathlib import Path
 
@@ -44,6 +49,13 @@ def rel_error(img, ref):
     return np.percentile(rel, 50), np.percentile(rel, 99)
 
 
+def stages_of(out, name):
+    log = out / f"{name}.log"
+    m = re.search(r"\(tables ([0-9.]+) s, image ([0-9.]+) s, completing the files ([0-9.]+) s\)",
+                  log.read_text() if log.exists() else "")
+    return None if m is None else tuple(float(v) for v in m.groups())
+
+
 def time_of(out, name):
     wall, rss = (out / f"{name}.time").read_text().split()[-2:]
     return float(wall), int(rss) / 1024.0
@@ -65,7 +77,7 @@ def main():
         print(f"baseline render time (its own clock, sun {sun}): "
               + (out / f"{name}.log").read_text().strip().split(";")[0])
         rows_out = base.setdefault("rows", [])
-        rows_out.append((label, sun, wall, 1.0, p50, p99, rss))
+        rows_out.append((label, sun, wall, 1.0, p50, p99, rss, None))
     has_base = any(k != "rows" for k in base)
     table = []
     refcheck = None
@@ -82,24 +94,24 @@ def main():
         if kind == "main":
             img, _ = read_exr(out / f"{name}.exr")
             ref, _ = read_exr(out / f"ref-{name}.exr")
-            if name.startswith("c4"):  # equirectangular: the sky above the horizon
-                h = img.shape[0] // 2
-                img, ref = img[:h], ref[:h]
             p50, p99 = rel_error(img, ref)
         ratio = wall / base[sun] if has_base and sun in base and label.startswith(("1", "2", "3", "4")) else None
-        table.append((label, sun, wall, ratio, p50, p99, rss))
+        table.append((label, sun, wall, ratio, p50, p99, rss, stages_of(out, name)))
     if has_base:
         table = sorted(base["rows"], key=lambda r: -float(r[1])) + table
 
     def f(v, fmt):
         return "-" if v is None else format(v, fmt)
 
-    cols = ["case", "sun (deg)", "wall (s)"] + (["time / baseline"] if has_base else []) + ["p50 rel. err.", "p99 rel. err.", "peak RSS (MB)"]
+    cols = ["case", "sun (deg)", "wall (s)"] + (["time / baseline"] if has_base else []) + [
+        "tables / image / files (s)", "p50 rel. err.", "p99 rel. err.", "peak RSS (MB)"]
     print()
     print("| " + " | ".join(cols) + " |")
     print("| --- | " + " | ".join("---:" for _ in cols[1:]) + " |")
-    for label, sun, wall, ratio, p50, p99, rss in table:
-        cells = [label, sun, f"{wall:.2f}"] + ([f(ratio, ".1f")] if has_base else []) + [f(p50, ".1e"), f(p99, ".1e"), f"{rss:.0f}"]
+    for label, sun, wall, ratio, p50, p99, rss, stages in table:
+        split = "-" if stages is None else " / ".join(f"{v:.3f}" for v in stages)
+        cells = [label, sun, f"{wall:.2f}"] + ([f(ratio, ".2f")] if has_base else []) + [
+            split, f(p50, ".1e"), f(p99, ".1e"), f"{rss:.0f}"]
         print("| " + " | ".join(cells) + " |")
     refs = sorted(out.glob("ref-*.time"))
     print()
