@@ -11,6 +11,7 @@
 #include <ImfOutputFile.h>
 #include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
+#include <ImfThreading.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -314,6 +315,10 @@ SpectralExrWriter::SpectralExrWriter(const fs::path& final_path, int width, int 
     const size_t cores = meta.threads > 0 ? static_cast<size_t>(meta.threads) : std::max(1u, std::thread::hardware_concurrency());
     // OpenEXR's count is of pool threads besides the caller's: 0 compresses on the calling thread.
     const int threads = cores <= 1 ? 0 : static_cast<int>(std::clamp<size_t>(by_memory, 1, cores));
+    // The file's tasks run on OpenEXR's global thread pool, which has no threads until someone
+    // gives it some: without this every line block is compressed on the calling thread, one
+    // after the other. Only ever raised, so that other files being written are not starved.
+    if (Imf::globalThreadCount() < threads) Imf::setGlobalThreadCount(threads);
     impl_->exr = std::make_unique<Imf::OutputFile>(*impl_->stream, header, threads);
   } catch (const IoError&) {
     throw;
