@@ -113,6 +113,21 @@ BOOST_AUTO_TEST_CASE(overrides_name_their_flag) {
   BOOST_TEST((l.finish().camera.type == CameraSpec::Type::Equirectangular));
 }
 
+// The equirectangular camera's bottom edge: 0 is the upper hemisphere; the horizon cannot be
+// the top edge, so 90 is refused with the range.
+BOOST_AUTO_TEST_CASE(equirectangular_elevation_range) {
+  SceneLoader l;
+  l.apply_override("camera.type", "equirectangular", "--camera");
+  l.apply_override("camera.min_elevation_deg", "0", "--set camera.min_elevation_deg");
+  BOOST_TEST(l.finish().camera.min_elevation_deg == 0.0);
+  const std::string e = error_of([] {
+    SceneLoader bad;
+    bad.apply_override("camera.min_elevation_deg", "90", "--set camera.min_elevation_deg");
+  });
+  BOOST_TEST(contains(e, "camera.min_elevation_deg = 90 is not allowed"));
+  BOOST_TEST(contains(e, "<= 89"));
+}
+
 BOOST_AUTO_TEST_CASE(effective_scene_round_trips_through_toml) {
   SceneLoader a("default");
   a.apply_override("sun.elevation_deg", "7.25", "test");
