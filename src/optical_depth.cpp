@@ -27,23 +27,16 @@ void log_relative_all(const DensityProfile& profile, const Eigen::ArrayXd& alt, 
 }
 
 // Sum over k < count of log_mean(e[k s], e[(k + 1) s], l[k s] - l[(k + 1) s]): the log-mean rule on
-// the pieces between nodes `stride` apart. Each term is computed without a branch (both forms,
-// mixed by a weight of 0 or 1, the division by x + w safe either way) so that the loop vectorises;
-// the terms are then summed by Eigen's (vectorised) reduction.
+// the pieces between nodes `stride` apart. Each term is computed without a branch so that the
+// loop vectorises; the terms are then summed by Eigen's (vectorised) reduction.
 double log_mean_sum(const Eigen::ArrayXd& e, const Eigen::ArrayXd& l, Eigen::Index count, Eigen::Index stride,
                     Eigen::ArrayXd& terms) {
   terms.resize(count);
   const double* __restrict ep = e.data();
   const double* __restrict lp = l.data();
   double* __restrict out = terms.data();
-  for (Eigen::Index k = 0; k < count; ++k) {
-    const double a = ep[k * stride], b = ep[(k + 1) * stride];
-    const double x = lp[k * stride] - lp[(k + 1) * stride];
-    const double w = std::fabs(x) < 1e-3 ? 1.0 : 0.0;  // 1: the series of log_mean()
-    const double series = b * (1.0 + x * (0.5 + x * (1.0 / 6.0 + x / 24.0)));
-    const double exact = (a - b) / (x + w);
-    out[k] = exact + w * (series - exact);
-  }
+  for (Eigen::Index k = 0; k < count; ++k)
+    out[k] = log_mean_branchless(ep[k * stride], ep[(k + 1) * stride], lp[k * stride] - lp[(k + 1) * stride], 1e-3);
   return terms.sum();
 }
 

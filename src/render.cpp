@@ -323,7 +323,8 @@ void SkyRenderer::radiance(const Vec3& dir, float* spectrum) const {
 }
 
 void SkyRenderer::radiance_rgb(const Vec3& dir, float rgb[3]) const {
-  std::vector<float> s(static_cast<size_t>(impl_->grid.size()));
+  thread_local std::vector<float> s;  // per thread, like radiance()'s scratch
+  s.resize(static_cast<size_t>(impl_->grid.size()));
   radiance(dir, s.data());
   spectrum_to_rgb(s.data(), rgb);
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "skyspec/atmosphere.hpp"
+#include "skyspec/optical_depth.hpp"
 #include "skyspec/phase_function.hpp"
 #include "skyspec/units.hpp"
 
@@ -34,20 +35,13 @@ namespace {
 // f(t) = rho_s(t) T(t), T the transmittance along view and sun paths; ln f is nearly linear in t,
 // so its integral over the segment is dt * logmean(f_a, f_b) with x = ln f_a - ln f_b
 // = (ln rho_a - ln rho_b) - (tau_a - tau_b). This adds that to sum_rayleigh and sum_mie, for every
-// wavelength. Where |x| is small the series b (1 + x/2 + x^2/6 + x^3/24) avoids the cancellation
-// in (a - b) / x: both forms are computed and mixed with a weight w of 0 or 1 (the division by
-// x + w is safe either way), with no branch, so that this one loop, the innermost operation of
-// every march, vectorises (Eigen's select() would be evaluated one element at a time).
+// wavelength, by log_mean_branchless (optical_depth.hpp), so that this one loop, the innermost
+// operation of every march, vectorises (Eigen's select() would be evaluated one element at a time).
 struct SpeciesAtNodes {
   float log_ratio;     // ln rho_a - ln rho_b
   float rho_a, rho_b;  // relative densities at the two nodes
 };
-inline float log_mean_term(float x, float f_a, float f_b) {
-  const float w = std::fabs(x) < 1e-2f ? 1.0f : 0.0f;  // 1: the series
-  const float series = f_b * (1.0f + x * (0.5f + x * (1.0f / 6.0f + x * (1.0f / 24.0f))));
-  const float exact = (f_a - f_b) / (x + w);
-  return exact + w * (series - exact);
-}
+inline float log_mean_term(float x, float f_a, float f_b) { return log_mean_branchless(f_a, f_b, x, 1e-2f); }
 void accumulate_segment_integrals(const Spectrum& tau_a, const Spectrum& trans_a, const Spectrum& tau_b,
                                   const Spectrum& trans_b, SpeciesAtNodes rayleigh, SpeciesAtNodes mie, float dt,
                                   Spectrum& sum_rayleigh, Spectrum& sum_mie) {

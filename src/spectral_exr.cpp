@@ -21,6 +21,7 @@
 #include <exception>
 #include <iomanip>
 #include <locale>
+#include <mutex>
 #include <sstream>
 #include <thread>
 #include <utility>
@@ -318,7 +319,11 @@ SpectralExrWriter::SpectralExrWriter(const fs::path& final_path, int width, int 
     // The file's tasks run on OpenEXR's global thread pool, which has no threads until someone
     // gives it some: without this every line block is compressed on the calling thread, one
     // after the other. Only ever raised, so that other files being written are not starved.
-    if (Imf::globalThreadCount() < threads) Imf::setGlobalThreadCount(threads);
+    {
+      static std::mutex pool_mutex;  // writers opened at the same time must not lower each other's count
+      std::lock_guard<std::mutex> lock(pool_mutex);
+      if (Imf::globalThreadCount() < threads) Imf::setGlobalThreadCount(threads);
+    }
     impl_->exr = std::make_unique<Imf::OutputFile>(*impl_->stream, header, threads);
   } catch (const IoError&) {
     throw;

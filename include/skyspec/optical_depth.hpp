@@ -25,6 +25,18 @@ inline double log_mean(double a, double b, double x) {
   return (a - b) / x;
 }
 
+/// log_mean without a branch, for loops over many values that the compiler should vectorise:
+/// both forms are computed and mixed with a weight w of 0 or 1 (the division by x + w is safe
+/// either way). `series_below` is the |x| under which the series is used (1e-3 in double
+/// precision, 1e-2 in single).
+template <typename T>
+inline T log_mean_branchless(T a, T b, T x, T series_below) {
+  const T w = (x < series_below && x > -series_below) ? T(1) : T(0);
+  const T series = b * (T(1) + x * (T(0.5) + x * (T(1) / T(6) + x * (T(1) / T(24)))));
+  const T exact = (a - b) / (x + w);
+  return exact + w * (series - exact);
+}
+
 /// Distance from radius r along zenith cosine mu to the sphere of radius top_r (r <= top_r).
 double distance_to_top_m(double r_m, double mu, double top_r_m);
 
