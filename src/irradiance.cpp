@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
@@ -40,11 +41,12 @@ IrradianceReport irradiance_at_camera(const SkyRenderer& r, int zenith_nodes, in
   const double cos_sun = std::max(0.0, r.sun_direction().dot(up));
   rep.direct_horizontal = rep.direct_normal * cos_sun;
 
-  // Diffuse: hemisphere quadrature, rows of zenith nodes in parallel.
+  // Diffuse: hemisphere quadrature, rows of zenith nodes in parallel (on the renderer's threads).
   std::vector<double> mu, w;
   gauss_legendre(zenith_nodes, 0.0, 1.0, mu, w);
   std::vector<SpectrumD> rows(static_cast<size_t>(zenith_nodes), SpectrumD::Zero(n));
-  tbb::parallel_for(0, zenith_nodes, [&](int i) {
+  tbb::task_arena arena(r.threads());
+  arena.execute([&] { tbb::parallel_for(0, zenith_nodes, [&](int i) {
     std::vector<float> L(static_cast<size_t>(n));
     const double m = mu[static_cast<size_t>(i)], sin_t = std::sqrt(1 - m * m);
     for (int j = 0; j < azimuth_nodes; ++j) {
@@ -54,7 +56,7 @@ IrradianceReport irradiance_at_camera(const SkyRenderer& r, int zenith_nodes, in
       for (int l = 0; l < n; ++l)
         rows[static_cast<size_t>(i)][l] += w[static_cast<size_t>(i)] * m * (2 * kPi / azimuth_nodes) * L[static_cast<size_t>(l)];
     }
-  });
+  }); });
   rep.diffuse_horizontal = SpectrumD::Zero(n);
   for (const auto& row : rows) rep.diffuse_horizontal += row;
 

@@ -287,6 +287,7 @@ const Scene& SkyRenderer::scene() const { return impl_->scene; }
 const WavelengthGrid& SkyRenderer::grid() const { return impl_->grid; }
 int SkyRenderer::width() const { return impl_->camera->width(); }
 int SkyRenderer::height() const { return impl_->camera->height(); }
+int SkyRenderer::threads() const { return impl_->threads; }
 
 const Spectrum& SkyRenderer::sun_irradiance() const { return impl_->sun_irradiance; }
 const Vec3& SkyRenderer::sun_direction() const { return impl_->sun_dir; }

@@ -32,6 +32,8 @@ class SkyRenderer {
   const WavelengthGrid& grid() const;
   int width() const;
   int height() const;
+  /// The threads its work may use (render.threads; 0 there means all cores).
+  int threads() const;
 
   /// Renders rows [y0, y0 + rows): spectral radiance ([row][x][lambda]) and linear Rec.709
   /// preview RGB ([row][x][c]); uses all threads allowed by render.threads. Results do not depend
@@ -88,7 +90,7 @@ struct RenderOutputs {
   std::string exposure;            ///< how the exposure was chosen (also in the files' headers)
   std::string display;             ///< the display pipeline used for the PNG
   double seconds = 0.0;            ///< wall time of the whole call
-  // Where it went (wall time; the rest is the render-budget sample, if asked for):
+  // Where it went (wall time; the rest is what `prepared` does, such as the render-budget sample):
   double tables_seconds = 0.0;  ///< set-up: atmosphere, optical-depth, scattering-order and sky-view tables
   double image_seconds = 0.0;   ///< exposure metering and the image's rows (with the EXR's bands, written meanwhile)
   double output_seconds = 0.0;  ///< completing the files: the EXR's offset table, fsync and rename; PNG

@@ -56,16 +56,17 @@ bool exposure_flag_given(const RenderOptions& o) {
 }
 
 // Absolute photometry of the render for the summary: the sky's luminance at the zenith and the
-// illuminance the sun and the sky put on a horizontal surface at the camera (the scattering
-// tables are cached, so this costs a few thousand rays).
-void print_photometry(const Scene& scene) {
-  const SkyRenderer r(scene);
+// illuminance the sun and the sky put on a horizontal surface at the camera, from the renderer
+// that makes the image (its tables are built once: a few thousand rays or table look-ups).
+std::string photometry_line(const SkyRenderer& r) {
   float rgb[3];
   r.radiance_rgb(r.camera_origin_m().normalized(), rgb);
   const double zenith_cd_m2 = 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
   const IrradianceReport e = irradiance_at_camera(r, 16, 32);
-  std::printf("luminance at the zenith %.4g cd/m2; at the camera, horizontal: direct %.4g lx, diffuse %.4g lx\n",
-              zenith_cd_m2, e.direct_horizontal_lux, e.diffuse_horizontal_lux);
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "luminance at the zenith %.4g cd/m2; at the camera, horizontal: direct %.4g lx, diffuse %.4g lx",
+                zenith_cd_m2, e.direct_horizontal_lux, e.diffuse_horizontal_lux);
+  return buf;
 }
 
 int run_render(RenderOptions& o) {
@@ -86,9 +87,14 @@ int run_render(RenderOptions& o) {
   if (!o.dry_run) ensure_writable_directory(scene.output.directory, "output.directory");  // its errors first
   RenderEstimate estimate = estimate_render(plan);
   if (!o.force) refuse_if_over_budget(estimate);
+  std::string photometry;
   const auto measure = [&](const SkyRenderer& r) {
     estimate.seconds = measure_render_seconds(r, plan);
     if (!o.force) refuse_if_over_budget(estimate);
+  };
+  const auto prepared = [&](const SkyRenderer& r) {
+    measure(r);
+    if (!o.quiet && scene.render.path == RenderSpec::Path::Spectral && r.grid().size() >= 2) photometry = photometry_line(r);
   };
   if (o.dry_run) {
     measure(SkyRenderer(scene));
@@ -97,7 +103,7 @@ int run_render(RenderOptions& o) {
   }
   ProgressBar bar("rendering", o.quiet);
   const auto out = render_scene_to_files(scene, display, [&](int done, int total) { bar.update(done, total); },
-                                         measure);
+                                         prepared);
   bar.finish();
   if (!o.quiet) {
     if (!out.exr.empty()) std::cout << "wrote " << out.exr.string() << "\n";
@@ -109,7 +115,7 @@ int run_render(RenderOptions& o) {
     std::printf("rendered %dx%d, %s, in %.2f s (tables %.3f s, image %.3f s, completing the files %.3f s)\n",
                 scene.camera.width, scene.camera.height, make_wavelength_grid(scene).describe().c_str(), out.seconds,
                 out.tables_seconds, out.image_seconds, out.output_seconds);
-    if (scene.render.path == RenderSpec::Path::Spectral) print_photometry(scene);
+    if (!photometry.empty()) std::cout << photometry << "\n";
   }
   return kExitOk;
 }
