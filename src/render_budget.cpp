@@ -223,6 +223,7 @@ double measure_render_seconds(const SkyRenderer& renderer, const RenderPlan& pla
     try {
       SpectralExrMetadata meta;
       meta.compression = renderer.scene().output.exr_compression;
+      meta.threads = renderer.threads();  // as the render's writer: no more OpenEXR threads than render.threads
       SpectralExrWriter exr(path, w, rows, renderer.grid().nanometres(), meta);
       exr.write_rows(rows, band_spectral.data(), band_rgb.data());
       write = (process_cpu_seconds() - before) / rows;

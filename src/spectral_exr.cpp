@@ -315,7 +315,10 @@ SpectralExrWriter::SpectralExrWriter(const fs::path& final_path, int width, int 
     const size_t by_memory = (size_t{256} << 20) / std::max<size_t>(1, 4 * block_bytes);
     const size_t cores = meta.threads > 0 ? static_cast<size_t>(meta.threads) : std::max(1u, std::thread::hardware_concurrency());
     // OpenEXR's count is of pool threads besides the caller's: 0 compresses on the calling thread.
-    const int threads = cores <= 1 ? 0 : static_cast<int>(std::clamp<size_t>(by_memory, 1, cores));
+    // Uncompressed files have nothing to do in parallel: a task per scanline that only copies it
+    // costs more in hand-offs between threads than the copy itself.
+    const bool parallel = cores > 1 && c != Imf::NO_COMPRESSION;
+    const int threads = parallel ? static_cast<int>(std::clamp<size_t>(by_memory, 1, cores)) : 0;
     // The file's tasks run on OpenEXR's global thread pool, which has no threads until someone
     // gives it some: without this every line block is compressed on the calling thread, one
     // after the other. Only ever raised, so that other files being written are not starved.
