@@ -17,11 +17,12 @@ bool FisheyeCamera::direction(double x, double y, Vec3& dir) const {
   const double u = 2.0 * x / width_ - 1.0, v = 2.0 * y / height_ - 1.0;
   const double z2 = u * u + v * v;
   if (z2 > 1.0) return false;
-  const double phi = std::atan2(v, u);
-  const double cos_theta = 1.0 - z2;
-  const double sin_theta = std::sqrt(std::max(0.0, 1.0 - cos_theta * cos_theta));
+  // Equal-area: cos(theta) = 1 - z^2, azimuth phi = atan2(v, u). Then sin(theta) = z sqrt(2 - z^2)
+  // and (cos phi, sin phi) = (u, v) / z, so the direction needs neither the angle nor its sine
+  // and cosine: (sin theta cos phi, sin theta sin phi) = sqrt(2 - z^2) (u, v).
+  const double s = std::sqrt(2.0 - z2);
   // The tutorial's frame (x east, y up, z south) in east-north-up.
-  dir = Vec3(sin_theta * std::cos(phi), -sin_theta * std::sin(phi), cos_theta);
+  dir = Vec3(s * u, -s * v, 1.0 - z2);
   return true;
 }
 

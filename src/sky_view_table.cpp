@@ -10,6 +10,7 @@
 #include "skyspec/atmosphere.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/units.hpp"
+#include "fast_atan2.hpp"
 
 namespace skyspec {
 
@@ -19,15 +20,6 @@ namespace {
 constexpr double kHorizonOffsetRad = 1e-6;
 constexpr int kParts = 3;
 
-// Weights of Lagrange's interpolating polynomial through the `count` nodes xs (distinct) at x.
-void lagrange_weights(const double* xs, int count, double x, double* w) {
-  for (int i = 0; i < count; ++i) {
-    double wi = 1.0;
-    for (int j = 0; j < count; ++j)
-      if (j != i) wi *= (x - xs[j]) / (xs[i] - xs[j]);
-    w[i] = wi;
-  }
-}
 }  // namespace
 
 bool SkyViewTable::applicable(const AtmosphereModel& atm, const Vec3& origin_m) {
@@ -133,6 +125,24 @@ SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringS
     }
   }
 
+  // 1 / prod_{j != i} (x_i - x_j) for the Lagrange weights of the rows lookup() takes around each
+  // row pair (r0, r0 + 1): r0 - 1 .. r0 + 2, fewer at the table's ends.
+  for (bool sky_side : {true, false}) {
+    const std::vector<double>& key = sky_side ? sky_key_ : ground_key_;
+    std::vector<double>& inv = sky_side ? sky_inv_den_ : ground_inv_den_;
+    const int rows = static_cast<int>(key.size());
+    inv.assign(4 * key.size(), 0.0);
+    for (int r0 = 0; r0 + 1 < rows; ++r0) {
+      const int first = std::max(0, r0 - 1), count = std::min(rows - 1, r0 + 2) - first + 1;
+      for (int i = 0; i < count; ++i) {
+        double den = 1.0;
+        for (int j = 0; j < count; ++j)
+          if (j != i) den *= key[static_cast<size_t>(first + i)] - key[static_cast<size_t>(first + j)];
+        inv[4 * static_cast<size_t>(r0) + i] = 1.0 / den;
+      }
+    }
+  }
+
   const size_t stride = static_cast<size_t>(res_.azimuths) * kParts * static_cast<size_t>(n_);
   sky_.assign(static_cast<size_t>(res_.sky_rows) * stride, 0.0f);
   if (res_.ground_side) ground_.assign(static_cast<size_t>(res_.ground_rows) * stride, 0.0f);
@@ -163,8 +173,14 @@ SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringS
 
 bool SkyViewTable::lookup(const Vec3& dir, RadianceParts& out) const {
   const double x = dir.dot(toward_sun_), y = std::abs(dir.dot(across_)), z = dir.dot(up_);
-  const double theta = std::atan2(std::sqrt(x * x + y * y), z);
-  const double phi = std::atan2(y, x);  // in [0, pi]
+  // Angles by a polynomial atan2 good to 1e-9 rad (fast_atan2.hpp): libm's took a quarter of a
+  // render's per-pixel time. Within 1e-6 rad of the horizon libm's is used: there the distance
+  // to the ground, the ground side's interpolation variable, changes by orders of magnitude over
+  // angles of that size.
+  const double h = std::sqrt(x * x + y * y);
+  double theta = detail::fast_atan2(h, z);
+  if (std::abs(theta - horizon_zenith_rad_) < 1e-6) theta = std::atan2(h, z);
+  const double phi = detail::fast_atan2(y, x);  // in [0, pi]
   const bool sky_side = theta < horizon_zenith_rad_;
   if (!sky_side && !res_.ground_side) return false;
   const std::vector<float>& table = sky_side ? sky_ : ground_;
@@ -175,7 +191,8 @@ bool SkyViewTable::lookup(const Vec3& dir, RadianceParts& out) const {
   const std::vector<double>& row_key = sky_side ? sky_key_ : ground_key_;
   const int rows = static_cast<int>(row_theta.size());
   const double away = sky_side ? -1.0 : 1.0;  // rows run away from the horizon
-  int r0 = std::clamp(static_cast<int>(placement_of(sky_side, theta) * (rows - 1)), 0, rows - 2);
+  const double placement = placement_of(sky_side, theta);
+  int r0 = std::clamp(static_cast<int>(placement * (rows - 1)), 0, rows - 2);
   while (r0 > 0 && away * (theta - row_theta[static_cast<size_t>(r0)]) < 0.0) --r0;
   while (r0 < rows - 2 && away * (theta - row_theta[static_cast<size_t>(r0 + 1)]) > 0.0) ++r0;
   // Rows r0 - 1 .. r0 + 2 (three at the table's ends), weighted by Lagrange's cubic (or quadratic)
@@ -183,35 +200,49 @@ bool SkyViewTable::lookup(const Vec3& dir, RadianceParts& out) const {
   // change slowly (a cubic there halves the error at twice the cost: not worth it).
   const int first_row = std::max(0, r0 - 1), last_row = std::min(rows - 1, r0 + 2);
   const int n_rows = last_row - first_row + 1;
+  const double key = (sky_side || rho_m_ <= 0.0) ? placement : key_of(sky_side, theta);
+  const double* xs = row_key.data() + first_row;
+  // Lagrange weights: products of (key - x_j) over j != i, times 1 / prod (x_i - x_j), which
+  // depends only on the rows and is kept per row pair (sky_inv_den_, ground_inv_den_).
+  const double* inv_den = (sky_side ? sky_inv_den_ : ground_inv_den_).data() + 4 * static_cast<size_t>(r0);
   double row_w[4];
-  lagrange_weights(row_key.data() + first_row, n_rows, key_of(sky_side, theta), row_w);
+  for (int i = 0; i < n_rows; ++i) {
+    double num = 1.0;
+    for (int j = 0; j < n_rows; ++j)
+      if (j != i) num *= key - xs[j];
+    row_w[i] = num * inv_den[i];
+  }
 
   const int m = res_.azimuths;
   const double f = std::clamp(phi / kPi * (m - 1), 0.0, static_cast<double>(m - 1));
   const int c0 = std::min(static_cast<int>(f), m - 2);
-  constexpr int n_columns = 2;
-  const double column_w[n_columns] = {1.0 - (f - c0), f - c0};
-  const int columns[n_columns] = {c0, c0 + 1};
+  const double column_w[2] = {1.0 - (f - c0), f - c0};
 
-  const Eigen::Index n = n_;
-  const size_t stride = static_cast<size_t>(m) * kParts * static_cast<size_t>(n);
-  const size_t part = static_cast<size_t>(n);
-  // The three parts of an entry are contiguous: one vector operation per entry accumulates them
-  // all (this runs for every pixel).
-  thread_local Eigen::ArrayXf sum;
-  sum.setZero(kParts * n);
-  using Map = Eigen::Map<const Eigen::ArrayXf>;
-  for (int i = 0; i < n_rows; ++i)
-    for (int j = 0; j < n_columns; ++j) {
-      const float w = static_cast<float>(row_w[i] * column_w[j]);
-      const float* e = table.data() + static_cast<size_t>(first_row + i) * stride +
-                       static_cast<size_t>(columns[j]) * kParts * part;
-      sum += w * Map(e, kParts * n);
-    }
+  // The three parts of an entry are contiguous, and so are the entries of columns c0 and c0 + 1:
+  // one loop over 2 * 3 * n floats per row accumulates both columns' parts (this runs for every
+  // pixel); then the columns are mixed.
+  const int n = n_;
+  const size_t entry = static_cast<size_t>(kParts) * static_cast<size_t>(n);
+  const size_t stride = static_cast<size_t>(m) * entry;
+  thread_local std::vector<float> sum;
+  sum.assign(2 * entry, 0.0f);
+  float* __restrict acc = sum.data();
+  for (int i = 0; i < n_rows; ++i) {
+    const float w = static_cast<float>(row_w[i]);
+    const float* __restrict e = table.data() + static_cast<size_t>(first_row + i) * stride + static_cast<size_t>(c0) * entry;
+    for (size_t k = 0; k < 2 * entry; ++k) acc[k] += w * e[k];
+  }
   // A cubic may undershoot where a part falls steeply to 0 (the planet's shadow); light is not negative.
-  out.rayleigh = sum.segment(0, n).max(0.0f);
-  out.mie = sum.segment(n, n).max(0.0f);
-  out.isotropic = sum.segment(2 * n, n).max(0.0f);
+  const float w0 = static_cast<float>(column_w[0]), w1 = static_cast<float>(column_w[1]);
+  out.rayleigh.resize(n);  // no-ops when the caller's parts have the grid's size already
+  out.mie.resize(n);
+  out.isotropic.resize(n);
+  float* parts[kParts] = {out.rayleigh.data(), out.mie.data(), out.isotropic.data()};
+  for (int p = 0; p < kParts; ++p) {
+    const float* a = acc + static_cast<size_t>(p) * n;
+    const float* b = a + entry;
+    for (int l = 0; l < n; ++l) parts[p][l] = std::max(0.0f, w0 * a[l] + w1 * b[l]);
+  }
   return true;
 }
 

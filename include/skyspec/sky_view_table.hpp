@@ -71,6 +71,7 @@ class SkyViewTable {
   double horizon_zenith_rad_ = 0.0;
   double r_m_ = 0.0, R_m_ = 0.0, rho_m_ = 0.0;  // camera and planet radii, distance to the horizon
   std::vector<double> sky_theta_, ground_theta_, sky_key_, ground_key_;  // per row: zenith angle, key
+  std::vector<double> sky_inv_den_, ground_inv_den_;  // per row pair: its rows' Lagrange denominators (4 each)
   // [side][row][column][part][lambda], part = rayleigh, mie, isotropic.
   std::vector<float> sky_, ground_;
 };
