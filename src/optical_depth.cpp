@@ -40,21 +40,26 @@ double log_mean_sum(const Eigen::ArrayXd& e, const Eigen::ArrayXd& l, Eigen::Ind
   return terms.sum();
 }
 
-// Column of one profile along the straight path from radius r, zenith cosine mu, over [ta, tb]:
-// on each of `segments` pieces ln rho is taken as linear in t (exact for an exponential profile
-// along a radial path, second order otherwise), and the result is Richardson-extrapolated against
-// the same rule on pairs of pieces, which cancels the second-order error term. The nodes are
-// evaluated together, as arrays, so that the square roots and exponentials vectorise.
-double column_piece(const DensityProfile& profile, double planet_radius_m, double r_m, double mu,
-                    double ta, double tb, int segments) {
-  if (!(tb > ta) || segments < 1) return 0.0;
-  segments += segments % 2;
+// Altitudes of the nodes of `segments` equal pieces (an even number) of the straight path from
+// radius r, zenith cosine mu, over [ta, tb]; the nodes are evaluated together, as arrays, so that
+// the square roots (and the exponentials below) vectorise.
+void node_altitudes(double planet_radius_m, double r_m, double mu, double ta, double tb, int segments,
+                    Eigen::ArrayXd& alt) {
   const double dt = (tb - ta) / segments;
-  thread_local Eigen::ArrayXd t, alt, l, e, terms;  // reused: this runs for every table entry
   const Eigen::Index n = segments + 1;
+  thread_local Eigen::ArrayXd t;  // reused: this runs for every table entry
   t = ta + dt * Eigen::ArrayXd::LinSpaced(n, 0.0, static_cast<double>(segments));
   t[n - 1] = tb;
   alt = (r_m * r_m + t * t + 2.0 * r_m * mu * t).max(0.0).sqrt() - planet_radius_m;
+}
+
+// Column of one profile over those nodes (spacing dt): on each piece ln rho is taken as linear in
+// t (exact for an exponential profile along a radial path, second order otherwise), and the result
+// is Richardson-extrapolated against the same rule on pairs of pieces, which cancels the
+// second-order error term.
+double column_on_nodes(const DensityProfile& profile, const Eigen::ArrayXd& alt, double dt, int segments) {
+  thread_local Eigen::ArrayXd l, e, terms;
+  const Eigen::Index n = alt.size();
   if (!profile.positive_everywhere()) {
     // A layer with zero density outside: trapezoid rule on rho itself, extrapolated (Simpson).
     e.resize(n);
@@ -72,28 +77,49 @@ double column_piece(const DensityProfile& profile, double planet_radius_m, doubl
   const double coarse = 2.0 * dt * log_mean_sum(e, l, segments / 2, 2, terms);
   return std::max(0.0, (4.0 * fine - coarse) / 3.0);
 }
-}  // namespace
 
-double column_to_top_m(const DensityProfile& profile, double planet_radius_m, double top_radius_m,
-                       double r_m, double mu, int segments) {
+// The columns of `count` profiles along [ta, tb] of that path, on one set of nodes.
+void columns_piece(const DensityProfile* const* profiles, int count, double planet_radius_m, double r_m, double mu,
+                   double ta, double tb, int segments, double* out) {
+  if (!(tb > ta) || segments < 1) return;
+  segments += segments % 2;
+  thread_local Eigen::ArrayXd alt;
+  node_altitudes(planet_radius_m, r_m, mu, ta, tb, segments, alt);
+  const double dt = (tb - ta) / segments;
+  for (int i = 0; i < count; ++i) out[i] += column_on_nodes(*profiles[i], alt, dt, segments);
+}
+
+// Columns from (r, mu) to the top, split at the ray's lowest point when it descends first.
+void columns_to_top(const DensityProfile* const* profiles, int count, double planet_radius_m, double top_radius_m,
+                    double r_m, double mu, int segments, double* out) {
+  for (int i = 0; i < count; ++i) out[i] = 0.0;
   const double d = distance_to_top_m(r_m, mu, top_radius_m);
   const double t_low = -r_m * mu;  // lowest point of the ray (ahead only if mu < 0)
   if (t_low > 0.0 && t_low < d) {
     const int s1 = std::max(1, static_cast<int>(std::lround(segments * t_low / d)));
     const int s2 = std::max(1, segments - s1);
-    return column_piece(profile, planet_radius_m, r_m, mu, 0.0, t_low, s1) +
-           column_piece(profile, planet_radius_m, r_m, mu, t_low, d, s2);
+    columns_piece(profiles, count, planet_radius_m, r_m, mu, 0.0, t_low, s1, out);
+    columns_piece(profiles, count, planet_radius_m, r_m, mu, t_low, d, s2, out);
+    return;
   }
-  return column_piece(profile, planet_radius_m, r_m, mu, 0.0, d, segments);
+  columns_piece(profiles, count, planet_radius_m, r_m, mu, 0.0, d, segments, out);
+}
+}  // namespace
+
+double column_to_top_m(const DensityProfile& profile, double planet_radius_m, double top_radius_m,
+                       double r_m, double mu, int segments) {
+  const DensityProfile* profiles[1] = {&profile};
+  double column = 0.0;
+  columns_to_top(profiles, 1, planet_radius_m, top_radius_m, r_m, mu, segments, &column);
+  return column;
 }
 
 Columns columns_to_top_m(const AtmosphereModel& atm, double r_m, double mu, int segments) {
+  // All species on the same nodes: their altitudes are computed once.
+  const DensityProfile* profiles[kSpeciesCount] = {&atm.rayleigh().profile, &atm.mie().profile, &atm.ozone().profile};
   Columns c{};
-  c[kRayleigh] = column_to_top_m(atm.rayleigh().profile, atm.planet_radius_m(), atm.top_radius_m(), r_m, mu, segments);
-  c[kMie] = column_to_top_m(atm.mie().profile, atm.planet_radius_m(), atm.top_radius_m(), r_m, mu, segments);
-  c[kOzone] = atm.ozone().enabled()
-                  ? column_to_top_m(atm.ozone().profile, atm.planet_radius_m(), atm.top_radius_m(), r_m, mu, segments)
-                  : 0.0;
+  columns_to_top(profiles, atm.ozone().enabled() ? 3 : 2, atm.planet_radius_m(), atm.top_radius_m(), r_m, mu,
+                 segments, c.data());
   return c;
 }
 

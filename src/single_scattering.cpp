@@ -59,22 +59,6 @@ void accumulate_segment_integrals(const Spectrum& tau_a, const Spectrum& trans_a
   }
 }
 
-// A node of the quadrature: a point on the view ray.
-struct Node {
-  double t;
-  double r;
-  double mu_sun;
-  double log_rho[2];  // Rayleigh, Mie
-  double rho[2];      // exp(log_rho), once per node
-  double rho_ozone;
-};
-
-// A stretch of the ray between cuts, lit by the sun or in the planet's shadow.
-struct Piece {
-  double t0, t1;
-  bool lit;
-};
-
 }  // namespace
 
 void SingleScattering::transmittance_to_space(const Vec3& o, const Vec3& d, Spectrum& out) const {
@@ -119,22 +103,42 @@ void SingleScattering::combine(const RadianceParts& parts, double mu, const Spec
   }
 }
 
-void SingleScattering::radiance_parts(const Vec3& o, const Vec3& d, const Vec3& s, const ScatteringSources& sources,
-                                      ScatteringWorkspace& ws, RadianceParts& parts) const {
-  parts.rayleigh.setZero();
-  parts.mie.setZero();
-  parts.isotropic.setZero();
-  if (sources.transmittance) sources.transmittance->setOnes();
-  const double R = atm_.planet_radius_m(), Rt = atm_.top_radius_m();
-  if (o.norm() < R) {  // inside the planet
-    if (sources.transmittance) sources.transmittance->setZero();
-    return;
-  }
+// A node of the quadrature: a point on the view ray, its densities, and the view-ray columns
+// from the start of the ray to it.
+struct SingleScattering::Node {
+  double t;
+  double r;
+  double log_rho[2];  // Rayleigh, Mie
+  double rho[2];      // exp(log_rho), once per node
+  double rho_ozone;
+  double col[kSpeciesCount];
+};
 
-  // The part of the ray inside the atmosphere, up to the ground if it hits it, or up to a surface
-  // at max_distance_m.
+// A stretch of the ray between cuts, lit by the sun or in the planet's shadow, and its nodes:
+// nodes[first_node .. first_node + segments].
+struct SingleScattering::Piece {
+  double t0, t1;
+  bool lit;
+  int first_node = 0, segments = 0;
+};
+
+struct SingleScattering::Ray {
+  double t_begin = 0.0, t_end = 0.0;
+  bool hits_ground = false;  // ends on the ground (the last node is the ground point)
+  Piece pieces[8];
+  int n_pieces = 0;
+  std::vector<Node> nodes;
+};
+
+// Where the ray o + t d runs in the atmosphere (up to the ground if it hits it, or up to a surface
+// at max_distance_m), cut into pieces at the shadow boundaries (closed form) and at the ray's
+// lowest point. False when there is nothing to integrate.
+bool SingleScattering::trace(const Vec3& o, const Vec3& d, const Vec3& s, const ScatteringSources& sources,
+                             Ray& ray) const {
+  const double R = atm_.planet_radius_m(), Rt = atm_.top_radius_m();
+  ray.n_pieces = 0;
   const SphereHit top = intersect_sphere(o, d, Rt);
-  if (!top.hit || top.t_far_m <= 0.0) return;
+  if (!top.hit || top.t_far_m <= 0.0) return false;
   const double t_begin = std::max(0.0, top.t_near_m);
   double t_end = top.t_far_m;
   bool hits_ground = false;
@@ -147,57 +151,62 @@ void SingleScattering::radiance_parts(const Vec3& o, const Vec3& d, const Vec3& 
     t_end = sources.max_distance_m;
     hits_ground = false;
   }
-  if (!(t_end > t_begin)) return;
+  if (!(t_end > t_begin)) return false;
+  ray.t_begin = t_begin;
+  ray.t_end = t_end;
+  ray.hits_ground = hits_ground;
 
-  // Pieces: cut at the shadow boundaries (closed form) and at the ray's lowest point. Shadowed
-  // pieces carry only higher-order light; without it they matter only for the view columns.
+  // Shadowed pieces carry only higher-order light; without it they matter only for the view
+  // columns. Without higher orders, a ray entirely in shadow sees nothing (its ground point is
+  // dark too).
   const IntervalSet lit = lit_intervals(o, d, t_begin, t_end, s, R);
-  const bool higher = sources.higher != nullptr;
-  // Without higher orders, a ray entirely in shadow sees nothing (its ground point is dark too).
-  if (!higher && lit.count == 0 && !sources.transmittance) return;
+  if (!sources.higher && lit.count == 0 && !sources.transmittance) return false;
   const double t_low = -o.dot(d);
-  Piece pieces[8];
-  int n_pieces = 0;
-  {
-    double cuts[6];
-    bool cut_lit[6];
-    int n = 0;
-    double t = t_begin;
-    for (int i = 0; i < lit.count; ++i) {
-      if (lit.parts[i].t0_m > t) {
-        cuts[n] = lit.parts[i].t0_m;
-        cut_lit[n++] = false;  // [t, t0] dark
-      }
-      cuts[n] = lit.parts[i].t1_m;
-      cut_lit[n++] = true;
-      t = lit.parts[i].t1_m;
+  double cuts[6];
+  bool cut_lit[6];
+  int n = 0;
+  double t = t_begin;
+  for (int i = 0; i < lit.count; ++i) {
+    if (lit.parts[i].t0_m > t) {
+      cuts[n] = lit.parts[i].t0_m;
+      cut_lit[n++] = false;  // [t, t0] dark
     }
-    if (t < t_end) {
-      cuts[n] = t_end;
-      cut_lit[n++] = false;
-    }
-    double a = t_begin;
-    for (int i = 0; i < n; ++i) {
-      const double b = cuts[i];
-      if (t_low > a && t_low < b) {
-        pieces[n_pieces++] = {a, t_low, cut_lit[i]};
-        a = t_low;
-      }
-      pieces[n_pieces++] = {a, b, cut_lit[i]};
-      a = b;
-    }
+    cuts[n] = lit.parts[i].t1_m;
+    cut_lit[n++] = true;
+    t = lit.parts[i].t1_m;
   }
+  if (t < t_end) {
+    cuts[n] = t_end;
+    cut_lit[n++] = false;
+  }
+  double a = t_begin;
+  for (int i = 0; i < n; ++i) {
+    const double b = cuts[i];
+    if (t_low > a && t_low < b) {
+      ray.pieces[ray.n_pieces++] = {a, t_low, cut_lit[i]};
+      a = t_low;
+    }
+    ray.pieces[ray.n_pieces++] = {a, b, cut_lit[i]};
+    a = b;
+  }
+  return true;
+}
 
+// The nodes: on pieces where light is collected, view_segments in all, shared in proportion to
+// length (an even number per piece, so that pairs of segments form the coarse rule); on the
+// others 8, which only carry the view columns across. Densities once per node; the columns by
+// the log-mean rule for the positive profiles, the trapezoid rule for ozone.
+void SingleScattering::place_nodes(const Vec3& o, const Vec3& d, const ScatteringSources& sources, Ray& ray) const {
+  const double R = atm_.planet_radius_m();
   const DensityProfile& prof_r = atm_.rayleigh().profile;
   const DensityProfile& prof_m = atm_.mie().profile;
   const DensityProfile& prof_o = atm_.ozone().profile;
   const bool ozone = atm_.ozone().enabled();
+  const bool higher = sources.higher != nullptr;
   auto make_node = [&](double t) {
     Node n;
     n.t = t;
-    const Vec3 p = o + t * d;
-    n.r = p.norm();
-    n.mu_sun = p.dot(s) / n.r;
+    n.r = (o + t * d).norm();
     const double alt = n.r - R;
     n.log_rho[0] = prof_r.log_relative(alt);
     n.log_rho[1] = prof_m.log_relative(alt);
@@ -206,25 +215,60 @@ void SingleScattering::radiance_parts(const Vec3& o, const Vec3& d, const Vec3& 
     n.rho_ozone = ozone ? prof_o.relative(alt) : 0.0;
     return n;
   };
-
-  // View-ray columns from t_begin: log-mean rule for the positive profiles, trapezoid for ozone.
-  double view_col[kSpeciesCount] = {0.0, 0.0, 0.0};
-  auto advance_columns = [&](const Node& a, const Node& b) {
-    const double dt = b.t - a.t;
+  auto append = [&](double t) {
+    Node next = make_node(t);
+    const Node& prev = ray.nodes.back();
+    const double dt = next.t - prev.t;
     for (int k = 0; k < 2; ++k)
-      view_col[k] += dt * log_mean(a.rho[k], b.rho[k], a.log_rho[k] - b.log_rho[k]);
-    view_col[kOzone] += 0.5 * dt * (a.rho_ozone + b.rho_ozone);
+      next.col[k] = prev.col[k] + dt * log_mean(prev.rho[k], next.rho[k], prev.log_rho[k] - next.log_rho[k]);
+    next.col[kOzone] = prev.col[kOzone] + 0.5 * dt * (prev.rho_ozone + next.rho_ozone);
+    ray.nodes.push_back(next);
   };
-  auto view_tau = [&](Spectrum& tau) {
-    tau = ext_[kRayleigh] * static_cast<float>(view_col[kRayleigh]) + ext_[kMie] * static_cast<float>(view_col[kMie]);
-    if (ozone) tau += ext_[kOzone] * static_cast<float>(view_col[kOzone]);
+
+  double total_len = 0.0;
+  for (int i = 0; i < ray.n_pieces; ++i)
+    if (ray.pieces[i].lit || higher) total_len += ray.pieces[i].t1 - ray.pieces[i].t0;
+  ray.nodes.clear();
+  Node first = make_node(ray.t_begin);
+  first.col[kRayleigh] = first.col[kMie] = first.col[kOzone] = 0.0;
+  ray.nodes.push_back(first);
+  for (int i = 0; i < ray.n_pieces; ++i) {
+    Piece& pc = ray.pieces[i];
+    const bool collect = (sources.single && pc.lit) || higher;
+    int segs = 8;
+    if (collect) {
+      segs = std::max(2, static_cast<int>(std::lround(settings_.view_segments * (pc.t1 - pc.t0) / total_len)));
+      segs += segs % 2;
+    }
+    pc.first_node = static_cast<int>(ray.nodes.size()) - 1;
+    pc.segments = segs;
+    const double dt = (pc.t1 - pc.t0) / segs;
+    for (int k = 1; k <= segs; ++k) append(k == segs ? pc.t1 : pc.t0 + dt * k);
+  }
+}
+
+// The integrals over the nodes for the direction d (the nodes' positions and columns may come
+// from another ray with the same altitude profile: only the sun's angle is taken from d here).
+void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, const Vec3& s,
+                                 const ScatteringSources& sources, ScatteringWorkspace& ws, RadianceParts& parts) const {
+  parts.rayleigh.setZero();
+  parts.mie.setZero();
+  parts.isotropic.setZero();
+  const double R = atm_.planet_radius_m();
+  const bool ozone = atm_.ozone().enabled();
+  const bool higher = sources.higher != nullptr;
+  const double os = o.dot(s), ds = d.dot(s);
+  auto mu_sun = [&](const Node& n) { return (os + n.t * ds) / n.r; };
+  auto view_tau = [&](const Node& n, Spectrum& tau) {
+    tau = ext_[kRayleigh] * static_cast<float>(n.col[kRayleigh]) + ext_[kMie] * static_cast<float>(n.col[kMie]);
+    if (ozone) tau += ext_[kOzone] * static_cast<float>(n.col[kOzone]);
   };
   // Total optical depth view + sun at a lit node.
   auto total_tau = [&](const Node& n, Spectrum& tau) {
-    const Columns sun = sun_.at(n.r, n.mu_sun);
-    tau = ext_[kRayleigh] * static_cast<float>(view_col[kRayleigh] + sun[kRayleigh]) +
-          ext_[kMie] * static_cast<float>(view_col[kMie] + sun[kMie]);
-    if (ozone) tau += ext_[kOzone] * static_cast<float>(view_col[kOzone] + sun[kOzone]);
+    const Columns sun = sun_.at(n.r, mu_sun(n));
+    tau = ext_[kRayleigh] * static_cast<float>(n.col[kRayleigh] + sun[kRayleigh]) +
+          ext_[kMie] * static_cast<float>(n.col[kMie] + sun[kMie]);
+    if (ozone) tau += ext_[kOzone] * static_cast<float>(n.col[kOzone] + sun[kOzone]);
   };
   // Higher orders: the integrand of species s is beta_sca,s rho_s exp(-tau_view) J, J the
   // higher-order source. It is integrated by the same log-mean rule as single scattering, with
@@ -232,8 +276,8 @@ void SingleScattering::radiance_parts(const Vec3& o, const Vec3& d, const Vec3& 
   // place of the transmittance (ln of the integrand is ln rho_s - tau' + const). J is floored at
   // a tiny positive value so that its logarithm is finite where the tables hold no light.
   auto higher_node = [&](const Node& n, Spectrum& tau, Spectrum& trans) {
-    sources.higher->source(n.r, n.mu_sun, ws.source.data());
-    view_tau(ws.view_tau);
+    sources.higher->source(n.r, mu_sun(n), ws.source.data());
+    view_tau(n, ws.view_tau);
     ws.source = ws.source.max(1e-30f);
     tau = ws.view_tau - ws.source.log();
     trans = (-ws.view_tau).exp() * ws.source;
@@ -249,9 +293,6 @@ void SingleScattering::radiance_parts(const Vec3& o, const Vec3& d, const Vec3& 
                                  static_cast<float>(nb.t - na.t), sum_r, sum_m);
   };
 
-  double total_len = 0.0;
-  for (int i = 0; i < n_pieces; ++i)
-    if (pieces[i].lit || higher) total_len += pieces[i].t1 - pieces[i].t0;
   ws.sum_rayleigh.setZero();
   ws.sum_mie.setZero();
   ws.coarse_rayleigh.setZero();
@@ -261,40 +302,26 @@ void SingleScattering::radiance_parts(const Vec3& o, const Vec3& d, const Vec3& 
   ws.coarse_ms_rayleigh.setZero();
   ws.coarse_ms_mie.setZero();
 
-  Node prev = make_node(t_begin);
-  for (int i = 0; i < n_pieces; ++i) {
-    const Piece& pc = pieces[i];
+  for (int i = 0; i < ray.n_pieces; ++i) {
+    const Piece& pc = ray.pieces[i];
     const bool single_here = sources.single && pc.lit;
-    if (!single_here && !higher) {
-      // Nothing to collect: only the view columns advance, on a few segments.
-      const int n = 8;
-      const double dt = (pc.t1 - pc.t0) / n;
-      for (int k = 1; k <= n; ++k) {
-        const Node next = make_node(k == n ? pc.t1 : pc.t0 + dt * k);
-        advance_columns(prev, next);
-        prev = next;
-      }
-      continue;
-    }
-    // An even number of segments, so that pairs of them form the coarse rule.
-    int segs = std::max(2, static_cast<int>(std::lround(settings_.view_segments * (pc.t1 - pc.t0) / total_len)));
-    segs += segs % 2;
-    const double dt = (pc.t1 - pc.t0) / segs;
+    if (!single_here && !higher) continue;  // nothing to collect: its nodes only carried the columns
+    const Node* nodes = ray.nodes.data() + pc.first_node;
     if (single_here) {
-      total_tau(prev, ws.tau_a);
+      total_tau(nodes[0], ws.tau_a);
       ws.trans_a = (-ws.tau_a).exp();
       ws.tau_c = ws.tau_a;
       ws.trans_c = ws.trans_a;
     }
     if (higher) {
-      higher_node(prev, ws.ms_a, ws.ms_trans_a);
+      higher_node(nodes[0], ws.ms_a, ws.ms_trans_a);
       ws.ms_c = ws.ms_a;
       ws.ms_trans_c = ws.ms_trans_a;
     }
-    Node pair_start = prev;
-    for (int k = 1; k <= segs; ++k) {
-      const Node next = make_node(k == segs ? pc.t1 : pc.t0 + dt * k);
-      advance_columns(prev, next);
+    int pair_start = 0;
+    for (int k = 1; k <= pc.segments; ++k) {
+      const Node& prev = nodes[k - 1];
+      const Node& next = nodes[k];
       if (single_here) {
         total_tau(next, ws.tau_b);
         ws.trans_b = (-ws.tau_b).exp();
@@ -307,20 +334,19 @@ void SingleScattering::radiance_parts(const Vec3& o, const Vec3& d, const Vec3& 
       }
       if (k % 2 == 0) {
         if (single_here) {
-          accumulate_segment(pair_start, next, ws.tau_c, ws.trans_c, ws.tau_b, ws.trans_b, ws.coarse_rayleigh,
+          accumulate_segment(nodes[pair_start], next, ws.tau_c, ws.trans_c, ws.tau_b, ws.trans_b, ws.coarse_rayleigh,
                              ws.coarse_mie);
           ws.tau_c = ws.tau_b;
           ws.trans_c = ws.trans_b;
         }
         if (higher) {
-          accumulate_segment(pair_start, next, ws.ms_c, ws.ms_trans_c, ws.ms_b, ws.ms_trans_b, ws.coarse_ms_rayleigh,
-                             ws.coarse_ms_mie);
+          accumulate_segment(nodes[pair_start], next, ws.ms_c, ws.ms_trans_c, ws.ms_b, ws.ms_trans_b,
+                             ws.coarse_ms_rayleigh, ws.coarse_ms_mie);
           ws.ms_c = ws.ms_b;
           ws.ms_trans_c = ws.ms_trans_b;
         }
-        pair_start = next;
+        pair_start = k;
       }
-      prev = next;
       if (single_here) {
         ws.tau_a.swap(ws.tau_b);
         ws.trans_a.swap(ws.trans_b);
@@ -342,30 +368,89 @@ void SingleScattering::radiance_parts(const Vec3& o, const Vec3& d, const Vec3& 
     parts.isotropic = sca_rayleigh_ * ((4.0f * ws.sum_ms_rayleigh - ws.coarse_ms_rayleigh) * (1.0f / 3.0f)).max(0.0f) +
                       sca_mie_ * ((4.0f * ws.sum_ms_mie - ws.coarse_ms_mie) * (1.0f / 3.0f)).max(0.0f);
 
+  const Node& last = ray.nodes.back();
   if (sources.transmittance) {
-    view_tau(ws.view_tau);
+    view_tau(last, ws.view_tau);
     *sources.transmittance = (-ws.view_tau).exp();
   }
 
   // The ground: Lambertian reflection of the direct sun (order 1) and of the sky (higher orders),
   // seen through the whole view ray.
-  if (hits_ground && albedo_over_pi_.maxCoeff() > 0.0f) {
-    const Node g = prev;  // the last node is the ground point
-    view_tau(ws.view_tau);
+  if (ray.hits_ground && albedo_over_pi_.maxCoeff() > 0.0f) {
+    const Node& g = last;  // the last node is the ground point
+    const double g_mu_sun = mu_sun(g);
+    view_tau(g, ws.view_tau);
     ws.view_trans = (-ws.view_tau).exp();
     ws.source.setZero();
-    if (sources.single && g.mu_sun > 0.0) {
+    if (sources.single && g_mu_sun > 0.0) {
       Spectrum& tau_sun = ws.tau_c;  // free at this point
-      const Columns sun = sun_.at(R, g.mu_sun);
+      const Columns sun = sun_.at(R, g_mu_sun);
       tau_sun = ext_[kRayleigh] * static_cast<float>(sun[kRayleigh]) + ext_[kMie] * static_cast<float>(sun[kMie]) +
                 ext_[kOzone] * static_cast<float>(sun[kOzone]);
-      ws.source = (-tau_sun).exp() * static_cast<float>(g.mu_sun);
+      ws.source = (-tau_sun).exp() * static_cast<float>(g_mu_sun);
     }
     if (higher) {
-      sources.higher->ground_irradiance(g.mu_sun, ws.ms_c.data());
+      sources.higher->ground_irradiance(g_mu_sun, ws.ms_c.data());
       ws.source += ws.ms_c;
     }
     parts.isotropic += ws.view_trans * albedo_over_pi_ * ws.source;
+  }
+}
+
+void SingleScattering::radiance_parts(const Vec3& o, const Vec3& d, const Vec3& s, const ScatteringSources& sources,
+                                      ScatteringWorkspace& ws, RadianceParts& parts) const {
+  parts.rayleigh.setZero();
+  parts.mie.setZero();
+  parts.isotropic.setZero();
+  if (sources.transmittance) sources.transmittance->setOnes();
+  if (o.norm() < atm_.planet_radius_m()) {  // inside the planet
+    if (sources.transmittance) sources.transmittance->setZero();
+    return;
+  }
+  thread_local Ray ray;  // its nodes are reused from call to call
+  if (!trace(o, d, s, sources, ray)) return;
+  place_nodes(o, d, sources, ray);
+  integrate(ray, o, d, s, sources, ws, parts);
+}
+
+void SingleScattering::radiance_parts_same_zenith(const Vec3& o, const Vec3* dirs, int count, const Vec3& s,
+                                                  const ScatteringSources& sources, ScatteringWorkspace& ws,
+                                                  RadianceParts* parts) const {
+  if (sources.transmittance || o.norm() < atm_.planet_radius_m()) {
+    for (int i = 0; i < count; ++i) radiance_parts(o, dirs[i], s, sources, ws, parts[i]);
+    return;
+  }
+  thread_local Ray shared, own;
+  bool have_shared = false;
+  for (int i = 0; i < count; ++i) {
+    const Vec3& d = dirs[i];
+    if (!trace(o, d, s, sources, own)) {
+      parts[i].rayleigh.setZero();
+      parts[i].mie.setZero();
+      parts[i].isotropic.setZero();
+      continue;
+    }
+    bool lit_throughout = !own.hits_ground;
+    for (int k = 0; k < own.n_pieces; ++k) lit_throughout = lit_throughout && own.pieces[k].lit;
+    if (lit_throughout && have_shared) {
+      // The same pieces as the shared ray's, to rounding (each ray's own intersections differ
+      // from the shared one's in the last bits)?
+      bool same = own.n_pieces == shared.n_pieces;
+      const double tolerance = 1e-9 * shared.t_end;
+      for (int k = 0; same && k < own.n_pieces; ++k)
+        same = std::abs(own.pieces[k].t0 - shared.pieces[k].t0) <= tolerance &&
+               std::abs(own.pieces[k].t1 - shared.pieces[k].t1) <= tolerance;
+      if (same) {
+        integrate(shared, o, d, s, sources, ws, parts[i]);
+        continue;
+      }
+    }
+    place_nodes(o, d, sources, own);
+    integrate(own, o, d, s, sources, ws, parts[i]);
+    if (lit_throughout && !have_shared) {
+      std::swap(shared, own);
+      have_shared = true;
+    }
   }
 }
 

@@ -149,23 +149,35 @@ SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringS
   ScatteringSources src = sources;
   src.transmittance = nullptr;
   src.max_distance_m = std::numeric_limits<double>::infinity();
-  const int n = n_;
-  tbb::enumerable_thread_specific<ScatteringWorkspace> workspaces([n] { return ScatteringWorkspace(n); });
+  // A row at a time: its rays share their zenith angle, so the integrator computes their nodes
+  // once (SingleScattering::radiance_parts_same_zenith).
+  struct RowScratch {
+    ScatteringWorkspace ws;
+    std::vector<Vec3> dirs;
+    std::vector<RadianceParts> parts;
+    RowScratch(int wavelengths, int azimuths)
+        : ws(wavelengths), dirs(static_cast<size_t>(azimuths)), parts(static_cast<size_t>(azimuths), RadianceParts(wavelengths)) {}
+  };
+  const int n = n_, m = res_.azimuths;
+  tbb::enumerable_thread_specific<RowScratch> scratch([n, m] { return RowScratch(n, m); });
   const int total_rows = res_.sky_rows + (res_.ground_side ? res_.ground_rows : 0);
   tbb::task_arena arena(std::max(1, threads));
   arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<int>(0, total_rows * res_.azimuths, 8), [&](const tbb::blocked_range<int>& range) {
-      ScatteringWorkspace& ws = workspaces.local();
-      for (int idx = range.begin(); idx != range.end(); ++idx) {
-        const int row_all = idx / res_.azimuths, column = idx % res_.azimuths;
+    tbb::parallel_for(tbb::blocked_range<int>(0, total_rows, 1), [&](const tbb::blocked_range<int>& range) {
+      RowScratch& sc = scratch.local();
+      for (int row_all = range.begin(); row_all != range.end(); ++row_all) {
         const bool sky_side = row_all < res_.sky_rows;
         const int row = sky_side ? row_all : row_all - res_.sky_rows;
-        integrator.radiance_parts(origin_m, direction(sky_side, row, column), sun_dir, src, ws, ws.parts);
-        float* entry = (sky_side ? sky_ : ground_).data() + row * stride +
-                       static_cast<size_t>(column) * kParts * static_cast<size_t>(n);
-        std::copy(ws.parts.rayleigh.data(), ws.parts.rayleigh.data() + n, entry);
-        std::copy(ws.parts.mie.data(), ws.parts.mie.data() + n, entry + n);
-        std::copy(ws.parts.isotropic.data(), ws.parts.isotropic.data() + n, entry + 2 * n);
+        for (int column = 0; column < m; ++column) sc.dirs[static_cast<size_t>(column)] = direction(sky_side, row, column);
+        integrator.radiance_parts_same_zenith(origin_m, sc.dirs.data(), m, sun_dir, src, sc.ws, sc.parts.data());
+        for (int column = 0; column < m; ++column) {
+          const RadianceParts& p = sc.parts[static_cast<size_t>(column)];
+          float* entry = (sky_side ? sky_ : ground_).data() + row * stride +
+                         static_cast<size_t>(column) * kParts * static_cast<size_t>(n);
+          std::copy(p.rayleigh.data(), p.rayleigh.data() + n, entry);
+          std::copy(p.mie.data(), p.mie.data() + n, entry + n);
+          std::copy(p.isotropic.data(), p.isotropic.data() + n, entry + 2 * n);
+        }
       }
     });
   });

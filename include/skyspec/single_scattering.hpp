@@ -118,6 +118,15 @@ class SingleScattering {
   /// The same radiance split into its phase-free parts (RadianceParts), per unit solar irradiance.
   void radiance_parts(const Vec3& origin_m, const Vec3& dir, const Vec3& sun_dir, const ScatteringSources& sources,
                       ScatteringWorkspace& ws, RadianceParts& parts) const;
+  /// radiance_parts for `count` directions dirs[i] (unit) that all make the same angle with the
+  /// zenith at origin_m, such as a row of the sky-view table; parts[i] receives direction i's.
+  /// Along such rays the altitude is the same function of distance, so wherever a ray is lit from
+  /// end to end and does not end on the ground, the quadrature's nodes, their densities and the
+  /// view-ray columns to them are those of the first such ray, computed once; only the sun's
+  /// angle, and what depends on it, is evaluated per ray. Other rays are integrated one by one.
+  /// The results are radiance_parts's, to rounding. sources.transmittance must be null.
+  void radiance_parts_same_zenith(const Vec3& origin_m, const Vec3* dirs, int count, const Vec3& sun_dir,
+                                  const ScatteringSources& sources, ScatteringWorkspace& ws, RadianceParts* parts) const;
   /// L = E_sun [p_R(mu) rayleigh + p_M(mu) mie + isotropic] for mu = cos(scattering angle).
   void combine(const RadianceParts& parts, double mu, const Spectrum& sun_irradiance, ScatteringWorkspace& ws,
                Spectrum& out) const;
@@ -136,6 +145,16 @@ class SingleScattering {
   IntegratorSettings settings_;
   Spectrum ext_[kSpeciesCount];
   Spectrum sca_rayleigh_, sca_mie_, albedo_over_pi_;
+
+  // The quadrature along one ray (single_scattering.cpp): where the ray runs in the atmosphere,
+  // its pieces (lit or in shadow), the nodes on them, and the integration over the nodes.
+  struct Node;
+  struct Piece;
+  struct Ray;
+  bool trace(const Vec3& o, const Vec3& d, const Vec3& s, const ScatteringSources& sources, Ray& ray) const;
+  void place_nodes(const Vec3& o, const Vec3& d, const ScatteringSources& sources, Ray& ray) const;
+  void integrate(const Ray& ray, const Vec3& o, const Vec3& d, const Vec3& s, const ScatteringSources& sources,
+                 ScatteringWorkspace& ws, RadianceParts& parts) const;
 };
 
 }  // namespace skyspec
