@@ -177,3 +177,40 @@ BOOST_AUTO_TEST_CASE(distance_cap_matches_closed_form) {
   ss.radiance(o, up, sun, Spectrum::Ones(3), src, ws, L);
   BOOST_TEST(static_cast<double>(T[0]) == std::exp(-(kBetaR[0] + 1.1 * 21e-6) * (top - h)), boost::test_tools::tolerance(1e-5));
 }
+
+// Rays of one zenith angle share their nodes (radiance_parts_same_zenith, the sky-view table's
+// rows): the same parts as integrating each ray alone, to rounding, for rays lit throughout, rays
+// partly in the planet's shadow (sun below the horizon), and rays that end on the ground (camera
+// at 2 km looking down).
+BOOST_AUTO_TEST_CASE(rays_of_one_zenith_angle_share_nodes_exactly) {
+  const AtmosphereModel atm(test::simple_atmosphere(ProfileKind::Exponential, 60e3, kNm, kBetaR, 21e-6),
+                            WavelengthGrid::from_list(kNm));
+  const SunColumnTable table(atm);
+  const TableSunColumns cols(table);
+  const SingleScattering ss(atm, cols, {64});
+  const int n = 3, m = 16;
+  ScatteringWorkspace ws(n);
+  int compared = 0;
+  for (double height : {1.0, 2000.0})
+    for (double sun_el : {30.0, 2.0, -4.0})
+      for (double view_el : {60.0, 3.0, 0.2, -1.0, -30.0}) {
+        const Vec3 o(0, 0, R + height), s = direction_from_angles(10, sun_el);
+        std::vector<Vec3> dirs;
+        for (int j = 0; j < m; ++j) dirs.push_back(direction_from_angles(10 + 180.0 * j / (m - 1), view_el));
+        std::vector<RadianceParts> row(m, RadianceParts(n));
+        ss.radiance_parts_same_zenith(o, dirs.data(), m, s, ScatteringSources{}, ws, row.data());
+        for (int j = 0; j < m; ++j) {
+          RadianceParts alone(n);
+          ss.radiance_parts(o, dirs[static_cast<size_t>(j)], s, ScatteringSources{}, ws, alone);
+          const RadianceParts& shared = row[static_cast<size_t>(j)];
+          for (int i = 0; i < n; ++i) {
+            const auto close = [](float a, float b) { return std::abs(a - b) <= 1e-5f * std::max(std::abs(b), 1e-30f); };
+            BOOST_TEST(close(shared.rayleigh[i], alone.rayleigh[i]));
+            BOOST_TEST(close(shared.mie[i], alone.mie[i]));
+            BOOST_TEST(close(shared.isotropic[i], alone.isotropic[i]));
+          }
+          compared += alone.rayleigh.maxCoeff() > 0.0f;
+        }
+      }
+  BOOST_TEST(compared > 100);  // most rays see light
+}
