@@ -80,7 +80,9 @@ class TableSunColumns : public SunColumns {
 
 /// An isotropic in-scattering source field J(r, mu_s) (radiance per unit scattering coefficient
 /// and per unit solar irradiance, sr^-1) and the irradiance G(mu_s) it puts on the ground (per unit
-/// solar irradiance). Implemented by the scattering-order tables.
+/// solar irradiance). Implemented by the scattering-order tables. Both are called in the middle
+/// of an integration and must not themselves call SingleScattering's radiance functions on the
+/// same thread (the integrator keeps a ray's nodes per thread).
 class InScatteringSource {
  public:
   virtual ~InScatteringSource() = default;
