@@ -123,24 +123,79 @@ Columns columns_to_top_m(const AtmosphereModel& atm, double r_m, double mu, int 
   return c;
 }
 
-SunColumnTable::SunColumnTable(const AtmosphereModel& atm, Resolution res)
-    : R_(atm.planet_radius_m()),
+namespace {
+// x_mu of the table's parameterisation for zenith cosine mu at radius r (1 at and below the
+// horizon).
+double x_mu_of(double r, double mu, double R, double Rt, double H) {
+  const double rho = std::sqrt(std::max((r - R) * (r + R), 0.0));
+  const double d_min = Rt - r, d_max = rho + H;
+  const double d = distance_to_top_m(r, mu, Rt);
+  return d_max > d_min ? std::clamp((d - d_min) / (d_max - d_min), 0.0, 1.0) : 0.0;
+}
+}  // namespace
+
+SunColumnTable::SunColumnTable(const AtmosphereModel& atm, Resolution res, MuBand band)
+    : atm_(&atm),
+      R_(atm.planet_radius_m()),
       Rt_(atm.top_radius_m()),
       H_(std::sqrt((Rt_ - R_) * (Rt_ + R_))),
       res_(res),
-      data_(static_cast<size_t>(res.n_r) * static_cast<size_t>(res.n_mu)) {
+      data_(static_cast<size_t>(res.n_r) * static_cast<size_t>(res.n_mu)),
+      first_(static_cast<size_t>(res.n_r), 0),
+      end_(static_cast<size_t>(res.n_r), res.n_mu) {
+  const auto radius_of_row = [&](int ir) {
+    const double rho = H_ * static_cast<double>(std::clamp(ir, 0, res_.n_r - 1)) / (res_.n_r - 1);
+    return std::sqrt(rho * rho + R_ * R_);
+  };
+  const bool whole = band.lo <= -1.0 && band.hi >= 1.0;
   tbb::parallel_for(0, res_.n_r, [&](int ir) {
-    const double x_r = static_cast<double>(ir) / (res_.n_r - 1);
-    const double rho = H_ * x_r;
-    const double r = std::sqrt(rho * rho + R_ * R_);
+    const double r = radius_of_row(ir);
+    const double rho = std::sqrt(std::max((r - R_) * (r + R_), 0.0));
     const double d_min = Rt_ - r, d_max = rho + H_;
-    for (int im = 0; im < res_.n_mu; ++im) {
+    if (!whole) {
+      // The columns look-ups at radii between the neighbouring rows use, with a cell to spare on
+      // either side (x_mu decreases with mu).
+      double x_lo = 1.0, x_hi = 0.0;
+      for (int k : {ir - 1, ir, ir + 1}) {
+        const double rk = radius_of_row(k);
+        x_lo = std::min(x_lo, x_mu_of(rk, band.hi, R_, Rt_, H_));
+        x_hi = std::max(x_hi, x_mu_of(rk, band.lo, R_, Rt_, H_));
+      }
+      first_[static_cast<size_t>(ir)] = std::max(0, static_cast<int>(std::floor(x_lo * (res_.n_mu - 1))) - 1);
+      end_[static_cast<size_t>(ir)] = std::min(res_.n_mu, static_cast<int>(std::ceil(x_hi * (res_.n_mu - 1))) + 2);
+    }
+    for (int im = first_[static_cast<size_t>(ir)]; im < end_[static_cast<size_t>(ir)]; ++im) {
       const double x_mu = static_cast<double>(im) / (res_.n_mu - 1);
       const double d = d_min + x_mu * (d_max - d_min);
       const double mu = d <= 0.0 ? 1.0 : std::clamp((H_ * H_ - rho * rho - d * d) / (2.0 * r * d), -1.0, 1.0);
       data_[static_cast<size_t>(ir) * res_.n_mu + im] = columns_to_top_m(atm, r, mu, res_.segments);
     }
   });
+}
+
+SunColumnTable::MuBand SunColumnTable::band_seen_from(const AtmosphereModel& atm, const Vec3& origin_m,
+                                                      const Vec3& sun_dir) {
+  const double R = atm.planet_radius_m(), Rt = atm.top_radius_m(), r = origin_m.norm();
+  if (!(r >= R) || !std::isfinite(r)) return MuBand{};
+  const double reach = std::acos(std::min(1.0, R / r)) + std::acos(R / Rt) + 1e-6;  // rad, with rounding to spare
+  const double theta = std::acos(std::clamp(origin_m.dot(sun_dir) / r, -1.0, 1.0));
+  constexpr double kPi = 3.14159265358979323846;
+  return MuBand{std::cos(std::min(kPi, theta + reach)), std::cos(std::max(0.0, theta - reach))};
+}
+
+long SunColumnTable::computed_entries() const {
+  long n = 0;
+  for (size_t i = 0; i < first_.size(); ++i) n += end_[i] - first_[i];
+  return n;
+}
+
+// A look-up outside the computed band: the columns at the same (r, x_mu), integrated directly.
+Columns SunColumnTable::direct(double r, double x_mu) const {
+  const double rho = std::sqrt(std::max((r - R_) * (r + R_), 0.0));
+  const double d_min = Rt_ - r, d_max = rho + H_;
+  const double d = d_min + x_mu * (d_max - d_min);
+  const double mu = d <= 0.0 ? 1.0 : std::clamp((H_ * H_ - rho * rho - d * d) / (2.0 * r * d), -1.0, 1.0);
+  return columns_to_top_m(*atm_, r, mu, res_.segments);
 }
 
 Columns SunColumnTable::lookup(double r_m, double mu) const {
@@ -153,6 +208,8 @@ Columns SunColumnTable::lookup(double r_m, double mu) const {
   const double fr = x_r * (res_.n_r - 1), fm = x_mu * (res_.n_mu - 1);
   const int ir = std::min(static_cast<int>(fr), res_.n_r - 2);
   const int im = std::min(static_cast<int>(fm), res_.n_mu - 2);
+  for (int k : {ir, ir + 1})
+    if (im < first_[static_cast<size_t>(k)] || im + 2 > end_[static_cast<size_t>(k)]) return direct(r, x_mu);
   const double ar = fr - ir, am = fm - im;
   const Columns& c00 = data_[static_cast<size_t>(ir) * res_.n_mu + im];
   const Columns& c01 = data_[static_cast<size_t>(ir) * res_.n_mu + im + 1];

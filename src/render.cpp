@@ -123,6 +123,15 @@ int thread_count(const Scene& s) {
   return s.render.threads > 0 ? s.render.threads : tbb::this_task_arena::max_concurrency();
 }
 
+// The sun angles the sun table must serve: with single scattering every look-up is on a ray from
+// the camera, so only the band of sun angles met in the air the camera sees (a few degrees either
+// side of the sun's angle at the camera, for a camera on the ground); building the scattering
+// orders needs every angle.
+SunColumnTable::MuBand sun_band(const Scene& s, const AtmosphereModel& atmosphere) {
+  if (s.render.scattering_orders >= 2) return SunColumnTable::MuBand{};
+  return SunColumnTable::band_seen_from(atmosphere, make_camera(s)->origin_m(), sun_direction(s));
+}
+
 // Tables are reused across renders of the same atmosphere in one process (a time-lapse changes
 // only the sun). The last few are kept.
 std::shared_ptr<const ScatteringOrders> build_orders(const Scene& s, const SingleScattering& integrator) {
@@ -241,7 +250,8 @@ struct SkyRenderer::Impl {
       : scene(s),
         grid(make_wavelength_grid(s)),
         atmosphere(s.atmosphere, grid),
-        table(atmosphere, SunColumnTable::Resolution{s.render.table_altitude_samples, s.render.table_zenith_samples, 64}),
+        table(atmosphere, SunColumnTable::Resolution{s.render.table_altitude_samples, s.render.table_zenith_samples, 64},
+              sun_band(s, atmosphere)),
         sun_columns(table),
         integrator(atmosphere, sun_columns, IntegratorSettings{s.render.view_segments}),
         orders(s.render.scattering_orders >= 2 ? build_orders(s, integrator) : nullptr),

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "skyspec/atmosphere.hpp"
+#include "skyspec/geometry.hpp"
 
 namespace skyspec {
 
@@ -61,18 +62,37 @@ class SunColumnTable {
     int n_mu = 256;          ///< samples in zenith cosine (horizon to zenith)
     int segments = 128;      ///< integration pieces per table entry
   };
-  SunColumnTable(const AtmosphereModel& atm, Resolution res);
+  /// The sun zenith cosines the table is to serve: entries are computed only where a look-up with
+  /// mu in [lo, hi] interpolates (the same grid and values as the whole table there). A look-up
+  /// outside the band is computed directly (columns_to_top_m), so it is slower, never wrong.
+  struct MuBand {
+    double lo = -1.0, hi = 1.0;
+  };
+  SunColumnTable(const AtmosphereModel& atm, Resolution res, MuBand band);
+  SunColumnTable(const AtmosphereModel& atm, Resolution res) : SunColumnTable(atm, res, MuBand{-1.0, 1.0}) {}
   SunColumnTable(const AtmosphereModel& atm) : SunColumnTable(atm, Resolution{}) {}
+
+  /// The local sun zenith cosines met in the part of the atmosphere seen from origin_m with the
+  /// sun in direction sun_dir (unit). A point p seen from o is at most
+  /// acos(R / |o|) + acos(R / R_t) away from it in angle at the planet's centre (the two tangents
+  /// to the ground), and the sun's zenith angle at p differs from its angle at o by at most that.
+  /// From inside the planet or from far away this is (nearly) every angle.
+  static MuBand band_seen_from(const AtmosphereModel& atm, const Vec3& origin_m, const Vec3& sun_dir);
 
   /// Columns from radius r towards zenith cosine mu; r is clamped to [R, R_t] and mu to the
   /// horizon cosine, so callers must have established that the point is lit.
   Columns lookup(double r_m, double mu) const;
   const Resolution& resolution() const { return res_; }
+  /// Entries computed (all n_r * n_mu without a band).
+  long computed_entries() const;
 
  private:
+  Columns direct(double r, double x_mu) const;
+  const AtmosphereModel* atm_;
   double R_, Rt_, H_;
   Resolution res_;
   std::vector<Columns> data_;  // [i_r * n_mu + i_mu]
+  std::vector<int> first_, end_;  // per altitude row: the computed i_mu are [first, end)
 };
 
 }  // namespace skyspec
