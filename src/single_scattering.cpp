@@ -34,28 +34,60 @@ namespace {
 // The single-scattering integrand of species s on a segment [a, b] of the view ray is
 // f(t) = rho_s(t) T(t), T the transmittance along view and sun paths; ln f is nearly linear in t,
 // so its integral over the segment is dt * logmean(f_a, f_b) with x = ln f_a - ln f_b
-// = (ln rho_a - ln rho_b) - (tau_a - tau_b). This adds that to sum_rayleigh and sum_mie, for every
-// wavelength, by log_mean_branchless (optical_depth.hpp), so that this one loop, the innermost
-// operation of every march, vectorises (Eigen's select() would be evaluated one element at a time).
-struct SpeciesAtNodes {
-  float log_ratio;     // ln rho_a - ln rho_b
-  float rho_a, rho_b;  // relative densities at the two nodes
+// = (ln rho_a - ln rho_b) - (tau_a - tau_b) (log_mean_branchless, optical_depth.hpp).
+//
+// A piece of the ray is integrated all at once: the optical depths and transmittances of all its
+// nodes at all wavelengths are arrays [node, wavelength] (a wavelength's nodes contiguous), so that
+// exp() runs over the whole array and the sums over segments are vector loops over nodes, whatever
+// the number of wavelengths (three for the RGB-fast path).
+using NodeArray = Eigen::ArrayXXf;  // rows: nodes of a piece, columns: wavelengths
+
+// What the segments of a piece share at every wavelength: lengths, densities and their log
+// ratios, for the fine rule (nodes k, k + 1) and the coarse one (nodes 2j, 2j + 2).
+struct PieceSegments {
+  int segments = 0;
+  Eigen::ArrayXf dt, rho[2], log_ratio[2];              // fine: [k]; rho: [node]
+  Eigen::ArrayXf dt2, log_ratio2[2];                    // coarse: [j]
+  Eigen::ArrayXf terms_r, terms_m;                      // scratch
 };
+
 inline float log_mean_term(float x, float f_a, float f_b) { return log_mean_branchless(f_a, f_b, x, 1e-2f); }
-void accumulate_segment_integrals(const Spectrum& tau_a, const Spectrum& trans_a, const Spectrum& tau_b,
-                                  const Spectrum& trans_b, SpeciesAtNodes rayleigh, SpeciesAtNodes mie, float dt,
-                                  Spectrum& sum_rayleigh, Spectrum& sum_mie) {
-  const float* __restrict ta = tau_a.data();
-  const float* __restrict tb = tau_b.data();
-  const float* __restrict ea = trans_a.data();
-  const float* __restrict eb = trans_b.data();
-  float* __restrict out_r = sum_rayleigh.data();
-  float* __restrict out_m = sum_mie.data();
-  const Eigen::Index n = sum_rayleigh.size();
-  for (Eigen::Index i = 0; i < n; ++i) {
-    const float dtau = ta[i] - tb[i];
-    out_r[i] += dt * log_mean_term(rayleigh.log_ratio - dtau, rayleigh.rho_a * ea[i], rayleigh.rho_b * eb[i]);
-    out_m[i] += dt * log_mean_term(mie.log_ratio - dtau, mie.rho_a * ea[i], mie.rho_b * eb[i]);
+
+// Adds the fine and coarse log-mean sums over the piece's segments of both species, per
+// wavelength. tau and trans: [node, wavelength].
+void accumulate_piece(const NodeArray& tau, const NodeArray& trans, PieceSegments& g, Spectrum& fine_r,
+                      Spectrum& fine_m, Spectrum& coarse_r, Spectrum& coarse_m) {
+  const int segs = g.segments, pairs = segs / 2;
+  g.terms_r.resize(segs);
+  g.terms_m.resize(segs);
+  const float* __restrict rr = g.rho[0].data();
+  const float* __restrict rm = g.rho[1].data();
+  for (Eigen::Index l = 0; l < tau.cols(); ++l) {
+    const float* __restrict ta = tau.col(l).data();
+    const float* __restrict ea = trans.col(l).data();
+    float* __restrict out_r = g.terms_r.data();
+    float* __restrict out_m = g.terms_m.data();
+    const float* __restrict dt = g.dt.data();
+    const float* __restrict xr = g.log_ratio[0].data();
+    const float* __restrict xm = g.log_ratio[1].data();
+    for (int k = 0; k < segs; ++k) {
+      const float dtau = ta[k] - ta[k + 1];
+      out_r[k] = dt[k] * log_mean_term(xr[k] - dtau, rr[k] * ea[k], rr[k + 1] * ea[k + 1]);
+      out_m[k] = dt[k] * log_mean_term(xm[k] - dtau, rm[k] * ea[k], rm[k + 1] * ea[k + 1]);
+    }
+    fine_r[l] += g.terms_r.head(segs).sum();
+    fine_m[l] += g.terms_m.head(segs).sum();
+    const float* __restrict dt2 = g.dt2.data();
+    const float* __restrict xr2 = g.log_ratio2[0].data();
+    const float* __restrict xm2 = g.log_ratio2[1].data();
+    for (int j = 0; j < pairs; ++j) {
+      const int a = 2 * j, b = 2 * j + 2;
+      const float dtau = ta[a] - ta[b];
+      out_r[j] = dt2[j] * log_mean_term(xr2[j] - dtau, rr[a] * ea[a], rr[b] * ea[b]);
+      out_m[j] = dt2[j] * log_mean_term(xm2[j] - dtau, rm[a] * ea[a], rm[b] * ea[b]);
+    }
+    coarse_r[l] += g.terms_r.head(pairs).sum();
+    coarse_m[l] += g.terms_m.head(pairs).sum();
   }
 }
 
@@ -263,36 +295,6 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
     tau = ext_[kRayleigh] * static_cast<float>(n.col[kRayleigh]) + ext_[kMie] * static_cast<float>(n.col[kMie]);
     if (ozone) tau += ext_[kOzone] * static_cast<float>(n.col[kOzone]);
   };
-  // Total optical depth view + sun at a lit node.
-  auto total_tau = [&](const Node& n, Spectrum& tau) {
-    const Columns sun = sun_.at(n.r, mu_sun(n));
-    tau = ext_[kRayleigh] * static_cast<float>(n.col[kRayleigh] + sun[kRayleigh]) +
-          ext_[kMie] * static_cast<float>(n.col[kMie] + sun[kMie]);
-    if (ozone) tau += ext_[kOzone] * static_cast<float>(n.col[kOzone] + sun[kOzone]);
-  };
-  // Higher orders: the integrand of species s is beta_sca,s rho_s exp(-tau_view) J, J the
-  // higher-order source. It is integrated by the same log-mean rule as single scattering, with
-  // tau' = tau_view - ln J in the place of the optical depth and T' = exp(-tau_view) J in the
-  // place of the transmittance (ln of the integrand is ln rho_s - tau' + const). J is floored at
-  // a tiny positive value so that its logarithm is finite where the tables hold no light.
-  auto higher_node = [&](const Node& n, Spectrum& tau, Spectrum& trans) {
-    sources.higher->source(n.r, mu_sun(n), ws.source.data());
-    view_tau(n, ws.view_tau);
-    ws.source = ws.source.max(1e-30f);
-    tau = ws.view_tau - ws.source.log();
-    trans = (-ws.view_tau).exp() * ws.source;
-  };
-  // Single-scattering integrals over one segment [a, b] for both species, by the log-mean rule.
-  auto accumulate_segment = [&](const Node& na, const Node& nb, const Spectrum& tau_a, const Spectrum& trans_a,
-                                const Spectrum& tau_b, const Spectrum& trans_b, Spectrum& sum_r, Spectrum& sum_m) {
-    auto species = [&](int sp) {
-      return SpeciesAtNodes{static_cast<float>(na.log_rho[sp] - nb.log_rho[sp]), static_cast<float>(na.rho[sp]),
-                            static_cast<float>(nb.rho[sp])};
-    };
-    accumulate_segment_integrals(tau_a, trans_a, tau_b, trans_b, species(0), species(1),
-                                 static_cast<float>(nb.t - na.t), sum_r, sum_m);
-  };
-
   ws.sum_rayleigh.setZero();
   ws.sum_mie.setZero();
   ws.coarse_rayleigh.setZero();
@@ -302,59 +304,77 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
   ws.coarse_ms_rayleigh.setZero();
   ws.coarse_ms_mie.setZero();
 
+  // Per thread, reused from ray to ray: [node, species] columns, [node, wavelength] arrays.
+  struct Scratch {
+    PieceSegments seg;
+    Eigen::ArrayXXf columns, view_columns;
+    NodeArray tau, trans, source;
+    Eigen::ArrayXXf source_t;  // [wavelength, node], as the source tables write it
+  };
+  thread_local Scratch sc;
+  const Eigen::Index n = sca_rayleigh_.size();
+  const int species = ozone ? 3 : 2;
+  // tau[k, l] = sum_s beta_ext,s(l) columns[k, s]
+  auto optical_depths = [&](const Eigen::ArrayXXf& columns, NodeArray& tau) {
+    tau.resize(columns.rows(), n);
+    for (Eigen::Index l = 0; l < n; ++l) {
+      tau.col(l) = columns.col(kRayleigh) * ext_[kRayleigh][l] + columns.col(kMie) * ext_[kMie][l];
+      if (ozone) tau.col(l) += columns.col(kOzone) * ext_[kOzone][l];
+    }
+  };
+
   for (int i = 0; i < ray.n_pieces; ++i) {
     const Piece& pc = ray.pieces[i];
     const bool single_here = sources.single && pc.lit;
     if (!single_here && !higher) continue;  // nothing to collect: its nodes only carried the columns
     const Node* nodes = ray.nodes.data() + pc.first_node;
+    const int segs = pc.segments, m = segs + 1;
+    PieceSegments& g = sc.seg;
+    g.segments = segs;
+    g.dt.resize(segs);
+    g.dt2.resize(segs / 2);
+    for (int sp = 0; sp < 2; ++sp) {
+      g.rho[sp].resize(m);
+      g.log_ratio[sp].resize(segs);
+      g.log_ratio2[sp].resize(segs / 2);
+      for (int k = 0; k < m; ++k) g.rho[sp][k] = static_cast<float>(nodes[k].rho[sp]);
+      for (int k = 0; k < segs; ++k)
+        g.log_ratio[sp][k] = static_cast<float>(nodes[k].log_rho[sp] - nodes[k + 1].log_rho[sp]);
+      for (int j = 0; j < segs / 2; ++j)
+        g.log_ratio2[sp][j] = static_cast<float>(nodes[2 * j].log_rho[sp] - nodes[2 * j + 2].log_rho[sp]);
+    }
+    for (int k = 0; k < segs; ++k) g.dt[k] = static_cast<float>(nodes[k + 1].t - nodes[k].t);
+    for (int j = 0; j < segs / 2; ++j) g.dt2[j] = static_cast<float>(nodes[2 * j + 2].t - nodes[2 * j].t);
+
     if (single_here) {
-      total_tau(nodes[0], ws.tau_a);
-      ws.trans_a = (-ws.tau_a).exp();
-      ws.tau_c = ws.tau_a;
-      ws.trans_c = ws.trans_a;
+      // Columns along the view ray plus to the sun, at every node.
+      sc.columns.resize(m, species);
+      for (int k = 0; k < m; ++k) {
+        const Columns sun = sun_.at(nodes[k].r, mu_sun(nodes[k]));
+        for (int sp = 0; sp < species; ++sp) sc.columns(k, sp) = static_cast<float>(nodes[k].col[sp] + sun[sp]);
+      }
+      optical_depths(sc.columns, sc.tau);
+      sc.trans = (-sc.tau).exp();
+      accumulate_piece(sc.tau, sc.trans, g, ws.sum_rayleigh, ws.sum_mie, ws.coarse_rayleigh, ws.coarse_mie);
     }
     if (higher) {
-      higher_node(nodes[0], ws.ms_a, ws.ms_trans_a);
-      ws.ms_c = ws.ms_a;
-      ws.ms_trans_c = ws.ms_trans_a;
-    }
-    int pair_start = 0;
-    for (int k = 1; k <= pc.segments; ++k) {
-      const Node& prev = nodes[k - 1];
-      const Node& next = nodes[k];
-      if (single_here) {
-        total_tau(next, ws.tau_b);
-        ws.trans_b = (-ws.tau_b).exp();
-        accumulate_segment(prev, next, ws.tau_a, ws.trans_a, ws.tau_b, ws.trans_b, ws.sum_rayleigh, ws.sum_mie);
+      // Higher orders: the integrand of species s is beta_sca,s rho_s exp(-tau_view) J, J the
+      // higher-order source. It is integrated by the same log-mean rule as single scattering, with
+      // tau' = tau_view - ln J in the place of the optical depth and T' = exp(-tau_view) J in the
+      // place of the transmittance (ln of the integrand is ln rho_s - tau' + const). J is floored
+      // at a tiny positive value so that its logarithm is finite where the tables hold no light.
+      sc.view_columns.resize(m, species);
+      sc.source_t.resize(n, m);
+      for (int k = 0; k < m; ++k) {
+        for (int sp = 0; sp < species; ++sp) sc.view_columns(k, sp) = static_cast<float>(nodes[k].col[sp]);
+        sources.higher->source(nodes[k].r, mu_sun(nodes[k]), sc.source_t.col(k).data());
       }
-      if (higher) {
-        higher_node(next, ws.ms_b, ws.ms_trans_b);
-        accumulate_segment(prev, next, ws.ms_a, ws.ms_trans_a, ws.ms_b, ws.ms_trans_b, ws.sum_ms_rayleigh,
-                           ws.sum_ms_mie);
-      }
-      if (k % 2 == 0) {
-        if (single_here) {
-          accumulate_segment(nodes[pair_start], next, ws.tau_c, ws.trans_c, ws.tau_b, ws.trans_b, ws.coarse_rayleigh,
-                             ws.coarse_mie);
-          ws.tau_c = ws.tau_b;
-          ws.trans_c = ws.trans_b;
-        }
-        if (higher) {
-          accumulate_segment(nodes[pair_start], next, ws.ms_c, ws.ms_trans_c, ws.ms_b, ws.ms_trans_b,
-                             ws.coarse_ms_rayleigh, ws.coarse_ms_mie);
-          ws.ms_c = ws.ms_b;
-          ws.ms_trans_c = ws.ms_trans_b;
-        }
-        pair_start = k;
-      }
-      if (single_here) {
-        ws.tau_a.swap(ws.tau_b);
-        ws.trans_a.swap(ws.trans_b);
-      }
-      if (higher) {
-        ws.ms_a.swap(ws.ms_b);
-        ws.ms_trans_a.swap(ws.ms_trans_b);
-      }
+      sc.source = sc.source_t.transpose().max(1e-30f);
+      optical_depths(sc.view_columns, sc.tau);
+      sc.trans = (-sc.tau).exp() * sc.source;
+      sc.tau -= sc.source.log();
+      accumulate_piece(sc.tau, sc.trans, g, ws.sum_ms_rayleigh, ws.sum_ms_mie, ws.coarse_ms_rayleigh,
+                       ws.coarse_ms_mie);
     }
   }
 
