@@ -327,7 +327,7 @@ void SkyRenderer::radiance(const Vec3& dir, float* spectrum) const {
   // Scratch kept per thread: callers (the exposure meter, tests) ask for many directions.
   thread_local std::optional<ScatteringWorkspace> ws;
   thread_local Spectrum out;
-  if (!ws || ws->tau_a.size() != n) ws.emplace(n);
+  if (!ws || ws->view_tau.size() != n) ws.emplace(n);
   out.resize(n);
   m.sky_radiance(dir.normalized(), *ws, out);  // the sky as the image shows it
   std::copy(out.data(), out.data() + n, spectrum);

@@ -11,8 +11,7 @@
 namespace skyspec {
 
 ScatteringWorkspace::ScatteringWorkspace(int n)
-    : tau_a(n), tau_b(n), tau_c(n), trans_a(n), trans_b(n), trans_c(n),
-      view_tau(n), view_trans(n), source(n), ms_a(n), ms_b(n), ms_c(n), ms_trans_a(n), ms_trans_b(n), ms_trans_c(n),
+    : view_tau(n), view_trans(n), source(n), ground_sun(n), ground_sky(n),
       sum_rayleigh(n), sum_mie(n), coarse_rayleigh(n), coarse_mie(n), sum_ms_rayleigh(n), sum_ms_mie(n),
       coarse_ms_rayleigh(n), coarse_ms_mie(n), phase(n), parts(n) {}
 
@@ -403,15 +402,15 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
     ws.view_trans = (-ws.view_tau).exp();
     ws.source.setZero();
     if (sources.single && g_mu_sun > 0.0) {
-      Spectrum& tau_sun = ws.tau_c;  // free at this point
+      Spectrum& tau_sun = ws.ground_sun;
       const Columns sun = sun_.at(R, g_mu_sun);
       tau_sun = ext_[kRayleigh] * static_cast<float>(sun[kRayleigh]) + ext_[kMie] * static_cast<float>(sun[kMie]) +
                 ext_[kOzone] * static_cast<float>(sun[kOzone]);
       ws.source = (-tau_sun).exp() * static_cast<float>(g_mu_sun);
     }
     if (higher) {
-      sources.higher->ground_irradiance(g_mu_sun, ws.ms_c.data());
-      ws.source += ws.ms_c;
+      sources.higher->ground_irradiance(g_mu_sun, ws.ground_sky.data());
+      ws.source += ws.ground_sky;
     }
     parts.isotropic += ws.view_trans * albedo_over_pi_ * ws.source;
   }

@@ -53,9 +53,7 @@ struct RadianceParts {
 /// Per-thread scratch memory (spectral arrays are allocated once and reused).
 struct ScatteringWorkspace {
   explicit ScatteringWorkspace(int n_wavelengths);
-  Spectrum tau_a, tau_b, tau_c, trans_a, trans_b, trans_c;
-  Spectrum view_tau, view_trans, source;
-  Spectrum ms_a, ms_b, ms_c, ms_trans_a, ms_trans_b, ms_trans_c;  // higher orders: tau - ln J, exp(-tau) J
+  Spectrum view_tau, view_trans, source, ground_sun, ground_sky;  // the ground's light
   Spectrum sum_rayleigh, sum_mie, coarse_rayleigh, coarse_mie;  // fine and coarse (paired) rules
   Spectrum sum_ms_rayleigh, sum_ms_mie, coarse_ms_rayleigh, coarse_ms_mie;
   Spectrum phase;  // per-wavelength aerosol phase (spectral asymmetry)
