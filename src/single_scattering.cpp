@@ -36,10 +36,11 @@ namespace {
 // = (ln rho_a - ln rho_b) - (tau_a - tau_b) (log_mean_branchless, optical_depth.hpp).
 //
 // A piece of the ray is integrated all at once: the optical depths and transmittances of all its
-// nodes at all wavelengths are arrays [node, wavelength] (a wavelength's nodes contiguous), so that
-// exp() runs over the whole array and the sums over segments are vector loops over nodes, whatever
-// the number of wavelengths (three for the RGB-fast path).
-using NodeArray = Eigen::ArrayXXf;  // rows: nodes of a piece, columns: wavelengths
+// nodes at all wavelengths are one array, so that exp() runs over the whole of it, and the sums
+// over segments are vector loops over nodes (few wavelengths: [node, wavelength], a wavelength's
+// nodes contiguous; three for the RGB-fast path) or over wavelengths (many: [wavelength, node]).
+using NodeArray = Eigen::ArrayXXf;
+constexpr Eigen::Index kWavelengthsForWavelengthLoops = 8;  // one AVX vector of floats
 
 // What the segments of a piece share at every wavelength: lengths, densities and their log
 // ratios, for the fine rule (nodes k, k + 1) and the coarse one (nodes 2j, 2j + 2).
@@ -52,41 +53,77 @@ struct PieceSegments {
 
 inline float log_mean_term(float x, float f_a, float f_b) { return log_mean_branchless(f_a, f_b, x, 1e-2f); }
 
+// out[j] = dt[j] logmean over nodes a = j s, b = (j + 1) s (s = stride: 1 for the fine rule, 2 for
+// the coarse one) of both species' integrands, for one wavelength. A separate function with
+// plain pointers so that GCC vectorises it.
+void log_mean_terms(int count, int stride, const float* __restrict tau, const float* __restrict trans,
+                    const float* __restrict rho_r, const float* __restrict rho_m, const float* __restrict x_r,
+                    const float* __restrict x_m, const float* __restrict dt, float* __restrict out_r,
+                    float* __restrict out_m) {
+  if (stride == 1) {
+    for (int j = 0; j < count; ++j) {
+      const float dtau = tau[j] - tau[j + 1];
+      out_r[j] = dt[j] * log_mean_term(x_r[j] - dtau, rho_r[j] * trans[j], rho_r[j + 1] * trans[j + 1]);
+      out_m[j] = dt[j] * log_mean_term(x_m[j] - dtau, rho_m[j] * trans[j], rho_m[j + 1] * trans[j + 1]);
+    }
+    return;
+  }
+  for (int j = 0; j < count; ++j) {
+    const int a = j * stride, b = a + stride;
+    const float dtau = tau[a] - tau[b];
+    out_r[j] = dt[j] * log_mean_term(x_r[j] - dtau, rho_r[a] * trans[a], rho_r[b] * trans[b]);
+    out_m[j] = dt[j] * log_mean_term(x_m[j] - dtau, rho_m[a] * trans[a], rho_m[b] * trans[b]);
+  }
+}
+
 // Adds the fine and coarse log-mean sums over the piece's segments of both species, per
-// wavelength. tau and trans: [node, wavelength].
+// wavelength. tau and trans: [node, wavelength], loops over nodes.
 void accumulate_piece(const NodeArray& tau, const NodeArray& trans, PieceSegments& g, Spectrum& fine_r,
                       Spectrum& fine_m, Spectrum& coarse_r, Spectrum& coarse_m) {
   const int segs = g.segments, pairs = segs / 2;
   g.terms_r.resize(segs);
   g.terms_m.resize(segs);
-  const float* __restrict rr = g.rho[0].data();
-  const float* __restrict rm = g.rho[1].data();
   for (Eigen::Index l = 0; l < tau.cols(); ++l) {
-    const float* __restrict ta = tau.col(l).data();
-    const float* __restrict ea = trans.col(l).data();
-    float* __restrict out_r = g.terms_r.data();
-    float* __restrict out_m = g.terms_m.data();
-    const float* __restrict dt = g.dt.data();
-    const float* __restrict xr = g.log_ratio[0].data();
-    const float* __restrict xm = g.log_ratio[1].data();
-    for (int k = 0; k < segs; ++k) {
-      const float dtau = ta[k] - ta[k + 1];
-      out_r[k] = dt[k] * log_mean_term(xr[k] - dtau, rr[k] * ea[k], rr[k + 1] * ea[k + 1]);
-      out_m[k] = dt[k] * log_mean_term(xm[k] - dtau, rm[k] * ea[k], rm[k + 1] * ea[k + 1]);
-    }
+    const float* ta = tau.col(l).data();
+    const float* ea = trans.col(l).data();
+    log_mean_terms(segs, 1, ta, ea, g.rho[0].data(), g.rho[1].data(), g.log_ratio[0].data(), g.log_ratio[1].data(),
+                   g.dt.data(), g.terms_r.data(), g.terms_m.data());
     fine_r[l] += g.terms_r.head(segs).sum();
     fine_m[l] += g.terms_m.head(segs).sum();
-    const float* __restrict dt2 = g.dt2.data();
-    const float* __restrict xr2 = g.log_ratio2[0].data();
-    const float* __restrict xm2 = g.log_ratio2[1].data();
-    for (int j = 0; j < pairs; ++j) {
-      const int a = 2 * j, b = 2 * j + 2;
-      const float dtau = ta[a] - ta[b];
-      out_r[j] = dt2[j] * log_mean_term(xr2[j] - dtau, rr[a] * ea[a], rr[b] * ea[b]);
-      out_m[j] = dt2[j] * log_mean_term(xm2[j] - dtau, rm[a] * ea[a], rm[b] * ea[b]);
-    }
+    log_mean_terms(pairs, 2, ta, ea, g.rho[0].data(), g.rho[1].data(), g.log_ratio2[0].data(),
+                   g.log_ratio2[1].data(), g.dt2.data(), g.terms_r.data(), g.terms_m.data());
     coarse_r[l] += g.terms_r.head(pairs).sum();
     coarse_m[l] += g.terms_m.head(pairs).sum();
+  }
+}
+
+// The same for [wavelength, node] arrays (each node's wavelengths contiguous), segment by
+// segment, every loop over wavelengths: the better order when there are many wavelengths and
+// few nodes (the scattering-order tables' rays have 24 segments).
+void segment_over_wavelengths(Eigen::Index n, const float* __restrict ta, const float* __restrict ea,
+                              const float* __restrict tb, const float* __restrict eb, float x_r, float r_a, float r_b,
+                              float x_m, float m_a, float m_b, float dt, float* __restrict out_r,
+                              float* __restrict out_m) {
+  for (Eigen::Index l = 0; l < n; ++l) {
+    const float dtau = ta[l] - tb[l];
+    out_r[l] += dt * log_mean_term(x_r - dtau, r_a * ea[l], r_b * eb[l]);
+    out_m[l] += dt * log_mean_term(x_m - dtau, m_a * ea[l], m_b * eb[l]);
+  }
+}
+void accumulate_piece_by_wavelength(const NodeArray& tau, const NodeArray& trans, const PieceSegments& g,
+                                    Spectrum& fine_r, Spectrum& fine_m, Spectrum& coarse_r, Spectrum& coarse_m) {
+  const Eigen::Index n = tau.rows();
+  const float* rr = g.rho[0].data();
+  const float* rm = g.rho[1].data();
+  for (int k = 0; k < g.segments; ++k)
+    segment_over_wavelengths(n, tau.col(k).data(), trans.col(k).data(), tau.col(k + 1).data(), trans.col(k + 1).data(),
+                             g.log_ratio[0][k], rr[k], rr[k + 1], g.log_ratio[1][k], rm[k], rm[k + 1], g.dt[k],
+                             fine_r.data(), fine_m.data());
+  for (int j = 0; j < g.segments / 2; ++j) {
+    const int a = 2 * j, b = 2 * j + 2;
+    segment_over_wavelengths(n, tau.col(a).data(), trans.col(a).data(), tau.col(b).data(), trans.col(b).data(),
+                             g.log_ratio2[0][j], rr[a], rr[b], g.log_ratio2[1][j], rm[a], rm[b], g.dt2[j],
+                             coarse_r.data(), coarse_m.data());
   }
 }
 
@@ -313,13 +350,29 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
   thread_local Scratch sc;
   const Eigen::Index n = sca_rayleigh_.size();
   const int species = ozone ? 3 : 2;
-  // tau[k, l] = sum_s beta_ext,s(l) columns[k, s]
+  const bool by_node = n < kWavelengthsForWavelengthLoops;  // the arrays' layout, see accumulate_piece
+  // tau = sum_s beta_ext,s(l) columns[k, s], as [node k, wavelength l] or [l, k].
   auto optical_depths = [&](const Eigen::ArrayXXf& columns, NodeArray& tau) {
-    tau.resize(columns.rows(), n);
-    for (Eigen::Index l = 0; l < n; ++l) {
-      tau.col(l) = columns.col(kRayleigh) * ext_[kRayleigh][l] + columns.col(kMie) * ext_[kMie][l];
-      if (ozone) tau.col(l) += columns.col(kOzone) * ext_[kOzone][l];
+    const Eigen::Index m = columns.rows();
+    if (by_node) {
+      tau.resize(m, n);
+      for (Eigen::Index l = 0; l < n; ++l) {
+        tau.col(l) = columns.col(kRayleigh) * ext_[kRayleigh][l] + columns.col(kMie) * ext_[kMie][l];
+        if (ozone) tau.col(l) += columns.col(kOzone) * ext_[kOzone][l];
+      }
+      return;
     }
+    tau.resize(n, m);
+    for (Eigen::Index k = 0; k < m; ++k) {
+      tau.col(k) = ext_[kRayleigh] * columns(k, kRayleigh) + ext_[kMie] * columns(k, kMie);
+      if (ozone) tau.col(k) += ext_[kOzone] * columns(k, kOzone);
+    }
+  };
+  auto accumulate = [&](PieceSegments& g, Spectrum& fine_r, Spectrum& fine_m, Spectrum& coarse_r, Spectrum& coarse_m) {
+    if (by_node)
+      accumulate_piece(sc.tau, sc.trans, g, fine_r, fine_m, coarse_r, coarse_m);
+    else
+      accumulate_piece_by_wavelength(sc.tau, sc.trans, g, fine_r, fine_m, coarse_r, coarse_m);
   };
 
   for (int i = 0; i < ray.n_pieces; ++i) {
@@ -354,7 +407,7 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
       }
       optical_depths(sc.columns, sc.tau);
       sc.trans = (-sc.tau).exp();
-      accumulate_piece(sc.tau, sc.trans, g, ws.sum_rayleigh, ws.sum_mie, ws.coarse_rayleigh, ws.coarse_mie);
+      accumulate(g, ws.sum_rayleigh, ws.sum_mie, ws.coarse_rayleigh, ws.coarse_mie);
     }
     if (higher) {
       // Higher orders: the integrand of species s is beta_sca,s rho_s exp(-tau_view) J, J the
@@ -368,12 +421,14 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
         for (int sp = 0; sp < species; ++sp) sc.view_columns(k, sp) = static_cast<float>(nodes[k].col[sp]);
         sources.higher->source(nodes[k].r, mu_sun(nodes[k]), sc.source_t.col(k).data());
       }
-      sc.source = sc.source_t.transpose().max(1e-30f);
+      if (by_node)
+        sc.source = sc.source_t.transpose().max(1e-30f);
+      else
+        sc.source = sc.source_t.max(1e-30f);
       optical_depths(sc.view_columns, sc.tau);
       sc.trans = (-sc.tau).exp() * sc.source;
       sc.tau -= sc.source.log();
-      accumulate_piece(sc.tau, sc.trans, g, ws.sum_ms_rayleigh, ws.sum_ms_mie, ws.coarse_ms_rayleigh,
-                       ws.coarse_ms_mie);
+      accumulate(g, ws.sum_ms_rayleigh, ws.sum_ms_mie, ws.coarse_ms_rayleigh, ws.coarse_ms_mie);
     }
   }
 
