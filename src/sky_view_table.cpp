@@ -236,12 +236,20 @@ bool SkyViewTable::lookup(const Vec3& dir, RadianceParts& out) const {
   const int n = n_;
   const size_t entry = static_cast<size_t>(kParts) * static_cast<size_t>(n);
   const size_t stride = static_cast<size_t>(m) * entry;
-  thread_local std::vector<float> sum;
-  sum.assign(2 * entry, 0.0f);
-  float* __restrict acc = sum.data();
-  for (int i = 0; i < n_rows; ++i) {
+  // On the stack for up to 42 wavelengths (2 x 3 x 42 floats), per thread beyond.
+  constexpr size_t kStackFloats = 256;
+  alignas(32) float stack[kStackFloats];
+  thread_local std::vector<float> heap;
+  if (2 * entry > kStackFloats) heap.resize(2 * entry);
+  float* __restrict acc = 2 * entry > kStackFloats ? heap.data() : stack;
+  const float* rows_at = table.data() + static_cast<size_t>(first_row) * stride + static_cast<size_t>(c0) * entry;
+  {
+    const float w = static_cast<float>(row_w[0]);
+    for (size_t k = 0; k < 2 * entry; ++k) acc[k] = w * rows_at[k];
+  }
+  for (int i = 1; i < n_rows; ++i) {
     const float w = static_cast<float>(row_w[i]);
-    const float* __restrict e = table.data() + static_cast<size_t>(first_row + i) * stride + static_cast<size_t>(c0) * entry;
+    const float* __restrict e = rows_at + static_cast<size_t>(i) * stride;
     for (size_t k = 0; k < 2 * entry; ++k) acc[k] += w * e[k];
   }
   // A cubic may undershoot where a part falls steeply to 0 (the planet's shadow); light is not negative.
