@@ -10,6 +10,8 @@
 
 #include <cmath>
 
+#include "skyspec/units.hpp"
+
 namespace skyspec::detail {
 
 inline double atan_unit(double a) {  // atan(a) for a in [0, 1]
@@ -29,7 +31,7 @@ inline double atan_unit(double a) {  // atan(a) for a in [0, 1]
 
 /// atan2(y, x) in [-pi, pi] to within 1e-9 rad; 0 for (0, 0) as std::atan2 (signed zeros aside).
 inline double fast_atan2(double y, double x) {
-  constexpr double kPi = 3.14159265358979323846, kHalfPi = 1.57079632679489661923;
+  constexpr double kHalfPi = 0.5 * kPi;
   const double ax = std::abs(x), ay = std::abs(y);
   const double hi = ax > ay ? ax : ay, lo = ax > ay ? ay : ax;
   if (hi == 0.0) return 0.0;

@@ -6,6 +6,8 @@
 #include <Eigen/Core>
 #include <tbb/parallel_for.h>
 
+#include "skyspec/units.hpp"
+
 namespace skyspec {
 
 double distance_to_top_m(double r_m, double mu, double top_r_m) {
@@ -132,6 +134,14 @@ double x_mu_of(double r, double mu, double R, double Rt, double H) {
   const double d = distance_to_top_m(r, mu, Rt);
   return d_max > d_min ? std::clamp((d - d_min) / (d_max - d_min), 0.0, 1.0) : 0.0;
 }
+// Its inverse: the zenith cosine at radius r of the direction whose distance to the top is
+// x_mu of the way from its minimum (straight up) to its value at the horizon.
+double mu_of(double r, double x_mu, double R, double Rt, double H) {
+  const double rho = std::sqrt(std::max((r - R) * (r + R), 0.0));
+  const double d_min = Rt - r, d_max = rho + H;
+  const double d = d_min + x_mu * (d_max - d_min);
+  return d <= 0.0 ? 1.0 : std::clamp((H * H - rho * rho - d * d) / (2.0 * r * d), -1.0, 1.0);
+}
 }  // namespace
 
 SunColumnTable::SunColumnTable(const AtmosphereModel& atm, Resolution res, MuBand band)
@@ -150,8 +160,6 @@ SunColumnTable::SunColumnTable(const AtmosphereModel& atm, Resolution res, MuBan
   const bool whole = band.lo <= -1.0 && band.hi >= 1.0;
   tbb::parallel_for(0, res_.n_r, [&](int ir) {
     const double r = radius_of_row(ir);
-    const double rho = std::sqrt(std::max((r - R_) * (r + R_), 0.0));
-    const double d_min = Rt_ - r, d_max = rho + H_;
     if (!whole) {
       // The columns look-ups at radii between the neighbouring rows use, with a cell to spare on
       // either side (x_mu decreases with mu).
@@ -165,9 +173,7 @@ SunColumnTable::SunColumnTable(const AtmosphereModel& atm, Resolution res, MuBan
       end_[static_cast<size_t>(ir)] = std::min(res_.n_mu, static_cast<int>(std::ceil(x_hi * (res_.n_mu - 1))) + 2);
     }
     for (int im = first_[static_cast<size_t>(ir)]; im < end_[static_cast<size_t>(ir)]; ++im) {
-      const double x_mu = static_cast<double>(im) / (res_.n_mu - 1);
-      const double d = d_min + x_mu * (d_max - d_min);
-      const double mu = d <= 0.0 ? 1.0 : std::clamp((H_ * H_ - rho * rho - d * d) / (2.0 * r * d), -1.0, 1.0);
+      const double mu = mu_of(r, static_cast<double>(im) / (res_.n_mu - 1), R_, Rt_, H_);
       data_[static_cast<size_t>(ir) * res_.n_mu + im] = columns_to_top_m(atm, r, mu, res_.segments);
     }
   });
@@ -179,7 +185,6 @@ SunColumnTable::MuBand SunColumnTable::band_seen_from(const AtmosphereModel& atm
   if (!(r >= R) || !std::isfinite(r)) return MuBand{};
   const double reach = std::acos(std::min(1.0, R / r)) + std::acos(R / Rt) + 1e-6;  // rad, with rounding to spare
   const double theta = std::acos(std::clamp(origin_m.dot(sun_dir) / r, -1.0, 1.0));
-  constexpr double kPi = 3.14159265358979323846;
   return MuBand{std::cos(std::min(kPi, theta + reach)), std::cos(std::max(0.0, theta - reach))};
 }
 
@@ -191,11 +196,7 @@ long SunColumnTable::computed_entries() const {
 
 // A look-up outside the computed band: the columns at the same (r, x_mu), integrated directly.
 Columns SunColumnTable::direct(double r, double x_mu) const {
-  const double rho = std::sqrt(std::max((r - R_) * (r + R_), 0.0));
-  const double d_min = Rt_ - r, d_max = rho + H_;
-  const double d = d_min + x_mu * (d_max - d_min);
-  const double mu = d <= 0.0 ? 1.0 : std::clamp((H_ * H_ - rho * rho - d * d) / (2.0 * r * d), -1.0, 1.0);
-  return columns_to_top_m(*atm_, r, mu, res_.segments);
+  return columns_to_top_m(*atm_, r, mu_of(r, x_mu, R_, Rt_, H_), res_.segments);
 }
 
 Columns SunColumnTable::lookup(double r_m, double mu) const {
