@@ -199,19 +199,29 @@ Columns SunColumnTable::direct(double r, double x_mu) const {
   return columns_to_top_m(*atm_, r, mu_of(r, x_mu, R_, Rt_, H_), res_.segments);
 }
 
-Columns SunColumnTable::lookup(double r_m, double mu) const {
-  const double r = std::clamp(r_m, R_, Rt_);
-  const double rho = std::sqrt(std::max((r - R_) * (r + R_), 0.0));
+// Written with selects on values rather than branches, and inline, so that lookup_many's loop
+// over points vectorises (it needs -fno-math-errno and -fno-trapping-math, CMakeLists.txt).
+inline SunColumnTable::Place SunColumnTable::place(double r_m, double mu) const {
+  const auto max = [](double a, double b) { return a > b ? a : b; };  // on values (std::max
+  const auto min = [](double a, double b) { return a < b ? a : b; };  // returns references)
+  const double r = min(max(r_m, R_), Rt_);
+  const double rho = std::sqrt(max((r - R_) * (r + R_), 0.0));
   const double d_min = Rt_ - r, d_max = rho + H_;
-  const double d = distance_to_top_m(r, mu, Rt_);
-  const double x_r = rho / H_;
-  const double x_mu = d_max > d_min ? std::clamp((d - d_min) / (d_max - d_min), 0.0, 1.0) : 0.0;
-  const double fr = x_r * (res_.n_r - 1), fm = x_mu * (res_.n_mu - 1);
-  const int ir = std::min(static_cast<int>(fr), res_.n_r - 2);
-  const int im = std::min(static_cast<int>(fm), res_.n_mu - 2);
+  // distance_to_top_m, inline.
+  const double disc = (Rt_ - r) * (Rt_ + r) + r * r * mu * mu;
+  const double d = max(-r * mu + std::sqrt(max(disc, 0.0)), 0.0);
+  const bool span = d_max > d_min;
+  const double x = (d - d_min) / (span ? d_max - d_min : 1.0);
+  const double x_mu = span ? min(max(x, 0.0), 1.0) : 0.0;
+  return Place{r, x_mu, rho / H_ * (res_.n_r - 1), x_mu * (res_.n_mu - 1)};
+}
+
+inline Columns SunColumnTable::interpolate(const Place& p) const {
+  const int ir = std::min(static_cast<int>(p.fr), res_.n_r - 2);
+  const int im = std::min(static_cast<int>(p.fm), res_.n_mu - 2);
   for (int k : {ir, ir + 1})
-    if (im < first_[static_cast<size_t>(k)] || im + 2 > end_[static_cast<size_t>(k)]) return direct(r, x_mu);
-  const double ar = fr - ir, am = fm - im;
+    if (im < first_[static_cast<size_t>(k)] || im + 2 > end_[static_cast<size_t>(k)]) return direct(p.r, p.x_mu);
+  const double ar = p.fr - ir, am = p.fm - im;
   const Columns& c00 = data_[static_cast<size_t>(ir) * res_.n_mu + im];
   const Columns& c01 = data_[static_cast<size_t>(ir) * res_.n_mu + im + 1];
   const Columns& c10 = data_[static_cast<size_t>(ir + 1) * res_.n_mu + im];
@@ -220,6 +230,24 @@ Columns SunColumnTable::lookup(double r_m, double mu) const {
   for (int s = 0; s < kSpeciesCount; ++s)
     out[s] = (1 - ar) * ((1 - am) * c00[s] + am * c01[s]) + ar * ((1 - am) * c10[s] + am * c11[s]);
   return out;
+}
+
+Columns SunColumnTable::lookup(double r_m, double mu) const { return interpolate(place(r_m, mu)); }
+
+void SunColumnTable::lookup_many(int count, const double* r_m, const double* mu, Columns* out) const {
+  constexpr int kChunk = 64;
+  double r[kChunk], x_mu[kChunk], fr[kChunk], fm[kChunk];
+  for (int first = 0; first < count; first += kChunk) {
+    const int m = std::min(kChunk, count - first);
+    for (int k = 0; k < m; ++k) {
+      const Place p = place(r_m[first + k], mu[first + k]);
+      r[k] = p.r;
+      x_mu[k] = p.x_mu;
+      fr[k] = p.fr;
+      fm[k] = p.fm;
+    }
+    for (int k = 0; k < m; ++k) out[first + k] = interpolate(Place{r[k], x_mu[k], fr[k], fm[k]});
+  }
 }
 
 }  // namespace skyspec

@@ -345,6 +345,8 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
     PieceSegments seg;
     Eigen::ArrayXXf columns, view_columns;
     NodeArray tau, trans, source;
+    std::vector<double> node_r, node_mu_sun;  // the sun columns' arguments at a piece's nodes
+    std::vector<Columns> sun;
     Eigen::ArrayXXf source_t;  // [wavelength, node], as the source tables write it
   };
   thread_local Scratch sc;
@@ -401,10 +403,17 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
     if (single_here) {
       // Columns along the view ray plus to the sun, at every node.
       sc.columns.resize(m, species);
+      sc.node_r.resize(static_cast<size_t>(m));
+      sc.node_mu_sun.resize(static_cast<size_t>(m));
+      sc.sun.resize(static_cast<size_t>(m));
       for (int k = 0; k < m; ++k) {
-        const Columns sun = sun_.at(nodes[k].r, mu_sun(nodes[k]));
-        for (int sp = 0; sp < species; ++sp) sc.columns(k, sp) = static_cast<float>(nodes[k].col[sp] + sun[sp]);
+        sc.node_r[static_cast<size_t>(k)] = nodes[k].r;
+        sc.node_mu_sun[static_cast<size_t>(k)] = mu_sun(nodes[k]);
       }
+      sun_.at_many(m, sc.node_r.data(), sc.node_mu_sun.data(), sc.sun.data());
+      for (int k = 0; k < m; ++k)
+        for (int sp = 0; sp < species; ++sp)
+          sc.columns(k, sp) = static_cast<float>(nodes[k].col[sp] + sc.sun[static_cast<size_t>(k)][sp]);
       optical_depths(sc.columns, sc.tau);
       sc.trans = (-sc.tau).exp();
       accumulate(g, ws.sum_rayleigh, ws.sum_mie, ws.coarse_rayleigh, ws.coarse_mie);

@@ -82,11 +82,21 @@ class SunColumnTable {
   /// Columns from radius r towards zenith cosine mu; r is clamped to [R, R_t] and mu to the
   /// horizon cosine, so callers must have established that the point is lit.
   Columns lookup(double r_m, double mu) const;
+  /// lookup() at count points (r_m[k], mu[k]), the same values: the table coordinates of all
+  /// points are computed first in a loop the compiler vectorises (the square roots and divisions
+  /// of several points at once), then interpolated.
+  void lookup_many(int count, const double* r_m, const double* mu, Columns* out) const;
   const Resolution& resolution() const { return res_; }
   /// Entries computed (all n_r * n_mu without a band).
   long computed_entries() const;
 
  private:
+  // Where (r_m, mu) falls in the table: r clamped, x_mu, and the fractional indices fr, fm.
+  struct Place {
+    double r, x_mu, fr, fm;
+  };
+  Place place(double r_m, double mu) const;
+  Columns interpolate(const Place& p) const;
   Columns direct(double r, double x_mu) const;
   const AtmosphereModel* atm_;
   double R_, Rt_, H_;

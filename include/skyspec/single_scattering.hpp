@@ -65,12 +65,19 @@ class SunColumns {
  public:
   virtual ~SunColumns() = default;
   virtual Columns at(double r_m, double mu_sun) const = 0;
+  /// at() for count points at once (the integrator asks for all nodes of a piece of a ray).
+  virtual void at_many(int count, const double* r_m, const double* mu_sun, Columns* out) const {
+    for (int k = 0; k < count; ++k) out[k] = at(r_m[k], mu_sun[k]);
+  }
 };
 
 class TableSunColumns : public SunColumns {
  public:
   explicit TableSunColumns(const SunColumnTable& t) : table_(t) {}
   Columns at(double r_m, double mu_sun) const override { return table_.lookup(r_m, mu_sun); }
+  void at_many(int count, const double* r_m, const double* mu_sun, Columns* out) const override {
+    table_.lookup_many(count, r_m, mu_sun, out);
+  }
 
  private:
   const SunColumnTable& table_;
