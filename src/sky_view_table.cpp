@@ -218,11 +218,19 @@ bool SkyViewTable::lookup(const Vec3& dir, RadianceParts& out) const {
   // depends only on the rows and is kept per row pair (sky_inv_den_, ground_inv_den_).
   const double* inv_den = (sky_side ? sky_inv_den_ : ground_inv_den_).data() + 4 * static_cast<size_t>(r0);
   double row_w[4];
-  for (int i = 0; i < n_rows; ++i) {
-    double num = 1.0;
-    for (int j = 0; j < n_rows; ++j)
-      if (j != i) num *= key - xs[j];
-    row_w[i] = num * inv_den[i];
+  if (n_rows == 4) {  // the common case, written out (the same products as the loop below)
+    const double d0 = key - xs[0], d1 = key - xs[1], d2 = key - xs[2], d3 = key - xs[3];
+    row_w[0] = d1 * d2 * d3 * inv_den[0];
+    row_w[1] = d0 * d2 * d3 * inv_den[1];
+    row_w[2] = d0 * d1 * d3 * inv_den[2];
+    row_w[3] = d0 * d1 * d2 * inv_den[3];
+  } else {
+    for (int i = 0; i < n_rows; ++i) {
+      double num = 1.0;
+      for (int j = 0; j < n_rows; ++j)
+        if (j != i) num *= key - xs[j];
+      row_w[i] = num * inv_den[i];
+    }
   }
 
   const int m = res_.azimuths;
@@ -243,14 +251,22 @@ bool SkyViewTable::lookup(const Vec3& dir, RadianceParts& out) const {
   if (2 * entry > kStackFloats) heap.resize(2 * entry);
   float* __restrict acc = 2 * entry > kStackFloats ? heap.data() : stack;
   const float* rows_at = table.data() + static_cast<size_t>(first_row) * stride + static_cast<size_t>(c0) * entry;
-  {
+  if (n_rows == 4) {  // one pass over the four rows
+    const float w0 = static_cast<float>(row_w[0]), w1 = static_cast<float>(row_w[1]);
+    const float w2 = static_cast<float>(row_w[2]), w3 = static_cast<float>(row_w[3]);
+    const float* __restrict e0 = rows_at;
+    const float* __restrict e1 = e0 + stride;
+    const float* __restrict e2 = e1 + stride;
+    const float* __restrict e3 = e2 + stride;
+    for (size_t k = 0; k < 2 * entry; ++k) acc[k] = w0 * e0[k] + w1 * e1[k] + w2 * e2[k] + w3 * e3[k];
+  } else {
     const float w = static_cast<float>(row_w[0]);
     for (size_t k = 0; k < 2 * entry; ++k) acc[k] = w * rows_at[k];
-  }
-  for (int i = 1; i < n_rows; ++i) {
-    const float w = static_cast<float>(row_w[i]);
-    const float* __restrict e = rows_at + static_cast<size_t>(i) * stride;
-    for (size_t k = 0; k < 2 * entry; ++k) acc[k] += w * e[k];
+    for (int i = 1; i < n_rows; ++i) {
+      const float wi = static_cast<float>(row_w[i]);
+      const float* __restrict e = rows_at + static_cast<size_t>(i) * stride;
+      for (size_t k = 0; k < 2 * entry; ++k) acc[k] += wi * e[k];
+    }
   }
   // A cubic may undershoot where a part falls steeply to 0 (the planet's shadow); light is not negative.
   const float w0 = static_cast<float>(column_w[0]), w1 = static_cast<float>(column_w[1]);
