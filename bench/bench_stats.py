@@ -10,7 +10,8 @@ Case 4 is the upper hemisphere only (camera.min_elevation_deg = 0): the whole im
 The "tables / image / files" column is skyspec's own split of its wall time, from the line
 "rendered ... (tables T s, image I s, completing the files F s)" of its log: set-up and tables;
 metering and the image's rows (with the EXR's bands written meanwhile); the EXR's offset table,
-fsync and rename.
+fsync and rename (of the last run, when a case ran several times). Wall times: the median of the
+runs and their range; the ratio to the baseline divides the medians.
 """
 import re
 import sys
@@ -56,9 +57,24 @@ def stages_of(out, name):
     return None if m is None else tuple(float(v) for v in m.groups())
 
 
+def runs_of(out, name):
+    """Wall times (s) of a case's runs and its largest peak RSS (MB)."""
+    runs = [line.split() for line in (out / f"{name}.time").read_text().splitlines() if line.strip()]
+    return [float(r[0]) for r in runs], max(int(r[1]) for r in runs) / 1024.0
+
+
 def time_of(out, name):
-    wall, rss = (out / f"{name}.time").read_text().split()[-2:]
-    return float(wall), int(rss) / 1024.0
+    walls, rss = runs_of(out, name)
+    return float(np.median(walls)), rss
+
+
+def wall_cell(out, name):
+    """The median wall time, and the range when the case ran more than once."""
+    walls, _ = runs_of(out, name)
+    median = float(np.median(walls))
+    if len(walls) == 1:
+        return f"{median:.3f}"
+    return f"{median:.3f} ({min(walls):.3f}-{max(walls):.3f}, {len(walls)} runs)"
 
 
 def main():
@@ -77,7 +93,7 @@ def main():
         print(f"baseline render time (its own clock, sun {sun}): "
               + (out / f"{name}.log").read_text().strip().split(";")[0])
         rows_out = base.setdefault("rows", [])
-        rows_out.append((label, sun, wall, 1.0, p50, p99, rss, None))
+        rows_out.append((label, sun, wall_cell(out, name), 1.0, p50, p99, rss, None))
     has_base = any(k != "rows" for k in base)
     table = []
     refcheck = None
@@ -96,21 +112,21 @@ def main():
             ref, _ = read_exr(out / f"ref-{name}.exr")
             p50, p99 = rel_error(img, ref)
         ratio = wall / base[sun] if has_base and sun in base and label.startswith(("1", "2", "3", "4")) else None
-        table.append((label, sun, wall, ratio, p50, p99, rss, stages_of(out, name)))
+        table.append((label, sun, wall_cell(out, name), ratio, p50, p99, rss, stages_of(out, name)))
     if has_base:
         table = sorted(base["rows"], key=lambda r: -float(r[1])) + table
 
     def f(v, fmt):
         return "-" if v is None else format(v, fmt)
 
-    cols = ["case", "sun (deg)", "wall (s)"] + (["time / baseline"] if has_base else []) + [
+    cols = ["case", "sun (deg)", "wall (s): median (range, runs)"] + (["time / baseline"] if has_base else []) + [
         "tables / image / files (s)", "p50 rel. err.", "p99 rel. err.", "peak RSS (MB)"]
     print()
     print("| " + " | ".join(cols) + " |")
     print("| --- | " + " | ".join("---:" for _ in cols[1:]) + " |")
     for label, sun, wall, ratio, p50, p99, rss, stages in table:
         split = "-" if stages is None else " / ".join(f"{v:.3f}" for v in stages)
-        cells = [label, sun, f"{wall:.2f}"] + ([f(ratio, ".2f")] if has_base else []) + [
+        cells = [label, sun, wall] + ([f(ratio, ".3f")] if has_base else []) + [
             split, f(p50, ".1e"), f(p99, ".1e"), f"{rss:.0f}"]
         print("| " + " | ".join(cells) + " |")
     refs = sorted(out.glob("ref-*.time"))

@@ -9,12 +9,15 @@
 #             g++ -O3 -march=native -std=c++17. When it does not exist the ratio columns are skipped.
 # --out       working folder for renders and logs (default: /tmp/skyspec-bench)
 #
-# Times are process wall-clock times from GNU time (/usr/bin/time -f '%e %M': the same elapsed
-# time and maximum resident set size that /usr/bin/time -v prints), including start-up and
-# writing the output (skyspec: the spectral EXR, no PNG; baseline: its PFM). Errors are computed
+# Times are process wall-clock times (bash's EPOCHREALTIME around the command, to the millisecond;
+# peak memory is GNU time's maximum resident set size, /usr/bin/time -f %M), including start-up
+# and writing the output (skyspec: the spectral EXR, no PNG; baseline: its PFM). The baseline and
+# cases 1-4 run $RUNS times (default 5; this VM's timings vary 10-30 % from run to run) and the
+# table shows the median with the range; each run writes a new file. Errors are computed
 # by bench/bench_stats.py (/usr/bin/python3, numpy, OpenImageIO) against a reference render of
 # the same scene and resolution (REF below).
 set -euo pipefail
+export LC_ALL=C  # EPOCHREALTIME with a decimal point
 here="$(cd "$(dirname "$0")" && pwd)"; root="$(dirname "$here")"
 skyspec=""; baseline_src="$(cd "$root/.." && pwd)/shared/bench/seed_nishita.cpp"; out=/tmp/skyspec-bench
 while [[ $# -gt 0 ]]; do
@@ -56,11 +59,23 @@ else
   echo "baseline: $baseline_src does not exist; the ratio and baseline columns are skipped"
 fi
 
-# timed NAME CMD...: runs CMD under GNU time; appends "wall rss_kB" to $out/NAME.time.
+# timed NAME CMD...: runs CMD ${N:-1} times; a line "wall_s rss_kB" per run in $out/NAME.time.
+# Before each run the outputs of the previous one are removed (NAME.exr, NAME.png, the baseline's
+# seed.pfm). The log is the last run's.
 timed() {
   local name="$1"; shift
-  /usr/bin/time -f '%e %M' -o "$out/$name.time" "$@" > "$out/$name.log" 2>&1
+  : > "$out/$name.time"
+  local i t0 t1
+  for ((i = 0; i < ${N:-1}; i++)); do
+    rm -f "$out/$name.exr" "$out/$name.png" "$out/seed.pfm"
+    t0=$EPOCHREALTIME
+    /usr/bin/time -f '%M' -o "$out/$name.rss" "$@" > "$out/$name.log" 2>&1
+    t1=$EPOCHREALTIME
+    echo "$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.4f", b - a }') $(tail -n 1 "$out/$name.rss")" >> "$out/$name.time"
+  done
+  rm -f "$out/$name.rss"
 }
+RUNS="${RUNS:-5}"
 # sky ROW CASE SUN [ARGS...]: a timed skyspec render and, with a reference, a row of the table.
 # row kinds: main (with error vs the reference $out/ref-$name.exr), time (no error).
 sky() {
@@ -68,7 +83,9 @@ sky() {
   local png=(--no-png); [[ "${WITH_PNG:-0}" == 1 ]] && png=()
   # Not -q: the log keeps the "rendered ... (tables, image, completing the files)" line (no
   # progress bar: the output is not a terminal).
-  timed "$name" "$skyspec" render "${png[@]}" --out "$out" --name "$name" --sun-elevation "$sun" "$@"
+  local runs=1
+  [[ "$kind" == main || "$name" == c3* ]] && runs=$RUNS
+  N=$runs timed "$name" "$skyspec" render "${png[@]}" --out "$out" --name "$name" --sun-elevation "$sun" "$@"
   printf '%s\t%s\t%s\t%s\n' "$kind" "$name" "$label" "$sun" >> "$manifest"
 }
 ref() {  # ref NAME SUN ARGS...: the converged reference (not timed in the table)
@@ -79,7 +96,7 @@ ref() {  # ref NAME SUN ARGS...: the converged reference (not timed in the table
 NONE=(--set output.exr_compression=none)
 for sun in 30 10 2; do
   if [[ -n "$baseline" ]]; then
-    ( cd "$out" && timed "base-$sun" "$baseline" "$sun" && mv seed.pfm "base-$sun.pfm" )
+    ( cd "$out" && N=$RUNS timed "base-$sun" "$baseline" "$sun" && mv seed.pfm "base-$sun.pfm" )
     printf 'base\tbase-%s\tbaseline (RGB 3 wl, 16/8 samples, 1 thread)\t%s\n' "$sun" "$sun" >> "$manifest"
     ref "base511-$sun" "$sun" --preset seed --width 511 --height 511   # the baseline's directions
   fi
