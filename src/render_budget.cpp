@@ -16,6 +16,7 @@
 #include "skyspec/render.hpp"
 #include "skyspec/scene.hpp"
 #include "skyspec/spectral_exr.hpp"
+#include "spectral_exr_encode.hpp"
 
 namespace skyspec {
 namespace {
@@ -207,8 +208,8 @@ double measure_render_seconds(const SkyRenderer& renderer, const RenderPlan& pla
     rendered += w;
     if (cpu > 0.05 || h < 4) break;
   }
-  // And writing: the last row rendered, 16 times, into a spectral EXR with the scene's compression
-  // in the temporary folder, never finished (so removed), timed the same way.
+  // And writing: the last row rendered, 16 times, encoded as a spectral EXR with the scene's
+  // compression into memory (spectral_exr_encode.hpp), timed the same way.
   double write = 0.0;
   if (plan.spectral_exr) {
     const int rows = 16;
@@ -217,19 +218,12 @@ double measure_render_seconds(const SkyRenderer& renderer, const RenderPlan& pla
       std::copy(spectral.begin(), spectral.end(), band_spectral.begin() + static_cast<long>(r * spectral.size()));
       std::copy(rgb.begin(), rgb.end(), band_rgb.begin() + static_cast<long>(r * rgb.size()));
     }
-    std::error_code ec;
-    const auto path = std::filesystem::temp_directory_path(ec) / "skyspec-estimate.exr";
+    SpectralExrMetadata meta;
+    meta.compression = renderer.scene().output.exr_compression;
+    meta.threads = renderer.threads();  // as the render's writer: no more OpenEXR threads than render.threads
     const double before = process_cpu_seconds();
-    try {
-      SpectralExrMetadata meta;
-      meta.compression = renderer.scene().output.exr_compression;
-      meta.threads = renderer.threads();  // as the render's writer: no more OpenEXR threads than render.threads
-      SpectralExrWriter exr(path, w, rows, renderer.grid().nanometres(), meta);
-      exr.write_rows(rows, band_spectral.data(), band_rgb.data());
-      write = (process_cpu_seconds() - before) / rows;
-    } catch (const Error&) {
-      write = 0.0;  // no temporary folder: the estimate leaves writing out
-    }
+    detail::encode_spectral_rows(w, rows, renderer.grid().nanometres(), meta, band_spectral.data(), band_rgb.data());
+    write = (process_cpu_seconds() - before) / rows;
   }
   return (cpu / static_cast<double>(rendered) + write / w) * work / threads;
 }

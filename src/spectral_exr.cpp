@@ -34,6 +34,7 @@
 #include "skyspec/atomic_file.hpp"
 #include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
+#include "spectral_exr_encode.hpp"
 
 namespace skyspec {
 namespace fs = std::filesystem;
@@ -165,6 +166,23 @@ class StdioOStream : public Imf::OStream {
   bool failed_ = false;
 };
 
+/// A stream that keeps nothing but its position and length: OpenEXR encodes into it as into a
+/// file (render_budget.cpp times writing with it, without touching the disk).
+class DiscardingOStream : public Imf::OStream {
+ public:
+  DiscardingOStream() : Imf::OStream("(discarded)") {}
+  void write(const char[], int n) override {
+    position_ += static_cast<uint64_t>(n);
+    length_ = std::max(length_, position_);
+  }
+  uint64_t tellp() override { return position_; }
+  void seekp(uint64_t position) override { position_ = position; }
+  uint64_t length() const { return length_; }
+
+ private:
+  uint64_t position_ = 0, length_ = 0;
+};
+
 /// A FLOAT slice over a pixel-major buffer that holds `rows` rows starting at row y0: channel
 /// `channel` of `n_channels` interleaved values per pixel. OpenEXR addresses a scan-line slice as
 /// base + x * xStride + y * yStride with the absolute y, so the origin (0, y0) is passed on.
@@ -286,15 +304,46 @@ Imf::Header spectral_header(int width, int height, const std::vector<std::string
   return header;
 }
 
-}  // namespace
+// Compression runs on OpenEXR's thread pool, one line block (32 rows for PIZ, 16 for ZIP) per
+// task. The file keeps two line buffers per thread, each a block of uncompressed rows plus its
+// compressed copy: for very wide images (8192 x 84 channels: 88 MB a PIZ block) the thread
+// count is lowered so that they stay within about 256 MiB.
+int pool_threads(const Imf::Header& header, const SpectralExrMetadata& meta) {
+  const Imf::Compression c = header.compression();
+  const size_t block_rows = c == Imf::PIZ_COMPRESSION ? 32 : c == Imf::ZIP_COMPRESSION ? 16 : 1;
+  const IMATH_NAMESPACE::Box2i& window = header.dataWindow();
+  const size_t width = static_cast<size_t>(window.max.x - window.min.x + 1);
+  size_t channels = 0;
+  for (auto it = header.channels().begin(); it != header.channels().end(); ++it) ++channels;
+  const size_t block_bytes = block_rows * width * channels * sizeof(float);
+  const size_t by_memory = (size_t{256} << 20) / std::max<size_t>(1, 4 * block_bytes);
+  const size_t cores = meta.threads > 0 ? static_cast<size_t>(meta.threads) : std::max(1u, std::thread::hardware_concurrency());
+  // OpenEXR's count is of pool threads besides the caller's: 0 compresses on the calling thread.
+  // Uncompressed files have nothing to do in parallel: a task per scanline that only copies it
+  // costs more in hand-offs between threads than the copy itself.
+  const bool parallel = cores > 1 && c != Imf::NO_COMPRESSION;
+  const int threads = parallel ? static_cast<int>(std::clamp<size_t>(by_memory, 1, cores)) : 0;
+  // The file's tasks run on OpenEXR's global thread pool, which has no threads until someone
+  // gives it some: without this every line block is compressed on the calling thread, one
+  // after the other. Only ever raised, so that other files being written are not starved.
+  static std::mutex pool_mutex;  // writers opened at the same time must not lower each other's count
+  std::lock_guard<std::mutex> lock(pool_mutex);
+  if (Imf::globalThreadCount() < threads) Imf::setGlobalThreadCount(threads);
+  return threads;
+}
 
-SpectralExrWriter::SpectralExrWriter(const fs::path& final_path, int width, int height,
-                                     const std::vector<double>& wavelengths_nm,
-                                     const SpectralExrMetadata& meta) {
-  const std::string where = "spectral EXR '" + final_path.string() + "': ";
-  if (width <= 0 || height <= 0)
-    throw IoError(where + "image size " + std::to_string(width) + " x " + std::to_string(height) +
-                  " must be positive");
+// The frame buffer of a band of `rows` rows starting at row y0: the spectral channels (in
+// `names`' order) and R, G, B, interleaved per pixel.
+Imf::FrameBuffer band_frame_buffer(const std::vector<std::string>& names, int width, int y0, int rows,
+                                   const float* spectral, const float* rgb) {
+  const int n = static_cast<int>(names.size());
+  Imf::FrameBuffer frame;
+  for (int c = 0; c < n; ++c) frame.insert(names[static_cast<size_t>(c)], interleaved_slice(spectral, c, n, width, y0, rows));
+  for (int c = 0; c < 3; ++c) frame.insert(kRgbNames[c], interleaved_slice(rgb, c, 3, width, y0, rows));
+  return frame;
+}
+
+std::vector<std::string> channel_names_of(const std::vector<double>& wavelengths_nm, const std::string& where) {
   if (wavelengths_nm.empty()) throw IoError(where + "no wavelengths to write");
   std::vector<std::string> names;
   for (double lambda_nm : wavelengths_nm) {
@@ -306,35 +355,39 @@ SpectralExrWriter::SpectralExrWriter(const fs::path& final_path, int width, int 
   std::sort(sorted.begin(), sorted.end());
   if (const auto dup = std::adjacent_find(sorted.begin(), sorted.end()); dup != sorted.end())
     throw IoError(where + "two wavelengths share the channel name " + *dup);
+  return names;
+}
+
+}  // namespace
+
+uint64_t detail::encode_spectral_rows(int width, int rows, const std::vector<double>& wavelengths_nm,
+                                      const SpectralExrMetadata& meta, const float* spectral, const float* rgb) {
+  const std::vector<std::string> names = channel_names_of(wavelengths_nm, "spectral EXR sample: ");
+  const Imf::Header header = spectral_header(width, rows, names, meta);
+  DiscardingOStream stream;
+  {
+    Imf::OutputFile exr(stream, header, pool_threads(header, meta));
+    exr.setFrameBuffer(band_frame_buffer(names, width, 0, rows, spectral, rgb));
+    exr.writePixels(rows);
+  }  // the destructor writes the line offsets
+  return stream.length();
+}
+
+SpectralExrWriter::SpectralExrWriter(const fs::path& final_path, int width, int height,
+                                     const std::vector<double>& wavelengths_nm,
+                                     const SpectralExrMetadata& meta) {
+  const std::string where = "spectral EXR '" + final_path.string() + "': ";
+  if (width <= 0 || height <= 0)
+    throw IoError(where + "image size " + std::to_string(width) + " x " + std::to_string(height) +
+                  " must be positive");
+  std::vector<std::string> names = channel_names_of(wavelengths_nm, where);
 
   impl_ = std::make_unique<Impl>(final_path, width, height);
   impl_->channel_names = std::move(names);
   try {
     const Imf::Header header = spectral_header(width, height, impl_->channel_names, meta);
     impl_->stream = std::make_unique<StdioOStream>(impl_->file.temporary_path());
-    // Compression runs on OpenEXR's thread pool, one line block (32 rows for PIZ, 16 for ZIP) per
-    // task. The file keeps two line buffers per thread, each a block of uncompressed rows plus its
-    // compressed copy: for very wide images (8192 x 84 channels: 88 MB a PIZ block) the thread
-    // count is lowered so that they stay within about 256 MiB.
-    const Imf::Compression c = header.compression();
-    const size_t block_rows = c == Imf::PIZ_COMPRESSION ? 32 : c == Imf::ZIP_COMPRESSION ? 16 : 1;
-    const size_t block_bytes = block_rows * static_cast<size_t>(width) * (impl_->channel_names.size() + 3) * sizeof(float);
-    const size_t by_memory = (size_t{256} << 20) / std::max<size_t>(1, 4 * block_bytes);
-    const size_t cores = meta.threads > 0 ? static_cast<size_t>(meta.threads) : std::max(1u, std::thread::hardware_concurrency());
-    // OpenEXR's count is of pool threads besides the caller's: 0 compresses on the calling thread.
-    // Uncompressed files have nothing to do in parallel: a task per scanline that only copies it
-    // costs more in hand-offs between threads than the copy itself.
-    const bool parallel = cores > 1 && c != Imf::NO_COMPRESSION;
-    const int threads = parallel ? static_cast<int>(std::clamp<size_t>(by_memory, 1, cores)) : 0;
-    // The file's tasks run on OpenEXR's global thread pool, which has no threads until someone
-    // gives it some: without this every line block is compressed on the calling thread, one
-    // after the other. Only ever raised, so that other files being written are not starved.
-    {
-      static std::mutex pool_mutex;  // writers opened at the same time must not lower each other's count
-      std::lock_guard<std::mutex> lock(pool_mutex);
-      if (Imf::globalThreadCount() < threads) Imf::setGlobalThreadCount(threads);
-    }
-    impl_->exr = std::make_unique<Imf::OutputFile>(*impl_->stream, header, threads);
+    impl_->exr = std::make_unique<Imf::OutputFile>(*impl_->stream, header, pool_threads(header, meta));
   } catch (const IoError&) {
     throw;
   } catch (const std::exception& e) {
@@ -367,13 +420,8 @@ void SpectralExrWriter::write_rows(int rows, const float* spectral, const float*
                   ", y = " + std::to_string(w.rows_written + pixel / w.width));
   }
 
-  const int y0 = w.rows_written;
-  Imf::FrameBuffer frame;
-  for (int c = 0; c < n; ++c)
-    frame.insert(w.channel_names[static_cast<size_t>(c)], interleaved_slice(spectral, c, n, w.width, y0, rows));
-  for (int c = 0; c < 3; ++c) frame.insert(kRgbNames[c], interleaved_slice(rgb, c, 3, w.width, y0, rows));
   try {
-    w.exr->setFrameBuffer(frame);
+    w.exr->setFrameBuffer(band_frame_buffer(w.channel_names, w.width, w.rows_written, rows, spectral, rgb));
     w.exr->writePixels(rows);
     w.stream->start_writeback();
   } catch (const std::exception& e) {

@@ -26,6 +26,7 @@
 #include "skyspec/error.hpp"
 #include "skyspec/png_image.hpp"
 #include "skyspec/spectral_exr.hpp"
+#include "spectral_exr_encode.hpp"
 
 using namespace skyspec;
 using skyspec::test::ScratchFolder;
@@ -141,6 +142,22 @@ BOOST_AUTO_TEST_CASE(every_compression_is_lossless) {
   lossy.compression = "dwaa";
   BOOST_CHECK_THROW(img.write(dir.path / "dwaa.exr", 4, lossy), IoError);
   BOOST_TEST(!fs::exists(dir.path / "dwaa.exr"));
+}
+
+// The render-time estimate encodes a sample band into memory (spectral_exr_encode.hpp): the same
+// bytes as the writer puts in a file, so the same work.
+BOOST_AUTO_TEST_CASE(encoding_into_memory_makes_the_file_s_bytes) {
+  ScratchFolder dir("exr-encode");
+  const TestImage img;
+  for (const char* compression : {"piz", "zip", "none"}) {
+    SpectralExrMetadata meta = test_metadata();
+    meta.compression = compression;
+    const fs::path path = dir.path / (std::string(compression) + ".exr");
+    img.write(path, img.height, meta);
+    const std::uint64_t bytes = detail::encode_spectral_rows(img.width, img.height, img.wavelengths_nm, meta,
+                                                             img.spectral.data(), img.rgb.data());
+    BOOST_TEST_CONTEXT(compression) { BOOST_TEST(bytes == fs::file_size(path)); }
+  }
 }
 
 BOOST_AUTO_TEST_CASE(round_trip_through_read_spectral_exr) {
