@@ -1,5 +1,6 @@
 #include "skyspec/camera.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -24,6 +25,22 @@ bool FisheyeCamera::direction(double x, double y, Vec3& dir) const {
   // The tutorial's frame (x east, y up, z south) in east-north-up.
   dir = Vec3(s * u, -s * v, 1.0 - z2);
   return true;
+}
+
+namespace {
+// The smallest d . u over the unit vectors d with d_z >= s (a cap about the z axis, down to
+// elevation asin s): -1 if it holds -u; otherwise on its rim, where d = (sqrt(1 - s^2) h, s)
+// for a horizontal unit h, at h opposite to u's horizontal part.
+double lowest_cosine_over_cap(const Vec3& u, double s) {
+  if (-u.z() >= s) return -1.0;
+  return s * u.z() - std::sqrt(std::max(0.0, 1.0 - s * s)) * std::hypot(u.x(), u.y());
+}
+}  // namespace
+
+std::optional<double> FisheyeCamera::lowest_cosine_to(const Vec3& u) const { return lowest_cosine_over_cap(u, 0.0); }
+
+std::optional<double> EquirectangularCamera::lowest_cosine_to(const Vec3& u) const {
+  return lowest_cosine_over_cap(u, std::sin(degrees_to_radians(min_elevation_deg_)));
 }
 
 std::string FisheyeCamera::describe() const {

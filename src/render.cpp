@@ -225,11 +225,13 @@ struct SkyRenderer::Impl {
   }
 
   // Whether any pixel of the image looks below the geometric horizon (a fisheye of the sky does
-  // not, so the sky-view table can leave out that side).
+  // not, so the sky-view table can leave out that side): from the camera's closed form where it
+  // has one (a bound: at worst the table's ground side is built for nothing), else pixel by pixel.
   bool image_sees_below_horizon() const {
     const Vec3 up = camera->origin_m().normalized();
     const double r = camera->origin_m().norm(), R = atmosphere.planet_radius_m();
     const double below = -std::sqrt(std::max(0.0, (r - R) * (r + R))) / r;  // cos of the horizon's zenith angle
+    if (const std::optional<double> lowest = camera->lowest_cosine_to(up)) return *lowest <= below + 1e-9;
     const int w = camera->width(), h = camera->height();
     tbb::task_arena arena(threads);
     return arena.execute([&] {

@@ -2,7 +2,9 @@
 #define BOOST_TEST_MODULE camera
 #include <boost/test/unit_test.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <stdexcept>
 
 #include "skyspec/camera.hpp"
@@ -88,4 +90,28 @@ BOOST_AUTO_TEST_CASE(equirectangular_upper_hemisphere_ends_at_the_horizon) {
 BOOST_AUTO_TEST_CASE(equirectangular_rejects_an_empty_elevation_range) {
   BOOST_CHECK_THROW(EquirectangularCamera(8, 8, kOrigin, 90.0), std::invalid_argument);
   BOOST_CHECK_THROW(EquirectangularCamera(8, 8, kOrigin, -91.0), std::invalid_argument);
+}
+
+// The closed-form lowest cosine to a direction u is a bound for every pixel's direction, and a
+// tight one: within a pixel's angle of the lowest pixel (u vertical, tilted, upside down).
+BOOST_AUTO_TEST_CASE(lowest_cosine_bounds_the_pixels) {
+  const Vec3 origin(0, 0, 6360e3);
+  const FisheyeCamera fisheye(96, 96, origin);
+  const EquirectangularCamera hemisphere(128, 32, origin, 0.0), band(128, 48, origin, -20.0), sphere(128, 64, origin);
+  const PerspectiveCamera perspective(32, 24, origin, origin + Vec3(1000, 0, 100), 60.0);
+  BOOST_TEST(!perspective.lowest_cosine_to(Vec3(0, 0, 1)).has_value());
+  for (const Vec3& u : {Vec3(0, 0, 1), Vec3(0.3, -0.2, 0.9).normalized(), Vec3(1, 0, 0), Vec3(0.1, 0.2, -0.97).normalized()})
+    for (const Camera* camera : std::initializer_list<const Camera*>{&fisheye, &hemisphere, &band, &sphere}) {
+      double lowest = 2.0;
+      for (int y = 0; y < camera->height(); ++y)
+        for (int x = 0; x < camera->width(); ++x) {
+          Vec3 d;
+          if (camera->direction(x + 0.5, y + 0.5, d)) lowest = std::min(lowest, d.dot(u));
+        }
+      const double bound = *camera->lowest_cosine_to(u);
+      BOOST_TEST_CONTEXT(camera->describe() << ", u = " << u.transpose()) {
+        BOOST_TEST(bound <= lowest + 1e-12);
+        BOOST_TEST(bound >= lowest - 0.05);  // a pixel spans at most 3 degrees here
+      }
+    }
 }

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "skyspec/geometry.hpp"
@@ -29,6 +30,13 @@ class Camera {
   /// (outside the fisheye circle).
   virtual bool direction(double x, double y, Vec3& dir) const = 0;
   virtual std::string describe() const = 0;
+  /// The smallest dir . u over every direction the camera's image spans (u a unit vector), where
+  /// that has a closed form (a bound for the pixels' own directions); empty where it has not
+  /// (perspective): callers then look at the pixels.
+  virtual std::optional<double> lowest_cosine_to(const Vec3& u) const {
+    (void)u;
+    return std::nullopt;
+  }
 
  protected:
   Camera(int width, int height, Vec3 origin_m) : width_(width), height_(height), origin_m_(std::move(origin_m)) {}
@@ -46,6 +54,8 @@ class FisheyeCamera : public Camera {
   FisheyeCamera(int width, int height, Vec3 origin_m) : Camera(width, height, std::move(origin_m)) {}
   bool direction(double x, double y, Vec3& dir) const override;
   std::string describe() const override;
+  /// Its directions are the upper hemisphere of the east-north-up frame.
+  std::optional<double> lowest_cosine_to(const Vec3& u) const override;
 };
 
 /// A pinhole camera looking from origin towards a target, with a vertical field of view; "up" is
@@ -71,6 +81,8 @@ class EquirectangularCamera : public Camera {
   EquirectangularCamera(int width, int height, Vec3 origin_m, double min_elevation_deg = -90.0);
   bool direction(double x, double y, Vec3& dir) const override;
   std::string describe() const override;
+  /// Its directions are those at or above min_elevation_deg in the east-north-up frame.
+  std::optional<double> lowest_cosine_to(const Vec3& u) const override;
 
  private:
   double min_elevation_deg_;
