@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -198,8 +199,22 @@ constexpr const char* kRgbNames[3] = {"R", "G", "B"};
 
 /// Index of the first non-finite value among count floats, or -1.
 long first_non_finite(const float* values, size_t count) {
-  for (size_t i = 0; i < count; ++i)
-    if (!std::isfinite(values[i])) return static_cast<long>(i);
+  // Blocks of 256 checked without an early exit, so that the check vectorises (a band of an
+  // uncompressed RGB-fast image is 200 000 values): a float is not finite when its exponent
+  // bits are all set.
+  constexpr size_t kBlock = 256;
+  for (size_t first = 0; first < count; first += kBlock) {
+    const size_t end = std::min(count, first + kBlock);
+    unsigned bad = 0;
+    for (size_t i = first; i < end; ++i) {
+      std::uint32_t bits;
+      std::memcpy(&bits, values + i, sizeof bits);
+      bad |= (bits & 0x7f800000u) == 0x7f800000u;
+    }
+    if (bad)
+      for (size_t i = first; i < end; ++i)
+        if (!std::isfinite(values[i])) return static_cast<long>(i);
+  }
   return -1;
 }
 
