@@ -30,14 +30,14 @@ inline double atan_unit(double a) {  // atan(a) for a in [0, 1]
 }
 
 /// atan2(y, x) in [-pi, pi] to within 1e-9 rad; 0 for (0, 0) as std::atan2 (signed zeros aside).
+/// Selects only, no branches, so that loops over many angles vectorise.
 inline double fast_atan2(double y, double x) {
   constexpr double kHalfPi = 0.5 * kPi;
   const double ax = std::abs(x), ay = std::abs(y);
   const double hi = ax > ay ? ax : ay, lo = ax > ay ? ay : ax;
-  if (hi == 0.0) return 0.0;
-  double t = atan_unit(lo / hi);
-  if (ay > ax) t = kHalfPi - t;  // |y| > |x|: atan(|y|/|x|) = pi/2 - atan(|x|/|y|)
-  if (x < 0.0) t = kPi - t;
+  double t = atan_unit(lo / (hi > 0.0 ? hi : 1.0));  // (0, 0): 0
+  t = ay > ax ? kHalfPi - t : t;  // |y| > |x|: atan(|y|/|x|) = pi/2 - atan(|x|/|y|)
+  t = x < 0.0 ? kPi - t : t;
   return y < 0.0 ? -t : t;
 }
 

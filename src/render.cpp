@@ -216,7 +216,8 @@ struct SkyRenderer::Impl {
   }
 
   // The sky's radiance along dir (unit) without the sun's disk: interpolated from the sky-view
-  // table where there is one for that direction, marched otherwise.
+  // table where there is one for that direction, marched otherwise (render_rows does the same
+  // for chunks of pixels).
   void sky_radiance(const Vec3& dir, ScatteringWorkspace& ws, Spectrum& out) const {
     if (sky_view && sky_view->lookup(dir, ws.parts))
       integrator.combine(ws.parts, dir.dot(sun_dir), sun_irradiance, ws, out);
@@ -380,34 +381,60 @@ void SkyRenderer::aerial_rows(int y0, int rows, const float* distance_m, float* 
 void SkyRenderer::render_rows(int y0, int rows, float* spectral, float* rgb) const {
   const auto& m = *impl_;
   const int w = m.camera->width(), n = m.grid.size();
+  // Pixels go through in chunks: a chunk's directions are looked up in the sky-view table
+  // together (SkyViewTable::lookup_many computes their angles in one vectorised loop); what the
+  // table does not cover is marched, as sky_radiance() does for one direction.
+  constexpr int kChunk = 64;
   struct Scratch {
     ScatteringWorkspace ws;
     Spectrum radiance, disk, trans;
-    explicit Scratch(int k) : ws(k), radiance(k), disk(k), trans(k) {}
+    Vec3 dirs[kChunk];
+    int pixel[kChunk];  // the chunk's pixels that have a direction
+    bool found[kChunk];
+    std::vector<float> parts;  // their sky-view parts, 3 n floats each
+    explicit Scratch(int k) : ws(k), radiance(k), disk(k), trans(k), parts(static_cast<size_t>(3 * kChunk * k)) {}
   };
   tbb::enumerable_thread_specific<Scratch> scratch([n] { return Scratch(n); });
   std::atomic<bool> non_finite{false};
   tbb::task_arena arena(m.threads);
   arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<int>(0, rows * w, 64), [&](const tbb::blocked_range<int>& r) {
+    tbb::parallel_for(tbb::blocked_range<int>(0, rows * w, kChunk), [&](const tbb::blocked_range<int>& r) {
       Scratch& sc = scratch.local();
-      for (int idx = r.begin(); idx != r.end(); ++idx) {
-        const int row = idx / w, x = idx % w;
-        Vec3 dir;
-        float* px = spectral + static_cast<size_t>(idx) * n;
-        if (m.camera->direction(x + 0.5, y0 + row + 0.5, dir)) {
-          m.sky_radiance(dir, sc.ws, sc.radiance);
-          if (m.scene.sun.disk) m.add_sun_disk(x, y0 + row, dir, sc.radiance, sc.disk, sc.trans);
-          std::copy(sc.radiance.data(), sc.radiance.data() + n, px);
-        } else {
-          std::fill(px, px + n, 0.0f);
+      for (int c0 = r.begin(); c0 < r.end(); c0 += kChunk) {
+        const int c1 = std::min(r.end(), c0 + kChunk);
+        int count = 0;
+        for (int idx = c0; idx < c1; ++idx) {
+          const int row = idx / w, x = idx % w;
+          if (m.camera->direction(x + 0.5, y0 + row + 0.5, sc.dirs[count]))
+            sc.pixel[count++] = idx;
+          else
+            std::fill(spectral + static_cast<size_t>(idx) * n, spectral + static_cast<size_t>(idx + 1) * n, 0.0f);
         }
-        float* px_rgb = rgb + static_cast<size_t>(idx) * 3;
-        spectrum_to_rgb(px, px_rgb);
-        // Checked here, while the pixel is in cache, rather than in a pass over the band.
-        if (!std::isfinite(px_rgb[0]) || !std::isfinite(px_rgb[1]) || !std::isfinite(px_rgb[2]) ||
-            !Eigen::Map<const Spectrum>(px, n).allFinite())
-          non_finite.store(true, std::memory_order_relaxed);
+        if (m.sky_view) m.sky_view->lookup_many(count, sc.dirs, sc.parts.data(), sc.found);
+        for (int k = 0; k < count; ++k) {
+          const Vec3& dir = sc.dirs[k];
+          const int idx = sc.pixel[k];
+          if (m.sky_view && sc.found[k]) {
+            const float* p = sc.parts.data() + static_cast<size_t>(3 * k) * n;
+            std::copy(p, p + n, sc.ws.parts.rayleigh.data());
+            std::copy(p + n, p + 2 * n, sc.ws.parts.mie.data());
+            std::copy(p + 2 * n, p + 3 * n, sc.ws.parts.isotropic.data());
+            m.integrator.combine(sc.ws.parts, dir.dot(m.sun_dir), m.sun_irradiance, sc.ws, sc.radiance);
+          } else {
+            m.integrator.radiance(m.camera->origin_m(), dir, m.sun_dir, m.sun_irradiance, m.sources, sc.ws, sc.radiance);
+          }
+          if (m.scene.sun.disk) m.add_sun_disk(idx % w, y0 + idx / w, dir, sc.radiance, sc.disk, sc.trans);
+          std::copy(sc.radiance.data(), sc.radiance.data() + n, spectral + static_cast<size_t>(idx) * n);
+        }
+        for (int idx = c0; idx < c1; ++idx) {
+          const float* px = spectral + static_cast<size_t>(idx) * n;
+          float* px_rgb = rgb + static_cast<size_t>(idx) * 3;
+          spectrum_to_rgb(px, px_rgb);
+          // Checked here, while the pixel is in cache, rather than in a pass over the band.
+          if (!std::isfinite(px_rgb[0]) || !std::isfinite(px_rgb[1]) || !std::isfinite(px_rgb[2]) ||
+              !Eigen::Map<const Spectrum>(px, n).allFinite())
+            non_finite.store(true, std::memory_order_relaxed);
+        }
       }
     });
   });

@@ -183,16 +183,53 @@ SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringS
   });
 }
 
+// Angles by a polynomial atan2 good to 1e-9 rad (fast_atan2.hpp): libm's took a quarter of a
+// render's per-pixel time. Within 1e-6 rad of the horizon libm's is used (refined_zenith): there
+// the distance to the ground, the ground side's interpolation variable, changes by orders of
+// magnitude over angles of that size.
+inline void SkyViewTable::angles_of(const Vec3& dir, double& theta, double& phi) const {
+  // Dot products written out (Eigen's use SSE intrinsics, which keep a loop over directions from
+  // vectorising).
+  const double d0 = dir[0], d1 = dir[1], d2 = dir[2];
+  const double x = d0 * toward_sun_[0] + d1 * toward_sun_[1] + d2 * toward_sun_[2];
+  const double y = std::abs(d0 * across_[0] + d1 * across_[1] + d2 * across_[2]);
+  const double z = d0 * up_[0] + d1 * up_[1] + d2 * up_[2];
+  theta = detail::fast_atan2(std::sqrt(x * x + y * y), z);
+  phi = detail::fast_atan2(y, x);  // in [0, pi]
+}
+
+inline double SkyViewTable::refined_zenith(const Vec3& dir, double theta) const {
+  if (!(std::abs(theta - horizon_zenith_rad_) < 1e-6)) return theta;
+  const double x = dir.dot(toward_sun_), y = dir.dot(across_), z = dir.dot(up_);
+  return std::atan2(std::sqrt(x * x + y * y), z);
+}
+
 bool SkyViewTable::lookup(const Vec3& dir, RadianceParts& out) const {
-  const double x = dir.dot(toward_sun_), y = std::abs(dir.dot(across_)), z = dir.dot(up_);
-  // Angles by a polynomial atan2 good to 1e-9 rad (fast_atan2.hpp): libm's took a quarter of a
-  // render's per-pixel time. Within 1e-6 rad of the horizon libm's is used: there the distance
-  // to the ground, the ground side's interpolation variable, changes by orders of magnitude over
-  // angles of that size.
-  const double h = std::sqrt(x * x + y * y);
-  double theta = detail::fast_atan2(h, z);
-  if (std::abs(theta - horizon_zenith_rad_) < 1e-6) theta = std::atan2(h, z);
-  const double phi = detail::fast_atan2(y, x);  // in [0, pi]
+  double theta, phi;
+  angles_of(dir, theta, phi);
+  theta = refined_zenith(dir, theta);
+  const int n = n_;
+  out.rayleigh.resize(n);  // no-ops when the caller's parts have the grid's size already
+  out.mie.resize(n);
+  out.isotropic.resize(n);
+  return interpolate(theta, phi, out.rayleigh.data(), out.mie.data(), out.isotropic.data());
+}
+
+void SkyViewTable::lookup_many(int count, const Vec3* dirs, float* out, bool* found) const {
+  constexpr int kChunk = 64;
+  double theta[kChunk], phi[kChunk];
+  const size_t entry = static_cast<size_t>(kParts) * static_cast<size_t>(n_);
+  for (int first = 0; first < count; first += kChunk) {
+    const int m = std::min(kChunk, count - first);
+    for (int k = 0; k < m; ++k) angles_of(dirs[first + k], theta[k], phi[k]);  // vectorised
+    for (int k = 0; k < m; ++k) {
+      float* o = out + static_cast<size_t>(first + k) * entry;
+      found[first + k] = interpolate(refined_zenith(dirs[first + k], theta[k]), phi[k], o, o + n_, o + 2 * n_);
+    }
+  }
+}
+
+bool SkyViewTable::interpolate(double theta, double phi, float* rayleigh, float* mie, float* isotropic) const {
   const bool sky_side = theta < horizon_zenith_rad_;
   if (!sky_side && !res_.ground_side) return false;
   const std::vector<float>& table = sky_side ? sky_ : ground_;
@@ -270,10 +307,7 @@ bool SkyViewTable::lookup(const Vec3& dir, RadianceParts& out) const {
   }
   // A cubic may undershoot where a part falls steeply to 0 (the planet's shadow); light is not negative.
   const float w0 = static_cast<float>(column_w[0]), w1 = static_cast<float>(column_w[1]);
-  out.rayleigh.resize(n);  // no-ops when the caller's parts have the grid's size already
-  out.mie.resize(n);
-  out.isotropic.resize(n);
-  float* parts[kParts] = {out.rayleigh.data(), out.mie.data(), out.isotropic.data()};
+  float* parts[kParts] = {rayleigh, mie, isotropic};
   for (int p = 0; p < kParts; ++p) {
     const float* a = acc + static_cast<size_t>(p) * n;
     const float* b = a + entry;

@@ -47,6 +47,10 @@ class SkyViewTable {
   /// interpolated (cubic across rows, linear in azimuth) on the side of the horizon dir is on.
   /// False (and `out` untouched) for a direction below the horizon when that side was not built.
   bool lookup(const Vec3& dir, RadianceParts& out) const;
+  /// lookup() for count unit directions at once, their angles computed together (a loop that
+  /// vectorises): direction k's parts go to out + 3 n k (Rayleigh, Mie, isotropic, n floats
+  /// each, n the wavelengths), found[k] is lookup()'s answer. The same values as lookup().
+  void lookup_many(int count, const Vec3* dirs, float* out, bool* found) const;
   /// The zenith angle of the horizon seen from the table's point (> pi/2 above the ground).
   double horizon_zenith_rad() const { return horizon_zenith_rad_; }
 
@@ -64,6 +68,12 @@ class SkyViewTable {
   double first_row_zenith(bool sky_side, int rows) const;
   double key_of(bool sky_side, double theta) const;
   double ground_distance(double theta) const;
+  // The view zenith angle and the azimuth from the sun (in [0, pi]) of a unit direction by the
+  // polynomial atan2; theta again by libm's where it is within 1e-6 rad of the horizon; the
+  // table's interpolation at (theta, phi) (false where it has no side for theta).
+  void angles_of(const Vec3& dir, double& theta, double& phi) const;
+  double refined_zenith(const Vec3& dir, double theta) const;
+  bool interpolate(double theta, double phi, float* rayleigh, float* mie, float* isotropic) const;
 
   SkyViewResolution res_;
   int n_ = 0;  // wavelengths
