@@ -20,6 +20,48 @@ namespace {
 constexpr double kHorizonOffsetRad = 1e-6;
 constexpr int kParts = 3;
 
+// Mixes the entries around a look-up: rows (n_rows of them, from rows_at, a row of `azimuths`
+// entries apart) weighted by row_w, then the two columns (the entries of columns c0 and c0 + 1
+// are contiguous, as are the three parts of an entry: one loop over 2 x 3 x n floats per row
+// accumulates both columns' parts) by w0 and w1. kN > 0: the wavelength count known at compile
+// time, so that the loops unroll; 0: n at run time.
+template <int kN>
+void mix_entries(const float* rows_at, int azimuths, const double* row_w, int n_rows, float w0, float w1, int n_run,
+                 float* const parts[kParts]) {
+  const int n = kN > 0 ? kN : n_run;
+  const size_t entry = static_cast<size_t>(kParts) * static_cast<size_t>(n);
+  const size_t stride = static_cast<size_t>(azimuths) * entry;
+  // On the stack for up to 42 wavelengths (2 x 3 x 42 floats), per thread beyond.
+  constexpr size_t kStackFloats = 256;
+  alignas(32) float stack[kStackFloats];
+  thread_local std::vector<float> heap;
+  if (2 * entry > kStackFloats) heap.resize(2 * entry);
+  float* __restrict acc = 2 * entry > kStackFloats ? heap.data() : stack;
+  if (n_rows == 4) {  // one pass over the four rows
+    const float v0 = static_cast<float>(row_w[0]), v1 = static_cast<float>(row_w[1]);
+    const float v2 = static_cast<float>(row_w[2]), v3 = static_cast<float>(row_w[3]);
+    const float* __restrict e0 = rows_at;
+    const float* __restrict e1 = e0 + stride;
+    const float* __restrict e2 = e1 + stride;
+    const float* __restrict e3 = e2 + stride;
+    for (size_t k = 0; k < 2 * entry; ++k) acc[k] = v0 * e0[k] + v1 * e1[k] + v2 * e2[k] + v3 * e3[k];
+  } else {
+    const float v = static_cast<float>(row_w[0]);
+    for (size_t k = 0; k < 2 * entry; ++k) acc[k] = v * rows_at[k];
+    for (int i = 1; i < n_rows; ++i) {
+      const float vi = static_cast<float>(row_w[i]);
+      const float* __restrict e = rows_at + static_cast<size_t>(i) * stride;
+      for (size_t k = 0; k < 2 * entry; ++k) acc[k] += vi * e[k];
+    }
+  }
+  // A cubic may undershoot where a part falls steeply to 0 (the planet's shadow); light is not negative.
+  for (int p = 0; p < kParts; ++p) {
+    const float* a = acc + static_cast<size_t>(p) * n;
+    const float* b = a + entry;
+    for (int l = 0; l < n; ++l) parts[p][l] = std::max(0.0f, w0 * a[l] + w1 * b[l]);
+  }
+}
+
 }  // namespace
 
 bool SkyViewTable::applicable(const AtmosphereModel& atm, const Vec3& origin_m) {
@@ -34,7 +76,7 @@ bool SkyViewTable::applicable(const AtmosphereModel& atm, const Vec3& origin_m) 
 // the air in front of the ground adds light in proportion to that distance, and as a function of
 // angle the distance falls by orders of magnitude just below the horizon of a camera near the
 // ground; the angle keeps the rows from thinning out towards the nadir.
-double SkyViewTable::placement_of(bool sky_side, double theta) const {
+[[gnu::always_inline]] inline double SkyViewTable::placement_of(bool sky_side, double theta) const {
   const double th = horizon_zenith_rad_;
   if (sky_side) return std::sqrt(std::clamp((th - theta) / th, 0.0, 1.0));
   const double angle = std::clamp((theta - th) / (kPi - th), 0.0, 1.0);
@@ -232,7 +274,6 @@ void SkyViewTable::lookup_many(int count, const Vec3* dirs, float* out, bool* fo
 bool SkyViewTable::interpolate(double theta, double phi, float* rayleigh, float* mie, float* isotropic) const {
   const bool sky_side = theta < horizon_zenith_rad_;
   if (!sky_side && !res_.ground_side) return false;
-  const std::vector<float>& table = sky_side ? sky_ : ground_;
 
   // The row pair around theta (placement_of says where to look; rounding is corrected by
   // comparing with the rows' own angles), weighted linearly in the interpolation variable.
@@ -275,44 +316,15 @@ bool SkyViewTable::interpolate(double theta, double phi, float* rayleigh, float*
   const int c0 = std::min(static_cast<int>(f), m - 2);
   const double column_w[2] = {1.0 - (f - c0), f - c0};
 
-  // The three parts of an entry are contiguous, and so are the entries of columns c0 and c0 + 1:
-  // one loop over 2 * 3 * n floats per row accumulates both columns' parts (this runs for every
-  // pixel); then the columns are mixed.
-  const int n = n_;
-  const size_t entry = static_cast<size_t>(kParts) * static_cast<size_t>(n);
-  const size_t stride = static_cast<size_t>(m) * entry;
-  // On the stack for up to 42 wavelengths (2 x 3 x 42 floats), per thread beyond.
-  constexpr size_t kStackFloats = 256;
-  alignas(32) float stack[kStackFloats];
-  thread_local std::vector<float> heap;
-  if (2 * entry > kStackFloats) heap.resize(2 * entry);
-  float* __restrict acc = 2 * entry > kStackFloats ? heap.data() : stack;
-  const float* rows_at = table.data() + static_cast<size_t>(first_row) * stride + static_cast<size_t>(c0) * entry;
-  if (n_rows == 4) {  // one pass over the four rows
-    const float w0 = static_cast<float>(row_w[0]), w1 = static_cast<float>(row_w[1]);
-    const float w2 = static_cast<float>(row_w[2]), w3 = static_cast<float>(row_w[3]);
-    const float* __restrict e0 = rows_at;
-    const float* __restrict e1 = e0 + stride;
-    const float* __restrict e2 = e1 + stride;
-    const float* __restrict e3 = e2 + stride;
-    for (size_t k = 0; k < 2 * entry; ++k) acc[k] = w0 * e0[k] + w1 * e1[k] + w2 * e2[k] + w3 * e3[k];
-  } else {
-    const float w = static_cast<float>(row_w[0]);
-    for (size_t k = 0; k < 2 * entry; ++k) acc[k] = w * rows_at[k];
-    for (int i = 1; i < n_rows; ++i) {
-      const float wi = static_cast<float>(row_w[i]);
-      const float* __restrict e = rows_at + static_cast<size_t>(i) * stride;
-      for (size_t k = 0; k < 2 * entry; ++k) acc[k] += wi * e[k];
-    }
-  }
-  // A cubic may undershoot where a part falls steeply to 0 (the planet's shadow); light is not negative.
   const float w0 = static_cast<float>(column_w[0]), w1 = static_cast<float>(column_w[1]);
-  float* parts[kParts] = {rayleigh, mie, isotropic};
-  for (int p = 0; p < kParts; ++p) {
-    const float* a = acc + static_cast<size_t>(p) * n;
-    const float* b = a + entry;
-    for (int l = 0; l < n; ++l) parts[p][l] = std::max(0.0f, w0 * a[l] + w1 * b[l]);
-  }
+  const float* rows_at = (sky_side ? sky_ : ground_).data() +
+                         static_cast<size_t>(first_row) * static_cast<size_t>(m) * kParts * static_cast<size_t>(n_) +
+                         static_cast<size_t>(c0) * kParts * static_cast<size_t>(n_);
+  float* const parts[kParts] = {rayleigh, mie, isotropic};
+  if (n_ == 3)  // the RGB-fast path's three wavelengths: loops of known length, unrolled
+    mix_entries<3>(rows_at, m, row_w, n_rows, w0, w1, n_, parts);
+  else
+    mix_entries<0>(rows_at, m, row_w, n_rows, w0, w1, n_, parts);
   return true;
 }
 
