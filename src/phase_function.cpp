@@ -8,19 +8,6 @@
 
 namespace skyspec {
 
-double rayleigh_phase(double mu) { return 3.0 / (16.0 * kPi) * (1.0 + mu * mu); }
-
-double henyey_greenstein_phase(double mu, double g) {
-  const double denom = 1.0 + g * g - 2.0 * g * mu;
-  return (1.0 - g * g) / (4.0 * kPi * denom * std::sqrt(denom));
-}
-
-double cornette_shanks_phase(double mu, double g) {
-  const double denom = 1.0 + g * g - 2.0 * g * mu;
-  return 3.0 / (8.0 * kPi) * (1.0 - g * g) * (1.0 + mu * mu) /
-         ((2.0 + g * g) * denom * std::sqrt(denom));
-}
-
 double AerosolPhase::operator()(double mu) const {
   return model == Model::HenyeyGreenstein ? henyey_greenstein_phase(mu, g)
                                           : cornette_shanks_phase(mu, g);

@@ -190,7 +190,7 @@ struct SkyRenderer::Impl {
   // centre looks along dir. The disk is far smaller than most pixels, so the pixel's area is
   // sampled on an 8 x 8 grid and the disk's radiance averaged over it; the attenuation along the
   // line of sight is taken at the pixel's centre.
-  void add_sun_disk(int px, int py, const Vec3& dir, Spectrum& radiance, Spectrum& disk, Spectrum& trans) const {
+  void add_sun_disk(int px, int py, const Vec3& dir, float* radiance, Spectrum& disk, Spectrum& trans) const {
     Vec3 neighbour;
     if (!camera->direction(px + 1.5, py + 0.5, neighbour) && !camera->direction(px - 0.5, py + 0.5, neighbour)) return;
     const double pixel_rad = std::acos(std::clamp(neighbour.dot(dir), -1.0, 1.0));
@@ -212,7 +212,7 @@ struct SkyRenderer::Impl {
       }
     if (!any) return;
     integrator.transmittance_to_space(camera->origin_m(), dir, trans);
-    radiance += disk * (1.0f / (n * n)) * trans * sun_irradiance;
+    Eigen::Map<Spectrum>(radiance, grid.size()) += disk * (1.0f / (n * n)) * trans * sun_irradiance;
   }
 
   // The sky's radiance along dir (unit) without the sun's disk: interpolated from the sky-view
@@ -391,6 +391,8 @@ void SkyRenderer::render_rows(int y0, int rows, float* spectral, float* rgb) con
     Vec3 dirs[kChunk];
     int pixel[kChunk];  // the chunk's pixels that have a direction
     bool found[kChunk];
+    double mu[kChunk];    // their cosines to the sun
+    float* out[kChunk];   // where their radiances go
     std::vector<float> parts;  // their sky-view parts, 3 n floats each
     explicit Scratch(int k) : ws(k), radiance(k), disk(k), trans(k), parts(static_cast<size_t>(3 * kChunk * k)) {}
   };
@@ -410,21 +412,23 @@ void SkyRenderer::render_rows(int y0, int rows, float* spectral, float* rgb) con
           else
             std::fill(spectral + static_cast<size_t>(idx) * n, spectral + static_cast<size_t>(idx + 1) * n, 0.0f);
         }
-        if (m.sky_view) m.sky_view->lookup_many(count, sc.dirs, sc.parts.data(), sc.found);
+        if (m.sky_view) {
+          m.sky_view->lookup_many(count, sc.dirs, sc.parts.data(), sc.found);
+          for (int k = 0; k < count; ++k) {
+            sc.mu[k] = sc.dirs[k].dot(m.sun_dir);
+            sc.out[k] = spectral + static_cast<size_t>(sc.pixel[k]) * n;
+          }
+          m.integrator.combine_many(count, sc.parts.data(), sc.mu, sc.found, m.sun_irradiance, sc.out, sc.ws);
+        }
         for (int k = 0; k < count; ++k) {
           const Vec3& dir = sc.dirs[k];
           const int idx = sc.pixel[k];
-          if (m.sky_view && sc.found[k]) {
-            const float* p = sc.parts.data() + static_cast<size_t>(3 * k) * n;
-            std::copy(p, p + n, sc.ws.parts.rayleigh.data());
-            std::copy(p + n, p + 2 * n, sc.ws.parts.mie.data());
-            std::copy(p + 2 * n, p + 3 * n, sc.ws.parts.isotropic.data());
-            m.integrator.combine(sc.ws.parts, dir.dot(m.sun_dir), m.sun_irradiance, sc.ws, sc.radiance);
-          } else {
+          float* px = spectral + static_cast<size_t>(idx) * n;
+          if (!(m.sky_view && sc.found[k])) {
             m.integrator.radiance(m.camera->origin_m(), dir, m.sun_dir, m.sun_irradiance, m.sources, sc.ws, sc.radiance);
+            std::copy(sc.radiance.data(), sc.radiance.data() + n, px);
           }
-          if (m.scene.sun.disk) m.add_sun_disk(idx % w, y0 + idx / w, dir, sc.radiance, sc.disk, sc.trans);
-          std::copy(sc.radiance.data(), sc.radiance.data() + n, spectral + static_cast<size_t>(idx) * n);
+          if (m.scene.sun.disk) m.add_sun_disk(idx % w, y0 + idx / w, dir, px, sc.disk, sc.trans);
         }
         for (int idx = c0; idx < c1; ++idx) {
           const float* px = spectral + static_cast<size_t>(idx) * n;

@@ -154,20 +154,64 @@ void SingleScattering::radiance(const Vec3& o, const Vec3& d, const Vec3& s, con
   combine(ws.parts, d.dot(s), sun_irradiance, ws, out);
 }
 
+namespace {
+// L = E_sun [p_R rayleigh + p_M mie + isotropic] for one direction's parts (n values each), with
+// the aerosol's phase per wavelength where pm_spectral is given.
+void combine_parts(Eigen::Index n, const float* rayleigh, const float* mie, const float* isotropic, float pr, float pm,
+                   const Spectrum* pm_spectral, const Spectrum& sun_irradiance, float* out) {
+  using In = Eigen::Map<const Spectrum>;
+  Eigen::Map<Spectrum> o(out, n);
+  if (pm_spectral)
+    o = (In(rayleigh, n) * pr + In(mie, n) * *pm_spectral + In(isotropic, n)) * sun_irradiance;
+  else
+    o = (In(rayleigh, n) * pr + In(mie, n) * pm + In(isotropic, n)) * sun_irradiance;
+}
+
+// A spectral aerosol: the phase function's asymmetry differs per wavelength.
+void spectral_mie_phase(const AtmosphereModel& atm, double mu, Spectrum& phase) {
+  AerosolPhase p = atm.mie_phase();
+  for (int i = 0; i < phase.size(); ++i) {
+    p.g = atm.mie_g()[i];
+    phase[i] = static_cast<float>(p(mu));
+  }
+}
+}  // namespace
+
 void SingleScattering::combine(const RadianceParts& parts, double mu, const Spectrum& sun_irradiance,
                                ScatteringWorkspace& ws, Spectrum& out) const {
+  const Eigen::Index n = parts.rayleigh.size();
+  out.resize(n);
   const float phase_r = static_cast<float>(rayleigh_phase(mu));
-  if (atm_.mie_g_varies()) {
-    // A spectral aerosol: the phase function's asymmetry differs per wavelength.
-    AerosolPhase phase = atm_.mie_phase();
-    for (int i = 0; i < ws.phase.size(); ++i) {
-      phase.g = atm_.mie_g()[i];
-      ws.phase[i] = static_cast<float>(phase(mu));
+  const bool varies = atm_.mie_g_varies();
+  if (varies) spectral_mie_phase(atm_, mu, ws.phase);
+  const float phase_m = varies ? 0.0f : static_cast<float>(atm_.mie_phase()(mu));
+  combine_parts(n, parts.rayleigh.data(), parts.mie.data(), parts.isotropic.data(), phase_r, phase_m,
+                varies ? &ws.phase : nullptr, sun_irradiance, out.data());
+}
+
+void SingleScattering::combine_many(int count, const float* packed, const double* mu, const bool* use,
+                                    const Spectrum& sun_irradiance, float* const* out, ScatteringWorkspace& ws) const {
+  const Eigen::Index n = sca_rayleigh_.size();
+  const bool varies = atm_.mie_g_varies();
+  const AerosolPhase mie = atm_.mie_phase();
+  const bool hg = mie.model == AerosolPhase::Model::HenyeyGreenstein;
+  constexpr int kChunk = 64;
+  double pr[kChunk], pm[kChunk];
+  for (int first = 0; first < count; first += kChunk) {
+    const int m = std::min(kChunk, count - first);
+    const double* u = mu + first;
+    for (int k = 0; k < m; ++k) pr[k] = rayleigh_phase(u[k]);  // these loops vectorise
+    if (hg)
+      for (int k = 0; k < m; ++k) pm[k] = henyey_greenstein_phase(u[k], mie.g);
+    else
+      for (int k = 0; k < m; ++k) pm[k] = cornette_shanks_phase(u[k], mie.g);
+    for (int k = 0; k < m; ++k) {
+      if (!use[first + k]) continue;
+      if (varies) spectral_mie_phase(atm_, u[k], ws.phase);
+      const float* p = packed + static_cast<size_t>(first + k) * 3 * static_cast<size_t>(n);
+      combine_parts(n, p, p + n, p + 2 * n, static_cast<float>(pr[k]), static_cast<float>(pm[k]),
+                    varies ? &ws.phase : nullptr, sun_irradiance, out[first + k]);
     }
-    out = (parts.rayleigh * phase_r + parts.mie * ws.phase + parts.isotropic) * sun_irradiance;
-  } else {
-    const float phase_m = static_cast<float>(atm_.mie_phase()(mu));
-    out = (parts.rayleigh * phase_r + parts.mie * phase_m + parts.isotropic) * sun_irradiance;
   }
 }
 

@@ -19,12 +19,11 @@
 #include "skyspec/phase_function.hpp"
 #include "skyspec/render.hpp"
 #include "skyspec/scene.hpp"
+#include "skyspec/units.hpp"
 
 using namespace skyspec;
 
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
 
 struct Case {
   std::vector<std::pair<std::string, std::string>> keys;

@@ -137,6 +137,12 @@ class SingleScattering {
   /// L = E_sun [p_R(mu) rayleigh + p_M(mu) mie + isotropic] for mu = cos(scattering angle).
   void combine(const RadianceParts& parts, double mu, const Spectrum& sun_irradiance, ScatteringWorkspace& ws,
                Spectrum& out) const;
+  /// combine() for `count` directions whose parts are packed as SkyViewTable::lookup_many gives
+  /// them (3 n floats each: Rayleigh, Mie, isotropic; n wavelengths): direction k, at cosine
+  /// mu[k] to the sun, goes to out[k] (n floats) where use[k]. The phase functions of all of them
+  /// are evaluated in one loop that vectorises. The same values as combine().
+  void combine_many(int count, const float* packed, const double* mu, const bool* use, const Spectrum& sun_irradiance,
+                    float* const* out, ScatteringWorkspace& ws) const;
 
   /// Transmittance from origin_m along dir to the edge of the atmosphere (0 if the ray hits the
   /// ground): the attenuation of the sun's disk seen in that direction.
