@@ -161,13 +161,21 @@ SunColumnTable::SunColumnTable(const AtmosphereModel& atm, Resolution res, MuBan
   tbb::parallel_for(0, res_.n_r, [&](int ir) {
     const double r = radius_of_row(ir);
     if (!whole) {
+      // The band of the look-ups at radii up to the next row's (the band widens with altitude).
+      double lo = band.lo, hi = band.hi;
+      if (band.camera_radius_m > 0.0) {
+        const double reach = std::acos(std::min(1.0, R_ / band.camera_radius_m)) +
+                             std::acos(std::min(1.0, R_ / radius_of_row(ir + 1))) + 1e-6;  // rad, rounding to spare
+        lo = std::max(lo, std::cos(std::min(kPi, band.sun_zenith_rad + reach)));
+        hi = std::min(hi, std::cos(std::max(0.0, band.sun_zenith_rad - reach)));
+      }
       // The columns look-ups at radii between the neighbouring rows use, with a cell to spare on
       // either side (x_mu decreases with mu).
       double x_lo = 1.0, x_hi = 0.0;
       for (int k : {ir - 1, ir, ir + 1}) {
         const double rk = radius_of_row(k);
-        x_lo = std::min(x_lo, x_mu_of(rk, band.hi, R_, Rt_, H_));
-        x_hi = std::max(x_hi, x_mu_of(rk, band.lo, R_, Rt_, H_));
+        x_lo = std::min(x_lo, x_mu_of(rk, hi, R_, Rt_, H_));
+        x_hi = std::max(x_hi, x_mu_of(rk, lo, R_, Rt_, H_));
       }
       first_[static_cast<size_t>(ir)] = std::max(0, static_cast<int>(std::floor(x_lo * (res_.n_mu - 1))) - 1);
       end_[static_cast<size_t>(ir)] = std::min(res_.n_mu, static_cast<int>(std::ceil(x_hi * (res_.n_mu - 1))) + 2);
@@ -185,7 +193,7 @@ SunColumnTable::MuBand SunColumnTable::band_seen_from(const AtmosphereModel& atm
   if (!(r >= R) || !std::isfinite(r)) return MuBand{};
   const double reach = std::acos(std::min(1.0, R / r)) + std::acos(R / Rt) + 1e-6;  // rad, with rounding to spare
   const double theta = std::acos(std::clamp(origin_m.dot(sun_dir) / r, -1.0, 1.0));
-  return MuBand{std::cos(std::min(kPi, theta + reach)), std::cos(std::max(0.0, theta - reach))};
+  return MuBand{std::cos(std::min(kPi, theta + reach)), std::cos(std::max(0.0, theta - reach)), r, theta};
 }
 
 long SunColumnTable::computed_entries() const {

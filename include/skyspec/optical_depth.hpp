@@ -67,16 +67,22 @@ class SunColumnTable {
   /// outside the band is computed directly (columns_to_top_m), so it is slower, never wrong.
   struct MuBand {
     double lo = -1.0, hi = 1.0;
+    /// A camera's band (band_seen_from) is narrower at low altitudes: where camera_radius_m > 0,
+    /// the band at radius r is the sun's zenith angle at the camera, sun_zenith_rad, widened by
+    /// acos(R / camera_radius_m) + acos(R / r) (within [lo, hi]).
+    double camera_radius_m = 0.0;
+    double sun_zenith_rad = 0.0;
   };
   SunColumnTable(const AtmosphereModel& atm, Resolution res, MuBand band);
   SunColumnTable(const AtmosphereModel& atm, Resolution res) : SunColumnTable(atm, res, MuBand{-1.0, 1.0}) {}
   SunColumnTable(const AtmosphereModel& atm) : SunColumnTable(atm, Resolution{}) {}
 
   /// The local sun zenith cosines met in the part of the atmosphere seen from origin_m with the
-  /// sun in direction sun_dir (unit). A point p seen from o is at most
-  /// acos(R / |o|) + acos(R / R_t) away from it in angle at the planet's centre (the two tangents
-  /// to the ground), and the sun's zenith angle at p differs from its angle at o by at most that.
-  /// From inside the planet or from far away this is (nearly) every angle.
+  /// sun in direction sun_dir (unit). A point p at radius r seen from o is at most
+  /// acos(R / |o|) + acos(R / r) away from it in angle at the planet's centre (the two tangents
+  /// to the ground), and the sun's zenith angle at p differs from its angle at o by at most that:
+  /// so the band is narrowest near the ground, widest (r = R_t) at the top. From inside the
+  /// planet or from far away this is (nearly) every angle.
   static MuBand band_seen_from(const AtmosphereModel& atm, const Vec3& origin_m, const Vec3& sun_dir);
 
   /// Columns from radius r towards zenith cosine mu; r is clamped to [R, R_t] and mu to the
