@@ -10,13 +10,6 @@
 
 namespace skyspec {
 
-double distance_to_top_m(double r_m, double mu, double top_r_m) {
-  // Root of t^2 + 2 r mu t + (r^2 - R_t^2) = 0 that is >= 0; discriminant r^2 (mu^2 - 1) + R_t^2
-  // written as (R_t - r)(R_t + r) + r^2 mu^2 to keep precision near the top.
-  const double disc = (top_r_m - r_m) * (top_r_m + r_m) + r_m * r_m * mu * mu;
-  return std::max(0.0, -r_m * mu + std::sqrt(std::max(disc, 0.0)));
-}
-
 namespace {
 // ln rho at every altitude of `alt` (one call per path, so that exponential profiles, the common
 // case, are evaluated as one vector expression).
@@ -126,15 +119,7 @@ Columns columns_to_top_m(const AtmosphereModel& atm, double r_m, double mu, int 
 }
 
 namespace {
-// x_mu of the table's parameterisation for zenith cosine mu at radius r (1 at and below the
-// horizon).
-double x_mu_of(double r, double mu, double R, double Rt, double H) {
-  const double rho = std::sqrt(std::max((r - R) * (r + R), 0.0));
-  const double d_min = Rt - r, d_max = rho + H;
-  const double d = distance_to_top_m(r, mu, Rt);
-  return d_max > d_min ? std::clamp((d - d_min) / (d_max - d_min), 0.0, 1.0) : 0.0;
-}
-// Its inverse: the zenith cosine at radius r of the direction whose distance to the top is
+// The inverse of the table's x_mu (SunColumnTable::place): the zenith cosine at radius r of the direction whose distance to the top is
 // x_mu of the way from its minimum (straight up) to its value at the horizon.
 double mu_of(double r, double x_mu, double R, double Rt, double H) {
   const double rho = std::sqrt(std::max((r - R) * (r + R), 0.0));
@@ -174,8 +159,8 @@ SunColumnTable::SunColumnTable(const AtmosphereModel& atm, Resolution res, MuBan
       double x_lo = 1.0, x_hi = 0.0;
       for (int k : {ir - 1, ir, ir + 1}) {
         const double rk = radius_of_row(k);
-        x_lo = std::min(x_lo, x_mu_of(rk, hi, R_, Rt_, H_));
-        x_hi = std::max(x_hi, x_mu_of(rk, lo, R_, Rt_, H_));
+        x_lo = std::min(x_lo, place(rk, hi).x_mu);
+        x_hi = std::max(x_hi, place(rk, lo).x_mu);
       }
       first_[static_cast<size_t>(ir)] = std::max(0, static_cast<int>(std::floor(x_lo * (res_.n_mu - 1))) - 1);
       end_[static_cast<size_t>(ir)] = std::min(res_.n_mu, static_cast<int>(std::ceil(x_hi * (res_.n_mu - 1))) + 2);
@@ -215,9 +200,7 @@ inline SunColumnTable::Place SunColumnTable::place(double r_m, double mu) const 
   const double r = min(max(r_m, R_), Rt_);
   const double rho = std::sqrt(max((r - R_) * (r + R_), 0.0));
   const double d_min = Rt_ - r, d_max = rho + H_;
-  // distance_to_top_m, inline.
-  const double disc = (Rt_ - r) * (Rt_ + r) + r * r * mu * mu;
-  const double d = max(-r * mu + std::sqrt(max(disc, 0.0)), 0.0);
+  const double d = distance_to_top_m(r, mu, Rt_);
   const bool span = d_max > d_min;
   const double x = (d - d_min) / (span ? d_max - d_min : 1.0);
   const double x_mu = span ? min(max(x, 0.0), 1.0) : 0.0;

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <vector>
 
 #include "skyspec/atmosphere.hpp"
@@ -39,7 +40,14 @@ inline T log_mean_branchless(T a, T b, T x, T series_below) {
 }
 
 /// Distance from radius r along zenith cosine mu to the sphere of radius top_r (r <= top_r).
-double distance_to_top_m(double r_m, double mu, double top_r_m);
+/// Inline and written with selects, so that loops over many points vectorise.
+inline double distance_to_top_m(double r_m, double mu, double top_r_m) {
+  // Root of t^2 + 2 r mu t + (r^2 - R_t^2) = 0 that is >= 0; discriminant r^2 (mu^2 - 1) + R_t^2
+  // written as (R_t - r)(R_t + r) + r^2 mu^2 to keep precision near the top.
+  const double disc = (top_r_m - r_m) * (top_r_m + r_m) + r_m * r_m * mu * mu;
+  const double root = -r_m * mu + std::sqrt(disc > 0.0 ? disc : 0.0);
+  return root > 0.0 ? root : 0.0;
+}
 
 /// Column of relative density from radius r, zenith cosine mu, to the top of the atmosphere, by
 /// the exponential (log-mean) rule with Richardson extrapolation on `segments` pieces (split at
