@@ -627,13 +627,15 @@ SceneLoader::SceneLoader(const std::string& preset) {
   if (preset != "default") apply_toml(std::string(embedded_file("scenes/" + preset + ".toml")), "preset " + preset);
 }
 
-std::vector<std::string> quality_names() { return {"draft", "default", "high", "reference"}; }
+std::vector<std::string> quality_names() { return {"draft", "lean", "default", "high", "reference"}; }
 
 void SceneLoader::apply_quality(const std::string& name, const std::string& origin) {
   const auto names = quality_names();
   if (std::find(names.begin(), names.end(), name) == names.end())
     throw InputError(origin, "\"" + name + "\"", "one of: " + join(names, ", "));
+  const bool single = scene_.render.scattering_orders == 1;
   apply_toml(std::string(embedded_file("quality/" + name + ".toml")), "quality " + name);
+  if (single) scene_.render.scattering_orders = 1;
 }
 
 void SceneLoader::apply_toml(const std::string& text, const std::string& origin) {

@@ -160,8 +160,9 @@ BOOST_AUTO_TEST_CASE(every_preset_is_valid) {
 }
 
 // Quality levels: "default" is the default scene's sample counts (the two files must agree), the
-// levels grow monotonically, keys applied afterwards win, and an unknown level is an error that
-// names the flag and the allowed values.
+// levels grow monotonically (no count falls from one level to the next, and at least one rises;
+// "lean" keeps the default's march and coarsens only the tables), keys applied afterwards win, and
+// an unknown level is an error that names the flag and the allowed values.
 BOOST_AUTO_TEST_CASE(quality_levels) {
   const RenderSpec base = SceneLoader().finish().render;
   auto at = [](const std::string& q) {
@@ -176,19 +177,39 @@ BOOST_AUTO_TEST_CASE(quality_levels) {
   for (size_t i = 1; i < names.size(); ++i) {
     const RenderSpec lo = at(names[i - 1]), hi = at(names[i]);
     BOOST_TEST_CONTEXT(names[i - 1] << " -> " << names[i]) {
-      BOOST_TEST(lo.view_segments < hi.view_segments);
-      BOOST_TEST(lo.table_altitude_samples < hi.table_altitude_samples);
-      BOOST_TEST(lo.table_zenith_samples < hi.table_zenith_samples);
-      BOOST_TEST(lo.ms_altitude_samples < hi.ms_altitude_samples);
-      BOOST_TEST(lo.scattering_orders < hi.scattering_orders);
+      const std::vector<std::pair<int, int>> counts = {
+          {lo.view_segments, hi.view_segments},
+          {lo.table_altitude_samples, hi.table_altitude_samples},
+          {lo.table_zenith_samples, hi.table_zenith_samples},
+          {lo.ms_altitude_samples, hi.ms_altitude_samples},
+          {lo.ms_sun_samples, hi.ms_sun_samples},
+          {lo.scattering_orders, hi.scattering_orders}};
+      bool rises = false;
+      for (const auto& [a, b] : counts) {
+        BOOST_TEST(a <= b);
+        rises = rises || a < b;
+      }
+      // The sky-view table's size where both levels have one ("reference" marches every pixel).
+      if (lo.sky_view_table && hi.sky_view_table) {
+        BOOST_TEST(lo.sky_view_zenith_samples <= hi.sky_view_zenith_samples);
+        BOOST_TEST(lo.sky_view_azimuth_samples <= hi.sky_view_azimuth_samples);
+        rises = rises || lo.sky_view_zenith_samples < hi.sky_view_zenith_samples;
+      }
+      BOOST_TEST(rises);
     }
   }
   BOOST_TEST(!at("reference").sky_view_table);
+  // A preset of single scattering keeps it: the level sets how many orders, not whether.
+  for (const auto& q : names) {
+    SceneLoader seed("seed");
+    seed.apply_quality(q);
+    BOOST_TEST(seed.finish().render.scattering_orders == 1, q);
+  }
   SceneLoader l;
   l.apply_quality("draft");
   l.apply_override("render.view_segments", "100", "--view-segments");
   BOOST_TEST(l.finish().render.view_segments == 100);
   const std::string e = error_of([] { SceneLoader().apply_quality("ultra"); });
   BOOST_TEST(contains(e, "--quality = \"ultra\""));
-  BOOST_TEST(contains(e, "one of: draft, default, high, reference"));
+  BOOST_TEST(contains(e, "one of: draft, lean, default, high, reference"));
 }

@@ -109,7 +109,9 @@ class SceneLoader {
   /// Applies TOML text (origin names it in messages).
   void apply_toml(const std::string& text, const std::string& origin);
   /// Applies a quality level's sample counts (data/quality/<name>.toml; quality_names()); keys
-  /// applied afterwards override them. InputError naming `origin` for an unknown name.
+  /// applied afterwards override them. A scene of single scattering (render.scattering_orders =
+  /// 1, as the seed preset) stays one: the level sets how many orders multiple scattering takes,
+  /// not whether there is any. InputError naming `origin` for an unknown name.
   void apply_quality(const std::string& name, const std::string& origin = "--quality");
   /// Applies one key = value given as TOML value text, e.g. ("camera.width", "1024"); origin is
   /// the flag that supplied it, e.g. "--width".
@@ -122,7 +124,7 @@ class SceneLoader {
   Scene scene_;
 };
 
-/// The quality levels, fastest first: draft, default, high, reference.
+/// The quality levels, fastest first: draft, lean, default, high, reference.
 std::vector<std::string> quality_names();
 
 /// The effective scene as TOML (every key), for provenance and `--from` style reproduction.

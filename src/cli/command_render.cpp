@@ -130,7 +130,7 @@ Command add_render_command(CLI::App& app) {
       "  skyspec render                                  # built-in default scene -> skyspec-out/sky.exr, sky.png\n"
       "  skyspec render --sun-elevation 5 --out dusk     # low sun\n"
       "  skyspec render --preset seed                    # the seed tutorial's RGB-fast sky\n"
-      "  skyspec render --quality draft                  # quick look (also: default, high, reference)\n"
+      "  skyspec render --quality draft                  # quick look (also: lean, default, high, reference)\n"
       "  skyspec render --scene my.toml --set atmosphere.mie.g=0.8\n"
       "  skyspec render --camera equirectangular --width 1024 --height 512\n"
       "  skyspec render --display \"Display P3\"            # the PNG for a Display P3 screen\n"

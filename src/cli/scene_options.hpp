@@ -60,7 +60,7 @@ void add_from_option(CLI::App& app, SceneOptions& o);
 /// then --set.
 Scene load_scene(const SceneOptions& o, const std::function<void(SceneLoader&)>& before_sets = {});
 
-/// --quality draft|default|high|reference, for the commands that render a sky: the sample counts
+/// --quality draft|lean|default|high|reference, for the commands that render a sky: the sample counts
 /// of that level, applied after the preset (and --from) and before the scene file, flags and --set,
 /// so that sample counts given explicitly win.
 void add_quality_option(CLI::App& app, SceneOptions& o);

@@ -31,7 +31,7 @@ printf '[camera]\nwidth = 8\nheigth = 8\n' >"$work/typo.toml"
 expect_error scene_typo 2 "typo.toml:3:1: unknown key \"camera.heigth\" (did you mean \"camera.height\"?)" --scene "$work/typo.toml"
 expect_error unwritable_out 2 "output.directory" --set "output.directory=\"/proc/skyspec\""
 expect_error no_outputs 2 "at least one output" --no-exr --no-png
-expect_error unknown_quality 2 "--quality = \"ultra\" is not allowed: one of: draft, default, high, reference" --quality ultra
+expect_error unknown_quality 2 "--quality = \"ultra\" is not allowed: one of: draft, lean, default, high, reference" --quality ultra
 expect_error bad_compression 2 "output.exr_compression = \"dwaa\" is not allowed: one of: piz, zip, zips, rle, none" --set output.exr_compression=dwaa
 
 # --quality sets the sample counts that are not given explicitly; explicit ones win.
