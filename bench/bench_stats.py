@@ -10,8 +10,10 @@ Case 4 is the upper hemisphere only (camera.min_elevation_deg = 0): the whole im
 The "tables / image / files" column is skyspec's own split of its wall time, from the line
 "rendered ... (tables T s, image I s, completing the files F s)" of its log: set-up and tables;
 metering and the image's rows (with the EXR's bands written meanwhile); the EXR's offset table,
-fsync and rename (of the last run, when a case ran several times). Wall times: the median of the
-runs and their range; the ratio to the baseline divides the medians.
+fsync and rename (medians over the runs). Wall times: the median of the runs and their range; the
+ratio to the baseline divides the medians. Cases compared with each other ran interleaved (run i
+of each before run i + 1 of any); the paired ratios below divide run i of one by run i of the
+other, so that the VM's drifts in speed cancel.
 """
 import re
 import sys
@@ -50,11 +52,20 @@ def rel_error(img, ref):
     return np.percentile(rel, 50), np.percentile(rel, 99)
 
 
+STAGES = re.compile(r"\(tables ([0-9.]+) s, image ([0-9.]+) s, completing the files ([0-9.]+) s\)")
+
+
+def stage_runs(out, name):
+    """skyspec's own split of each run's time: (tables, image, files) per run, from NAME.stages."""
+    path = out / f"{name}.stages"
+    text = path.read_text() if path.exists() else ""
+    return [tuple(float(v) for v in m.groups()) for m in STAGES.finditer(text)]
+
+
 def stages_of(out, name):
-    log = out / f"{name}.log"
-    m = re.search(r"\(tables ([0-9.]+) s, image ([0-9.]+) s, completing the files ([0-9.]+) s\)",
-                  log.read_text() if log.exists() else "")
-    return None if m is None else tuple(float(v) for v in m.groups())
+    """The median of each stage over the runs (None for the baseline)."""
+    runs = stage_runs(out, name)
+    return None if not runs else tuple(float(np.median([r[k] for r in runs])) for k in range(3))
 
 
 def runs_of(out, name):
@@ -75,6 +86,36 @@ def wall_cell(out, name):
     if len(walls) == 1:
         return f"{median:.3f}"
     return f"{median:.3f} ({min(walls):.3f}-{max(walls):.3f}, {len(walls)} runs)"
+
+
+def paired(out, a, b, stage=False):
+    """Median and range of run i of a over run i of b: wall times, or tables + image (stage=True)."""
+    if stage:
+        x = [t + i for t, i, _ in stage_runs(out, a)]
+        y = [t + i for t, i, _ in stage_runs(out, b)]
+    else:
+        x, y = runs_of(out, a)[0], runs_of(out, b)[0]
+    r = [p / q for p, q in zip(x, y) if q > 0]
+    return None if not r else (float(np.median(r)), min(r), max(r), len(r))
+
+
+def paired_lines(out, base):
+    def text(v):
+        return "-" if v is None else f"{v[0]:.2f}x ({v[1]:.2f}-{v[2]:.2f}, {v[3]} pairs)"
+    lines = []
+    for sun in ("30", "10", "2"):
+        if sun in base and (out / f"c2n-{sun}.time").exists():
+            line = (f"baseline / case 2 (RGB-fast, uncompressed), sun {sun}, per interleaved pair: "
+                    f"{text(paired(out, f'base-{sun}', f'c2n-{sun}'))}; PIZ: {text(paired(out, f'base-{sun}', f'c2-{sun}'))}")
+            if (out / f"c2ln-{sun}.time").exists():
+                line += f"; --quality lean, uncompressed: {text(paired(out, f'base-{sun}', f'c2ln-{sun}'))}"
+            lines.append(line)
+    for one, two, what in (("c3-1t", "c3-2t", "case 1 (PIZ)"), ("c3n-1t", "c3n-2t", "case 1 uncompressed"),
+                           ("c4n1-10", "c4n-10", "case 4 uncompressed")):
+        if (out / f"{one}.time").exists() and (out / f"{two}.time").exists():
+            lines.append(f"speed-up from 1 to 2 threads, {what}, per interleaved pair: wall {text(paired(out, one, two))}; "
+                         f"tables + image (skyspec's own split) {text(paired(out, one, two, stage=True))}")
+    return lines
 
 
 def main():
@@ -133,6 +174,9 @@ def main():
     print()
     print("reference renders (every pixel marched, 256 view segments, 1024 x 2048 sun table), wall s: "
           + ", ".join(f"{p.name[4:-5]} {time_of(out, p.name[:-5])[0]:.1f}" for p in refs))
+    print()
+    for line in paired_lines(out, base):
+        print(line)
     if refcheck:
         print(f"reference check, case 1 at sun 2: 256 vs 512 view segments differ by p50 {refcheck[0]:.1e}, "
               f"p99 {refcheck[1]:.1e}")

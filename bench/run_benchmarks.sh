@@ -34,7 +34,7 @@ if [[ -z "$skyspec" ]]; then
 fi
 [[ -x "$skyspec" ]] || { echo "run_benchmarks.sh: no skyspec binary at $skyspec (build it first)" >&2; exit 2; }
 [[ -x /usr/bin/time ]] || { echo "run_benchmarks.sh: needs GNU time (apt-get install time)" >&2; exit 2; }
-mkdir -p "$out"; manifest="$out/manifest.tsv"; : > "$manifest"
+mkdir -p "$out"; out="$(cd "$out" && pwd)"; manifest="$out/manifest.tsv"; : > "$manifest"
 # Every render writes a new file: outputs of an earlier run are removed first (replacing a file
 # adds the unlinking of the old one, about 0.02 s for 25 MB here, to the timing).
 rm -f "$out"/*.exr "$out"/*.pfm "$out"/*.png
@@ -59,34 +59,78 @@ else
   echo "baseline: $baseline_src does not exist; the ratio and baseline columns are skipped"
 fi
 
-# timed NAME CMD...: runs CMD ${N:-1} times; a line "wall_s rss_kB" per run in $out/NAME.time.
-# Before each run the outputs of the previous one are removed (NAME.exr, NAME.png, the baseline's
-# seed.pfm). The log is the last run's.
-timed() {
+# run_once NAME CMD...: runs CMD once and appends a line "wall_s rss_kB" to $out/NAME.time and
+# skyspec's "rendered ..." line (its own split of the time) to $out/NAME.stages. The outputs of the
+# previous run are removed first (NAME.exr, NAME.png, the baseline's seed.pfm). The log is the
+# last run's.
+run_once() {
   local name="$1"; shift
-  : > "$out/$name.time"
-  local i t0 t1
-  for ((i = 0; i < ${N:-1}; i++)); do
-    rm -f "$out/$name.exr" "$out/$name.png" "$out/seed.pfm"
-    t0=$EPOCHREALTIME
-    /usr/bin/time -f '%M' -o "$out/$name.rss" "$@" > "$out/$name.log" 2>&1
-    t1=$EPOCHREALTIME
-    echo "$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.4f", b - a }') $(tail -n 1 "$out/$name.rss")" >> "$out/$name.time"
-  done
+  local t0 t1
+  rm -f "$out/$name.exr" "$out/$name.png" "$out/seed.pfm"
+  t0=$EPOCHREALTIME
+  /usr/bin/time -f '%M' -o "$out/$name.rss" "$@" > "$out/$name.log" 2>&1
+  t1=$EPOCHREALTIME
+  echo "$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.4f", b - a }') $(tail -n 1 "$out/$name.rss")" >> "$out/$name.time"
+  grep '^rendered ' "$out/$name.log" >> "$out/$name.stages" || true
   rm -f "$out/$name.rss"
 }
+# timed NAME CMD...: run_once ${N:-1} times, the case's earlier runs forgotten.
+timed() {
+  local name="$1"; shift
+  : > "$out/$name.time"; : > "$out/$name.stages"
+  local i
+  for ((i = 0; i < ${N:-1}; i++)); do run_once "$name" "$@"; done
+}
+# The cases whose times are compared with each other (a case and the baseline, one and two
+# threads) run interleaved, run i of each before run i + 1 of any, so that the slow drifts of
+# this VM's speed (a third within minutes) fall on all of them alike:
+#   declare_case NAME CMD... declares a case (its command is kept in the array cmd_NAME);
+#   interleave NAME... runs the declared cases RUNS times in turn.
+declare_case() {
+  local name="$1"; shift
+  local var="cmd_${name//-/_}"
+  eval "$var=(\"\$@\")"
+}
+interleave() {
+  local name i
+  for name in "$@"; do : > "$out/$name.time"; : > "$out/$name.stages"; done
+  for ((i = 0; i < RUNS; i++)); do
+    for name in "$@"; do
+      local -n cmd="cmd_${name//-/_}"
+      if [[ "$name" == base-* ]]; then
+        ( cd "$out" && run_once "$name" "${cmd[@]}" && mv seed.pfm "$name.pfm" )
+      else
+        run_once "$name" "${cmd[@]}"
+      fi
+      unset -n cmd
+    done
+  done
+}
 RUNS="${RUNS:-5}"
-# sky ROW CASE SUN [ARGS...]: a timed skyspec render and, with a reference, a row of the table.
-# row kinds: main (with error vs the reference $out/ref-$name.exr), time (no error).
+# skyspec_cmd NAME SUN [ARGS...]: the command line of a skyspec render into $out/NAME.exr. Not
+# -q: the log keeps the "rendered ... (tables, image, completing the files)" line (no progress
+# bar: the output is not a terminal).
+skyspec_cmd() {
+  local name="$1" sun="$2"; shift 2
+  local png=(--no-png); [[ "${WITH_PNG:-0}" == 1 ]] && png=()
+  cmd_line=("$skyspec" render "${png[@]}" --out "$out" --name "$name" --sun-elevation "$sun" "$@")
+}
+# row KIND NAME LABEL SUN: a row of the table. Kinds: main (with the error against the reference
+# $out/ref-NAME.exr), time (no error), base (the baseline).
+row() { printf '%s\t%s\t%s\t%s\n' "$1" "$2" "$3" "$4" >> "$manifest"; }
+# sky KIND NAME LABEL SUN [ARGS...]: a render timed once, and its row.
 sky() {
   local kind="$1" name="$2" label="$3" sun="$4"; shift 4
-  local png=(--no-png); [[ "${WITH_PNG:-0}" == 1 ]] && png=()
-  # Not -q: the log keeps the "rendered ... (tables, image, completing the files)" line (no
-  # progress bar: the output is not a terminal).
-  local runs=1
-  [[ "$kind" == main || "$name" == c3* ]] && runs=$RUNS
-  N=$runs timed "$name" "$skyspec" render "${png[@]}" --out "$out" --name "$name" --sun-elevation "$sun" "$@"
-  printf '%s\t%s\t%s\t%s\n' "$kind" "$name" "$label" "$sun" >> "$manifest"
+  skyspec_cmd "$name" "$sun" "$@"
+  timed "$name" "${cmd_line[@]}"
+  row "$kind" "$name" "$label" "$sun"
+}
+# later KIND NAME LABEL SUN [ARGS...]: a render declared (and its row written) to run interleaved.
+later() {
+  local kind="$1" name="$2" label="$3" sun="$4"; shift 4
+  skyspec_cmd "$name" "$sun" "$@"
+  declare_case "$name" "${cmd_line[@]}"
+  row "$kind" "$name" "$label" "$sun"
 }
 ref() {  # ref NAME SUN ARGS...: the converged reference (not timed in the table)
   local name="$1" sun="$2"; shift 2
@@ -95,32 +139,43 @@ ref() {  # ref NAME SUN ARGS...: the converged reference (not timed in the table
 
 NONE=(--set output.exr_compression=none)
 for sun in 30 10 2; do
+  echo "sun $sun: the baseline, case 1 (spectral, 41 wavelengths) and case 2 (seed preset, RGB-fast), interleaved ..."
+  names=()
   if [[ -n "$baseline" ]]; then
-    ( cd "$out" && N=$RUNS timed "base-$sun" "$baseline" "$sun" && mv seed.pfm "base-$sun.pfm" )
-    printf 'base\tbase-%s\tbaseline (RGB 3 wl, 16/8 samples, 1 thread)\t%s\n' "$sun" "$sun" >> "$manifest"
+    declare_case "base-$sun" "$baseline" "$sun"
+    row base "base-$sun" "baseline (RGB 3 wl, 16/8 samples, 1 thread)" "$sun"
+    names+=("base-$sun")
+  fi
+  later main "c1-$sun" "1: spectral 41 wl, 512 fisheye, 2 threads, EXR (PIZ)" "$sun" --scene "$scene"
+  later main "c1n-$sun" "1: the same, EXR uncompressed" "$sun" --scene "$scene" "${NONE[@]}"
+  later main "c2-$sun" "2: seed preset RGB-fast, 512 fisheye, 2 threads, EXR (PIZ)" "$sun" --preset seed
+  later main "c2n-$sun" "2: the same, EXR uncompressed" "$sun" --preset seed "${NONE[@]}"
+  # The same two at --quality lean (the default's march, coarser tables: data/quality/lean.toml).
+  later main "c1ln-$sun" "1: the same at --quality lean, EXR uncompressed" "$sun" --scene "$scene" --quality lean "${NONE[@]}"
+  later main "c2ln-$sun" "2: the same at --quality lean, EXR uncompressed" "$sun" --preset seed --quality lean "${NONE[@]}"
+  interleave "${names[@]}" "c1-$sun" "c1n-$sun" "c2-$sun" "c2n-$sun" "c1ln-$sun" "c2ln-$sun"
+  if [[ -n "$baseline" ]]; then
     ref "base511-$sun" "$sun" --preset seed --width 511 --height 511   # the baseline's directions
   fi
-  echo "sun $sun: case 1 (spectral, 41 wavelengths) ..."
-  sky main "c1-$sun" "1: spectral 41 wl, 512 fisheye, 2 threads, EXR (PIZ)" "$sun" --scene "$scene"
-  sky main "c1n-$sun" "1: the same, EXR uncompressed" "$sun" --scene "$scene" "${NONE[@]}"
   ref "c1-$sun" "$sun" --scene "$scene"
   cp "$out/ref-c1-$sun.exr" "$out/ref-c1n-$sun.exr"
-  echo "sun $sun: case 2 (seed preset, RGB-fast) ..."
-  sky main "c2-$sun" "2: seed preset RGB-fast, 512 fisheye, 2 threads, EXR (PIZ)" "$sun" --preset seed
-  sky main "c2n-$sun" "2: the same, EXR uncompressed" "$sun" --preset seed "${NONE[@]}"
   ref "c2-$sun" "$sun" --preset seed
   cp "$out/ref-c2-$sun.exr" "$out/ref-c2n-$sun.exr"
+  cp "$out/ref-c1-$sun.exr" "$out/ref-c1ln-$sun.exr"
+  cp "$out/ref-c2-$sun.exr" "$out/ref-c2ln-$sun.exr"
 done
-echo "case 3 (threads) ..."
-sky time "c3-1t" "3: case 1, 1 thread" 30 --scene "$scene" --threads 1
-sky time "c3-2t" "3: case 1, 2 threads" 30 --scene "$scene" --threads 2
-sky time "c3n-1t" "3: case 1 uncompressed, 1 thread" 30 --scene "$scene" --threads 1 "${NONE[@]}"
-sky time "c3n-2t" "3: case 1 uncompressed, 2 threads" 30 --scene "$scene" --threads 2 "${NONE[@]}"
-echo "case 4 (equirectangular upper hemisphere) ..."
+echo "case 3 (threads, interleaved) ..."
+later time "c3-1t" "3: case 1, 1 thread" 30 --scene "$scene" --threads 1
+later time "c3-2t" "3: case 1, 2 threads" 30 --scene "$scene" --threads 2
+later time "c3n-1t" "3: case 1 uncompressed, 1 thread" 30 --scene "$scene" --threads 1 "${NONE[@]}"
+later time "c3n-2t" "3: case 1 uncompressed, 2 threads" 30 --scene "$scene" --threads 2 "${NONE[@]}"
+interleave c3-1t c3-2t c3n-1t c3n-2t
+echo "case 4 (equirectangular upper hemisphere, interleaved) ..."
 HEMI=(--camera equirectangular --width 512 --height 256 --set camera.min_elevation_deg=0)
-sky main "c4-10" "4: spectral 41 wl, 512x256 equirect upper hemisphere, 2 threads, EXR (PIZ)" 10 --scene "$scene" "${HEMI[@]}"
-sky main "c4n-10" "4: the same, EXR uncompressed" 10 --scene "$scene" "${HEMI[@]}" "${NONE[@]}"
-sky main "c4n1-10" "4: the same, EXR uncompressed, 1 thread" 10 --scene "$scene" "${HEMI[@]}" "${NONE[@]}" --threads 1
+later main "c4-10" "4: spectral 41 wl, 512x256 equirect upper hemisphere, 2 threads, EXR (PIZ)" 10 --scene "$scene" "${HEMI[@]}"
+later main "c4n-10" "4: the same, EXR uncompressed" 10 --scene "$scene" "${HEMI[@]}" "${NONE[@]}"
+later main "c4n1-10" "4: the same, EXR uncompressed, 1 thread" 10 --scene "$scene" "${HEMI[@]}" "${NONE[@]}" --threads 1
+interleave c4-10 c4n-10 c4n1-10
 ref "c4-10" 10 --scene "$scene" "${HEMI[@]}"
 cp "$out/ref-c4-10.exr" "$out/ref-c4n-10.exr"
 cp "$out/ref-c4-10.exr" "$out/ref-c4n1-10.exr"
