@@ -597,7 +597,14 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
   if (writing.valid()) writing.get();
   out.image_seconds = since(t_image);
   const auto t_output = Clock::now();
-  if (exr) exr->finish();
+  // Completing the EXR (its offset table, fsync, rename) waits mostly for the disk: when other
+  // files follow, it runs beside their encoding (the display transform, PNG's deflate).
+  std::future<void> committing;
+  if (exr && (scene.output.png || working_exr))
+    committing = std::async(std::launch::async, [&exr] { exr->finish(); });
+  else if (exr)
+    exr->finish();
+  bool exr_done = exr && !committing.valid(), png_done = false, working_done = false;
   try {
     if (scene.output.png) {
       out.png = dir / (scene.output.name + ".png");
@@ -610,6 +617,7 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
           {kSceneAttribute, provenance[kSceneAttribute]},
           {kDataAttribute, provenance[kDataAttribute]}};
       write_png_display(out.png, w, h, pipeline->encode(rgb, chosen.scale), display.png_bit_depth, pipeline->png_tag(), text);
+      png_done = true;
     }
     if (working_exr) {
       const WorkingSpace& space = find_working_space(display.exr_space);
@@ -624,12 +632,27 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
       }
       write_rgb_exr(out.working_exr, w, h, to_working_space(pipeline->config(), rgb, space), space.chromaticities,
                     strings, floats);
+      working_done = true;
+    }
+    if (committing.valid()) {
+      committing.get();  // rethrows the EXR's error
+      exr_done = true;
     }
   } catch (...) {
-    // All or nothing: do not leave the files of a render whose outputs did not all arrive.
+    // All or nothing: do not leave the files of a render whose outputs did not all arrive. The
+    // EXR's completion is waited for first (it uses `exr`); only files this render completed are
+    // removed (a failed write leaves an earlier file of that name as it was).
+    if (committing.valid()) {
+      try {
+        committing.get();
+        exr_done = true;
+      } catch (...) {  // the first error is the one reported
+      }
+    }
     std::error_code ec;
-    for (const auto& path : {out.exr, out.png})
-      if (!path.empty()) std::filesystem::remove(path, ec);
+    if (exr_done) std::filesystem::remove(out.exr, ec);
+    if (png_done) std::filesystem::remove(out.png, ec);
+    if (working_done) std::filesystem::remove(out.working_exr, ec);
     throw;
   }
   out.output_seconds = since(t_output);

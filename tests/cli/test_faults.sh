@@ -27,6 +27,28 @@ else
   echo "SKIP full_disk: cannot mount a tmpfs here (needs root)"
 fi
 
+# --- an output that cannot be committed --------------------------------------------------------
+# A folder already holds the name of one output, so its rename fails (EISDIR) after the other
+# output may have been completed (the EXR is completed beside the PNG's encoding): exit 3, the
+# other output removed, no temporary file, the folder left as it was.
+# taken_name NAME TAKEN: renders EXR and PNG into a folder where TAKEN (x.exr or x.png) is a folder.
+taken_name() {
+  local name=$1 taken=$2 out="$work/taken-$1"
+  mkdir -p "$out/$taken"
+  "$skyspec" render -q --out "$out" --name x --width 32 --height 32 --set render.scattering_orders=1 \
+    >"$work/stdout" 2>"$work/stderr"
+  local rc=$?
+  if [ "$rc" != 3 ]; then bad "$name: exit $rc, expected 3"; cat "$work/stderr"; return; fi
+  grep -q "cannot rename .* Is a directory" "$work/stderr" && ok || { bad "$name: message missing"; cat "$work/stderr"; }
+  if [ "$(ls -A "$out")" != "$taken" ] || [ -n "$(ls -A "$out/$taken")" ]; then
+    bad "$name: the folder holds: $(ls -A "$out")"
+  else
+    ok
+  fi
+}
+taken_name exr_name_taken x.exr
+taken_name png_name_taken x.png
+
 # --- signals -----------------------------------------------------------------------------------
 # render_and_signal NAME SIGNAL EXPECTED_EXIT: starts a render big enough to take a while, waits
 # until its EXR writer has created the temporary file (so the signal lands mid-render), sends the
