@@ -139,7 +139,7 @@ ref() {  # ref NAME SUN ARGS...: the converged reference (not timed in the table
 
 NONE=(--set output.exr_compression=none)
 for sun in 30 10 2; do
-  echo "sun $sun: the baseline, case 1 (spectral, 41 wavelengths) and case 2 (seed preset, RGB-fast), interleaved ..."
+  echo "sun $sun: case 1 (spectral, 41 wavelengths), case 2 (seed preset, RGB-fast)${baseline:+ and the baseline}, interleaved ..."
   names=()
   if [[ -n "$baseline" ]]; then
     declare_case "base-$sun" "$baseline" "$sun"
