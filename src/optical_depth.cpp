@@ -119,8 +119,9 @@ Columns columns_to_top_m(const AtmosphereModel& atm, double r_m, double mu, int 
 }
 
 namespace {
-// The inverse of the table's x_mu (SunColumnTable::place): the zenith cosine at radius r of the direction whose distance to the top is
-// x_mu of the way from its minimum (straight up) to its value at the horizon.
+// The inverse of the table's x_mu (SunColumnTable::place): the zenith cosine at radius r of the
+// direction whose distance to the top is x_mu of the way from its minimum (straight up) to its
+// value at the horizon.
 double mu_of(double r, double x_mu, double R, double Rt, double H) {
   const double rho = std::sqrt(std::max((r - R) * (r + R), 0.0));
   const double d_min = Rt - r, d_max = rho + H;
