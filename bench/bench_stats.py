@@ -115,6 +115,11 @@ def paired_lines(out, base):
         if (out / f"{one}.time").exists() and (out / f"{two}.time").exists():
             lines.append(f"speed-up from 1 to 2 threads, {what}, per interleaved pair: wall {text(paired(out, one, two))}; "
                          f"tables + image (skyspec's own split) {text(paired(out, one, two, stage=True))}")
+    if (out / "c3-1t.time").exists() and (out / "c3x-1t.time").exists():
+        v = paired(out, "c3-1t", "c3x-1t")
+        if v is not None:
+            lines.append("what two cores give two independent renders: 2 x (case 1 on 1 thread) / (two of them at once), "
+                         f"per interleaved pair: {text((2 * v[0], 2 * v[1], 2 * v[2], v[3]))}")
     return lines
 
 

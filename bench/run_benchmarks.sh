@@ -61,12 +61,12 @@ fi
 
 # run_once NAME CMD...: runs CMD once and appends a line "wall_s rss_kB" to $out/NAME.time and
 # skyspec's "rendered ..." line (its own split of the time) to $out/NAME.stages. The outputs of the
-# previous run are removed first (NAME.exr, NAME.png, the baseline's seed.pfm). The log is the
-# last run's.
+# previous run are removed first (NAME.exr, NAME.png, NAME.*.exr and .png, the baseline's
+# seed.pfm). The log is the last run's.
 run_once() {
   local name="$1"; shift
   local t0 t1
-  rm -f "$out/$name.exr" "$out/$name.png" "$out/seed.pfm"
+  rm -f "$out/$name.exr" "$out/$name.png" "$out/$name".*.exr "$out/$name".*.png "$out/seed.pfm"
   t0=$EPOCHREALTIME
   /usr/bin/time -f '%M' -o "$out/$name.rss" "$@" > "$out/$name.log" 2>&1
   t1=$EPOCHREALTIME
@@ -169,7 +169,15 @@ later time "c3-1t" "3: case 1, 1 thread" 30 --scene "$scene" --threads 1
 later time "c3-2t" "3: case 1, 2 threads" 30 --scene "$scene" --threads 2
 later time "c3n-1t" "3: case 1 uncompressed, 1 thread" 30 --scene "$scene" --threads 1 "${NONE[@]}"
 later time "c3n-2t" "3: case 1 uncompressed, 2 threads" 30 --scene "$scene" --threads 2 "${NONE[@]}"
-interleave c3-1t c3-2t c3n-1t c3n-2t
+# What two cores give this work at best: two case-1 renders on one thread each at the same time
+# (outputs c3x-1t.a.exr and .b.exr), no sharing between them. 2 x (one alone) / (both at once) is
+# the speed-up two independent renders get (a loop of pure arithmetic got 2.00x on this VM).
+skyspec_cmd "c3x-1t.a" 30 --scene "$scene" --threads 1; pair_a=("${cmd_line[@]}")
+skyspec_cmd "c3x-1t.b" 30 --scene "$scene" --threads 1; pair_b=("${cmd_line[@]}")
+declare_case "c3x-1t" bash -c 'n=$(( $# / 2 )); "${@:1:n}" & a=$!; "${@:n+1}"; b=$?; wait "$a" && exit "$b"' _ \
+  "${pair_a[@]}" "${pair_b[@]}"
+row time "c3x-1t" "ceiling: two case-1 renders on 1 thread each, at once" 30
+interleave c3-1t c3-2t c3n-1t c3n-2t c3x-1t
 echo "case 4 (equirectangular upper hemisphere, interleaved) ..."
 HEMI=(--camera equirectangular --width 512 --height 256 --set camera.min_elevation_deg=0)
 later main "c4-10" "4: spectral 41 wl, 512x256 equirect upper hemisphere, 2 threads, EXR (PIZ)" 10 --scene "$scene" "${HEMI[@]}"
