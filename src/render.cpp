@@ -565,7 +565,8 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
   // The image goes out in bands of rows, each rendered while the one before is compressed and
   // written (OpenEXR compresses a band's line blocks in parallel on its own threads), so that
   // rendering and compression overlap. With render.threads = 1 nothing overlaps: each band is
-  // written on the same thread, so that the render uses one core, as asked. 64 rows are two PIZ
+  // written on the same thread, so that the render uses one core, as asked (the writer's flush to
+  // the disk runs on a helper thread that only waits: spectral_exr.cpp). 64 rows are two PIZ
   // or four ZIP line blocks; wide images take fewer rows so that a band stays near 64 MB.
   const size_t band_row_bytes = static_cast<size_t>(w) * static_cast<size_t>(n + 3) * sizeof(float);
   const int band = static_cast<int>(std::clamp<size_t>((size_t{64} << 20) / band_row_bytes, 8, 64));
