@@ -470,8 +470,13 @@ void SpectralExrWriter::finish() {
   if (w.rows_written != w.height)
     throw w.error("only " + std::to_string(w.rows_written) + " of " + std::to_string(w.height) +
                   " rows were written");
-  w.exr.reset();      // writes the scan-line offset table
-  w.stream->close();  // throws if any write failed
+  try {
+    w.exr.reset();      // writes the scan-line offset table
+    w.stream->close();  // throws if any write or flush failed
+  } catch (const std::exception& e) {
+    w.broken = true;
+    throw w.error(e.what());  // named like write_rows's errors: the file, then the cause
+  }
   w.file.commit();
 }
 

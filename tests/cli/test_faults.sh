@@ -2,9 +2,11 @@
 # Faults: a full disk and SIGINT / SIGTERM during a render. Each must end with a non-zero exit,
 # a clear message, and no partial or temporary file ("<name>.tmp-...") in the output folder.
 # The full-disk case mounts a 64 KiB tmpfs and needs root (CAP_SYS_ADMIN); without it that case
-# is reported as skipped. Usage: test_faults.sh SKYSPEC
+# is reported as skipped. A disk that fails to flush needs the LD_PRELOAD library given as the
+# second argument (tests/fault_inject/fail_fdatasync.cpp). Usage: test_faults.sh SKYSPEC [SHIM]
 set -u
 skyspec=$1
+shim=${2:-}
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
 
 # --- full disk ---------------------------------------------------------------------------------
@@ -25,6 +27,22 @@ if mount -t tmpfs -o size=64k skyspec-test-full "$full" 2>/dev/null; then
   trap 'rm -rf "$work"' EXIT
 else
   echo "SKIP full_disk: cannot mount a tmpfs here (needs root)"
+fi
+
+# --- a disk that fails to flush -----------------------------------------------------------------
+# Every fdatasync fails with EIO: the spectral EXR's band flush reports it, as a write error
+# would be (exit 3, the system's message), and no file is left. (ASan, when the binary has it,
+# must be told that a library comes before its runtime.)
+if [ -n "$shim" ]; then
+  run_expecting_error failing_flush 3 "Input/output error" "$work/eio" \
+    env LD_PRELOAD="$shim" ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}verify_asan_link_order=0" \
+    "$skyspec" render -q --out "$work/eio" --width 64 --height 64 --set render.scattering_orders=1
+  # Several bands (tall image): the error of an earlier band's flush stops the render.
+  run_expecting_error failing_flush_bands 3 "Input/output error" "$work/eio2" \
+    env LD_PRELOAD="$shim" ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}verify_asan_link_order=0" \
+    "$skyspec" render -q --out "$work/eio2" --width 16 --height 512 --set render.scattering_orders=1
+else
+  echo "SKIP failing_flush: no fdatasync shim given"
 fi
 
 # --- an output that cannot be committed --------------------------------------------------------
