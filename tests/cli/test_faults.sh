@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Faults: a full disk and SIGINT / SIGTERM during a render. Each must end with a non-zero exit,
-# a clear message, and no partial or temporary file ("<name>.tmp-...") in the output folder.
+# Faults: a full disk, a failing flush, a taken output name and SIGINT / SIGTERM during a render.
+# Each must end with a non-zero exit, a clear message, and no partial or temporary file
+# ("<name>.tmp-...") in the output folder.
 # The full-disk case mounts a 64 KiB tmpfs and needs root (CAP_SYS_ADMIN); without it that case
 # is reported as skipped. A disk that fails to flush needs the LD_PRELOAD library given as the
 # second argument (tests/fault_inject/fail_fdatasync.cpp). Usage: test_faults.sh SKYSPEC [SHIM]
@@ -37,7 +38,8 @@ if [ -n "$shim" ]; then
   run_expecting_error failing_flush 3 "Input/output error" "$work/eio" \
     env LD_PRELOAD="$shim" ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}verify_asan_link_order=0" \
     "$skyspec" render -q --out "$work/eio" --width 64 --height 64 --set render.scattering_orders=1
-  # Several bands (tall image): the error of an earlier band's flush stops the render.
+  # Several bands (a tall image), so that a band's flush fails before the file is completed: the
+  # same error and exit (which of the two reports it first is not observable from here).
   run_expecting_error failing_flush_bands 3 "Input/output error" "$work/eio2" \
     env LD_PRELOAD="$shim" ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}verify_asan_link_order=0" \
     "$skyspec" render -q --out "$work/eio2" --width 16 --height 512 --set render.scattering_orders=1
