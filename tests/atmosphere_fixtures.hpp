@@ -4,8 +4,8 @@
 #include <vector>
 
 #include "skyspec/atmosphere.hpp"
-#include "skyspec/optical_depth.hpp"
-#include "skyspec/single_scattering.hpp"
+#include "transport/optical_depth.hpp"
+#include "transport/single_scattering.hpp"
 
 namespace skyspec::test {
 

@@ -15,7 +15,7 @@
 
 #include "commands.hpp"
 #include "scene_options.hpp"
-#include "skyspec/atomic_file.hpp"
+#include "base/atomic_file.hpp"
 #include "skyspec/coefficient_report.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/scene.hpp"

@@ -15,8 +15,8 @@
 #include "display_options.hpp"
 #include "progress.hpp"
 #include "scene_options.hpp"
-#include "skyspec/atomic_file.hpp"
-#include "skyspec/comparison_report.hpp"
+#include "base/atomic_file.hpp"
+#include "report/comparison_report.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/sky_comparison.hpp"
 

@@ -8,7 +8,7 @@
 
 #include "commands.hpp"
 #include "display_options.hpp"
-#include "skyspec/display_conversion.hpp"
+#include "colour/display_conversion.hpp"
 #include "skyspec/error.hpp"
 
 namespace skyspec::cli {

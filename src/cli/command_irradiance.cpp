@@ -11,9 +11,9 @@
 
 #include "commands.hpp"
 #include "scene_options.hpp"
-#include "skyspec/atomic_file.hpp"
+#include "base/atomic_file.hpp"
 #include "skyspec/error.hpp"
-#include "skyspec/irradiance.hpp"
+#include "render/irradiance.hpp"
 #include "skyspec/render.hpp"
 
 namespace skyspec::cli {

@@ -11,11 +11,11 @@
 #include "display_options.hpp"
 #include "progress.hpp"
 #include "scene_options.hpp"
-#include "skyspec/atomic_file.hpp"
+#include "base/atomic_file.hpp"
 #include "skyspec/error.hpp"
-#include "skyspec/irradiance.hpp"
+#include "render/irradiance.hpp"
 #include "skyspec/render.hpp"
-#include "skyspec/render_budget.hpp"
+#include "render/render_budget.hpp"
 #include "skyspec/scene.hpp"
 
 namespace skyspec::cli {

@@ -12,14 +12,14 @@
 #include "commands.hpp"
 #include "progress.hpp"
 #include "scene_options.hpp"
-#include "skyspec/date_time.hpp"
-#include "skyspec/display_pipeline.hpp"
-#include "skyspec/atomic_file.hpp"
+#include "physics/date_time.hpp"
+#include "colour/display_pipeline.hpp"
+#include "base/atomic_file.hpp"
 #include "skyspec/error.hpp"
-#include "skyspec/exposure.hpp"
+#include "colour/exposure.hpp"
 #include "skyspec/render.hpp"
-#include "skyspec/render_budget.hpp"
-#include "skyspec/solar_position.hpp"
+#include "render/render_budget.hpp"
+#include "physics/solar_position.hpp"
 
 namespace skyspec::cli {
 namespace {

@@ -8,7 +8,7 @@
 #include <optional>
 #include <string>
 
-#include "skyspec/display_pipeline.hpp"
+#include "colour/display_pipeline.hpp"
 
 namespace skyspec::cli {
 

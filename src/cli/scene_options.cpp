@@ -3,7 +3,7 @@
 #include <iostream>
 
 #include "skyspec/error.hpp"
-#include "skyspec/provenance.hpp"
+#include "io/provenance.hpp"
 #include "skyspec/version.hpp"
 
 namespace skyspec::cli {

@@ -1,0 +1,103 @@
+// `skyspec convert`: an existing EXR through the display pipeline.
+#include "colour/display_conversion.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <map>
+
+#include "base/atomic_file.hpp"
+#include "skyspec/error.hpp"
+#include "io/png_image.hpp"
+#include "io/provenance.hpp"
+#include "io/rgb_exr.hpp"
+#include "skyspec/version.hpp"
+
+namespace skyspec {
+namespace {
+
+bool is_rec709(const Chromaticities& c) {
+  const Chromaticities r = rec709_chromaticities();
+  const auto near = [](const double a[2], const double b[2]) {
+    return std::abs(a[0] - b[0]) < 1e-4 && std::abs(a[1] - b[1]) < 1e-4;
+  };
+  return near(c.red, r.red) && near(c.green, r.green) && near(c.blue, r.blue) && near(c.white, r.white);
+}
+
+}  // namespace
+
+ConversionOutputs convert_exr_for_display(const std::filesystem::path& input, const std::filesystem::path& directory,
+                                          const std::string& name, const DisplaySettings& settings,
+                                          std::optional<double> manual_ev, bool png) {
+  if (!png && settings.exr_space.empty())
+    throw InputError("--no-png", "given without --exr-space", "at least one output");
+  if (name.empty() || name.find('/') != std::string::npos)
+    throw InputError("--name", "\"" + name + "\"", "a file name without '/'");
+  ensure_writable_directory(directory, "--out");
+  const DisplayPipeline pipeline(settings);  // checks the names before reading anything
+  if (!std::filesystem::is_regular_file(input)) throw InputError("INPUT", "'" + input.string() + "'", "an existing EXR file");
+  const RgbExrImage image = read_rgb_exr(input);
+  if (image.has_chromaticities && !is_rec709(image.chromaticities))
+    throw InputError("input EXR", "'" + input.string() + "'",
+                     "R, G, B in linear Rec.709 (skyspec's EXRs; its chromaticities attribute says other primaries)");
+  for (float v : image.rgb)
+    if (!std::isfinite(v)) throw IoError("EXR '" + input.string() + "': non-finite R, G, B values");
+
+  ConversionOutputs out;
+  ExposureSettings exposure = settings.exposure;
+  if (manual_ev) {
+    exposure.mode = ExposureSettings::Mode::Manual;
+    exposure.ev = *manual_ev;
+  }
+  const auto recorded = image.strings.find("skyspec:exposureScale");
+  if (exposure.mode == ExposureSettings::Mode::Automatic && recorded != image.strings.end()) {
+    const double scale = std::strtod(recorded->second.c_str(), nullptr);
+    if (!(scale > 0.0) || !std::isfinite(scale))
+      throw IoError("EXR '" + input.string() + "': skyspec:exposureScale \"" + recorded->second + "\" is not a positive number");
+    out.exposure = resolve_exposure(exposure, scale);
+    const auto text = image.strings.find("skyspec:exposure");
+    out.exposure.description =
+        "recorded in the file: " + (text != image.strings.end() ? text->second : "scale " + recorded->second);
+  } else {
+    out.exposure = resolve_exposure(exposure, exposure.mode == ExposureSettings::Mode::Automatic
+                                                  ? metered_exposure_scale(image.rgb, image.width, image.height)
+                                                  : 1.0);
+  }
+  out.display = pipeline.describe();
+
+  std::map<std::string, std::string> provenance;
+  for (const auto& [key, value] : image.strings)
+    if (key.rfind("skyspec:", 0) == 0) provenance[key] = value;
+  provenance["skyspec:convertedFrom"] = input.string();
+  provenance["skyspec:exposure"] = out.exposure.description;
+  char scale_text[32];
+  std::snprintf(scale_text, sizeof scale_text, "%.9g", out.exposure.scale);
+  provenance["skyspec:exposureScale"] = scale_text;
+
+  try {
+    if (png) {
+      out.png = directory / (name + ".png");
+      std::vector<std::pair<std::string, std::string>> text = {{"Software", std::string("skyspec ") + version_string()},
+                                                               {"skyspec:display", out.display},
+                                                               {"skyspec:exposure", out.exposure.description},
+                                                               {"skyspec:convertedFrom", input.string()}};
+      for (const char* key : {kVersionAttribute, kSceneAttribute, kDataAttribute})  // the render's provenance
+        if (const auto it = provenance.find(key); it != provenance.end()) text.emplace_back(key, it->second);
+      write_png_display(out.png, image.width, image.height, pipeline.encode(image.rgb, out.exposure.scale),
+                        settings.png_bit_depth, pipeline.png_tag(), text);
+    }
+    if (!settings.exr_space.empty()) {
+      const WorkingSpace& space = find_working_space(settings.exr_space);
+      out.working_exr = directory / (name + "-" + space.file_suffix + ".exr");
+      provenance["skyspec:workingSpace"] = space.name + " (scene-linear, converted by " + pipeline.config().describe() + ")";
+      write_rgb_exr(out.working_exr, image.width, image.height, to_working_space(pipeline.config(), image.rgb, space),
+                    space.chromaticities, provenance);
+    }
+  } catch (...) {
+    std::error_code ec;
+    if (!out.png.empty()) std::filesystem::remove(out.png, ec);
+    throw;
+  }
+  return out;
+}
+
+}  // namespace skyspec

@@ -1,0 +1,138 @@
+// Scene-linear RGB OpenEXR with the chromaticities attribute (OpenEXR 3.1 C++ API).
+#include "io/rgb_exr.hpp"
+
+#include <ImfChannelList.h>
+#include <ImfChromaticities.h>
+#include <ImfFloatAttribute.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfIO.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
+#include <ImfStandardAttributes.h>
+#include <ImfStringAttribute.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <exception>
+
+#include "base/atomic_file.hpp"
+#include "skyspec/error.hpp"
+
+namespace skyspec {
+namespace {
+
+/// The file is encoded in memory first, then written with checked stdio calls, so that every
+/// write error is seen (OpenEXR's own file stream can lose errors at close).
+class MemoryOStream : public Imf::OStream {
+ public:
+  MemoryOStream() : Imf::OStream("memory") {}
+  void write(const char c[], int n) override {
+    const size_t end = position_ + static_cast<size_t>(n);
+    if (bytes_.size() < end) bytes_.resize(end);
+    std::memcpy(bytes_.data() + position_, c, static_cast<size_t>(n));
+    position_ = end;
+  }
+  uint64_t tellp() override { return position_; }
+  void seekp(uint64_t position) override { position_ = static_cast<size_t>(position); }
+  const std::vector<char>& bytes() const { return bytes_; }
+
+ private:
+  std::vector<char> bytes_;
+  size_t position_ = 0;
+};
+
+IMATH_NAMESPACE::V2f v2f(const double xy[2]) {
+  return IMATH_NAMESPACE::V2f(static_cast<float>(xy[0]), static_cast<float>(xy[1]));
+}
+
+}  // namespace
+
+void write_rgb_exr(const std::filesystem::path& path, int width, int height, const std::vector<float>& rgb,
+                   const Chromaticities& c, const std::map<std::string, std::string>& strings,
+                   const std::map<std::string, float>& floats) {
+  const std::string where = "RGB EXR '" + path.string() + "': ";
+  if (width <= 0 || height <= 0)
+    throw IoError(where + "image size " + std::to_string(width) + " x " + std::to_string(height) + " must be positive");
+  const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
+  if (rgb.size() != pixels * 3) throw IoError(where + "wrong number of values for the image size");
+  for (size_t i = 0; i < rgb.size(); ++i)
+    if (!std::isfinite(rgb[i]))
+      throw IoError(where + "non-finite value at x = " + std::to_string(i / 3 % static_cast<size_t>(width)) +
+                    ", y = " + std::to_string(i / 3 / static_cast<size_t>(width)));
+
+  MemoryOStream memory;
+  try {
+    Imf::Header header(width, height);
+    header.compression() = Imf::ZIP_COMPRESSION;
+    const char* names[3] = {"R", "G", "B"};
+    for (const char* name : names) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+    Imf::addChromaticities(header, Imf::Chromaticities(v2f(c.red), v2f(c.green), v2f(c.blue), v2f(c.white)));
+    for (const auto& [key, value] : strings) header.insert(key, Imf::StringAttribute(value));
+    for (const auto& [key, value] : floats) header.insert(key, Imf::FloatAttribute(value));
+    Imf::FrameBuffer frame;
+    const size_t x_stride = 3 * sizeof(float), y_stride = static_cast<size_t>(width) * x_stride;
+    for (int ch = 0; ch < 3; ++ch)
+      frame.insert(names[ch], Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(rgb.data() + ch)),
+                                         x_stride, y_stride));
+    Imf::OutputFile out(memory, header);
+    out.setFrameBuffer(frame);
+    out.writePixels(height);
+  } catch (const std::exception& e) {
+    throw IoError(where + e.what());
+  }
+
+  AtomicOutputFile file(path);
+  FILE* out = std::fopen(file.temporary_path().c_str(), "wb");
+  if (!out) throw IoError(where + "cannot open '" + file.temporary_path().string() + "': " + std::strerror(errno));
+  const auto& bytes = memory.bytes();
+  const bool written = std::fwrite(bytes.data(), 1, bytes.size(), out) == bytes.size();
+  const bool closed = std::fclose(out) == 0;
+  if (!written || !closed) throw IoError(where + "cannot write '" + file.temporary_path().string() + "'");
+  file.commit();
+}
+
+RgbExrImage read_rgb_exr(const std::filesystem::path& path) {
+  const std::string where = "EXR '" + path.string() + "': ";
+  try {
+    Imf::InputFile in(path.c_str());
+    const Imf::Header& header = in.header();
+    const IMATH_NAMESPACE::Box2i window = header.dataWindow();
+    RgbExrImage image;
+    image.width = window.max.x - window.min.x + 1;
+    image.height = window.max.y - window.min.y + 1;
+    const char* names[3] = {"R", "G", "B"};
+    for (const char* name : names)
+      if (!header.channels().findChannel(name)) throw IoError(where + "no channel " + name);
+    image.rgb.assign(static_cast<size_t>(image.width) * static_cast<size_t>(image.height) * 3, 0.0f);
+    Imf::FrameBuffer frame;
+    for (int ch = 0; ch < 3; ++ch)
+      frame.insert(names[ch], Imf::Slice::Make(Imf::FLOAT, image.rgb.data() + ch, window, 3 * sizeof(float),
+                                               static_cast<size_t>(image.width) * 3 * sizeof(float)));
+    in.setFrameBuffer(frame);
+    in.readPixels(window.min.y, window.max.y);
+    image.has_chromaticities = Imf::hasChromaticities(header);
+    const Imf::Chromaticities chroma = image.has_chromaticities ? Imf::chromaticities(header) : Imf::Chromaticities();
+    const auto put = [](double out[2], const IMATH_NAMESPACE::V2f& v) {
+      out[0] = v.x;
+      out[1] = v.y;
+    };
+    put(image.chromaticities.red, chroma.red);
+    put(image.chromaticities.green, chroma.green);
+    put(image.chromaticities.blue, chroma.blue);
+    put(image.chromaticities.white, chroma.white);
+    for (auto it = header.begin(); it != header.end(); ++it) {
+      if (const auto* text = dynamic_cast<const Imf::StringAttribute*>(&it.attribute())) image.strings[it.name()] = text->value();
+      if (const auto* number = dynamic_cast<const Imf::FloatAttribute*>(&it.attribute())) image.floats[it.name()] = number->value();
+    }
+    return image;
+  } catch (const IoError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw IoError(where + e.what());
+  }
+}
+
+}  // namespace skyspec

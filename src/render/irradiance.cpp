@@ -1,0 +1,84 @@
+#include "render/irradiance.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "skyspec/colour.hpp"
+#include "skyspec/error.hpp"
+#include "transport/multiple_scattering.hpp"
+#include "skyspec/units.hpp"
+
+namespace skyspec {
+
+namespace {
+// Trapezoid integral of a sampled spectrum over its grid.
+double integrate_over_grid(const WavelengthGrid& grid, const SpectrumD& v) {
+  double s = 0.0;
+  for (int i = 1; i < grid.size(); ++i) s += 0.5 * (grid.nm(i) - grid.nm(i - 1)) * (v[i] + v[i - 1]);
+  return s;
+}
+}  // namespace
+
+IrradianceReport irradiance_at_camera(const SkyRenderer& r, int zenith_nodes, int azimuth_nodes) {
+  const WavelengthGrid& grid = r.grid();
+  const int n = grid.size();
+  if (grid.size() < 2) throw InputError("spectrum", grid.describe(), "at least 2 wavelengths for irradiance");
+  const Vec3 up = r.camera_origin_m().normalized();
+  // A tangent frame at the camera.
+  const Vec3 east = (std::abs(up.z()) < 0.9 ? Vec3(0, 0, 1).cross(up) : Vec3(0, 1, 0).cross(up)).normalized();
+  const Vec3 north = up.cross(east);
+
+  IrradianceReport rep;
+  rep.wavelengths_nm = grid.nanometres();
+  // Direct.
+  std::vector<float> t(static_cast<size_t>(n));
+  r.transmittance(r.sun_direction(), t.data());
+  rep.direct_normal.resize(n);
+  for (int i = 0; i < n; ++i) rep.direct_normal[i] = static_cast<double>(r.sun_irradiance()[i]) * t[static_cast<size_t>(i)];
+  const double cos_sun = std::max(0.0, r.sun_direction().dot(up));
+  rep.direct_horizontal = rep.direct_normal * cos_sun;
+
+  // Diffuse: hemisphere quadrature, rows of zenith nodes in parallel (on the renderer's threads).
+  std::vector<double> mu, w;
+  gauss_legendre(zenith_nodes, 0.0, 1.0, mu, w);
+  std::vector<SpectrumD> rows(static_cast<size_t>(zenith_nodes), SpectrumD::Zero(n));
+  tbb::task_arena arena(r.threads());
+  arena.execute([&] { tbb::parallel_for(0, zenith_nodes, [&](int i) {
+    std::vector<float> L(static_cast<size_t>(n));
+    const double m = mu[static_cast<size_t>(i)], sin_t = std::sqrt(1 - m * m);
+    for (int j = 0; j < azimuth_nodes; ++j) {
+      const double phi = 2 * kPi * (j + 0.5) / azimuth_nodes;
+      const Vec3 d = (sin_t * std::cos(phi)) * east + (sin_t * std::sin(phi)) * north + m * up;
+      r.radiance(d, L.data());
+      for (int l = 0; l < n; ++l)
+        rows[static_cast<size_t>(i)][l] += w[static_cast<size_t>(i)] * m * (2 * kPi / azimuth_nodes) * L[static_cast<size_t>(l)];
+    }
+  }); });
+  rep.diffuse_horizontal = SpectrumD::Zero(n);
+  for (const auto& row : rows) rep.diffuse_horizontal += row;
+
+  rep.direct_normal_W_m2 = integrate_over_grid(grid, rep.direct_normal);
+  rep.direct_horizontal_W_m2 = integrate_over_grid(grid, rep.direct_horizontal);
+  rep.diffuse_horizontal_W_m2 = integrate_over_grid(grid, rep.diffuse_horizontal);
+  const SpectrumToXyz xyz(grid, constants::kMaxLuminousEfficacy_lm_per_W);
+  rep.direct_normal_lux = xyz(rep.direct_normal)[1];
+  rep.direct_horizontal_lux = xyz(rep.direct_horizontal)[1];
+  rep.diffuse_horizontal_lux = xyz(rep.diffuse_horizontal)[1];
+  return rep;
+}
+
+std::string IrradianceReport::describe() const {
+  char buf[512];
+  std::snprintf(buf, sizeof buf,
+                "irradiance at the camera (%g-%g nm): direct normal %.1f W/m2 (%.0f lx), direct horizontal %.1f W/m2 "
+                "(%.0f lx), diffuse horizontal %.1f W/m2 (%.0f lx), global horizontal %.0f lx",
+                wavelengths_nm.front(), wavelengths_nm.back(), direct_normal_W_m2, direct_normal_lux,
+                direct_horizontal_W_m2, direct_horizontal_lux, diffuse_horizontal_W_m2, diffuse_horizontal_lux,
+                global_horizontal_lux());
+  return buf;
+}
+
+}  // namespace skyspec

@@ -1,0 +1,667 @@
+#include "skyspec/render.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <future>
+#include <limits>
+#include <map>
+#include <mutex>
+#include <optional>
+#include <sstream>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+#include <tbb/task_arena.h>
+
+#include "base/atomic_file.hpp"
+#include "skyspec/colour.hpp"
+#include "colour/display_pipeline.hpp"
+#include "base/embedded_data.hpp"
+#include "skyspec/error.hpp"
+#include "colour/exposure.hpp"
+#include "io/png_image.hpp"
+#include "io/provenance.hpp"
+#include "io/rgb_exr.hpp"
+#include "transport/multiple_scattering.hpp"
+#include "transport/single_scattering.hpp"
+#include "transport/sky_view_table.hpp"
+#include "physics/solar_spectrum.hpp"
+#include "io/spectral_exr.hpp"
+#include "physics/sun_disk.hpp"
+#include "skyspec/units.hpp"
+#include "skyspec/version.hpp"
+#include "transport/build_stamps.hpp"
+
+namespace skyspec {
+
+std::unique_ptr<Camera> make_camera(const Scene& scene) {
+  const double R = scene.atmosphere.planet_radius_m;
+  auto world = [R](const Vec3& p) { return Vec3(p.x(), p.y(), R + p.z()); };
+  const auto& c = scene.camera;
+  switch (c.type) {
+    case CameraSpec::Type::Fisheye:
+      return std::make_unique<FisheyeCamera>(c.width, c.height, world(c.position_m));
+    case CameraSpec::Type::Perspective:
+      return std::make_unique<PerspectiveCamera>(c.width, c.height, world(c.position_m), world(c.look_at_m), c.fov_deg);
+    case CameraSpec::Type::Equirectangular:
+      return std::make_unique<EquirectangularCamera>(c.width, c.height, world(c.position_m), c.min_elevation_deg);
+  }
+  return nullptr;
+}
+
+namespace {
+// The sun's spectral irradiance at the top of the atmosphere on the grid, W m^-2 nm^-1.
+Spectrum make_sun_irradiance(const Scene& s, const WavelengthGrid& grid) {
+  if (s.sun.spectrum == SunSpec::Spectrum::Flat)
+    return Spectrum::Constant(grid.size(), static_cast<float>(s.sun.spectral_irradiance_W_m2_nm));
+  const double scale = 1.0 / (s.sun.distance_au * s.sun.distance_au);  // inverse-square law
+  return (solar_irradiance_on_grid(grid, "spectrum") * scale).cast<float>();
+}
+
+// The scene keys the scattering-order tables depend on: the planet, the atmosphere, the ground,
+// the wavelength grid and the table settings (not the sun, the camera or the outputs).
+std::string scattering_tables_key(const Scene& s) {
+  std::istringstream in(scene_to_toml(s));
+  std::string line, table, key;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line.front() == '[') {
+      table = line;
+      continue;
+    }
+    const bool render_key = table == "[render]" && (line.rfind("table_", 0) == 0 || line.rfind("ms_", 0) == 0 ||
+                                                    line.rfind("scattering_orders", 0) == 0);
+    if (table.rfind("[atmosphere", 0) == 0 || table == "[planet]" || table == "[ground]" || table == "[spectrum]" ||
+        render_key)
+      key += table + line + "\n";
+  }
+  return key;
+}
+
+// The part of a table's cache key that the scene does not show: the coefficients actually
+// computed (so a change in how they are derived invalidates old tables) and when the integrator's
+// code was compiled.
+std::string table_code_key(const AtmosphereModel& atm) {
+  std::ostringstream k;
+  k << "\ncode " << version_string() << " | " << build_stamp_single_scattering() << " | "
+    << build_stamp_multiple_scattering() << " | " << build_stamp_optical_depth() << " | "
+    << build_stamp_density_profile() << "\ncoefficients";
+  k << std::hexfloat;
+  for (const ScatteringSpecies* sp : {&atm.rayleigh(), &atm.mie(), &atm.ozone()}) {
+    for (int i = 0; i < sp->scattering_per_m.size(); ++i) k << ' ' << sp->scattering_per_m[i] << ' ' << sp->extinction_per_m[i];
+    k << " | " << sp->profile.describe();
+  }
+  for (int i = 0; i < atm.ground_albedo().size(); ++i) k << ' ' << atm.ground_albedo()[i];
+  for (int i = 0; i < atm.mie_g().size(); ++i) k << ' ' << atm.mie_g()[i];
+  return k.str();
+}
+
+// Where tables are cached on disk: $SKYSPEC_CACHE_DIR, else $XDG_CACHE_HOME/skyspec, else
+// ~/.cache/skyspec; the file name is a hash of the key (the file holds the whole key and is
+// used only if it matches). Empty when no folder can be named.
+std::string table_cache_path(const std::string& key) {
+  std::filesystem::path dir;
+  if (const char* d = std::getenv("SKYSPEC_CACHE_DIR"); d && *d) dir = d;
+  else if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) dir = std::filesystem::path(x) / "skyspec";
+  else if (const char* h = std::getenv("HOME"); h && *h) dir = std::filesystem::path(h) / ".cache" / "skyspec";
+  else return {};
+  const uint64_t hash = fnv1a64(key);
+  char name[64];
+  std::snprintf(name, sizeof name, "orders-%016llx.bin", static_cast<unsigned long long>(hash));
+  return (dir / name).string();
+}
+
+// render.threads, or all cores for 0.
+int thread_count(const Scene& s) {
+  return s.render.threads > 0 ? s.render.threads : tbb::this_task_arena::max_concurrency();
+}
+
+// The sun angles the sun table must serve: with single scattering every look-up is on a ray from
+// the camera, so only the band of sun angles met in the air the camera sees (a few degrees either
+// side of the sun's angle at the camera, for a camera on the ground); building the scattering
+// orders needs every angle.
+SunColumnTable::MuBand sun_band(const Scene& s, const AtmosphereModel& atmosphere) {
+  if (s.render.scattering_orders >= 2) return SunColumnTable::MuBand{};
+  return SunColumnTable::band_seen_from(atmosphere, make_camera(s)->origin_m(), sun_direction(s));
+}
+
+// Tables are reused across renders of the same atmosphere in one process (a time-lapse changes
+// only the sun). The last few are kept.
+std::shared_ptr<const ScatteringOrders> build_orders(const Scene& s, const SingleScattering& integrator) {
+  static std::mutex mutex;
+  static std::vector<std::pair<std::string, std::shared_ptr<const ScatteringOrders>>> cache;
+  const std::string key = scattering_tables_key(s);
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    for (const auto& [k, v] : cache)
+      if (k == key) return v;
+  }
+  MultipleScatteringSettings ms;
+  ms.orders = s.render.scattering_orders;
+  ms.altitude_samples = s.render.ms_altitude_samples;
+  ms.sun_samples = s.render.ms_sun_samples;
+  std::shared_ptr<const ScatteringOrders> orders;
+  const std::string cache_path = s.render.cache_tables ? table_cache_path(key) : std::string();
+  const std::string full_key = key + table_code_key(integrator.atmosphere());
+  if (!cache_path.empty()) orders = ScatteringOrders::load(cache_path, full_key, integrator.atmosphere(), ms);
+  if (!orders) {
+    auto built = std::make_shared<const ScatteringOrders>(integrator, ms);
+    if (!cache_path.empty()) {
+      std::error_code ec;
+      std::filesystem::create_directories(std::filesystem::path(cache_path).parent_path(), ec);
+      built->save(cache_path, full_key);
+    }
+    orders = built;
+  }
+  std::lock_guard<std::mutex> lock(mutex);
+  cache.emplace_back(key, orders);
+  if (cache.size() > 4) cache.erase(cache.begin());
+  return orders;
+}
+}  // namespace
+
+struct SkyRenderer::Impl {
+  Scene scene;
+  WavelengthGrid grid;
+  AtmosphereModel atmosphere;
+  SunColumnTable table;
+  TableSunColumns sun_columns;
+  SingleScattering integrator;
+  std::shared_ptr<const ScatteringOrders> orders;  // null for single scattering
+  ScatteringSources sources;
+  std::unique_ptr<Camera> camera;
+  std::unique_ptr<SkyViewTable> sky_view;  // null: every pixel is marched
+  Vec3 sun_dir;
+  Spectrum sun_irradiance;
+  double sun_radius_rad;
+  Spectrum to_rgb[3];  // spectrum -> linear Rec.709: R, G, B are the dot products with these rows
+  int rgb_index[3] = {0, 0, 0};                     // RGB-fast: indices of 680, 550, 440 nm
+  bool rgb_fast;
+  int threads;
+
+  // Adds the limb-darkened sun disk to the radiance of pixel (px, py) (top-left corner), whose
+  // centre looks along dir. The disk is far smaller than most pixels, so the pixel's area is
+  // sampled on an 8 x 8 grid and the disk's radiance averaged over it; the attenuation along the
+  // line of sight is taken at the pixel's centre.
+  void add_sun_disk(int px, int py, const Vec3& dir, float* radiance, Spectrum& disk, Spectrum& trans) const {
+    Vec3 neighbour;
+    if (!camera->direction(px + 1.5, py + 0.5, neighbour) && !camera->direction(px - 0.5, py + 0.5, neighbour)) return;
+    const double pixel_rad = std::acos(std::clamp(neighbour.dot(dir), -1.0, 1.0));
+    const double to_sun = std::acos(std::clamp(dir.dot(sun_dir), -1.0, 1.0));
+    if (to_sun > sun_radius_rad + 1.5 * pixel_rad) return;
+    const int n = 8;
+    Spectrum& sample = trans;  // reused below for the transmittance
+    disk.setZero();
+    bool any = false;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        Vec3 d;
+        if (!camera->direction(px + (i + 0.5) / n, py + (j + 0.5) / n, d)) continue;
+        const double x = std::acos(std::clamp(d.dot(sun_dir), -1.0, 1.0)) / sun_radius_rad;
+        if (x >= 1.0) continue;
+        disk_radiance_per_irradiance(grid, sun_radius_rad, x, sample);
+        disk += sample;
+        any = true;
+      }
+    if (!any) return;
+    integrator.transmittance_to_space(camera->origin_m(), dir, trans);
+    Eigen::Map<Spectrum>(radiance, grid.size()) += disk * (1.0f / (n * n)) * trans * sun_irradiance;
+  }
+
+  // The sky's radiance along dir (unit) without the sun's disk: interpolated from the sky-view
+  // table where there is one for that direction, marched otherwise (render_rows does the same
+  // for chunks of pixels).
+  void sky_radiance(const Vec3& dir, ScatteringWorkspace& ws, Spectrum& out) const {
+    if (sky_view && sky_view->lookup(dir, ws.parts))
+      integrator.combine(ws.parts, dir.dot(sun_dir), sun_irradiance, ws, out);
+    else
+      integrator.radiance(camera->origin_m(), dir, sun_dir, sun_irradiance, sources, ws, out);
+  }
+
+  // Whether any pixel of the image looks below the geometric horizon (a fisheye of the sky does
+  // not, so the sky-view table can leave out that side): from the camera's closed form where it
+  // has one (a bound: at worst the table's ground side is built for nothing), else pixel by pixel.
+  bool image_sees_below_horizon() const {
+    const Vec3 up = camera->origin_m().normalized();
+    const double r = camera->origin_m().norm(), R = atmosphere.planet_radius_m();
+    const double below = -std::sqrt(std::max(0.0, (r - R) * (r + R))) / r;  // cos of the horizon's zenith angle
+    if (const std::optional<double> lowest = camera->lowest_cosine_to(up)) return *lowest <= below + 1e-9;
+    const int w = camera->width(), h = camera->height();
+    tbb::task_arena arena(threads);
+    return arena.execute([&] {
+      return tbb::parallel_reduce(
+          tbb::blocked_range<int>(0, h), false,
+          [&](const tbb::blocked_range<int>& rows, bool seen) {
+            Vec3 d;
+            for (int y = rows.begin(); y != rows.end() && !seen; ++y)
+              for (int x = 0; x < w && !seen; ++x)
+                seen = camera->direction(x + 0.5, y + 0.5, d) && d.dot(up) <= below + 1e-9;
+            return seen;
+          },
+          [](bool a, bool b) { return a || b; });
+    });
+  }
+
+  explicit Impl(const Scene& s)
+      : scene(s),
+        grid(make_wavelength_grid(s)),
+        atmosphere(s.atmosphere, grid),
+        table(atmosphere, SunColumnTable::Resolution{s.render.table_altitude_samples, s.render.table_zenith_samples, 64},
+              sun_band(s, atmosphere)),
+        sun_columns(table),
+        integrator(atmosphere, sun_columns, IntegratorSettings{s.render.view_segments}),
+        orders(s.render.scattering_orders >= 2 ? build_orders(s, integrator) : nullptr),
+        sources{true, orders.get()},
+        camera(make_camera(s)),
+        sun_dir(skyspec::sun_direction(s)),
+        sun_irradiance(make_sun_irradiance(s, grid)),
+        sun_radius_rad(skyspec::sun_angular_radius_rad(s.sun.distance_au)),
+        rgb_fast(s.render.path == RenderSpec::Path::RgbFast),
+        threads(thread_count(s)) {
+    if (s.render.sky_view_table && SkyViewTable::applicable(atmosphere, camera->origin_m())) {
+      const int rows = s.render.sky_view_zenith_samples;
+      const bool below = image_sees_below_horizon();
+      try {
+        sky_view = std::make_unique<SkyViewTable>(
+            integrator, sources, camera->origin_m(), sun_dir,
+            SkyViewResolution{rows, std::max(2, rows / 2), s.render.sky_view_azimuth_samples, below},
+            threads);
+      } catch (const Error&) {
+        sky_view.reset();  // a geometry the table cannot resolve (rows that coincide): march every pixel
+      }
+    }
+    if (rgb_fast) {
+      rgb_index[0] = grid.index_of(680);
+      rgb_index[1] = grid.index_of(550);
+      rgb_index[2] = grid.index_of(440);
+    } else {
+      const SpectrumToXyz xyz(grid, constants::kMaxLuminousEfficacy_lm_per_W);
+      const Eigen::MatrixXf m = (xyz_to_linear_rec709() * xyz.weights()).cast<float>();
+      for (int c = 0; c < 3; ++c) to_rgb[c] = m.row(c).transpose().array();
+    }
+  }
+};
+
+SkyRenderer::SkyRenderer(const Scene& scene) {
+  // The tables (sun columns, scattering orders, sky view) are built in parallel too: within
+  // render.threads, like the image.
+  tbb::task_arena arena(thread_count(scene));
+  arena.execute([&] { impl_ = std::make_unique<Impl>(scene); });
+}
+SkyRenderer::~SkyRenderer() = default;
+const Scene& SkyRenderer::scene() const { return impl_->scene; }
+const WavelengthGrid& SkyRenderer::grid() const { return impl_->grid; }
+int SkyRenderer::width() const { return impl_->camera->width(); }
+int SkyRenderer::height() const { return impl_->camera->height(); }
+int SkyRenderer::threads() const { return impl_->threads; }
+
+const Spectrum& SkyRenderer::sun_irradiance() const { return impl_->sun_irradiance; }
+const Vec3& SkyRenderer::sun_direction() const { return impl_->sun_dir; }
+const Vec3& SkyRenderer::camera_origin_m() const { return impl_->camera->origin_m(); }
+double SkyRenderer::sun_angular_radius_rad() const { return impl_->sun_radius_rad; }
+const ScatteringOrders* SkyRenderer::scattering_orders() const { return impl_->orders.get(); }
+
+void SkyRenderer::transmittance(const Vec3& dir, float* out) const {
+  Spectrum t(impl_->grid.size());
+  impl_->integrator.transmittance_to_space(impl_->camera->origin_m(), dir.normalized(), t);
+  std::copy(t.data(), t.data() + t.size(), out);
+}
+
+void SkyRenderer::spectrum_to_rgb(const float* spectrum, float rgb[3]) const {
+  const auto& m = *impl_;
+  if (m.rgb_fast) {
+    for (int c = 0; c < 3; ++c) rgb[c] = spectrum[m.rgb_index[c]];
+    return;
+  }
+  const Eigen::Map<const Spectrum> s(spectrum, m.grid.size());
+  for (int c = 0; c < 3; ++c) rgb[c] = (m.to_rgb[c] * s).sum();
+}
+
+void SkyRenderer::radiance(const Vec3& dir, float* spectrum) const {
+  const auto& m = *impl_;
+  const int n = m.grid.size();
+  // Scratch kept per thread: callers (the exposure meter, tests) ask for many directions.
+  thread_local std::optional<ScatteringWorkspace> ws;
+  thread_local Spectrum out;
+  if (!ws || ws->view_tau.size() != n) ws.emplace(n);
+  out.resize(n);
+  m.sky_radiance(dir.normalized(), *ws, out);  // the sky as the image shows it
+  std::copy(out.data(), out.data() + n, spectrum);
+}
+
+void SkyRenderer::radiance_rgb(const Vec3& dir, float rgb[3]) const {
+  thread_local std::vector<float> s;  // per thread, like radiance()'s scratch
+  s.resize(static_cast<size_t>(impl_->grid.size()));
+  radiance(dir, s.data());
+  spectrum_to_rgb(s.data(), rgb);
+}
+
+void SkyRenderer::aerial_rows(int y0, int rows, const float* distance_m, float* transmittance, float* inscatter) const {
+  const auto& m = *impl_;
+  const int w = m.camera->width(), n = m.grid.size();
+  struct Scratch {
+    ScatteringWorkspace ws;
+    Spectrum radiance, trans;
+    explicit Scratch(int k) : ws(k), radiance(k), trans(k) {}
+  };
+  tbb::enumerable_thread_specific<Scratch> scratch([n] { return Scratch(n); });
+  tbb::task_arena arena(m.threads);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<int>(0, rows * w, 64), [&](const tbb::blocked_range<int>& r) {
+      Scratch& sc = scratch.local();
+      for (int idx = r.begin(); idx != r.end(); ++idx) {
+        const int row = idx / w, x = idx % w;
+        float* t_px = transmittance + static_cast<size_t>(idx) * n;
+        float* l_px = inscatter + static_cast<size_t>(idx) * n;
+        Vec3 dir;
+        if (!m.camera->direction(x + 0.5, y0 + row + 0.5, dir)) {
+          std::fill(t_px, t_px + n, 1.0f);
+          std::fill(l_px, l_px + n, 0.0f);
+          continue;
+        }
+        ScatteringSources src = m.sources;
+        src.max_distance_m = std::isfinite(distance_m[idx]) ? static_cast<double>(distance_m[idx])
+                                                             : std::numeric_limits<double>::infinity();
+        src.transmittance = &sc.trans;
+        m.integrator.radiance(m.camera->origin_m(), dir, m.sun_dir, m.sun_irradiance, src, sc.ws, sc.radiance);
+        std::copy(sc.trans.data(), sc.trans.data() + n, t_px);
+        std::copy(sc.radiance.data(), sc.radiance.data() + n, l_px);
+      }
+    });
+  });
+}
+
+void SkyRenderer::render_rows(int y0, int rows, float* spectral, float* rgb) const {
+  const auto& m = *impl_;
+  const int w = m.camera->width(), n = m.grid.size();
+  // Pixels go through in chunks: a chunk's directions are looked up in the sky-view table
+  // together (SkyViewTable::lookup_many computes their angles in one vectorised loop); what the
+  // table does not cover is marched, as sky_radiance() does for one direction.
+  constexpr int kChunk = 64;
+  struct Scratch {
+    ScatteringWorkspace ws;
+    Spectrum radiance, disk, trans;
+    Vec3 dirs[kChunk];
+    int pixel[kChunk];  // the chunk's pixels that have a direction
+    bool found[kChunk];
+    double mu[kChunk];    // their cosines to the sun
+    float* out[kChunk];   // where their radiances go
+    std::vector<float> parts;  // their sky-view parts, 3 n floats each
+    explicit Scratch(int k) : ws(k), radiance(k), disk(k), trans(k), parts(static_cast<size_t>(3 * kChunk * k)) {}
+  };
+  tbb::enumerable_thread_specific<Scratch> scratch([n] { return Scratch(n); });
+  std::atomic<bool> non_finite{false};
+  tbb::task_arena arena(m.threads);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<int>(0, rows * w, kChunk), [&](const tbb::blocked_range<int>& r) {
+      Scratch& sc = scratch.local();
+      for (int c0 = r.begin(); c0 < r.end(); c0 += kChunk) {
+        const int c1 = std::min(r.end(), c0 + kChunk);
+        int count = 0;
+        for (int idx = c0; idx < c1; ++idx) {
+          const int row = idx / w, x = idx % w;
+          if (m.camera->direction(x + 0.5, y0 + row + 0.5, sc.dirs[count]))
+            sc.pixel[count++] = idx;
+          else
+            std::fill(spectral + static_cast<size_t>(idx) * n, spectral + static_cast<size_t>(idx + 1) * n, 0.0f);
+        }
+        if (m.sky_view) {
+          m.sky_view->lookup_many(count, sc.dirs, sc.parts.data(), sc.found);
+          for (int k = 0; k < count; ++k) {
+            sc.mu[k] = sc.dirs[k].dot(m.sun_dir);
+            sc.out[k] = spectral + static_cast<size_t>(sc.pixel[k]) * n;
+          }
+          m.integrator.combine_many(count, sc.parts.data(), sc.mu, sc.found, m.sun_irradiance, sc.out, sc.ws);
+        }
+        for (int k = 0; k < count; ++k) {
+          const Vec3& dir = sc.dirs[k];
+          const int idx = sc.pixel[k];
+          float* px = spectral + static_cast<size_t>(idx) * n;
+          if (!(m.sky_view && sc.found[k])) {
+            m.integrator.radiance(m.camera->origin_m(), dir, m.sun_dir, m.sun_irradiance, m.sources, sc.ws, sc.radiance);
+            std::copy(sc.radiance.data(), sc.radiance.data() + n, px);
+          }
+          if (m.scene.sun.disk) m.add_sun_disk(idx % w, y0 + idx / w, dir, px, sc.disk, sc.trans);
+        }
+        for (int idx = c0; idx < c1; ++idx) {
+          const float* px = spectral + static_cast<size_t>(idx) * n;
+          float* px_rgb = rgb + static_cast<size_t>(idx) * 3;
+          spectrum_to_rgb(px, px_rgb);
+          // Checked here, while the pixel is in cache, rather than in a pass over the band.
+          if (!std::isfinite(px_rgb[0]) || !std::isfinite(px_rgb[1]) || !std::isfinite(px_rgb[2]) ||
+              !Eigen::Map<const Spectrum>(px, n).allFinite())
+            non_finite.store(true, std::memory_order_relaxed);
+        }
+      }
+    });
+  });
+  if (non_finite.load())
+    throw Error("internal error: a non-finite radiance or RGB value was computed; no file was written");
+}
+
+SpectralImageBuffer render_to_memory(const Scene& scene, const ProgressFn& progress) {
+  SkyRenderer r(scene);
+  SpectralImageBuffer img;
+  img.width = r.width();
+  img.height = r.height();
+  img.wavelengths_nm = r.grid().nanometres();
+  const size_t n = static_cast<size_t>(r.grid().size());
+  img.spectral.resize(static_cast<size_t>(img.width) * img.height * n);
+  img.rgb.resize(static_cast<size_t>(img.width) * img.height * 3);
+  const int band = 16;
+  for (int y = 0; y < img.height; y += band) {
+    const int rows = std::min(band, img.height - y);
+    r.render_rows(y, rows, img.spectral.data() + static_cast<size_t>(y) * img.width * n,
+                  img.rgb.data() + static_cast<size_t>(y) * img.width * 3);
+    if (progress) progress(y + rows, img.height);
+  }
+  return img;
+}
+
+namespace {
+
+/// The automatic exposure, metered before rendering so that the EXR header can record it: the
+/// sky's radiance (without the sun's disk) at the pixels metering_pixels() picks (exposure.hpp).
+double meter_before_rendering(const SkyRenderer& r) {
+  const auto camera = make_camera(r.scene());
+  const auto pixels = metering_pixels(r.width(), r.height());
+  std::vector<double> luminance(pixels.size(), 0.0);  // 0 (ignored by the meter): outside the image circle
+  tbb::task_arena arena(thread_count(r.scene()));
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels.size(), 256), [&](const tbb::blocked_range<size_t>& range) {
+      for (size_t i = range.begin(); i != range.end(); ++i) {
+        Vec3 dir;
+        if (!camera->direction(pixels[i].first + 0.5, pixels[i].second + 0.5, dir)) continue;
+        float rgb[3];
+        r.radiance_rgb(dir, rgb);
+        luminance[i] = rec709_luminance(rgb);
+      }
+    });
+  });
+  return key_exposure_scale(luminance);
+}
+
+std::string numbers_text(std::initializer_list<double> values) {
+  std::string text;
+  char buffer[32];
+  for (double v : values) {
+    std::snprintf(buffer, sizeof buffer, "%.9g", v);
+    text += (text.empty() ? "" : " ") + std::string(buffer);
+  }
+  return text;
+}
+
+}  // namespace
+
+RenderOutputs render_scene_to_files(const Scene& scene, const ProgressFn& progress) {
+  return render_scene_to_files(scene, DisplaySettings{}, progress);
+}
+
+RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& display, const ProgressFn& progress,
+                                    const PreparedFn& prepared) {
+  const auto t_start = std::chrono::steady_clock::now();
+  RenderOutputs out;
+  ensure_writable_directory(scene.output.directory, "output.directory");
+  const std::filesystem::path dir(scene.output.directory);
+  const bool working_exr = !display.exr_space.empty();
+  if (!scene.output.exr && !scene.output.png && !working_exr)
+    throw InputError("output.exr and output.png", "false", "at least one output to be true");
+  // The display pipeline checks its names (display, view, look, working space) before rendering.
+  std::optional<DisplayPipeline> pipeline;
+  if (scene.output.png || working_exr) pipeline.emplace(display);
+
+  using Clock = std::chrono::steady_clock;
+  const auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  SkyRenderer r(scene);
+  out.tables_seconds = since(t_start);
+  if (prepared) prepared(r);
+  const auto t_image = Clock::now();
+  const int w = r.width(), h = r.height(), n = r.grid().size();
+  const bool rgb_fast = scene.render.path == RenderSpec::Path::RgbFast;
+
+  ExposureSettings exposure = display.exposure;
+  if (exposure.mode == ExposureSettings::Mode::Automatic && scene.output.exposure_ev) {
+    exposure.mode = ExposureSettings::Mode::Manual;
+    exposure.ev = *scene.output.exposure_ev;
+  }
+  const bool automatic = exposure.mode == ExposureSettings::Mode::Automatic;
+  const ResolvedExposure chosen = resolve_exposure(exposure, automatic ? meter_before_rendering(r) : 1.0);
+  out.preview_scale = chosen.scale;
+  out.preview_ev = chosen.ev;
+  out.exposure = chosen.description;
+  float sun_rgb[3];
+  r.spectrum_to_rgb(r.sun_irradiance().data(), sun_rgb);
+
+  // skyspec:version, skyspec:scene, skyspec:data (provenance.hpp), then what this render chose.
+  std::map<std::string, std::string> provenance = provenance_attributes(scene, pipeline && pipeline->config().is_builtin());
+  provenance["skyspec:renderPath"] = rgb_fast ? "rgb-fast" : "spectral";
+  provenance["skyspec:wavelengths"] = r.grid().describe();
+  provenance["skyspec:exposure"] = chosen.description;
+  provenance["skyspec:exposureScale"] = numbers_text({chosen.scale});
+  provenance["skyspec:sunRGB"] = numbers_text({sun_rgb[0], sun_rgb[1], sun_rgb[2]});
+
+  std::unique_ptr<SpectralExrWriter> exr;
+  if (scene.output.exr) {
+    SpectralExrMetadata meta;
+    meta.strings = provenance;
+    meta.compression = scene.output.exr_compression;
+    meta.threads = thread_count(scene);
+    meta.strings["skyspec:units"] =
+        rgb_fast ? "RGB-fast path: S0 channels and R,G,B in the sun's units (spectral_irradiance x sr^-1); "
+                   "R,G,B are the 680, 550, 440 nm values read as linear Rec.709"
+                 : "S0 channels: spectral radiance, W m^-2 sr^-1 nm^-1; R,G,B: linear Rec.709 (D65) with "
+                   "Y = luminance in cd m^-2";
+    out.exr = dir / (scene.output.name + ".exr");
+    exr = std::make_unique<SpectralExrWriter>(out.exr, w, h, r.grid().nanometres(), meta);
+  }
+
+  // The image goes out in bands of rows, each rendered while the one before is compressed and
+  // written (OpenEXR compresses a band's line blocks in parallel on its own threads), so that
+  // rendering and compression overlap. With render.threads = 1 nothing overlaps: each band is
+  // written on the same thread, so that the render uses one core, as asked (the writer's flush to
+  // the disk runs on a helper thread that only waits: spectral_exr.cpp). 64 rows are two PIZ
+  // or four ZIP line blocks; wide images take fewer rows so that a band stays near 64 MB.
+  const size_t band_row_bytes = static_cast<size_t>(w) * static_cast<size_t>(n + 3) * sizeof(float);
+  const int band = static_cast<int>(std::clamp<size_t>((size_t{64} << 20) / band_row_bytes, 8, 64));
+  // Left uninitialised (render_rows writes every value): zero-filling 11 MB here took about 8 ms
+  // of page faults on one thread before any row was rendered; render_rows's threads touch the
+  // pages first instead, in parallel.
+  struct Band {
+    std::unique_ptr<float[]> spectral, rgb;
+  };
+  Band bands[2];
+  for (Band& b : bands) {
+    b.spectral.reset(new float[static_cast<size_t>(band) * w * n]);
+    b.rgb.reset(new float[static_cast<size_t>(band) * w * 3]);
+  }
+  std::vector<float> rgb;  // whole image, for the PNG and the working-space EXR
+  if (pipeline) rgb.resize(static_cast<size_t>(w) * h * 3);
+  std::future<void> writing;  // the previous band on its way to the file
+  const bool overlap = thread_count(scene) > 1;
+  for (int y = 0, k = 0; y < h; y += band, k ^= 1) {
+    const int rows = std::min(band, h - y);
+    Band& b = bands[k];
+    r.render_rows(y, rows, b.spectral.get(), b.rgb.get());
+    if (writing.valid()) writing.get();  // rethrows a write error
+    if (exr && overlap)
+      writing = std::async(std::launch::async, [&exr, &b, rows] { exr->write_rows(rows, b.spectral.get(), b.rgb.get()); });
+    else if (exr)
+      exr->write_rows(rows, b.spectral.get(), b.rgb.get());
+    if (!rgb.empty())
+      std::copy(b.rgb.get(), b.rgb.get() + static_cast<long>(rows) * w * 3, rgb.begin() + static_cast<long>(y) * w * 3);
+    if (progress) progress(y + rows, h);
+  }
+  if (writing.valid()) writing.get();
+  out.image_seconds = since(t_image);
+  const auto t_output = Clock::now();
+  // Completing the EXR (its offset table, fsync, rename) waits mostly for the disk: when other
+  // files follow, it runs beside their encoding (the display transform, PNG's deflate).
+  std::future<void> committing;
+  if (exr && (scene.output.png || working_exr))
+    committing = std::async(std::launch::async, [&exr] { exr->finish(); });
+  else if (exr)
+    exr->finish();
+  bool exr_done = exr && !committing.valid(), png_done = false, working_done = false;
+  try {
+    if (scene.output.png) {
+      out.png = dir / (scene.output.name + ".png");
+      out.display = pipeline->describe();
+      const std::vector<std::pair<std::string, std::string>> text = {
+          {"Software", std::string("skyspec ") + version_string()},
+          {"skyspec:display", out.display},
+          {"skyspec:exposure", chosen.description},
+          {kVersionAttribute, provenance[kVersionAttribute]},
+          {kSceneAttribute, provenance[kSceneAttribute]},
+          {kDataAttribute, provenance[kDataAttribute]}};
+      write_png_display(out.png, w, h, pipeline->encode(rgb, chosen.scale), display.png_bit_depth, pipeline->png_tag(), text);
+      png_done = true;
+    }
+    if (working_exr) {
+      const WorkingSpace& space = find_working_space(display.exr_space);
+      out.working_exr = dir / (scene.output.name + "-" + space.file_suffix + ".exr");
+      std::map<std::string, std::string> strings = provenance;
+      strings["skyspec:workingSpace"] = space.name + " (scene-linear, converted by " + pipeline->config().describe() + ")";
+      std::map<std::string, float> floats;
+      if (exposure.mode == ExposureSettings::Mode::Camera) {  // OpenEXR's standard camera attributes
+        floats["expTime"] = static_cast<float>(exposure.shutter_s);
+        floats["aperture"] = static_cast<float>(exposure.f_number);
+        floats["isoSpeed"] = static_cast<float>(exposure.iso);
+      }
+      write_rgb_exr(out.working_exr, w, h, to_working_space(pipeline->config(), rgb, space), space.chromaticities,
+                    strings, floats);
+      working_done = true;
+    }
+    if (committing.valid()) {
+      committing.get();  // rethrows the EXR's error
+      exr_done = true;
+    }
+  } catch (...) {
+    // All or nothing: do not leave the files of a render whose outputs did not all arrive. The
+    // EXR's completion is waited for first (it uses `exr`); only files this render completed are
+    // removed (a failed write leaves an earlier file of that name as it was).
+    if (committing.valid()) {
+      try {
+        committing.get();
+        exr_done = true;
+      } catch (...) {  // the first error is the one reported
+      }
+    }
+    std::error_code ec;
+    if (exr_done) std::filesystem::remove(out.exr, ec);
+    if (png_done) std::filesystem::remove(out.png, ec);
+    if (working_done) std::filesystem::remove(out.working_exr, ec);
+    throw;
+  }
+  out.output_seconds = since(t_output);
+  out.seconds = since(t_start);
+  return out;
+}
+
+}  // namespace skyspec

@@ -1,0 +1,265 @@
+#include "render/render_budget.hpp"
+
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <sstream>
+#include <system_error>
+
+#include "skyspec/camera.hpp"
+#include "skyspec/error.hpp"
+#include "skyspec/render.hpp"
+#include "skyspec/scene.hpp"
+#include "io/spectral_exr.hpp"
+#include "io/spectral_exr_encode.hpp"
+
+namespace skyspec {
+namespace {
+
+constexpr std::uint64_t kHeaderRoom = 64 * 1024;  // headers: the scene, the data tables, ...
+constexpr double kMaxSeconds = 24.0 * 3600.0;
+
+std::uint64_t pixels(int width, int height) {
+  return static_cast<std::uint64_t>(std::max(width, 0)) * static_cast<std::uint64_t>(std::max(height, 0));
+}
+
+std::string printf_text(const char* format, double value, const char* unit) {
+  char buffer[48];
+  std::snprintf(buffer, sizeof buffer, format, value, unit);
+  return buffer;
+}
+
+// CPU time of the calling thread or of the whole process, seconds (0 if the clock is not available).
+double cpu_seconds(clockid_t clock) {
+  timespec t{};
+  if (clock_gettime(clock, &t) != 0) return 0.0;
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+double thread_cpu_seconds() { return cpu_seconds(CLOCK_THREAD_CPUTIME_ID); }
+double process_cpu_seconds() { return cpu_seconds(CLOCK_PROCESS_CPUTIME_ID); }
+
+}  // namespace
+
+std::uint64_t spectral_exr_bytes(int width, int height, int wavelengths) {
+  return pixels(width, height) * static_cast<std::uint64_t>(wavelengths + 3) * 4 +
+         static_cast<std::uint64_t>(std::max(height, 0)) * 8 + kHeaderRoom;
+}
+
+std::uint64_t rgb_exr_bytes(int width, int height) { return spectral_exr_bytes(width, height, 0); }
+
+std::uint64_t png_bytes(int width, int height, int bit_depth) {
+  return pixels(width, height) * 3 * static_cast<std::uint64_t>(bit_depth / 8) +
+         static_cast<std::uint64_t>(std::max(height, 0)) + kHeaderRoom;
+}
+
+std::string format_bytes(std::uint64_t bytes) {
+  const double b = static_cast<double>(bytes);
+  if (b < 1e3) return std::to_string(bytes) + " bytes";
+  const char* units[] = {"kB", "MB", "GB", "TB", "PB"};
+  double v = b / 1e3;
+  int u = 0;
+  while (v >= 999.5 && u < 4) v /= 1e3, ++u;
+  return printf_text(v < 9.95 ? "%.1f %s" : "%.0f %s", v, units[u]);
+}
+
+std::string format_duration(double seconds) {
+  if (seconds < 60.0) return printf_text(seconds < 9.95 ? "%.1f %s" : "%.0f %s", seconds, "s");
+  if (seconds < 3600.0) return printf_text("%.0f %s", seconds / 60.0, "min");
+  if (seconds < 48 * 3600.0) return printf_text("%.1f %s", seconds / 3600.0, "h");
+  return printf_text("%.1f %s", seconds / 86400.0, "days");
+}
+
+RenderPlan RenderPlan::for_scene(const Scene& scene, bool working_exr, int png_bit_depth, int frames) {
+  RenderPlan p;
+  p.width = scene.camera.width;
+  p.height = scene.camera.height;
+  p.wavelengths = make_wavelength_grid(scene).size();
+  p.view_segments = scene.render.view_segments;
+  const int cores = std::max(1, tbb::this_task_arena::max_concurrency());
+  p.threads = scene.render.threads > 0 ? std::min(scene.render.threads, cores) : cores;
+  p.frames = frames;
+  p.spectral_exr = scene.output.exr;
+  p.png = scene.output.png;
+  p.working_exr = working_exr;
+  p.png_bit_depth = png_bit_depth;
+  p.directory = scene.output.directory;
+  return p;
+}
+
+std::uint64_t RenderPlan::output_bytes() const {
+  std::uint64_t one = 0;
+  if (spectral_exr) one += spectral_exr_bytes(width, height, wavelengths);
+  if (png) one += png_bytes(width, height, png_bit_depth);
+  if (working_exr) one += rgb_exr_bytes(width, height);
+  one += extra_output_bytes;
+  return one * static_cast<std::uint64_t>(std::max(frames, 1));
+}
+
+std::uint64_t RenderPlan::peak_memory_bytes() const {
+  const std::uint64_t px = pixels(width, height), n = static_cast<std::uint64_t>(std::max(wavelengths, 0));
+  // render_scene_to_files renders a band of rows while the one before is written: bands of about
+  // 64 MiB (8 to 64 rows), two of them, and OpenEXR's buffers for one (uncompressed and compressed).
+  const std::uint64_t row_bytes = static_cast<std::uint64_t>(std::max(width, 1)) * (n + 3) * 4;
+  const std::uint64_t band_rows = std::clamp<std::uint64_t>((std::uint64_t{64} << 20) / row_bytes, 8, 64);
+  const std::uint64_t band = std::min<std::uint64_t>(band_rows, static_cast<std::uint64_t>(std::max(height, 0))) * row_bytes;
+  std::uint64_t bytes = 2 * band;
+  if (spectral_exr) bytes += 2 * band;
+  // The whole-image RGB buffer, and at the end the copy the display pipeline encodes plus the
+  // PNG's samples, or the working-space conversion of it.
+  if (png || working_exr) {
+    bytes += px * 12;
+    const std::uint64_t png_part = png ? px * 12 + px * 3 * static_cast<std::uint64_t>(png_bit_depth / 8) : 0;
+    const std::uint64_t working_part = working_exr ? px * 24 : 0;
+    bytes += std::max(png_part, working_part);
+  }
+  return bytes + static_cast<std::uint64_t>(std::ceil(static_cast<double>(px) * extra_bytes_per_pixel));
+}
+
+std::string RenderPlan::settings() const {
+  std::ostringstream s;
+  s << wavelengths << " wavelength" << (wavelengths == 1 ? "" : "s") << ", " << view_segments << " view segment"
+    << (view_segments == 1 ? "" : "s") << ", " << width << "x" << height << ", " << threads << " thread"
+    << (threads == 1 ? "" : "s");
+  if (frames > 1) s << ", " << frames << " frames";
+  return s.str();
+}
+
+std::string RenderEstimate::describe() const {
+  std::string text = "outputs up to " + format_bytes(output_bytes);
+  if (disk_available_bytes) text += " (" + format_bytes(*disk_available_bytes) + " free)";
+  text += ", peak memory about " + format_bytes(peak_memory_bytes);
+  if (memory_available_bytes) text += " (" + format_bytes(*memory_available_bytes) + " available)";
+  if (seconds) text += ", about " + format_duration(*seconds) + " of rendering";
+  return text;
+}
+
+std::vector<std::string> RenderEstimate::problems() const {
+  std::vector<std::string> out;
+  if (disk_available_bytes && output_bytes > *disk_available_bytes) {
+    std::string what = "up to " + format_bytes(output_bytes);
+    if (plan.frames > 1)
+      what += " (" + std::to_string(plan.frames) + " frames of up to " +
+              format_bytes(output_bytes / static_cast<std::uint64_t>(plan.frames)) + ")";
+    else if (plan.spectral_exr)
+      what += " (a " + format_bytes(spectral_exr_bytes(plan.width, plan.height, plan.wavelengths)) + " EXR)";
+    out.push_back("would write " + what + " but " + plan.directory.string() + " has " +
+                  format_bytes(*disk_available_bytes) + " free");
+  }
+  if (memory_available_bytes && peak_memory_bytes > *memory_available_bytes)
+    out.push_back("would need about " + format_bytes(peak_memory_bytes) + " of memory but " +
+                  format_bytes(*memory_available_bytes) + " is available");
+  if (seconds && *seconds > kMaxSeconds)
+    out.push_back("would take about " + format_duration(*seconds) + " at these settings (" + plan.settings() +
+                  "); use a smaller image, fewer wavelengths or fewer view segments");
+  return out;
+}
+
+RenderEstimate estimate_render(const RenderPlan& plan) {
+  RenderEstimate e;
+  e.plan = plan;
+  e.output_bytes = plan.output_bytes();
+  e.peak_memory_bytes = plan.peak_memory_bytes();
+  e.disk_available_bytes = available_disk_bytes(plan.directory);
+  e.memory_available_bytes = available_memory_bytes();
+  return e;
+}
+
+double measure_render_seconds(const SkyRenderer& renderer, const RenderPlan& plan) {
+  const int w = renderer.width(), h = renderer.height();
+  const double threads = std::max(plan.threads, 1);
+  const double work = static_cast<double>(pixels(w, h)) * std::max(plan.frames, 1);
+  // First a bound: radiance() does a pixel's work without the sun's disk (a sky-view table lookup
+  // where the renderer has one, a march of the view ray otherwise), timed on a few pixels spread
+  // over the image by the R2 low-discrepancy sequence (Roberts 2018). CPU time of the thread: what the work costs,
+  // whatever else the machine is doing.
+  const auto camera = make_camera(renderer.scene());
+  std::vector<float> spectrum(static_cast<size_t>(renderer.grid().size()));
+  const double a1 = 0.7548776662466927, a2 = 0.5698402909980532;
+  const auto start = std::chrono::steady_clock::now();
+  const double cpu_start = thread_cpu_seconds();
+  long samples = 0;
+  for (;;) {
+    const double k = static_cast<double>(samples + 1);
+    Vec3 dir;
+    if (camera->direction(std::fmod(0.5 + a1 * k, 1.0) * w, std::fmod(0.5 + a2 * k, 1.0) * h, dir))
+      renderer.radiance(dir, spectrum.data());
+    ++samples;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (samples >= 64 || elapsed >= 0.1) break;
+  }
+  const double marched = (thread_cpu_seconds() - cpu_start) / static_cast<double>(samples);
+  // Then, when a row costs at most about a second even if every pixel were marched, the real work:
+  // render_rows on the middle row and, when that was quick, a row a quarter down, timed by the
+  // process's CPU time (all of render_rows's threads).
+  if (marched * w / threads > 1.0) return marched * work / threads;
+  std::vector<float> spectral(static_cast<size_t>(w) * static_cast<size_t>(renderer.grid().size())),
+      rgb(static_cast<size_t>(w) * 3);
+  double cpu = 0.0;
+  long rendered = 0;
+  for (const int y : {h / 2, h / 4}) {
+    const double before = process_cpu_seconds();
+    renderer.render_rows(y, 1, spectral.data(), rgb.data());
+    cpu += process_cpu_seconds() - before;
+    rendered += w;
+    if (cpu > 0.05 || h < 4) break;
+  }
+  // And writing: the last row rendered, 16 times, encoded as a spectral EXR with the scene's
+  // compression into memory (spectral_exr_encode.hpp), timed the same way.
+  double write = 0.0;
+  if (plan.spectral_exr) {
+    const int rows = 16;
+    std::vector<float> band_spectral(spectral.size() * rows), band_rgb(rgb.size() * rows);
+    for (int r = 0; r < rows; ++r) {
+      std::copy(spectral.begin(), spectral.end(), band_spectral.begin() + static_cast<long>(r * spectral.size()));
+      std::copy(rgb.begin(), rgb.end(), band_rgb.begin() + static_cast<long>(r * rgb.size()));
+    }
+    SpectralExrMetadata meta;
+    meta.compression = renderer.scene().output.exr_compression;
+    meta.threads = renderer.threads();  // as the render's writer: no more OpenEXR threads than render.threads
+    const double before = process_cpu_seconds();
+    detail::encode_spectral_rows(w, rows, renderer.grid().nanometres(), meta, band_spectral.data(), band_rgb.data());
+    write = (process_cpu_seconds() - before) / rows;
+  }
+  return (cpu / static_cast<double>(rendered) + write / w) * work / threads;
+}
+
+void refuse_if_over_budget(const RenderEstimate& estimate, const std::string& force_flag) {
+  const std::vector<std::string> problems = estimate.problems();
+  if (problems.empty()) return;
+  std::string message = "this render";
+  for (size_t i = 0; i < problems.size(); ++i) message += (i ? ", and " : " ") + problems[i];
+  message += " (use " + force_flag + " to render anyway)";
+  throw InputError::refused(force_flag, message);
+}
+
+std::optional<std::uint64_t> available_memory_bytes() {
+  std::ifstream in("/proc/meminfo");
+  std::string key;
+  std::uint64_t value = 0;
+  std::string unit;
+  while (in >> key >> value) {
+    std::getline(in, unit);
+    if (key == "MemAvailable:") return value * (unit.find("kB") != std::string::npos ? 1024 : 1);
+  }
+  return std::nullopt;
+}
+
+std::optional<std::uint64_t> available_disk_bytes(const std::filesystem::path& dir) {
+  std::error_code ec;
+  std::filesystem::path p = std::filesystem::absolute(dir.empty() ? std::filesystem::path(".") : dir, ec);
+  if (ec) return std::nullopt;
+  while (!std::filesystem::exists(p, ec)) {
+    if (!p.has_parent_path() || p.parent_path() == p) return std::nullopt;
+    p = p.parent_path();
+  }
+  const auto info = std::filesystem::space(p, ec);
+  if (ec) return std::nullopt;
+  return static_cast<std::uint64_t>(info.available);
+}
+
+}  // namespace skyspec

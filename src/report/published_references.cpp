@@ -1,0 +1,138 @@
+// Published Rayleigh-scattering figures, parsed once from the CSV tables embedded from
+// data/reference/ (provenance in data/README.md and in each file's comment lines).
+#include "report/published_references.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <string>
+#include <string_view>
+
+#include "base/embedded_data.hpp"
+#include "skyspec/error.hpp"
+#include "base/text_format.hpp"
+
+namespace skyspec {
+namespace {
+
+constexpr double kNanometresPerMicrometre = 1000.0;
+constexpr double kSquareMetresPerSquareCentimetre = 1.0e-4;
+constexpr double kFractionPerPercent = 0.01;
+
+/// The data rows of an embedded CSV file: '#' lines skipped, the header line skipped, every other
+/// line split at commas. Malformed files are a build defect, reported as skyspec::Error.
+std::vector<std::vector<std::string>> csv_rows(const std::string& name) {
+  const std::string_view text = embedded_file(name);
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream in{std::string(text)};
+  std::string line;
+  bool header_seen = false;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty() || line[0] == '#') continue;
+    if (!header_seen) {
+      header_seen = true;
+      continue;
+    }
+    std::vector<std::string> fields;
+    std::istringstream cells(line);
+    std::string cell;
+    while (std::getline(cells, cell, ',')) fields.push_back(cell);
+    rows.push_back(fields);
+  }
+  if (rows.empty()) throw Error("embedded table " + name + " has no rows");
+  return rows;
+}
+
+double number(const std::string& cell, const std::string& name) {
+  std::size_t used = 0;
+  double v = 0.0;
+  try {
+    v = std::stod(cell, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != cell.size() || !std::isfinite(v)) throw Error("embedded table " + name + ": bad number \"" + cell + "\"");
+  return v;
+}
+
+std::vector<PublishedValue> two_column_table(const std::string& name, double wavelength_scale, double value_scale) {
+  std::vector<PublishedValue> table;
+  for (const auto& row : csv_rows(name)) {
+    if (row.size() != 2) throw Error("embedded table " + name + ": expected 2 columns");
+    table.push_back({number(row[0], name) * wavelength_scale, number(row[1], name) * value_scale});
+  }
+  return table;
+}
+
+struct FitBranch {
+  double min_um, max_um, a_cm2, b, c, d;
+};
+
+const std::vector<FitBranch>& bucholtz_fit() {
+  static const std::vector<FitBranch> branches = [] {
+    const std::string name = "reference/bucholtz1995_cross_section_fit.csv";
+    std::vector<FitBranch> b;
+    for (const auto& row : csv_rows(name)) {
+      if (row.size() != 6) throw Error("embedded table " + name + ": expected 6 columns");
+      b.push_back({number(row[0], name), number(row[1], name), number(row[2], name), number(row[3], name),
+                   number(row[4], name), number(row[5], name)});
+    }
+    return b;
+  }();
+  return branches;
+}
+
+}  // namespace
+
+const std::vector<PublishedValue>& bodhaine1999_table3_optical_depth() {
+  static const auto table = two_column_table("reference/bodhaine1999_table3_optical_depth.csv", 1.0, 1.0);
+  return table;
+}
+
+const Bodhaine1999TextValues& bodhaine1999_text_values() {
+  static const Bodhaine1999TextValues values = [] {
+    const std::string name = "reference/bodhaine1999_text_values.csv";
+    Bodhaine1999TextValues v{0.0, 0.0, 0.0};
+    for (const auto& row : csv_rows(name)) {
+      if (row.size() != 4) throw Error("embedded table " + name + ": expected 4 columns");
+      const double value = number(row[2], name);
+      if (row[0] == "cross_section" && row[3] == "cm^2") v.cross_section_550nm_m2 = value * kSquareMetresPerSquareCentimetre;
+      else if (row[0] == "king_factor_air") v.king_factor_air_550nm = value;
+      else if (row[0] == "optical_depth") v.optical_depth_550nm = value;
+      else throw Error("embedded table " + name + ": unknown quantity " + row[0]);
+    }
+    if (v.cross_section_550nm_m2 <= 0.0 || v.king_factor_air_550nm <= 0.0 || v.optical_depth_550nm <= 0.0)
+      throw Error("embedded table " + name + ": a quantity is missing");
+    return v;
+  }();
+  return values;
+}
+
+const std::vector<PublishedValue>& bucholtz1995_depolarization() {
+  static const auto table = two_column_table("reference/bucholtz1995_depolarization.csv", kNanometresPerMicrometre,
+                                             kFractionPerPercent);
+  return table;
+}
+
+// King 1923: F = (6 + 3 rho) / (6 - 7 rho).
+double king_factor_from_depolarization(double rho) { return (6.0 + 3.0 * rho) / (6.0 - 7.0 * rho); }
+
+// Bucholtz 1995: sigma = A lambda^-(B + C lambda + D / lambda), lambda in um, sigma in cm^2.
+double bucholtz1995_cross_section_fit_m2(double lambda_nm) {
+  const auto& branches = bucholtz_fit();
+  const double lambda_um = lambda_nm / kNanometresPerMicrometre;
+  if (!std::isfinite(lambda_um) || lambda_um < branches.front().min_um || lambda_um > branches.back().max_um)
+    throw InputError("wavelength_nm", format_number(lambda_nm), "200 to 1000 nm (the range of Bucholtz's fit)");
+  const FitBranch* use = &branches.back();
+  for (const auto& b : branches)
+    if (lambda_um <= b.max_um) {
+      use = &b;
+      break;
+    }
+  const double exponent = use->b + use->c * lambda_um + use->d / lambda_um;
+  return use->a_cm2 * std::pow(lambda_um, -exponent) * kSquareMetresPerSquareCentimetre;
+}
+
+double bucholtz1995_fit_branch_nm() { return bucholtz_fit().front().max_um * kNanometresPerMicrometre; }
+
+}  // namespace skyspec

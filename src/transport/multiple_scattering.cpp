@@ -1,0 +1,265 @@
+#include "transport/multiple_scattering.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <fstream>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include "base/atomic_file.hpp"
+#include "skyspec/units.hpp"
+
+namespace skyspec {
+
+void gauss_legendre(int n, double a, double b, std::vector<double>& nodes, std::vector<double>& weights) {
+  // Roots of the Legendre polynomial P_n by Newton's method from Tricomi's initial guesses; weights
+  // 2 / ((1 - x^2) P_n'(x)^2), mapped from [-1, 1] to [a, b].
+  nodes.assign(static_cast<size_t>(n), 0.0);
+  weights.assign(static_cast<size_t>(n), 0.0);
+  for (int i = 0; i < n; ++i) {
+    double x = std::cos(kPi * (i + 0.75) / (n + 0.5));
+    double dp = 1.0;
+    for (int iter = 0; iter < 100; ++iter) {
+      double p0 = 1.0, p1 = x;
+      for (int k = 2; k <= n; ++k) {
+        const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
+        p0 = p1;
+        p1 = p2;
+      }
+      const double pn = n == 1 ? x : p1, pn1 = n == 1 ? 1.0 : p0;
+      dp = n * (x * pn - pn1) / (x * x - 1.0);
+      const double dx = pn / dp;
+      x -= dx;
+      if (std::abs(dx) < 1e-15) break;
+    }
+    nodes[static_cast<size_t>(i)] = 0.5 * (b - a) * x + 0.5 * (b + a);
+    weights[static_cast<size_t>(i)] = (b - a) / ((1.0 - x * x) * dp * dp);
+  }
+}
+
+// --- SourceTable --------------------------------------------------------------------------------
+
+namespace {
+// mu_s = u / 2 + u |u| / 2 for u in [-1, 1]: samples twice as dense at the horizon as uniform.
+double mu_from_u(double u) { return 0.5 * u + 0.5 * u * std::abs(u); }
+double u_from_mu(double mu) {
+  return mu >= 0.0 ? -0.5 + std::sqrt(0.25 + 2.0 * mu) : 0.5 - std::sqrt(0.25 - 2.0 * mu);
+}
+}  // namespace
+
+SourceTable::SourceTable(double planet_radius_m, double top_radius_m, int n_altitude, int n_sun, int n_wavelengths)
+    : R_(planet_radius_m),
+      Rt_(top_radius_m),
+      n_h_(n_altitude),
+      n_mu_(n_sun),
+      n_l_(n_wavelengths),
+      j_(static_cast<size_t>(n_altitude) * n_sun * n_wavelengths, 0.0f),
+      g_(static_cast<size_t>(n_sun) * n_wavelengths, 0.0f) {}
+
+double SourceTable::altitude_m(int ih) const {
+  const double x = static_cast<double>(ih) / (n_h_ - 1);
+  return (Rt_ - R_) * x * x;
+}
+
+double SourceTable::mu_sun(int imu) const { return mu_from_u(-1.0 + 2.0 * imu / (n_mu_ - 1)); }
+
+void SourceTable::source(double r_m, double mu, float* out) const {
+  const double h = std::clamp(r_m - R_, 0.0, Rt_ - R_);
+  const double fh = std::sqrt(h / (Rt_ - R_)) * (n_h_ - 1);
+  const double fm = (u_from_mu(std::clamp(mu, -1.0, 1.0)) + 1.0) * 0.5 * (n_mu_ - 1);
+  const int ih = std::min(static_cast<int>(fh), n_h_ - 2), im = std::min(static_cast<int>(fm), n_mu_ - 2);
+  const float ah = static_cast<float>(fh - ih), am = static_cast<float>(fm - im);
+  const float* a = &j_[index(ih, im)];
+  const float* b = &j_[index(ih, im + 1)];
+  const float* c = &j_[index(ih + 1, im)];
+  const float* d = &j_[index(ih + 1, im + 1)];
+  for (int l = 0; l < n_l_; ++l)
+    out[l] = (1 - ah) * ((1 - am) * a[l] + am * b[l]) + ah * ((1 - am) * c[l] + am * d[l]);
+}
+
+void SourceTable::ground_irradiance(double mu, float* out) const {
+  const double fm = (u_from_mu(std::clamp(mu, -1.0, 1.0)) + 1.0) * 0.5 * (n_mu_ - 1);
+  const int im = std::min(static_cast<int>(fm), n_mu_ - 2);
+  const float am = static_cast<float>(fm - im);
+  const float* a = g_at(im);
+  const float* b = g_at(im + 1);
+  for (int l = 0; l < n_l_; ++l) out[l] = (1 - am) * a[l] + am * b[l];
+}
+
+void SourceTable::add(const SourceTable& o) {
+  for (size_t i = 0; i < j_.size(); ++i) j_[i] += o.j_[i];
+  for (size_t i = 0; i < g_.size(); ++i) g_[i] += o.g_[i];
+}
+
+void SourceTable::write(std::ostream& out) const {
+  const int32_t shape[3] = {n_h_, n_mu_, n_l_};
+  out.write(reinterpret_cast<const char*>(shape), sizeof shape);
+  out.write(reinterpret_cast<const char*>(j_.data()), static_cast<std::streamsize>(j_.size() * sizeof(float)));
+  out.write(reinterpret_cast<const char*>(g_.data()), static_cast<std::streamsize>(g_.size() * sizeof(float)));
+}
+
+bool SourceTable::read(std::istream& in) {
+  int32_t shape[3];
+  if (!in.read(reinterpret_cast<char*>(shape), sizeof shape)) return false;
+  if (shape[0] != n_h_ || shape[1] != n_mu_ || shape[2] != n_l_) return false;
+  std::vector<float> j(j_.size()), g(g_.size());
+  if (!in.read(reinterpret_cast<char*>(j.data()), static_cast<std::streamsize>(j.size() * sizeof(float)))) return false;
+  if (!in.read(reinterpret_cast<char*>(g.data()), static_cast<std::streamsize>(g.size() * sizeof(float)))) return false;
+  for (float v : j)
+    if (!std::isfinite(v)) return false;
+  for (float v : g)
+    if (!std::isfinite(v)) return false;
+  j_.swap(j);
+  g_.swap(g);
+  return true;
+}
+
+double SourceTable::mean_source() const {
+  double s = 0.0;
+  for (float v : j_) s += v;
+  return s / static_cast<double>(j_.size());
+}
+
+// --- ScatteringOrders ---------------------------------------------------------------------------
+
+namespace {
+
+// Fill `table` with J and G computed from the radiance field that `sources` describes.
+void integrate_order(const SingleScattering& integrator, const ScatteringSources& sources,
+                     const MultipleScatteringSettings& st, SourceTable& table) {
+  const AtmosphereModel& atm = integrator.atmosphere();
+  const double R = atm.planet_radius_m();
+  const int n = atm.grid().size();
+  const Spectrum unit = Spectrum::Ones(n);
+  std::vector<double> az(static_cast<size_t>(st.azimuth_nodes));
+  for (int j = 0; j < st.azimuth_nodes; ++j) az[static_cast<size_t>(j)] = (j + 0.5) * kPi / st.azimuth_nodes;
+  const double w_az = 2.0 * kPi / st.azimuth_nodes;  // both halves of the symmetric field
+
+  struct Scratch {
+    ScatteringWorkspace ws;
+    Spectrum radiance, j, g;
+    explicit Scratch(int m) : ws(m), radiance(m), j(m), g(m) {}
+  };
+  tbb::enumerable_thread_specific<Scratch> scratch([n] { return Scratch(n); });
+  const int entries = table.altitude_count() * table.sun_count();
+  tbb::parallel_for(0, entries, [&](int e) {
+    Scratch& sc = scratch.local();
+    const int ih = e / table.sun_count(), imu = e % table.sun_count();
+    // Stay half a metre inside the shell so that rays from the table's end points are unambiguous.
+    const double r = std::clamp(R + table.altitude_m(ih), R + 0.5, atm.top_radius_m() - 0.5);
+    const double mu_s = table.mu_sun(imu);
+    const Vec3 x(0, 0, r), s(std::sqrt(std::max(0.0, 1 - mu_s * mu_s)), 0, mu_s);
+    const double mu_horizon = -std::sqrt(std::max(0.0, 1 - (R / r) * (R / r)));
+    std::vector<double> nodes, weights, gn, gw;
+    gauss_legendre(st.sky_zenith_nodes, mu_horizon, 1.0, nodes, weights);
+    gauss_legendre(st.ground_zenith_nodes, -1.0, mu_horizon, gn, gw);
+    const bool at_ground = ih == 0;
+    sc.j.setZero();
+    sc.g.setZero();
+    auto integrate = [&](const std::vector<double>& mus, const std::vector<double>& ws_mu, bool sky) {
+      for (size_t i = 0; i < mus.size(); ++i) {
+        const double mu = mus[i], sin_t = std::sqrt(std::max(0.0, 1 - mu * mu));
+        for (double phi : az) {
+          const Vec3 w(sin_t * std::cos(phi), sin_t * std::sin(phi), mu);
+          integrator.radiance(x, w, s, unit, sources, sc.ws, sc.radiance);
+          const float weight = static_cast<float>(ws_mu[i] * w_az);
+          sc.j += weight * sc.radiance;
+          if (sky && at_ground) sc.g += static_cast<float>(mu) * weight * sc.radiance;
+        }
+      }
+    };
+    integrate(nodes, weights, true);
+    integrate(gn, gw, false);
+    sc.j *= static_cast<float>(1.0 / (4.0 * kPi));
+    std::copy(sc.j.data(), sc.j.data() + n, table.j_at(ih, imu));
+    if (at_ground) std::copy(sc.g.data(), sc.g.data() + n, table.g_at(imu));
+  });
+}
+
+}  // namespace
+
+ScatteringOrders::ScatteringOrders(const SingleScattering& integrator, const MultipleScatteringSettings& settings)
+    : settings_(settings) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const AtmosphereModel& atm = integrator.atmosphere();
+  auto make_table = [&] {
+    return std::make_unique<SourceTable>(atm.planet_radius_m(), atm.top_radius_m(), settings_.altitude_samples,
+                                         settings_.sun_samples, atm.grid().size());
+  };
+  // The tables are built with their own, coarser ray quadrature.
+  const SingleScattering builder(atm, integrator.sun_columns(), IntegratorSettings{settings_.view_segments});
+  sum_ = make_table();
+  for (int k = 2; k <= settings_.orders; ++k) {
+    auto table = make_table();
+    ScatteringSources previous;
+    previous.single = k == 2;
+    previous.higher = k == 2 ? nullptr : orders_.back().get();
+    integrate_order(builder, previous, settings_, *table);
+    sum_->add(*table);
+    orders_.push_back(std::move(table));
+  }
+  build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+namespace {
+constexpr char kCacheMagic[] = "skyspec scattering orders v1\n";
+}
+
+bool ScatteringOrders::save(const std::string& path, const std::string& key) const {
+  try {
+    AtomicOutputFile file(path);
+    {
+      std::ofstream out(file.temporary_path(), std::ios::binary);
+      out.write(kCacheMagic, sizeof kCacheMagic - 1);
+      const uint64_t key_size = key.size();
+      out.write(reinterpret_cast<const char*>(&key_size), sizeof key_size);
+      out.write(key.data(), static_cast<std::streamsize>(key.size()));
+      const int32_t count = static_cast<int32_t>(orders_.size());
+      out.write(reinterpret_cast<const char*>(&count), sizeof count);
+      for (const auto& t : orders_) t->write(out);
+      sum_->write(out);
+      if (!out.flush()) return false;
+    }
+    file.commit();
+    return true;
+  } catch (const std::exception&) {
+    return false;  // a cache that cannot be written only costs time
+  }
+}
+
+std::unique_ptr<ScatteringOrders> ScatteringOrders::load(const std::string& path, const std::string& key,
+                                                         const AtmosphereModel& atm,
+                                                         const MultipleScatteringSettings& settings) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return nullptr;
+  std::string magic(sizeof kCacheMagic - 1, '\0');
+  if (!in.read(magic.data(), static_cast<std::streamsize>(magic.size())) || magic != kCacheMagic) return nullptr;
+  uint64_t key_size = 0;
+  if (!in.read(reinterpret_cast<char*>(&key_size), sizeof key_size) || key_size != key.size()) return nullptr;
+  std::string stored(key.size(), '\0');
+  if (!in.read(stored.data(), static_cast<std::streamsize>(stored.size())) || stored != key) return nullptr;
+  int32_t count = 0;
+  if (!in.read(reinterpret_cast<char*>(&count), sizeof count) || count != settings.orders - 1) return nullptr;
+  std::unique_ptr<ScatteringOrders> o(new ScatteringOrders(settings));
+  auto make_table = [&] {
+    return std::make_unique<SourceTable>(atm.planet_radius_m(), atm.top_radius_m(), settings.altitude_samples,
+                                         settings.sun_samples, atm.grid().size());
+  };
+  for (int k = 0; k < count; ++k) {
+    auto t = make_table();
+    if (!t->read(in)) return nullptr;
+    o->orders_.push_back(std::move(t));
+  }
+  o->sum_ = make_table();
+  if (!o->sum_->read(in)) return nullptr;
+  return o;
+}
+
+}  // namespace skyspec
+
+namespace skyspec {
+const char* build_stamp_multiple_scattering() { return __DATE__ " " __TIME__; }
+}  // namespace skyspec

@@ -1,0 +1,588 @@
+#include "transport/single_scattering.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "skyspec/atmosphere.hpp"
+#include "transport/optical_depth.hpp"
+#include "skyspec/phase_function.hpp"
+#include "skyspec/units.hpp"
+
+namespace skyspec {
+
+ScatteringWorkspace::ScatteringWorkspace(int n)
+    : view_tau(n), view_trans(n), source(n), ground_sun(n), ground_sky(n),
+      sum_rayleigh(n), sum_mie(n), coarse_rayleigh(n), coarse_mie(n), sum_ms_rayleigh(n), sum_ms_mie(n),
+      coarse_ms_rayleigh(n), coarse_ms_mie(n), phase(n), parts(n) {}
+
+SingleScattering::SingleScattering(const AtmosphereModel& atm, const SunColumns& sun_columns,
+                                   IntegratorSettings s)
+    : atm_(atm),
+      sun_(sun_columns),
+      settings_(s),
+      sca_rayleigh_(atm.rayleigh().scattering_per_m.cast<float>()),
+      sca_mie_(atm.mie().scattering_per_m.cast<float>()),
+      albedo_over_pi_((atm.ground_albedo() / kPi).cast<float>()) {
+  ext_[kRayleigh] = atm.rayleigh().extinction_per_m.cast<float>();
+  ext_[kMie] = atm.mie().extinction_per_m.cast<float>();
+  ext_[kOzone] = atm.ozone().extinction_per_m.cast<float>();
+}
+
+namespace {
+
+// The single-scattering integrand of species s on a segment [a, b] of the view ray is
+// f(t) = rho_s(t) T(t), T the transmittance along view and sun paths; ln f is nearly linear in t,
+// so its integral over the segment is dt * logmean(f_a, f_b) with x = ln f_a - ln f_b
+// = (ln rho_a - ln rho_b) - (tau_a - tau_b) (log_mean_branchless, optical_depth.hpp).
+//
+// A piece of the ray is integrated all at once: the optical depths and transmittances of all its
+// nodes at all wavelengths are one array, so that exp() runs over the whole of it, and the sums
+// over segments are vector loops over nodes (few wavelengths: [node, wavelength], a wavelength's
+// nodes contiguous; three for the RGB-fast path) or over wavelengths (many: [wavelength, node]).
+using NodeArray = Eigen::ArrayXXf;
+constexpr Eigen::Index kWavelengthsForWavelengthLoops = 8;  // one AVX vector of floats
+
+// What the segments of a piece share at every wavelength: lengths, densities and their log
+// ratios, for the fine rule (nodes k, k + 1) and the coarse one (nodes 2j, 2j + 2).
+struct PieceSegments {
+  int segments = 0;
+  Eigen::ArrayXf dt, rho[2], log_ratio[2];              // fine: [k]; rho: [node]
+  Eigen::ArrayXf dt2, log_ratio2[2];                    // coarse: [j]
+  Eigen::ArrayXf terms_r, terms_m;                      // scratch
+};
+
+inline float log_mean_term(float x, float f_a, float f_b) { return log_mean_branchless(f_a, f_b, x, 1e-2f); }
+
+// out[j] = dt[j] logmean over nodes a = j s, b = (j + 1) s (s = stride: 1 for the fine rule, 2 for
+// the coarse one) of both species' integrands, for one wavelength. A separate function with
+// plain pointers so that GCC vectorises it.
+void log_mean_terms(int count, int stride, const float* __restrict tau, const float* __restrict trans,
+                    const float* __restrict rho_r, const float* __restrict rho_m, const float* __restrict x_r,
+                    const float* __restrict x_m, const float* __restrict dt, float* __restrict out_r,
+                    float* __restrict out_m) {
+  if (stride == 1) {
+    for (int j = 0; j < count; ++j) {
+      const float dtau = tau[j] - tau[j + 1];
+      out_r[j] = dt[j] * log_mean_term(x_r[j] - dtau, rho_r[j] * trans[j], rho_r[j + 1] * trans[j + 1]);
+      out_m[j] = dt[j] * log_mean_term(x_m[j] - dtau, rho_m[j] * trans[j], rho_m[j + 1] * trans[j + 1]);
+    }
+    return;
+  }
+  for (int j = 0; j < count; ++j) {
+    const int a = j * stride, b = a + stride;
+    const float dtau = tau[a] - tau[b];
+    out_r[j] = dt[j] * log_mean_term(x_r[j] - dtau, rho_r[a] * trans[a], rho_r[b] * trans[b]);
+    out_m[j] = dt[j] * log_mean_term(x_m[j] - dtau, rho_m[a] * trans[a], rho_m[b] * trans[b]);
+  }
+}
+
+// Adds the fine and coarse log-mean sums over the piece's segments of both species, per
+// wavelength. tau and trans: [node, wavelength], loops over nodes.
+void accumulate_piece(const NodeArray& tau, const NodeArray& trans, PieceSegments& g, Spectrum& fine_r,
+                      Spectrum& fine_m, Spectrum& coarse_r, Spectrum& coarse_m) {
+  const int segs = g.segments, pairs = segs / 2;
+  g.terms_r.resize(segs);
+  g.terms_m.resize(segs);
+  for (Eigen::Index l = 0; l < tau.cols(); ++l) {
+    const float* ta = tau.col(l).data();
+    const float* ea = trans.col(l).data();
+    log_mean_terms(segs, 1, ta, ea, g.rho[0].data(), g.rho[1].data(), g.log_ratio[0].data(), g.log_ratio[1].data(),
+                   g.dt.data(), g.terms_r.data(), g.terms_m.data());
+    fine_r[l] += g.terms_r.head(segs).sum();
+    fine_m[l] += g.terms_m.head(segs).sum();
+    log_mean_terms(pairs, 2, ta, ea, g.rho[0].data(), g.rho[1].data(), g.log_ratio2[0].data(),
+                   g.log_ratio2[1].data(), g.dt2.data(), g.terms_r.data(), g.terms_m.data());
+    coarse_r[l] += g.terms_r.head(pairs).sum();
+    coarse_m[l] += g.terms_m.head(pairs).sum();
+  }
+}
+
+// The same for [wavelength, node] arrays (each node's wavelengths contiguous), segment by
+// segment, every loop over wavelengths: the better order when there are many wavelengths and
+// few nodes (the scattering-order tables' rays have 24 segments).
+void segment_over_wavelengths(Eigen::Index n, const float* __restrict ta, const float* __restrict ea,
+                              const float* __restrict tb, const float* __restrict eb, float x_r, float r_a, float r_b,
+                              float x_m, float m_a, float m_b, float dt, float* __restrict out_r,
+                              float* __restrict out_m) {
+  for (Eigen::Index l = 0; l < n; ++l) {
+    const float dtau = ta[l] - tb[l];
+    out_r[l] += dt * log_mean_term(x_r - dtau, r_a * ea[l], r_b * eb[l]);
+    out_m[l] += dt * log_mean_term(x_m - dtau, m_a * ea[l], m_b * eb[l]);
+  }
+}
+void accumulate_piece_by_wavelength(const NodeArray& tau, const NodeArray& trans, const PieceSegments& g,
+                                    Spectrum& fine_r, Spectrum& fine_m, Spectrum& coarse_r, Spectrum& coarse_m) {
+  const Eigen::Index n = tau.rows();
+  const float* rr = g.rho[0].data();
+  const float* rm = g.rho[1].data();
+  for (int k = 0; k < g.segments; ++k)
+    segment_over_wavelengths(n, tau.col(k).data(), trans.col(k).data(), tau.col(k + 1).data(), trans.col(k + 1).data(),
+                             g.log_ratio[0][k], rr[k], rr[k + 1], g.log_ratio[1][k], rm[k], rm[k + 1], g.dt[k],
+                             fine_r.data(), fine_m.data());
+  for (int j = 0; j < g.segments / 2; ++j) {
+    const int a = 2 * j, b = 2 * j + 2;
+    segment_over_wavelengths(n, tau.col(a).data(), trans.col(a).data(), tau.col(b).data(), trans.col(b).data(),
+                             g.log_ratio2[0][j], rr[a], rr[b], g.log_ratio2[1][j], rm[a], rm[b], g.dt2[j],
+                             coarse_r.data(), coarse_m.data());
+  }
+}
+
+}  // namespace
+
+void SingleScattering::transmittance_to_space(const Vec3& o, const Vec3& d, Spectrum& out) const {
+  const double R = atm_.planet_radius_m(), Rt = atm_.top_radius_m();
+  out.setOnes();
+  const SphereHit ground = intersect_sphere(o, d, R);
+  if (o.norm() < R || (ground.hit && ground.t_near_m > 0.0)) {
+    out.setZero();
+    return;
+  }
+  const SphereHit top = intersect_sphere(o, d, Rt);
+  if (!top.hit || top.t_far_m <= 0.0) return;
+  // Columns from the entry point (or the origin, inside) to the exit.
+  const Vec3 start = o + std::max(0.0, top.t_near_m) * d;
+  const double r = std::min(start.norm(), Rt);
+  const Columns c = columns_to_top_m(atm_, r, start.dot(d) / start.norm(), 256);
+  Spectrum tau = ext_[kRayleigh] * static_cast<float>(c[kRayleigh]) + ext_[kMie] * static_cast<float>(c[kMie]) +
+                 ext_[kOzone] * static_cast<float>(c[kOzone]);
+  out = (-tau).exp();
+}
+
+void SingleScattering::radiance(const Vec3& o, const Vec3& d, const Vec3& s, const Spectrum& sun_irradiance,
+                                const ScatteringSources& sources, ScatteringWorkspace& ws, Spectrum& out) const {
+  radiance_parts(o, d, s, sources, ws, ws.parts);
+  combine(ws.parts, d.dot(s), sun_irradiance, ws, out);
+}
+
+namespace {
+// L = E_sun [p_R rayleigh + p_M mie + isotropic] for one direction's parts (n values each), with
+// the aerosol's phase per wavelength where pm_spectral is given.
+void combine_parts(Eigen::Index n, const float* rayleigh, const float* mie, const float* isotropic, float pr, float pm,
+                   const Spectrum* pm_spectral, const Spectrum& sun_irradiance, float* out) {
+  using In = Eigen::Map<const Spectrum>;
+  Eigen::Map<Spectrum> o(out, n);
+  if (pm_spectral)
+    o = (In(rayleigh, n) * pr + In(mie, n) * *pm_spectral + In(isotropic, n)) * sun_irradiance;
+  else
+    o = (In(rayleigh, n) * pr + In(mie, n) * pm + In(isotropic, n)) * sun_irradiance;
+}
+
+// A spectral aerosol: the phase function's asymmetry differs per wavelength.
+void spectral_mie_phase(const AtmosphereModel& atm, double mu, Spectrum& phase) {
+  AerosolPhase p = atm.mie_phase();
+  for (int i = 0; i < phase.size(); ++i) {
+    p.g = atm.mie_g()[i];
+    phase[i] = static_cast<float>(p(mu));
+  }
+}
+}  // namespace
+
+void SingleScattering::combine(const RadianceParts& parts, double mu, const Spectrum& sun_irradiance,
+                               ScatteringWorkspace& ws, Spectrum& out) const {
+  const Eigen::Index n = parts.rayleigh.size();
+  out.resize(n);
+  const float phase_r = static_cast<float>(rayleigh_phase(mu));
+  const bool varies = atm_.mie_g_varies();
+  if (varies) spectral_mie_phase(atm_, mu, ws.phase);
+  const float phase_m = varies ? 0.0f : static_cast<float>(atm_.mie_phase()(mu));
+  combine_parts(n, parts.rayleigh.data(), parts.mie.data(), parts.isotropic.data(), phase_r, phase_m,
+                varies ? &ws.phase : nullptr, sun_irradiance, out.data());
+}
+
+void SingleScattering::combine_many(int count, const float* packed, const double* mu, const bool* use,
+                                    const Spectrum& sun_irradiance, float* const* out, ScatteringWorkspace& ws) const {
+  const Eigen::Index n = sca_rayleigh_.size();
+  const bool varies = atm_.mie_g_varies();
+  const AerosolPhase mie = atm_.mie_phase();
+  const bool hg = mie.model == AerosolPhase::Model::HenyeyGreenstein;
+  constexpr int kChunk = 64;
+  double pr[kChunk], pm[kChunk];
+  for (int first = 0; first < count; first += kChunk) {
+    const int m = std::min(kChunk, count - first);
+    const double* u = mu + first;
+    for (int k = 0; k < m; ++k) pr[k] = rayleigh_phase(u[k]);  // these loops vectorise
+    if (hg)
+      for (int k = 0; k < m; ++k) pm[k] = henyey_greenstein_phase(u[k], mie.g);
+    else
+      for (int k = 0; k < m; ++k) pm[k] = cornette_shanks_phase(u[k], mie.g);
+    for (int k = 0; k < m; ++k) {
+      if (!use[first + k]) continue;
+      if (varies) spectral_mie_phase(atm_, u[k], ws.phase);
+      const float* p = packed + static_cast<size_t>(first + k) * 3 * static_cast<size_t>(n);
+      combine_parts(n, p, p + n, p + 2 * n, static_cast<float>(pr[k]), static_cast<float>(pm[k]),
+                    varies ? &ws.phase : nullptr, sun_irradiance, out[first + k]);
+    }
+  }
+}
+
+// A node of the quadrature: a point on the view ray, its densities, and the view-ray columns
+// from the start of the ray to it.
+struct SingleScattering::Node {
+  double t;
+  double r;
+  double log_rho[2];  // Rayleigh, Mie
+  double rho[2];      // exp(log_rho), once per node
+  double rho_ozone;
+  double col[kSpeciesCount];
+};
+
+// A stretch of the ray between cuts, lit by the sun or in the planet's shadow, and its nodes:
+// nodes[first_node .. first_node + segments].
+struct SingleScattering::Piece {
+  double t0, t1;
+  bool lit;
+  int first_node = 0, segments = 0;
+};
+
+struct SingleScattering::Ray {
+  double t_begin = 0.0, t_end = 0.0;
+  bool hits_ground = false;  // ends on the ground (the last node is the ground point)
+  Piece pieces[8];
+  int n_pieces = 0;
+  std::vector<Node> nodes;
+};
+
+// Where the ray o + t d runs in the atmosphere (up to the ground if it hits it, or up to a surface
+// at max_distance_m), cut into pieces at the shadow boundaries (closed form) and at the ray's
+// lowest point. False when there is nothing to integrate.
+bool SingleScattering::trace(const Vec3& o, const Vec3& d, const Vec3& s, const ScatteringSources& sources,
+                             Ray& ray) const {
+  const double R = atm_.planet_radius_m(), Rt = atm_.top_radius_m();
+  ray.n_pieces = 0;
+  const SphereHit top = intersect_sphere(o, d, Rt);
+  if (!top.hit || top.t_far_m <= 0.0) return false;
+  const double t_begin = std::max(0.0, top.t_near_m);
+  double t_end = top.t_far_m;
+  bool hits_ground = false;
+  const SphereHit ground = intersect_sphere(o, d, R);
+  if (ground.hit && ground.t_near_m > 0.0 && ground.t_near_m < t_end) {
+    t_end = ground.t_near_m;
+    hits_ground = true;
+  }
+  if (sources.max_distance_m < t_end) {
+    t_end = sources.max_distance_m;
+    hits_ground = false;
+  }
+  if (!(t_end > t_begin)) return false;
+  ray.t_begin = t_begin;
+  ray.t_end = t_end;
+  ray.hits_ground = hits_ground;
+
+  // Shadowed pieces carry only higher-order light; without it they matter only for the view
+  // columns. Without higher orders, a ray entirely in shadow sees nothing (its ground point is
+  // dark too).
+  const IntervalSet lit = lit_intervals(o, d, t_begin, t_end, s, R);
+  if (!sources.higher && lit.count == 0 && !sources.transmittance) return false;
+  const double t_low = -o.dot(d);
+  double cuts[6];
+  bool cut_lit[6];
+  int n = 0;
+  double t = t_begin;
+  for (int i = 0; i < lit.count; ++i) {
+    if (lit.parts[i].t0_m > t) {
+      cuts[n] = lit.parts[i].t0_m;
+      cut_lit[n++] = false;  // [t, t0] dark
+    }
+    cuts[n] = lit.parts[i].t1_m;
+    cut_lit[n++] = true;
+    t = lit.parts[i].t1_m;
+  }
+  if (t < t_end) {
+    cuts[n] = t_end;
+    cut_lit[n++] = false;
+  }
+  double a = t_begin;
+  for (int i = 0; i < n; ++i) {
+    const double b = cuts[i];
+    if (t_low > a && t_low < b) {
+      ray.pieces[ray.n_pieces++] = {a, t_low, cut_lit[i]};
+      a = t_low;
+    }
+    ray.pieces[ray.n_pieces++] = {a, b, cut_lit[i]};
+    a = b;
+  }
+  return true;
+}
+
+// The nodes: on pieces where light is collected, view_segments in all, shared in proportion to
+// length (an even number per piece, so that pairs of segments form the coarse rule); on the
+// others 8, which only carry the view columns across. Densities once per node; the columns by
+// the log-mean rule for the positive profiles, the trapezoid rule for ozone.
+void SingleScattering::place_nodes(const Vec3& o, const Vec3& d, const ScatteringSources& sources, Ray& ray) const {
+  const double R = atm_.planet_radius_m();
+  const DensityProfile& prof_r = atm_.rayleigh().profile;
+  const DensityProfile& prof_m = atm_.mie().profile;
+  const DensityProfile& prof_o = atm_.ozone().profile;
+  const bool ozone = atm_.ozone().enabled();
+  const bool higher = sources.higher != nullptr;
+  auto make_node = [&](double t) {
+    Node n;
+    n.t = t;
+    n.r = (o + t * d).norm();
+    const double alt = n.r - R;
+    n.log_rho[0] = prof_r.log_relative(alt);
+    n.log_rho[1] = prof_m.log_relative(alt);
+    n.rho[0] = std::exp(n.log_rho[0]);
+    n.rho[1] = std::exp(n.log_rho[1]);
+    n.rho_ozone = ozone ? prof_o.relative(alt) : 0.0;
+    return n;
+  };
+  auto append = [&](double t) {
+    Node next = make_node(t);
+    const Node& prev = ray.nodes.back();
+    const double dt = next.t - prev.t;
+    for (int k = 0; k < 2; ++k)
+      next.col[k] = prev.col[k] + dt * log_mean(prev.rho[k], next.rho[k], prev.log_rho[k] - next.log_rho[k]);
+    next.col[kOzone] = prev.col[kOzone] + 0.5 * dt * (prev.rho_ozone + next.rho_ozone);
+    ray.nodes.push_back(next);
+  };
+
+  double total_len = 0.0;
+  for (int i = 0; i < ray.n_pieces; ++i)
+    if (ray.pieces[i].lit || higher) total_len += ray.pieces[i].t1 - ray.pieces[i].t0;
+  ray.nodes.clear();
+  Node first = make_node(ray.t_begin);
+  first.col[kRayleigh] = first.col[kMie] = first.col[kOzone] = 0.0;
+  ray.nodes.push_back(first);
+  for (int i = 0; i < ray.n_pieces; ++i) {
+    Piece& pc = ray.pieces[i];
+    const bool collect = (sources.single && pc.lit) || higher;
+    int segs = 8;
+    if (collect) {
+      segs = std::max(2, static_cast<int>(std::lround(settings_.view_segments * (pc.t1 - pc.t0) / total_len)));
+      segs += segs % 2;
+    }
+    pc.first_node = static_cast<int>(ray.nodes.size()) - 1;
+    pc.segments = segs;
+    const double dt = (pc.t1 - pc.t0) / segs;
+    for (int k = 1; k <= segs; ++k) append(k == segs ? pc.t1 : pc.t0 + dt * k);
+  }
+}
+
+// The integrals over the nodes for the direction d (the nodes' positions and columns may come
+// from another ray with the same altitude profile: only the sun's angle is taken from d here).
+void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, const Vec3& s,
+                                 const ScatteringSources& sources, ScatteringWorkspace& ws, RadianceParts& parts) const {
+  parts.rayleigh.setZero();
+  parts.mie.setZero();
+  parts.isotropic.setZero();
+  const double R = atm_.planet_radius_m();
+  const bool ozone = atm_.ozone().enabled();
+  const bool higher = sources.higher != nullptr;
+  const double os = o.dot(s), ds = d.dot(s);
+  auto mu_sun = [&](const Node& n) { return (os + n.t * ds) / n.r; };
+  auto view_tau = [&](const Node& n, Spectrum& tau) {
+    tau = ext_[kRayleigh] * static_cast<float>(n.col[kRayleigh]) + ext_[kMie] * static_cast<float>(n.col[kMie]);
+    if (ozone) tau += ext_[kOzone] * static_cast<float>(n.col[kOzone]);
+  };
+  ws.sum_rayleigh.setZero();
+  ws.sum_mie.setZero();
+  ws.coarse_rayleigh.setZero();
+  ws.coarse_mie.setZero();
+  ws.sum_ms_rayleigh.setZero();
+  ws.sum_ms_mie.setZero();
+  ws.coarse_ms_rayleigh.setZero();
+  ws.coarse_ms_mie.setZero();
+
+  // Per thread, reused from ray to ray: [node, species] columns, [node, wavelength] arrays.
+  struct Scratch {
+    PieceSegments seg;
+    Eigen::ArrayXXf columns, view_columns;
+    NodeArray tau, trans, source;
+    std::vector<double> node_r, node_mu_sun;  // the sun columns' arguments at a piece's nodes
+    std::vector<Columns> sun;
+    Eigen::ArrayXXf source_t;  // [wavelength, node], as the source tables write it
+  };
+  thread_local Scratch sc;
+  const Eigen::Index n = sca_rayleigh_.size();
+  const int species = ozone ? 3 : 2;
+  const bool by_node = n < kWavelengthsForWavelengthLoops;  // the arrays' layout, see accumulate_piece
+  // tau = sum_s beta_ext,s(l) columns[k, s], as [node k, wavelength l] or [l, k].
+  auto optical_depths = [&](const Eigen::ArrayXXf& columns, NodeArray& tau) {
+    const Eigen::Index m = columns.rows();
+    if (by_node) {
+      tau.resize(m, n);
+      for (Eigen::Index l = 0; l < n; ++l) {
+        tau.col(l) = columns.col(kRayleigh) * ext_[kRayleigh][l] + columns.col(kMie) * ext_[kMie][l];
+        if (ozone) tau.col(l) += columns.col(kOzone) * ext_[kOzone][l];
+      }
+      return;
+    }
+    tau.resize(n, m);
+    for (Eigen::Index k = 0; k < m; ++k) {
+      tau.col(k) = ext_[kRayleigh] * columns(k, kRayleigh) + ext_[kMie] * columns(k, kMie);
+      if (ozone) tau.col(k) += ext_[kOzone] * columns(k, kOzone);
+    }
+  };
+  auto accumulate = [&](PieceSegments& g, Spectrum& fine_r, Spectrum& fine_m, Spectrum& coarse_r, Spectrum& coarse_m) {
+    if (by_node)
+      accumulate_piece(sc.tau, sc.trans, g, fine_r, fine_m, coarse_r, coarse_m);
+    else
+      accumulate_piece_by_wavelength(sc.tau, sc.trans, g, fine_r, fine_m, coarse_r, coarse_m);
+  };
+
+  for (int i = 0; i < ray.n_pieces; ++i) {
+    const Piece& pc = ray.pieces[i];
+    const bool single_here = sources.single && pc.lit;
+    if (!single_here && !higher) continue;  // nothing to collect: its nodes only carried the columns
+    const Node* nodes = ray.nodes.data() + pc.first_node;
+    const int segs = pc.segments, m = segs + 1;
+    PieceSegments& g = sc.seg;
+    g.segments = segs;
+    g.dt.resize(segs);
+    g.dt2.resize(segs / 2);
+    for (int sp = 0; sp < 2; ++sp) {
+      g.rho[sp].resize(m);
+      g.log_ratio[sp].resize(segs);
+      g.log_ratio2[sp].resize(segs / 2);
+      for (int k = 0; k < m; ++k) g.rho[sp][k] = static_cast<float>(nodes[k].rho[sp]);
+      for (int k = 0; k < segs; ++k)
+        g.log_ratio[sp][k] = static_cast<float>(nodes[k].log_rho[sp] - nodes[k + 1].log_rho[sp]);
+      for (int j = 0; j < segs / 2; ++j)
+        g.log_ratio2[sp][j] = static_cast<float>(nodes[2 * j].log_rho[sp] - nodes[2 * j + 2].log_rho[sp]);
+    }
+    for (int k = 0; k < segs; ++k) g.dt[k] = static_cast<float>(nodes[k + 1].t - nodes[k].t);
+    for (int j = 0; j < segs / 2; ++j) g.dt2[j] = static_cast<float>(nodes[2 * j + 2].t - nodes[2 * j].t);
+
+    if (single_here) {
+      // Columns along the view ray plus to the sun, at every node.
+      sc.columns.resize(m, species);
+      sc.node_r.resize(static_cast<size_t>(m));
+      sc.node_mu_sun.resize(static_cast<size_t>(m));
+      sc.sun.resize(static_cast<size_t>(m));
+      for (int k = 0; k < m; ++k) {
+        sc.node_r[static_cast<size_t>(k)] = nodes[k].r;
+        sc.node_mu_sun[static_cast<size_t>(k)] = mu_sun(nodes[k]);
+      }
+      sun_.at_many(m, sc.node_r.data(), sc.node_mu_sun.data(), sc.sun.data());
+      for (int k = 0; k < m; ++k)
+        for (int sp = 0; sp < species; ++sp)
+          sc.columns(k, sp) = static_cast<float>(nodes[k].col[sp] + sc.sun[static_cast<size_t>(k)][sp]);
+      optical_depths(sc.columns, sc.tau);
+      sc.trans = (-sc.tau).exp();
+      accumulate(g, ws.sum_rayleigh, ws.sum_mie, ws.coarse_rayleigh, ws.coarse_mie);
+    }
+    if (higher) {
+      // Higher orders: the integrand of species s is beta_sca,s rho_s exp(-tau_view) J, J the
+      // higher-order source. It is integrated by the same log-mean rule as single scattering, with
+      // tau' = tau_view - ln J in the place of the optical depth and T' = exp(-tau_view) J in the
+      // place of the transmittance (ln of the integrand is ln rho_s - tau' + const). J is floored
+      // at a tiny positive value so that its logarithm is finite where the tables hold no light.
+      sc.view_columns.resize(m, species);
+      sc.source_t.resize(n, m);
+      for (int k = 0; k < m; ++k) {
+        for (int sp = 0; sp < species; ++sp) sc.view_columns(k, sp) = static_cast<float>(nodes[k].col[sp]);
+        sources.higher->source(nodes[k].r, mu_sun(nodes[k]), sc.source_t.col(k).data());
+      }
+      if (by_node)
+        sc.source = sc.source_t.transpose().max(1e-30f);
+      else
+        sc.source = sc.source_t.max(1e-30f);
+      optical_depths(sc.view_columns, sc.tau);
+      sc.trans = (-sc.tau).exp() * sc.source;
+      sc.tau -= sc.source.log();
+      accumulate(g, ws.sum_ms_rayleigh, ws.sum_ms_mie, ws.coarse_ms_rayleigh, ws.coarse_ms_mie);
+    }
+  }
+
+  // Richardson extrapolation: each rule's error is O(dt^2), so (4 fine - coarse) / 3 cancels the
+  // leading term. Clamped at 0 in case a coarse pair is far off (it never is for smooth integrands).
+  if (sources.single) {
+    parts.rayleigh = sca_rayleigh_ * ((4.0f * ws.sum_rayleigh - ws.coarse_rayleigh) * (1.0f / 3.0f)).max(0.0f);
+    parts.mie = sca_mie_ * ((4.0f * ws.sum_mie - ws.coarse_mie) * (1.0f / 3.0f)).max(0.0f);
+  }
+  if (higher)
+    parts.isotropic = sca_rayleigh_ * ((4.0f * ws.sum_ms_rayleigh - ws.coarse_ms_rayleigh) * (1.0f / 3.0f)).max(0.0f) +
+                      sca_mie_ * ((4.0f * ws.sum_ms_mie - ws.coarse_ms_mie) * (1.0f / 3.0f)).max(0.0f);
+
+  const Node& last = ray.nodes.back();
+  if (sources.transmittance) {
+    view_tau(last, ws.view_tau);
+    *sources.transmittance = (-ws.view_tau).exp();
+  }
+
+  // The ground: Lambertian reflection of the direct sun (order 1) and of the sky (higher orders),
+  // seen through the whole view ray.
+  if (ray.hits_ground && albedo_over_pi_.maxCoeff() > 0.0f) {
+    const Node& g = last;  // the last node is the ground point
+    const double g_mu_sun = mu_sun(g);
+    view_tau(g, ws.view_tau);
+    ws.view_trans = (-ws.view_tau).exp();
+    ws.source.setZero();
+    if (sources.single && g_mu_sun > 0.0) {
+      Spectrum& tau_sun = ws.ground_sun;
+      const Columns sun = sun_.at(R, g_mu_sun);
+      tau_sun = ext_[kRayleigh] * static_cast<float>(sun[kRayleigh]) + ext_[kMie] * static_cast<float>(sun[kMie]) +
+                ext_[kOzone] * static_cast<float>(sun[kOzone]);
+      ws.source = (-tau_sun).exp() * static_cast<float>(g_mu_sun);
+    }
+    if (higher) {
+      sources.higher->ground_irradiance(g_mu_sun, ws.ground_sky.data());
+      ws.source += ws.ground_sky;
+    }
+    parts.isotropic += ws.view_trans * albedo_over_pi_ * ws.source;
+  }
+}
+
+void SingleScattering::radiance_parts(const Vec3& o, const Vec3& d, const Vec3& s, const ScatteringSources& sources,
+                                      ScatteringWorkspace& ws, RadianceParts& parts) const {
+  parts.rayleigh.setZero();
+  parts.mie.setZero();
+  parts.isotropic.setZero();
+  if (sources.transmittance) sources.transmittance->setOnes();
+  if (o.norm() < atm_.planet_radius_m()) {  // inside the planet
+    if (sources.transmittance) sources.transmittance->setZero();
+    return;
+  }
+  thread_local Ray ray;  // its nodes are reused from call to call
+  if (!trace(o, d, s, sources, ray)) return;
+  place_nodes(o, d, sources, ray);
+  integrate(ray, o, d, s, sources, ws, parts);
+}
+
+void SingleScattering::radiance_parts_same_zenith(const Vec3& o, const Vec3* dirs, int count, const Vec3& s,
+                                                  const ScatteringSources& sources, ScatteringWorkspace& ws,
+                                                  RadianceParts* parts) const {
+  if (sources.transmittance || o.norm() < atm_.planet_radius_m()) {
+    for (int i = 0; i < count; ++i) radiance_parts(o, dirs[i], s, sources, ws, parts[i]);
+    return;
+  }
+  thread_local Ray shared, own;
+  bool have_shared = false;
+  for (int i = 0; i < count; ++i) {
+    const Vec3& d = dirs[i];
+    if (!trace(o, d, s, sources, own)) {
+      parts[i].rayleigh.setZero();
+      parts[i].mie.setZero();
+      parts[i].isotropic.setZero();
+      continue;
+    }
+    bool lit_throughout = !own.hits_ground;
+    for (int k = 0; k < own.n_pieces; ++k) lit_throughout = lit_throughout && own.pieces[k].lit;
+    if (lit_throughout && have_shared) {
+      // The same pieces as the shared ray's, to rounding (each ray's own intersections differ
+      // from the shared one's in the last bits)?
+      bool same = own.n_pieces == shared.n_pieces;
+      const double tolerance = 1e-9 * shared.t_end;
+      for (int k = 0; same && k < own.n_pieces; ++k)
+        same = std::abs(own.pieces[k].t0 - shared.pieces[k].t0) <= tolerance &&
+               std::abs(own.pieces[k].t1 - shared.pieces[k].t1) <= tolerance;
+      if (same) {
+        integrate(shared, o, d, s, sources, ws, parts[i]);
+        continue;
+      }
+    }
+    place_nodes(o, d, sources, own);
+    integrate(own, o, d, s, sources, ws, parts[i]);
+    if (lit_throughout && !have_shared) {
+      std::swap(shared, own);
+      have_shared = true;
+    }
+  }
+}
+
+}  // namespace skyspec
+
+namespace skyspec {
+const char* build_stamp_single_scattering() { return __DATE__ " " __TIME__; }
+}  // namespace skyspec

@@ -1,0 +1,173 @@
+// Radiance along a view ray: single scattering (Nishita et al. 1993; the seed tutorial's
+// equation 4), plus, when given, light scattered more than once from precomputed source tables,
+// and light reflected by a Lambertian ground:
+//
+//   L(lambda) = E_sun sum_s beta_sca,s p_s(mu) int rho_s(t) exp(-tau_view(0,t) - tau_sun(t)) dt  (order 1)
+//             + E_sun int exp(-tau_view(0,t)) sum_s beta_sca,s rho_s(t) J(r(t), mu_s(t)) dt      (orders >= 2)
+//             + exp(-tau_view(0,T)) a / pi [E_sun T_sun(g) max(0, mu_s(g)) + E_sun G(mu_s(g))]  (ground at g)
+//
+// tau = sum_s beta_ext,s C_s over Rayleigh, Mie and ozone. J is the isotropic in-scattering source
+// of the higher orders per unit solar irradiance, G the ground irradiance they give (see
+// multiple_scattering.hpp). All wavelengths are carried together as one vector.
+//
+// Quadrature: the ray is cut at the shadow boundaries (closed form) and at its lowest point, and
+// each piece into segments. For the single-scattering term, ln of the integrand rho_s exp(-tau)
+// is taken as linear on a segment, which integrates exactly where the density is exponential and
+// the optical depth linear (the log-mean rule); it is second order, and pairs of segments give a
+// coarse estimate of the same integral so that Richardson extrapolation, (4 fine - coarse) / 3,
+// removes the leading error term at the cost of one extra log-mean per pair. The smooth
+// higher-order term uses the trapezoid rule with the same extrapolation (Simpson's rule).
+// View-ray columns are accumulated along the way; columns towards the sun come from the
+// SunColumnTable.
+#pragma once
+
+#include <limits>
+
+#include "skyspec/geometry.hpp"
+#include "transport/optical_depth.hpp"
+#include "skyspec/spectrum.hpp"
+
+namespace skyspec {
+
+struct IntegratorSettings {
+  int view_segments = 64;  ///< segments along each view ray, in total
+};
+
+/// Radiance divided by what depends on the scattering angle: along a straight ray towards a sun at
+/// infinity the angle between view and sun is the same at every point, so the phase functions
+/// factor out of the single-scattering integrals, and the radiance is
+///
+///   L(lambda) = E_sun(lambda) [p_R(mu) rayleigh(lambda) + p_M(mu, lambda) mie(lambda) + isotropic(lambda)]
+///
+/// with mu the cosine of the scattering angle. `rayleigh` and `mie` are beta_sca,s times the
+/// order-1 integral of species s; `isotropic` holds the higher orders and the ground (per unit
+/// solar irradiance). All three are smooth functions of the view direction, which is what makes
+/// them worth tabulating (sky_view_table.hpp); the phase functions, peaked near the sun, are
+/// evaluated exactly afterwards.
+struct RadianceParts {
+  explicit RadianceParts(int n_wavelengths = 0)
+      : rayleigh(Spectrum::Zero(n_wavelengths)), mie(Spectrum::Zero(n_wavelengths)), isotropic(Spectrum::Zero(n_wavelengths)) {}
+  Spectrum rayleigh, mie, isotropic;
+};
+
+/// Per-thread scratch memory (spectral arrays are allocated once and reused).
+struct ScatteringWorkspace {
+  explicit ScatteringWorkspace(int n_wavelengths);
+  Spectrum view_tau, view_trans, source, ground_sun, ground_sky;  // the ground's light
+  Spectrum sum_rayleigh, sum_mie, coarse_rayleigh, coarse_mie;  // fine and coarse (paired) rules
+  Spectrum sum_ms_rayleigh, sum_ms_mie, coarse_ms_rayleigh, coarse_ms_mie;
+  Spectrum phase;  // per-wavelength aerosol phase (spectral asymmetry)
+  RadianceParts parts;
+};
+
+/// How the sun's columns are obtained at a point; the table in production, closed forms in tests.
+class SunColumns {
+ public:
+  virtual ~SunColumns() = default;
+  virtual Columns at(double r_m, double mu_sun) const = 0;
+  /// at() for count points at once (the integrator asks for all nodes of a piece of a ray).
+  virtual void at_many(int count, const double* r_m, const double* mu_sun, Columns* out) const {
+    for (int k = 0; k < count; ++k) out[k] = at(r_m[k], mu_sun[k]);
+  }
+};
+
+class TableSunColumns : public SunColumns {
+ public:
+  explicit TableSunColumns(const SunColumnTable& t) : table_(t) {}
+  Columns at(double r_m, double mu_sun) const override { return table_.lookup(r_m, mu_sun); }
+  void at_many(int count, const double* r_m, const double* mu_sun, Columns* out) const override {
+    table_.lookup_many(count, r_m, mu_sun, out);
+  }
+
+ private:
+  const SunColumnTable& table_;
+};
+
+/// An isotropic in-scattering source field J(r, mu_s) (radiance per unit scattering coefficient
+/// and per unit solar irradiance, sr^-1) and the irradiance G(mu_s) it puts on the ground (per unit
+/// solar irradiance). Implemented by the scattering-order tables. Both are called in the middle
+/// of an integration and must not themselves call SingleScattering's radiance functions on the
+/// same thread (the integrator keeps a ray's nodes per thread).
+class InScatteringSource {
+ public:
+  virtual ~InScatteringSource() = default;
+  virtual void source(double r_m, double mu_sun, float* out) const = 0;
+  virtual void ground_irradiance(double mu_sun, float* out) const = 0;
+};
+
+/// What a radiance evaluation includes.
+struct ScatteringSources {
+  bool single = true;                         ///< order 1: air scattering + direct sun off the ground
+  const InScatteringSource* higher = nullptr;  ///< orders >= 2 from tables (or one order while building them)
+  /// Aerial perspective: integrate only up to this distance along the ray (a surface there hides
+  /// what lies behind, including the ground), and, when `transmittance` is given, return the
+  /// transmittance from the origin to the end of the integrated stretch.
+  double max_distance_m = std::numeric_limits<double>::infinity();
+  Spectrum* transmittance = nullptr;
+};
+
+class SingleScattering {
+ public:
+  /// The atmosphere and sun-column provider must outlive this object.
+  SingleScattering(const AtmosphereModel& atm, const SunColumns& sun_columns, IntegratorSettings s);
+
+  /// Radiance seen from origin_m looking along dir (unit), for a sun in direction sun_dir (unit)
+  /// with spectral irradiance sun_irradiance (per wavelength). Writes `out` (grid size).
+  /// Rays that start below the ground give 0.
+  void radiance(const Vec3& origin_m, const Vec3& dir, const Vec3& sun_dir, const Spectrum& sun_irradiance,
+                const ScatteringSources& sources, ScatteringWorkspace& ws, Spectrum& out) const;
+  /// Single scattering only (order 1).
+  void radiance(const Vec3& origin_m, const Vec3& dir, const Vec3& sun_dir, const Spectrum& sun_irradiance,
+                ScatteringWorkspace& ws, Spectrum& out) const {
+    radiance(origin_m, dir, sun_dir, sun_irradiance, ScatteringSources{}, ws, out);
+  }
+
+  /// The same radiance split into its phase-free parts (RadianceParts), per unit solar irradiance.
+  void radiance_parts(const Vec3& origin_m, const Vec3& dir, const Vec3& sun_dir, const ScatteringSources& sources,
+                      ScatteringWorkspace& ws, RadianceParts& parts) const;
+  /// radiance_parts for `count` directions dirs[i] (unit) that all make the same angle with the
+  /// zenith at origin_m, such as a row of the sky-view table; parts[i] receives direction i's.
+  /// Along such rays the altitude is the same function of distance, so wherever a ray is lit from
+  /// end to end and does not end on the ground, the quadrature's nodes, their densities and the
+  /// view-ray columns to them are those of the first such ray, computed once; only the sun's
+  /// angle, and what depends on it, is evaluated per ray. Other rays are integrated one by one.
+  /// The results are radiance_parts's, to rounding. sources.transmittance must be null.
+  void radiance_parts_same_zenith(const Vec3& origin_m, const Vec3* dirs, int count, const Vec3& sun_dir,
+                                  const ScatteringSources& sources, ScatteringWorkspace& ws, RadianceParts* parts) const;
+  /// L = E_sun [p_R(mu) rayleigh + p_M(mu) mie + isotropic] for mu = cos(scattering angle).
+  void combine(const RadianceParts& parts, double mu, const Spectrum& sun_irradiance, ScatteringWorkspace& ws,
+               Spectrum& out) const;
+  /// combine() for `count` directions whose parts are packed as SkyViewTable::lookup_many gives
+  /// them (3 n floats each: Rayleigh, Mie, isotropic; n wavelengths): direction k, at cosine
+  /// mu[k] to the sun, goes to out[k] (n floats) where use[k]. The phase functions of all of them
+  /// are evaluated in one loop that vectorises. The same values as combine().
+  void combine_many(int count, const float* packed, const double* mu, const bool* use, const Spectrum& sun_irradiance,
+                    float* const* out, ScatteringWorkspace& ws) const;
+
+  /// Transmittance from origin_m along dir to the edge of the atmosphere (0 if the ray hits the
+  /// ground): the attenuation of the sun's disk seen in that direction.
+  void transmittance_to_space(const Vec3& origin_m, const Vec3& dir, Spectrum& out) const;
+
+  const AtmosphereModel& atmosphere() const { return atm_; }
+  const SunColumns& sun_columns() const { return sun_; }
+  const IntegratorSettings& settings() const { return settings_; }
+
+ private:
+  const AtmosphereModel& atm_;
+  const SunColumns& sun_;
+  IntegratorSettings settings_;
+  Spectrum ext_[kSpeciesCount];
+  Spectrum sca_rayleigh_, sca_mie_, albedo_over_pi_;
+
+  // The quadrature along one ray (single_scattering.cpp): where the ray runs in the atmosphere,
+  // its pieces (lit or in shadow), the nodes on them, and the integration over the nodes.
+  struct Node;
+  struct Piece;
+  struct Ray;
+  bool trace(const Vec3& o, const Vec3& d, const Vec3& s, const ScatteringSources& sources, Ray& ray) const;
+  void place_nodes(const Vec3& o, const Vec3& d, const ScatteringSources& sources, Ray& ray) const;
+  void integrate(const Ray& ray, const Vec3& o, const Vec3& d, const Vec3& s, const ScatteringSources& sources,
+                 ScatteringWorkspace& ws, RadianceParts& parts) const;
+};
+
+}  // namespace skyspec

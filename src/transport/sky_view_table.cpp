@@ -1,0 +1,331 @@
+#include "transport/sky_view_table.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "skyspec/atmosphere.hpp"
+#include "skyspec/error.hpp"
+#include "skyspec/units.hpp"
+#include "base/fast_atan2.hpp"
+
+namespace skyspec {
+
+namespace {
+// Rays are never cast exactly along the horizon, where a ray grazes the ground and which side of
+// it the ray falls on is decided by rounding: the row at the horizon is cast this far from it.
+constexpr double kHorizonOffsetRad = 1e-6;
+constexpr int kParts = 3;
+
+// Mixes the entries around a look-up: rows (n_rows of them, from rows_at, a row of `azimuths`
+// entries apart) weighted by row_w, then the two columns (the entries of columns c0 and c0 + 1
+// are contiguous, as are the three parts of an entry: one loop over 2 x 3 x n floats per row
+// accumulates both columns' parts) by w0 and w1. kN > 0: the wavelength count known at compile
+// time, so that the loops unroll; 0: n at run time.
+template <int kN>
+void mix_entries(const float* rows_at, int azimuths, const double* row_w, int n_rows, float w0, float w1, int n_run,
+                 float* const parts[kParts]) {
+  const int n = kN > 0 ? kN : n_run;
+  const size_t entry = static_cast<size_t>(kParts) * static_cast<size_t>(n);
+  const size_t stride = static_cast<size_t>(azimuths) * entry;
+  // On the stack for up to 42 wavelengths (2 x 3 x 42 floats), per thread beyond.
+  constexpr size_t kStackFloats = 256;
+  alignas(32) float stack[kStackFloats];
+  thread_local std::vector<float> heap;
+  if (2 * entry > kStackFloats) heap.resize(2 * entry);
+  float* __restrict acc = 2 * entry > kStackFloats ? heap.data() : stack;
+  if (n_rows == 4) {  // one pass over the four rows
+    const float v0 = static_cast<float>(row_w[0]), v1 = static_cast<float>(row_w[1]);
+    const float v2 = static_cast<float>(row_w[2]), v3 = static_cast<float>(row_w[3]);
+    const float* __restrict e0 = rows_at;
+    const float* __restrict e1 = e0 + stride;
+    const float* __restrict e2 = e1 + stride;
+    const float* __restrict e3 = e2 + stride;
+    for (size_t k = 0; k < 2 * entry; ++k) acc[k] = v0 * e0[k] + v1 * e1[k] + v2 * e2[k] + v3 * e3[k];
+  } else {
+    const float v = static_cast<float>(row_w[0]);
+    for (size_t k = 0; k < 2 * entry; ++k) acc[k] = v * rows_at[k];
+    for (int i = 1; i < n_rows; ++i) {
+      const float vi = static_cast<float>(row_w[i]);
+      const float* __restrict e = rows_at + static_cast<size_t>(i) * stride;
+      for (size_t k = 0; k < 2 * entry; ++k) acc[k] += vi * e[k];
+    }
+  }
+  // A cubic may undershoot where a part falls steeply to 0 (the planet's shadow); light is not negative.
+  for (int p = 0; p < kParts; ++p) {
+    const float* a = acc + static_cast<size_t>(p) * n;
+    const float* b = a + entry;
+    for (int l = 0; l < n; ++l) parts[p][l] = std::max(0.0f, w0 * a[l] + w1 * b[l]);
+  }
+}
+
+}  // namespace
+
+bool SkyViewTable::applicable(const AtmosphereModel& atm, const Vec3& origin_m) {
+  const double r = origin_m.norm();
+  return r >= atm.planet_radius_m() && r < atm.top_radius_m();
+}
+
+// Placement of the rows. Sky side: by the square root of the angle above the horizon, so they
+// crowd where the sky brightens towards the horizon. Ground side: by the mean of two coordinates,
+// the angle below the horizon and the distance to the ground (Bruneton and Neyret's
+// parameterisation, from the horizon at distance rho = sqrt(r^2 - R^2) to the nadir at r - R):
+// the air in front of the ground adds light in proportion to that distance, and as a function of
+// angle the distance falls by orders of magnitude just below the horizon of a camera near the
+// ground; the angle keeps the rows from thinning out towards the nadir.
+[[gnu::always_inline]] inline double SkyViewTable::placement_of(bool sky_side, double theta) const {
+  const double th = horizon_zenith_rad_;
+  if (sky_side) return std::sqrt(std::clamp((th - theta) / th, 0.0, 1.0));
+  const double angle = std::clamp((theta - th) / (kPi - th), 0.0, 1.0);
+  if (rho_m_ <= 0.0) return angle;
+  return 0.5 * (angle + (rho_m_ - ground_distance(theta)) / (rho_m_ - (r_m_ - R_m_)));
+}
+
+// Interpolation variable between rows: the placement coordinate on the sky side; the distance to
+// the ground on the ground side (in which the light of the air in front of it is nearly linear).
+double SkyViewTable::key_of(bool sky_side, double theta) const {
+  if (sky_side || rho_m_ <= 0.0) return placement_of(sky_side, theta);
+  return ground_distance(theta);
+}
+
+// Distance along a ray of zenith angle theta (below the horizon) to the ground: the nearer root of
+// d^2 + 2 r mu d + r^2 - R^2 = 0, as (r^2 - R^2) / (far root), without cancellation.
+double SkyViewTable::ground_distance(double theta) const {
+  const double mu = std::cos(theta);
+  const double disc = std::max(0.0, r_m_ * r_m_ * mu * mu - rho_m_ * rho_m_);
+  const double far = -r_m_ * mu + std::sqrt(disc);
+  return far > 0.0 ? std::min(rho_m_, rho_m_ * rho_m_ / far) : rho_m_;
+}
+
+// The zenith angle of placement coordinate u in [0, 1] (by bisection: placement_of is
+// increasing away from the horizon).
+double SkyViewTable::zenith_of(bool sky_side, double u) const {
+  const double th = horizon_zenith_rad_;
+  double lo = 0.0, hi = 1.0;  // fraction of the way from the horizon to the pole
+  for (int i = 0; i < 64; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    const double theta = sky_side ? th * (1.0 - mid) : th + mid * (kPi - th);
+    (placement_of(sky_side, theta) < u ? lo : hi) = mid;
+  }
+  const double f = 0.5 * (lo + hi);
+  return sky_side ? th * (1.0 - f) : th + f * (kPi - th);
+}
+
+// The first row of each side is cast just off the horizon, where a ray grazes the ground and
+// rounding would decide which side it falls on: above it, by at most 1e-6 rad and a hundredth
+// of the way to the next row; below it, where the distance to the ground is 1 - 1e-6 of the
+// horizon's (so that its key differs from the next row's however the distance falls with angle).
+double SkyViewTable::first_row_zenith(bool sky_side, int rows) const {
+  const double th = horizon_zenith_rad_;
+  if (sky_side) {
+    const double spacing = th / ((rows - 1.0) * (rows - 1.0));  // to the next row (placement 1/(rows-1))
+    return th - std::min(kHorizonOffsetRad, 0.01 * spacing);
+  }
+  if (rho_m_ <= 0.0) return th + std::min(kHorizonOffsetRad, 0.01 * (kPi - th) / ((rows - 1.0) * (rows - 1.0)));
+  const double d = rho_m_ * (1.0 - 1e-6);
+  return std::acos(std::clamp(-(rho_m_ * rho_m_ + d * d) / (2.0 * r_m_ * d), -1.0, 1.0));
+}
+
+Vec3 SkyViewTable::direction(bool sky_side, int row, int column) const {
+  const double theta = (sky_side ? sky_theta_ : ground_theta_)[static_cast<size_t>(row)];
+  const double phi = kPi * column / (res_.azimuths - 1);
+  return std::sin(theta) * (std::cos(phi) * toward_sun_ + std::sin(phi) * across_) + std::cos(theta) * up_;
+}
+
+SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringSources& sources, const Vec3& origin_m,
+                           const Vec3& sun_dir, SkyViewResolution resolution, int threads)
+    : res_(resolution), n_(integrator.atmosphere().grid().size()) {
+  const AtmosphereModel& atm = integrator.atmosphere();
+  if (!applicable(atm, origin_m)) throw Error("sky-view table: the camera is not inside the atmosphere");
+  if (res_.sky_rows < 2 || res_.ground_rows < 2 || res_.azimuths < 2)
+    throw Error("sky-view table: at least 2 rows and 2 azimuths on each side");
+  up_ = origin_m.normalized();
+  // The sun's azimuth; for a sun at the zenith (or nadir) every azimuth is the same.
+  Vec3 horizontal = sun_dir - sun_dir.dot(up_) * up_;
+  if (horizontal.norm() < 1e-12) horizontal = up_.unitOrthogonal();
+  toward_sun_ = horizontal.normalized();
+  across_ = up_.cross(toward_sun_);
+  // The geometric horizon: sin of its depression below the horizontal is sqrt(r^2 - R^2) / r,
+  // written without the cancellation of 1 - (R/r)^2 for a camera near the ground.
+  r_m_ = origin_m.norm();
+  R_m_ = atm.planet_radius_m();
+  rho_m_ = std::sqrt((r_m_ - R_m_) * (r_m_ + R_m_));
+  horizon_zenith_rad_ = 0.5 * kPi + std::asin(rho_m_ / r_m_);
+  for (bool sky_side : {true, false}) {
+    const int rows = sky_side ? res_.sky_rows : res_.ground_rows;
+    std::vector<double>& theta = sky_side ? sky_theta_ : ground_theta_;
+    std::vector<double>& key = sky_side ? sky_key_ : ground_key_;
+    for (int i = 0; i < rows; ++i) {
+      theta.push_back(i == 0 ? first_row_zenith(sky_side, rows) : zenith_of(sky_side, static_cast<double>(i) / (rows - 1)));
+      key.push_back(key_of(sky_side, theta.back()));
+      if (i > 0 && key[static_cast<size_t>(i)] == key[static_cast<size_t>(i - 1)])
+        throw Error("sky-view table: rows " + std::to_string(i - 1) + " and " + std::to_string(i) +
+                    " coincide (too many rows for this geometry)");
+    }
+  }
+
+  // 1 / prod_{j != i} (x_i - x_j) for the Lagrange weights of the rows lookup() takes around each
+  // row pair (r0, r0 + 1): r0 - 1 .. r0 + 2, fewer at the table's ends.
+  for (bool sky_side : {true, false}) {
+    const std::vector<double>& key = sky_side ? sky_key_ : ground_key_;
+    std::vector<double>& inv = sky_side ? sky_inv_den_ : ground_inv_den_;
+    const int rows = static_cast<int>(key.size());
+    inv.assign(4 * key.size(), 0.0);
+    for (int r0 = 0; r0 + 1 < rows; ++r0) {
+      const int first = std::max(0, r0 - 1), count = std::min(rows - 1, r0 + 2) - first + 1;
+      for (int i = 0; i < count; ++i) {
+        double den = 1.0;
+        for (int j = 0; j < count; ++j)
+          if (j != i) den *= key[static_cast<size_t>(first + i)] - key[static_cast<size_t>(first + j)];
+        inv[4 * static_cast<size_t>(r0) + i] = 1.0 / den;
+      }
+    }
+  }
+
+  const size_t stride = static_cast<size_t>(res_.azimuths) * kParts * static_cast<size_t>(n_);
+  sky_.assign(static_cast<size_t>(res_.sky_rows) * stride, 0.0f);
+  if (res_.ground_side) ground_.assign(static_cast<size_t>(res_.ground_rows) * stride, 0.0f);
+  ScatteringSources src = sources;
+  src.transmittance = nullptr;
+  src.max_distance_m = std::numeric_limits<double>::infinity();
+  // A row at a time: its rays share their zenith angle, so the integrator computes their nodes
+  // once (SingleScattering::radiance_parts_same_zenith).
+  struct RowScratch {
+    ScatteringWorkspace ws;
+    std::vector<Vec3> dirs;
+    std::vector<RadianceParts> parts;
+    RowScratch(int wavelengths, int azimuths)
+        : ws(wavelengths), dirs(static_cast<size_t>(azimuths)), parts(static_cast<size_t>(azimuths), RadianceParts(wavelengths)) {}
+  };
+  const int n = n_, m = res_.azimuths;
+  tbb::enumerable_thread_specific<RowScratch> scratch([n, m] { return RowScratch(n, m); });
+  const int total_rows = res_.sky_rows + (res_.ground_side ? res_.ground_rows : 0);
+  tbb::task_arena arena(std::max(1, threads));
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<int>(0, total_rows, 1), [&](const tbb::blocked_range<int>& range) {
+      RowScratch& sc = scratch.local();
+      for (int row_all = range.begin(); row_all != range.end(); ++row_all) {
+        const bool sky_side = row_all < res_.sky_rows;
+        const int row = sky_side ? row_all : row_all - res_.sky_rows;
+        for (int column = 0; column < m; ++column) sc.dirs[static_cast<size_t>(column)] = direction(sky_side, row, column);
+        integrator.radiance_parts_same_zenith(origin_m, sc.dirs.data(), m, sun_dir, src, sc.ws, sc.parts.data());
+        for (int column = 0; column < m; ++column) {
+          const RadianceParts& p = sc.parts[static_cast<size_t>(column)];
+          float* entry = (sky_side ? sky_ : ground_).data() + row * stride +
+                         static_cast<size_t>(column) * kParts * static_cast<size_t>(n);
+          std::copy(p.rayleigh.data(), p.rayleigh.data() + n, entry);
+          std::copy(p.mie.data(), p.mie.data() + n, entry + n);
+          std::copy(p.isotropic.data(), p.isotropic.data() + n, entry + 2 * n);
+        }
+      }
+    });
+  });
+}
+
+// Angles by a polynomial atan2 good to 1e-9 rad (fast_atan2.hpp): libm's took a quarter of a
+// render's per-pixel time. Within 1e-6 rad of the horizon libm's is used (refined_zenith): there
+// the distance to the ground, the ground side's interpolation variable, changes by orders of
+// magnitude over angles of that size.
+inline void SkyViewTable::angles_of(const Vec3& dir, double& theta, double& phi) const {
+  // Dot products written out (Eigen's use SSE intrinsics, which keep a loop over directions from
+  // vectorising).
+  const double d0 = dir[0], d1 = dir[1], d2 = dir[2];
+  const double x = d0 * toward_sun_[0] + d1 * toward_sun_[1] + d2 * toward_sun_[2];
+  const double y = std::abs(d0 * across_[0] + d1 * across_[1] + d2 * across_[2]);
+  const double z = d0 * up_[0] + d1 * up_[1] + d2 * up_[2];
+  theta = detail::fast_atan2(std::sqrt(x * x + y * y), z);
+  phi = detail::fast_atan2(y, x);  // in [0, pi]
+}
+
+inline double SkyViewTable::refined_zenith(const Vec3& dir, double theta) const {
+  if (!(std::abs(theta - horizon_zenith_rad_) < 1e-6)) return theta;
+  const double x = dir.dot(toward_sun_), y = dir.dot(across_), z = dir.dot(up_);
+  return std::atan2(std::sqrt(x * x + y * y), z);
+}
+
+bool SkyViewTable::lookup(const Vec3& dir, RadianceParts& out) const {
+  double theta, phi;
+  angles_of(dir, theta, phi);
+  theta = refined_zenith(dir, theta);
+  const int n = n_;
+  out.rayleigh.resize(n);  // no-ops when the caller's parts have the grid's size already
+  out.mie.resize(n);
+  out.isotropic.resize(n);
+  return interpolate(theta, phi, out.rayleigh.data(), out.mie.data(), out.isotropic.data());
+}
+
+void SkyViewTable::lookup_many(int count, const Vec3* dirs, float* out, bool* found) const {
+  constexpr int kChunk = 64;
+  double theta[kChunk], phi[kChunk];
+  const size_t entry = static_cast<size_t>(kParts) * static_cast<size_t>(n_);
+  for (int first = 0; first < count; first += kChunk) {
+    const int m = std::min(kChunk, count - first);
+    for (int k = 0; k < m; ++k) angles_of(dirs[first + k], theta[k], phi[k]);  // vectorised
+    for (int k = 0; k < m; ++k) {
+      float* o = out + static_cast<size_t>(first + k) * entry;
+      found[first + k] = interpolate(refined_zenith(dirs[first + k], theta[k]), phi[k], o, o + n_, o + 2 * n_);
+    }
+  }
+}
+
+bool SkyViewTable::interpolate(double theta, double phi, float* rayleigh, float* mie, float* isotropic) const {
+  const bool sky_side = theta < horizon_zenith_rad_;
+  if (!sky_side && !res_.ground_side) return false;
+
+  // The row pair around theta (placement_of says where to look; rounding is corrected by
+  // comparing with the rows' own angles), weighted linearly in the interpolation variable.
+  const std::vector<double>& row_theta = sky_side ? sky_theta_ : ground_theta_;
+  const std::vector<double>& row_key = sky_side ? sky_key_ : ground_key_;
+  const int rows = static_cast<int>(row_theta.size());
+  const double away = sky_side ? -1.0 : 1.0;  // rows run away from the horizon
+  const double placement = placement_of(sky_side, theta);
+  int r0 = std::clamp(static_cast<int>(placement * (rows - 1)), 0, rows - 2);
+  while (r0 > 0 && away * (theta - row_theta[static_cast<size_t>(r0)]) < 0.0) --r0;
+  while (r0 < rows - 2 && away * (theta - row_theta[static_cast<size_t>(r0 + 1)]) > 0.0) ++r0;
+  // Rows r0 - 1 .. r0 + 2 (three at the table's ends), weighted by Lagrange's cubic (or quadratic)
+  // in the interpolation variable; columns c0 and c0 + 1 linearly in azimuth, in which the parts
+  // change slowly (a cubic there halves the error at twice the cost: not worth it).
+  const int first_row = std::max(0, r0 - 1), last_row = std::min(rows - 1, r0 + 2);
+  const int n_rows = last_row - first_row + 1;
+  const double key = (sky_side || rho_m_ <= 0.0) ? placement : key_of(sky_side, theta);
+  const double* xs = row_key.data() + first_row;
+  // Lagrange weights: products of (key - x_j) over j != i, times 1 / prod (x_i - x_j), which
+  // depends only on the rows and is kept per row pair (sky_inv_den_, ground_inv_den_).
+  const double* inv_den = (sky_side ? sky_inv_den_ : ground_inv_den_).data() + 4 * static_cast<size_t>(r0);
+  double row_w[4];
+  if (n_rows == 4) {  // the common case, written out (the same products as the loop below)
+    const double d0 = key - xs[0], d1 = key - xs[1], d2 = key - xs[2], d3 = key - xs[3];
+    row_w[0] = d1 * d2 * d3 * inv_den[0];
+    row_w[1] = d0 * d2 * d3 * inv_den[1];
+    row_w[2] = d0 * d1 * d3 * inv_den[2];
+    row_w[3] = d0 * d1 * d2 * inv_den[3];
+  } else {
+    for (int i = 0; i < n_rows; ++i) {
+      double num = 1.0;
+      for (int j = 0; j < n_rows; ++j)
+        if (j != i) num *= key - xs[j];
+      row_w[i] = num * inv_den[i];
+    }
+  }
+
+  const int m = res_.azimuths;
+  const double f = std::clamp(phi / kPi * (m - 1), 0.0, static_cast<double>(m - 1));
+  const int c0 = std::min(static_cast<int>(f), m - 2);
+  const double column_w[2] = {1.0 - (f - c0), f - c0};
+
+  const float w0 = static_cast<float>(column_w[0]), w1 = static_cast<float>(column_w[1]);
+  const float* rows_at = (sky_side ? sky_ : ground_).data() +
+                         static_cast<size_t>(first_row) * static_cast<size_t>(m) * kParts * static_cast<size_t>(n_) +
+                         static_cast<size_t>(c0) * kParts * static_cast<size_t>(n_);
+  float* const parts[kParts] = {rayleigh, mie, isotropic};
+  if (n_ == 3)  // the RGB-fast path's three wavelengths: loops of known length, unrolled
+    mix_entries<3>(rows_at, m, row_w, n_rows, w0, w1, n_, parts);
+  else
+    mix_entries<0>(rows_at, m, row_w, n_rows, w0, w1, n_, parts);
+  return true;
+}
+
+}  // namespace skyspec

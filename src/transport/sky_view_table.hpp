@@ -1,0 +1,89 @@
+// The sky seen from one point, tabulated over view directions.
+//
+// For a camera at a fixed point and a sun at infinity the radiance depends on the view direction
+// only, and the scene is mirror-symmetric about the vertical plane through the sun: two angles
+// describe every ray, the view zenith angle theta and the azimuth phi from the sun's azimuth, in
+// [0, pi]. A render asks for hundreds of thousands of directions; a table of a few thousand
+// marched rays, interpolated, gives the same image at a fraction of the cost (Hillaire 2020 does
+// this for real time; here it is held to the accuracy of the per-pixel march).
+//
+// What is tabulated are the phase-free parts of the radiance (RadianceParts in
+// single_scattering.hpp), which are smooth in direction; the phase functions, sharply peaked
+// around the sun for aerosols, are applied exactly per pixel. Rows crowd where the sky changes
+// fastest, near the horizon (sky_view_table.cpp, zenith_of), and the horizon is
+// a boundary of the table: directions above it are interpolated only from rays above it, and
+// directions below it (the ground, or the air in front of it) only from rays below it, so the
+// step in radiance at the horizon is not smeared.
+//
+// It applies to cameras inside the atmosphere and above the ground (see applicable()).
+#pragma once
+
+#include <vector>
+
+#include "skyspec/geometry.hpp"
+#include "transport/single_scattering.hpp"
+
+namespace skyspec {
+
+struct SkyViewResolution {
+  int sky_rows = 128;     ///< view zenith samples from the horizon to the zenith
+  int ground_rows = 48;   ///< view zenith samples from the horizon to the nadir
+  int azimuths = 64;      ///< azimuth samples from towards the sun (0) to away from it (pi)
+  bool ground_side = true;  ///< tabulate below the horizon too (false: an image of the sky alone)
+};
+
+class SkyViewTable {
+ public:
+  /// Whether a table represents the sky seen from origin_m: inside the atmosphere, above ground.
+  static bool applicable(const AtmosphereModel& atm, const Vec3& origin_m);
+
+  /// Marches every table ray with `integrator` (sources as for a pixel) from origin_m, for the sun
+  /// in direction sun_dir (unit), on `threads` threads. The entries do not depend on the number
+  /// of threads.
+  SkyViewTable(const SingleScattering& integrator, const ScatteringSources& sources, const Vec3& origin_m,
+               const Vec3& sun_dir, SkyViewResolution resolution, int threads);
+
+  /// The phase-free parts of the radiance along the unit direction dir, per unit solar irradiance,
+  /// interpolated (cubic across rows, linear in azimuth) on the side of the horizon dir is on.
+  /// False (and `out` untouched) for a direction below the horizon when that side was not built.
+  bool lookup(const Vec3& dir, RadianceParts& out) const;
+  /// lookup() for count unit directions at once, their angles computed together (a loop that
+  /// vectorises): direction k's parts go to out + 3 n k (Rayleigh, Mie, isotropic, n floats
+  /// each, n the wavelengths), found[k] is lookup()'s answer. The same values as lookup().
+  void lookup_many(int count, const Vec3* dirs, float* out, bool* found) const;
+  /// The zenith angle of the horizon seen from the table's point (> pi/2 above the ground).
+  double horizon_zenith_rad() const { return horizon_zenith_rad_; }
+
+  /// The direction of table row `row` (of the sky side, or of the ground side) and azimuth
+  /// column `column`, for tests.
+  Vec3 direction(bool sky_side, int row, int column) const;
+
+  const SkyViewResolution& resolution() const { return res_; }
+
+ private:
+  // Row placement coordinate in [0, 1] of a zenith angle on one side of the horizon, its inverse,
+  // the variable rows are interpolated in, and the distance to the ground (sky_view_table.cpp).
+  double placement_of(bool sky_side, double theta) const;
+  double zenith_of(bool sky_side, double u) const;
+  double first_row_zenith(bool sky_side, int rows) const;
+  double key_of(bool sky_side, double theta) const;
+  double ground_distance(double theta) const;
+  // The view zenith angle and the azimuth from the sun (in [0, pi]) of a unit direction by the
+  // polynomial atan2; theta again by libm's where it is within 1e-6 rad of the horizon; the
+  // table's interpolation at (theta, phi) (false where it has no side for theta).
+  void angles_of(const Vec3& dir, double& theta, double& phi) const;
+  double refined_zenith(const Vec3& dir, double theta) const;
+  bool interpolate(double theta, double phi, float* rayleigh, float* mie, float* isotropic) const;
+
+  SkyViewResolution res_;
+  int n_ = 0;  // wavelengths
+  Vec3 up_, toward_sun_, across_;  // local frame: zenith, sun's azimuth, perpendicular
+  double horizon_zenith_rad_ = 0.0;
+  double r_m_ = 0.0, R_m_ = 0.0, rho_m_ = 0.0;  // camera and planet radii, distance to the horizon
+  std::vector<double> sky_theta_, ground_theta_, sky_key_, ground_key_;  // per row: zenith angle, key
+  std::vector<double> sky_inv_den_, ground_inv_den_;  // per row pair: its rows' Lagrange denominators (4 each)
+  // [side][row][column][part][lambda], part = rayleigh, mie, isotropic.
+  std::vector<float> sky_, ground_;
+};
+
+}  // namespace skyspec

@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Installs the build into a scratch prefix, then configures, builds and runs tests/consumer/ against
+# it with find_package(skyspec), as a project outside skyspec would. Also checks that the package
+# exports only the public headers and no -march flag.
+# Usage: run_consumer.sh BUILD_DIR WORK_DIR
+set -euo pipefail
+build=$1 work=$2
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+rm -rf "$work"
+cmake --install "$build" --prefix "$work/prefix" >/dev/null
+if grep -rq -- "-march" "$work/prefix/lib"/cmake/skyspec/; then
+  echo "FAIL: the installed package exports a -march flag" >&2; exit 1
+fi
+if ls "$work/prefix/include" | grep -vqx skyspec; then
+  echo "FAIL: headers outside include/skyspec installed" >&2; exit 1
+fi
+for private in single_scattering.hpp spectral_exr.hpp embedded_data.hpp; do
+  if [ -e "$work/prefix/include/skyspec/$private" ]; then echo "FAIL: internal header $private installed" >&2; exit 1; fi
+done
+cmake -S "$here" -B "$work/build" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$work/build" >/dev/null
+"$work/build/consumer"

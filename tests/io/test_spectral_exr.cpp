@@ -1,0 +1,373 @@
+#define BOOST_TEST_MODULE spectral_exr
+#include <boost/test/unit_test.hpp>
+
+#include <ImfChannelList.h>
+#include <ImfFloatAttribute.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfStandardAttributes.h>
+#include <ImfStringAttribute.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <random>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "skyspec/colour.hpp"
+#include "scratch_folder.hpp"
+#include "skyspec/error.hpp"
+#include "io/png_image.hpp"
+#include "io/spectral_exr.hpp"
+#include "io/spectral_exr_encode.hpp"
+
+using namespace skyspec;
+using skyspec::test::ScratchFolder;
+namespace fs = std::filesystem;
+
+namespace {
+
+/// A small test image: 41 wavelengths 380-780 nm, random finite values of varied magnitude.
+struct TestImage {
+  int width = 7, height = 11;
+  std::vector<double> wavelengths_nm;
+  std::vector<float> spectral, rgb;
+  TestImage() {
+    for (int i = 0; i <= 40; ++i) wavelengths_nm.push_back(380.0 + 10.0 * i);
+    std::mt19937 random(12345);
+    std::uniform_real_distribution<float> mantissa(-1.0f, 1.0f);
+    std::uniform_int_distribution<int> exponent(-20, 20);
+    const auto value = [&] { return std::ldexp(mantissa(random), exponent(random)); };
+    spectral.resize(static_cast<size_t>(width * height) * wavelengths_nm.size());
+    rgb.resize(static_cast<size_t>(width * height) * 3);
+    for (float& v : spectral) v = value();
+    for (float& v : rgb) v = value();
+  }
+  size_t n() const { return wavelengths_nm.size(); }
+  /// Writes in bands of `band_rows` rows (the last may be shorter).
+  void write(const fs::path& path, int band_rows, const SpectralExrMetadata& meta) const {
+    SpectralExrWriter writer(path, width, height, wavelengths_nm, meta);
+    for (int y = 0; y < height; y += band_rows) {
+      const int rows = std::min(band_rows, height - y);
+      writer.write_rows(rows, spectral.data() + static_cast<size_t>(y * width) * n(),
+                        rgb.data() + static_cast<size_t>(y * width) * 3);
+    }
+    writer.finish();
+  }
+};
+
+SpectralExrMetadata test_metadata() {
+  SpectralExrMetadata meta;
+  meta.strings["skyspec:scene"] = "default";
+  meta.ev = 2.5f;
+  return meta;
+}
+
+bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+std::string read_all(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+}  // namespace
+
+// ------------------------------------------------------------------------------------------------
+BOOST_AUTO_TEST_SUITE(channel_names)
+
+BOOST_AUTO_TEST_CASE(names_use_six_decimals_and_a_comma) {
+  BOOST_TEST(spectral_channel_name(550.0) == "S0.550,000000nm");
+  BOOST_TEST(spectral_channel_name(412.5) == "S0.412,500000nm");
+  BOOST_TEST(spectral_channel_name(1000.0 / 3.0) == "S0.333,333333nm");
+}
+
+BOOST_AUTO_TEST_CASE(parse_accepts_the_layouts_forms) {
+  const auto near = [](std::optional<double> v, double expected) {
+    return v.has_value() && std::abs(*v - expected) < 1e-9;
+  };
+  BOOST_TEST(near(parse_spectral_channel_name("S0.550,000000nm"), 550.0));
+  BOOST_TEST(near(parse_spectral_channel_name("S0.412,5nm"), 412.5));
+  BOOST_TEST(near(parse_spectral_channel_name("S0.550nm"), 550.0));
+  BOOST_TEST(near(parse_spectral_channel_name("S0.0,55um"), 550.0));
+  BOOST_TEST(near(parse_spectral_channel_name("S0.550,nm"), 550.0));
+  BOOST_TEST(near(parse_spectral_channel_name("S0.0,00055mm"), 550.0));
+  BOOST_TEST(near(parse_spectral_channel_name("S0.5,5e-7m"), 550.0));
+  BOOST_TEST(near(parse_spectral_channel_name("S0.0,55\xC2\xB5m"), 550.0));  // U+00B5 micro sign
+  // Frequency: lambda = c / f; 545.077196 THz is 550.0000004 nm.
+  BOOST_TEST(std::abs(parse_spectral_channel_name("S0.545,077196THz").value_or(0.0) - 550.0) < 1e-5);
+  // Our own names read back to within their 1e-6 nm rounding.
+  for (double lambda_nm : {360.0, 412.5, 555.123456, 1000.0 / 3.0, 830.0, 2500.25})
+    BOOST_TEST(std::abs(parse_spectral_channel_name(spectral_channel_name(lambda_nm)).value_or(0.0) - lambda_nm) <
+               1e-6);
+}
+
+BOOST_AUTO_TEST_CASE(parse_rejects_other_channels) {
+  for (const char* name : {"S0.400.5nm", "R", "G", "B", "A", "T.550nm", "S1.550nm", "S3.550,0nm", "S0.nm",
+                           "S0.,nm", "S0.550", "S0.550 nm", "S0.-550nm", "S0.0nm", "s0.550nm", "S0.550Nm",
+                           "S0.550nmx", "S0550nm",
+                           "S0.5500\xC3\x85m" /* angstrom: not an SI prefix */})
+    BOOST_TEST(!parse_spectral_channel_name(name).has_value(), name);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
+
+// ------------------------------------------------------------------------------------------------
+BOOST_AUTO_TEST_SUITE(write_and_read)
+
+// Every compression the writer offers is lossless: the values read back are the same bits.
+BOOST_AUTO_TEST_CASE(every_compression_is_lossless) {
+  ScratchFolder dir("exr-compression");
+  const TestImage img;
+  for (const char* compression : {"piz", "zip", "zips", "rle", "none"}) {
+    SpectralExrMetadata meta = test_metadata();
+    meta.compression = compression;
+    const fs::path path = dir.path / (std::string(compression) + ".exr");
+    img.write(path, 4, meta);
+    const SpectralImage back = read_spectral_exr(path);
+    BOOST_TEST_CONTEXT(compression) {
+      BOOST_TEST(same_bits(back.spectral, img.spectral));
+      BOOST_TEST(same_bits(back.rgb, img.rgb));
+    }
+  }
+  SpectralExrMetadata lossy = test_metadata();
+  lossy.compression = "dwaa";
+  BOOST_CHECK_THROW(img.write(dir.path / "dwaa.exr", 4, lossy), IoError);
+  BOOST_TEST(!fs::exists(dir.path / "dwaa.exr"));
+}
+
+// The render-time estimate encodes a sample band into memory (spectral_exr_encode.hpp): the same
+// bytes as the writer puts in a file, so the same work.
+BOOST_AUTO_TEST_CASE(encoding_into_memory_makes_the_file_s_bytes) {
+  ScratchFolder dir("exr-encode");
+  const TestImage img;
+  for (const char* compression : {"piz", "zip", "none"}) {
+    SpectralExrMetadata meta = test_metadata();
+    meta.compression = compression;
+    const fs::path path = dir.path / (std::string(compression) + ".exr");
+    img.write(path, img.height, meta);
+    const std::uint64_t bytes = detail::encode_spectral_rows(img.width, img.height, img.wavelengths_nm, meta,
+                                                             img.spectral.data(), img.rgb.data());
+    BOOST_TEST_CONTEXT(compression) { BOOST_TEST(bytes == fs::file_size(path)); }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(round_trip_through_read_spectral_exr) {
+  ScratchFolder dir;
+  const TestImage image;
+  const fs::path path = dir.path / "sky.exr";
+  image.write(path, 4, test_metadata());  // bands of 4, 4 and 3 rows
+  BOOST_TEST(dir.entries() == std::vector<std::string>{"sky.exr"});  // no temporary left
+
+  const SpectralImage back = read_spectral_exr(path);
+  BOOST_TEST(back.width == image.width);
+  BOOST_TEST(back.height == image.height);
+  BOOST_TEST(back.wavelengths_nm == image.wavelengths_nm);
+  BOOST_TEST(same_bits(back.spectral, image.spectral));
+  BOOST_TEST(same_bits(back.rgb, image.rgb));
+  BOOST_TEST(back.string_attributes.at("spectralLayoutVersion") == "1.0");
+  BOOST_TEST(back.string_attributes.at("emissiveUnits") == "W.m^-2.sr^-1");
+  BOOST_TEST(back.string_attributes.at("skyspec:scene") == "default");
+  BOOST_TEST(back.ev.has_value());
+  BOOST_TEST(back.ev.value_or(0.0f) == 2.5f);
+}
+
+BOOST_AUTO_TEST_CASE(one_band_and_row_by_row_give_the_same_pixels) {
+  ScratchFolder dir;
+  const TestImage image;
+  image.write(dir.path / "one.exr", image.height, SpectralExrMetadata{});
+  image.write(dir.path / "rows.exr", 1, SpectralExrMetadata{});
+  const SpectralImage one = read_spectral_exr(dir.path / "one.exr");
+  const SpectralImage rows = read_spectral_exr(dir.path / "rows.exr");
+  BOOST_TEST(same_bits(one.spectral, image.spectral));
+  BOOST_TEST(same_bits(rows.spectral, image.spectral));
+  BOOST_TEST(!one.ev.has_value());
+}
+
+// The file as any OpenEXR reader sees it, through the library's own API.
+BOOST_AUTO_TEST_CASE(raw_openexr_view_of_the_file) {
+  ScratchFolder dir;
+  const TestImage image;
+  const fs::path path = dir.path / "raw.exr";
+  image.write(path, 5, test_metadata());
+
+  Imf::InputFile in(path.c_str());
+  const Imf::Header& header = in.header();
+  BOOST_TEST(header.compression() == Imf::PIZ_COMPRESSION);  // the default, lossless
+  BOOST_TEST(header.lineOrder() == Imf::INCREASING_Y);
+
+  std::set<std::string> expected_channels{"R", "G", "B"};
+  for (double lambda_nm : image.wavelengths_nm) {
+    char name[64];
+    std::snprintf(name, sizeof name, "S0.%d,000000nm", static_cast<int>(lambda_nm));
+    expected_channels.insert(name);
+  }
+  std::set<std::string> channels;
+  for (auto it = header.channels().begin(); it != header.channels().end(); ++it) {
+    channels.insert(it.name());
+    BOOST_TEST(it.channel().type == Imf::FLOAT);
+  }
+  BOOST_TEST(channels == expected_channels);
+  BOOST_TEST(channels.count("S0.550,000000nm") == 1u);
+
+  BOOST_TEST(header.typedAttribute<Imf::StringAttribute>("spectralLayoutVersion").value() == "1.0");
+  BOOST_TEST(header.typedAttribute<Imf::StringAttribute>("emissiveUnits").value() == "W.m^-2.sr^-1");
+  BOOST_TEST(header.typedAttribute<Imf::FloatAttribute>("EV").value() == 2.5f);
+  BOOST_REQUIRE(Imf::hasChromaticities(header));
+  const Imf::Chromaticities& c = Imf::chromaticities(header);
+  BOOST_TEST(c.red.x == 0.64f);
+  BOOST_TEST(c.red.y == 0.33f);
+  BOOST_TEST(c.green.x == 0.30f);
+  BOOST_TEST(c.green.y == 0.60f);
+  BOOST_TEST(c.blue.x == 0.15f);
+  BOOST_TEST(c.blue.y == 0.06f);
+  BOOST_TEST(c.white.x == 0.3127f);
+  BOOST_TEST(c.white.y == 0.3290f);
+
+  // Pixels of S0.550nm and G, read planar, equal the writer's interleaved input bit for bit.
+  const size_t pixels = static_cast<size_t>(image.width * image.height);
+  std::vector<float> s550(pixels), green(pixels);
+  Imf::FrameBuffer frame;
+  const IMATH_NAMESPACE::Box2i window = header.dataWindow();
+  frame.insert("S0.550,000000nm", Imf::Slice::Make(Imf::FLOAT, s550.data(), window));
+  frame.insert("G", Imf::Slice::Make(Imf::FLOAT, green.data(), window));
+  in.setFrameBuffer(frame);
+  in.readPixels(window.min.y, window.max.y);
+  const size_t k550 = 17;  // 380 + 17 * 10
+  bool all_equal = true;
+  for (size_t p = 0; p < pixels; ++p) {
+    all_equal = all_equal && std::memcmp(&s550[p], &image.spectral[p * image.n() + k550], sizeof(float)) == 0;
+    all_equal = all_equal && std::memcmp(&green[p], &image.rgb[p * 3 + 1], sizeof(float)) == 0;
+  }
+  BOOST_TEST(all_equal);
+}
+
+BOOST_AUTO_TEST_CASE(reader_sorts_wavelengths_and_handles_other_units) {
+  ScratchFolder dir;
+  const TestImage image;
+  // Written in descending order: the reader returns ascending wavelengths with matching values.
+  std::vector<double> descending(image.wavelengths_nm.rbegin(), image.wavelengths_nm.rend());
+  std::vector<float> reordered(image.spectral.size());
+  const size_t n = image.n();
+  for (size_t p = 0; p < reordered.size() / n; ++p)
+    for (size_t k = 0; k < n; ++k) reordered[p * n + k] = image.spectral[p * n + (n - 1 - k)];
+  const fs::path path = dir.path / "descending.exr";
+  {
+    SpectralExrWriter writer(path, image.width, image.height, descending, SpectralExrMetadata{});
+    writer.write_rows(image.height, reordered.data(), image.rgb.data());
+    writer.finish();
+  }
+  const SpectralImage back = read_spectral_exr(path);
+  BOOST_TEST(back.wavelengths_nm == image.wavelengths_nm);
+  BOOST_TEST(same_bits(back.spectral, image.spectral));
+}
+
+BOOST_AUTO_TEST_CASE(writer_destroyed_before_finish_leaves_nothing) {
+  ScratchFolder dir;
+  const TestImage image;
+  {
+    SpectralExrWriter writer(dir.path / "never.exr", image.width, image.height, image.wavelengths_nm,
+                             SpectralExrMetadata{});
+    writer.write_rows(3, image.spectral.data(), image.rgb.data());
+  }
+  BOOST_TEST(dir.entries().empty());
+  {
+    SpectralExrWriter writer(dir.path / "short.exr", image.width, image.height, image.wavelengths_nm,
+                             SpectralExrMetadata{});
+    writer.write_rows(3, image.spectral.data(), image.rgb.data());
+    BOOST_CHECK_THROW(writer.finish(), IoError);  // rows missing
+    BOOST_CHECK_THROW(writer.write_rows(image.height, image.spectral.data(), image.rgb.data()), IoError);
+  }
+  BOOST_TEST(dir.entries().empty());
+}
+
+BOOST_AUTO_TEST_CASE(non_finite_values_are_rejected_and_leave_no_file) {
+  ScratchFolder dir;
+  for (float bad : {std::nanf(""), INFINITY, -INFINITY})
+    for (bool in_rgb : {false, true}) {
+      TestImage image;
+      (in_rgb ? image.rgb[7] : image.spectral[200]) = bad;
+      const fs::path path = dir.path / "bad.exr";
+      BOOST_CHECK_THROW(image.write(path, 4, SpectralExrMetadata{}), IoError);
+      BOOST_TEST(dir.entries().empty());
+    }
+  // The message says where.
+  TestImage image;
+  image.spectral[image.n() * (2 * image.width + 3) + 17] = std::nanf("");
+  try {
+    image.write(dir.path / "bad.exr", image.height, SpectralExrMetadata{});
+    BOOST_FAIL("expected IoError");
+  } catch (const IoError& e) {
+    const std::string what = e.what();
+    BOOST_TEST(what.find("bad.exr") != std::string::npos);
+    BOOST_TEST(what.find("x = 3, y = 2") != std::string::npos);
+    BOOST_TEST(what.find("S0.550,000000nm") != std::string::npos);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(bad_arguments_are_io_errors) {
+  ScratchFolder dir;
+  const std::vector<double> wl{500.0, 600.0};
+  BOOST_CHECK_THROW(SpectralExrWriter(dir.path / "a.exr", 0, 5, wl, {}), IoError);
+  BOOST_CHECK_THROW(SpectralExrWriter(dir.path / "a.exr", 5, 5, {}, {}), IoError);
+  BOOST_CHECK_THROW(SpectralExrWriter(dir.path / "a.exr", 5, 5, {500.0, 500.0000001}, {}), IoError);
+  BOOST_CHECK_THROW(SpectralExrWriter(dir.path / "no/such/a.exr", 5, 5, wl, {}), IoError);
+  BOOST_TEST(dir.entries().empty());
+  BOOST_CHECK_THROW(read_spectral_exr(dir.path / "missing.exr"), IoError);
+  std::ofstream(dir.path / "not.exr") << "not an EXR file";
+  BOOST_CHECK_THROW(read_spectral_exr(dir.path / "not.exr"), IoError);
+}
+
+BOOST_AUTO_TEST_SUITE_END()
+
+// ------------------------------------------------------------------------------------------------
+// Other tools open our files: exrheader (OpenEXR) lists the spectral channels, oiiotool
+// (OpenImageIO) reads the EXR and the PNG preview. Both are installed by the project's setup, so
+// their absence is a failure, not a skip.
+BOOST_AUTO_TEST_SUITE(external_tools)
+
+/// Runs a shell command, stdout + stderr to a file; returns (exit status, output).
+std::pair<int, std::string> run(const std::string& command, const fs::path& output) {
+  const int status = std::system((command + " > '" + output.string() + "' 2>&1").c_str());
+  return {status, read_all(output)};
+}
+
+BOOST_AUTO_TEST_CASE(exrheader_and_oiiotool_read_the_files) {
+  ScratchFolder dir;
+  const TestImage image;
+  const fs::path exr = dir.path / "tools.exr";
+  image.write(exr, 4, test_metadata());
+  const fs::path log = dir.path / "log.txt";
+
+  BOOST_REQUIRE_MESSAGE(run("command -v exrheader", log).first == 0, "exrheader is not installed");
+  BOOST_REQUIRE_MESSAGE(run("command -v oiiotool", log).first == 0, "oiiotool is not installed");
+
+  const auto [header_status, header_text] = run("exrheader '" + exr.string() + "'", log);
+  BOOST_TEST(header_status == 0);
+  BOOST_TEST(header_text.find("S0.380,000000nm, 32-bit floating-point") != std::string::npos);
+  BOOST_TEST(header_text.find("S0.550,000000nm, 32-bit floating-point") != std::string::npos);
+  BOOST_TEST(header_text.find("S0.780,000000nm, 32-bit floating-point") != std::string::npos);
+  BOOST_TEST(header_text.find("spectralLayoutVersion") != std::string::npos);
+
+  const auto [info_status, info_text] = run("oiiotool --info -v '" + exr.string() + "'", log);
+  BOOST_TEST(info_status == 0);
+  BOOST_TEST(info_text.find("44 channel") != std::string::npos, info_text);  // 41 + R, G, B
+  BOOST_TEST(info_text.find("S0.550,000000nm") != std::string::npos);
+
+  const fs::path png = dir.path / "tools.png";
+  write_png_srgb8(png, image.width, image.height, image.rgb, 1.0);
+  const auto [png_status, png_text] = run("oiiotool --info -v '" + png.string() + "'", log);
+  BOOST_TEST(png_status == 0);
+  BOOST_TEST(png_text.find("3 channel, uint8 png") != std::string::npos, png_text);
+  BOOST_TEST(png_text.find("oiio:ColorSpace: \"sRGB\"") != std::string::npos, png_text);
+}
+
+BOOST_AUTO_TEST_SUITE_END()

@@ -1,0 +1,127 @@
+#define BOOST_TEST_MODULE render_budget
+#include <boost/test/unit_test.hpp>
+
+#include <algorithm>
+#include <cstdint>
+#include <string>
+
+#include "skyspec/error.hpp"
+#include "skyspec/render.hpp"
+#include "render/render_budget.hpp"
+#include "scene_fixtures.hpp"
+#include "skyspec/scene.hpp"
+
+using namespace skyspec;
+using skyspec::test::contains;
+using skyspec::test::scene_with;
+
+namespace {
+
+// The message of the InputError the estimate is refused with ("" if it is not).
+std::string refusal(const RenderEstimate& e) {
+  try {
+    refuse_if_over_budget(e);
+  } catch (const InputError& error) {
+    return error.what();
+  }
+  return "";
+}
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(file_size_bounds) {
+  // 512 x 512 pixels x (41 wavelengths + R, G, B) floats, an 8-byte offset per scan line, 64 KiB of header.
+  BOOST_TEST(spectral_exr_bytes(512, 512, 41) == 512ull * 512 * 44 * 4 + 512 * 8 + 65536);
+  BOOST_TEST(rgb_exr_bytes(100, 50) == 100ull * 50 * 3 * 4 + 50 * 8 + 65536);
+  BOOST_TEST(png_bytes(100, 50, 8) == 100ull * 50 * 3 + 50 + 65536);
+  BOOST_TEST(png_bytes(100, 50, 16) == 100ull * 50 * 6 + 50 + 65536);
+  // No overflow at the largest image a scene allows (1e9 pixels) with 1024 wavelengths.
+  BOOST_TEST(spectral_exr_bytes(40000, 25000, 1024) == 1000000000ull * 1027 * 4 + 25000 * 8 + 65536);
+}
+
+BOOST_AUTO_TEST_CASE(plan_of_a_scene) {
+  const Scene s = scene_with("[camera]\nwidth = 300\nheight = 200\n[render]\nthreads = 1\nview_segments = 32\n");
+  RenderPlan p = RenderPlan::for_scene(s, true, 16, 5);
+  BOOST_TEST(p.wavelengths == 41);
+  BOOST_TEST(p.threads == 1);
+  BOOST_TEST(p.output_bytes() ==
+             5 * (spectral_exr_bytes(300, 200, 41) + png_bytes(300, 200, 16) + rgb_exr_bytes(300, 200)));
+  BOOST_TEST(p.settings() == "41 wavelengths, 32 view segments, 300x200, 1 thread, 5 frames");
+  // Memory: two bands of 64 rows (spectral + RGB; a band is at most 64 MiB, so 64 rows here) and
+  // OpenEXR's buffers for two more, the whole-image RGB, and at the end the larger of the PNG's
+  // encoding (a copy plus 16-bit samples) and the working-space conversion (two copies).
+  const std::uint64_t band = 64ull * 300 * 44 * 4, px = 300ull * 200;
+  BOOST_TEST(p.peak_memory_bytes() == 4 * band + px * 12 + std::max(px * 12 + px * 6, px * 24));
+  p.spectral_exr = p.png = p.working_exr = false;
+  BOOST_TEST(p.peak_memory_bytes() == 2 * band);
+  p.extra_bytes_per_pixel = 10;
+  p.extra_output_bytes = 7;
+  BOOST_TEST(p.peak_memory_bytes() == 2 * band + px * 10);
+  // Wide images take fewer rows per band (64 MiB), at least 8.
+  p.width = 65536;
+  p.height = 1000;
+  BOOST_TEST(p.peak_memory_bytes() == 2 * 8ull * 65536 * 44 * 4 + 65536ull * 1000 * 10);
+  BOOST_TEST(p.output_bytes() == 5u * 7u);
+}
+
+BOOST_AUTO_TEST_CASE(limits_and_messages) {
+  RenderEstimate e;
+  e.plan = RenderPlan::for_scene(scene_with("[camera]\nwidth = 16384\nheight = 8192\n[output]\ndirectory = \"/data\"\n"));
+  e.output_bytes = 41'000'000'000ull;
+  e.peak_memory_bytes = 2'000'000'000ull;
+  e.disk_available_bytes = 12'000'000'000ull;
+  e.memory_available_bytes = 8'000'000'000ull;
+  const std::string disk = refusal(e);
+  BOOST_TEST(contains(disk, "this render would write up to 41 GB"));
+  BOOST_TEST(contains(disk, "but /data has 12 GB free"));
+  BOOST_TEST(contains(disk, "(use --force to render anyway)"));
+  BOOST_TEST(!contains(disk, "memory"));
+
+  e.disk_available_bytes = 50'000'000'000ull;
+  BOOST_TEST(refusal(e).empty());
+  e.seconds = 3.2 * 86400;
+  const std::string slow = refusal(e);
+  BOOST_TEST(contains(slow, "would take about 3.2 days at these settings (41 wavelengths, 64 view segments, 16384x8192"));
+  BOOST_TEST(contains(slow, "--force"));
+  e.seconds = 23.0 * 3600;
+  BOOST_TEST(refusal(e).empty());
+
+  e.memory_available_bytes = 1'000'000'000ull;
+  BOOST_TEST(contains(refusal(e), "would need about 2.0 GB of memory but 1.0 GB is available"));
+  // Unknown disk or memory: not checked.
+  e.memory_available_bytes.reset();
+  e.disk_available_bytes.reset();
+  BOOST_TEST(refusal(e).empty());
+}
+
+BOOST_AUTO_TEST_CASE(formatting) {
+  BOOST_TEST(format_bytes(512) == "512 bytes");
+  BOOST_TEST(format_bytes(720'000) == "720 kB");
+  BOOST_TEST(format_bytes(46'200'000) == "46 MB");
+  BOOST_TEST(format_bytes(1'500'000'000) == "1.5 GB");
+  BOOST_TEST(format_duration(2.1) == "2.1 s");
+  BOOST_TEST(format_duration(720) == "12 min");
+  BOOST_TEST(format_duration(5 * 3600) == "5.0 h");
+  BOOST_TEST(format_duration(3.2 * 86400) == "3.2 days");
+}
+
+BOOST_AUTO_TEST_CASE(the_machine_is_read) {
+  BOOST_TEST(available_memory_bytes().value_or(0) > 0u);
+  // A folder that does not exist yet is on the file system of its nearest existing parent.
+  BOOST_TEST(available_disk_bytes("/tmp/skyspec-no-such-folder/a/b").value_or(0) > 0u);
+}
+
+BOOST_AUTO_TEST_CASE(measured_time_scales_with_pixels_frames_and_threads) {
+  const Scene s = scene_with("[camera]\nwidth = 64\nheight = 64\n[render]\nscattering_orders = 1\n");
+  const SkyRenderer r(s);
+  RenderPlan p = RenderPlan::for_scene(s);
+  p.threads = 1;
+  const double one = measure_render_seconds(r, p);
+  BOOST_TEST(one > 0.0);
+  BOOST_TEST(one < 60.0);
+  p.frames = 1000;
+  p.threads = 2;
+  const double many = measure_render_seconds(r, p);
+  // Two independent samples of the same work: the same per-pixel cost within a factor of 3.
+  BOOST_TEST(many / one > 500.0 / 3);
+  BOOST_TEST(many / one < 500.0 * 3);
+}
