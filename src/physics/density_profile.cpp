@@ -93,7 +93,3 @@ std::string DensityProfile::describe() const {
 }
 
 }  // namespace skyspec
-
-namespace skyspec {
-const char* build_stamp_density_profile() { return __DATE__ " " __TIME__; }
-}  // namespace skyspec

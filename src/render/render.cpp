@@ -31,6 +31,8 @@
 #include "io/provenance.hpp"
 #include "io/rgb_exr.hpp"
 #include "transport/multiple_scattering.hpp"
+#include "transport/scattering_tables_cache.hpp"
+#include "render/scene_tables.hpp"
 #include "transport/single_scattering.hpp"
 #include "transport/sky_view_table.hpp"
 #include "physics/solar_spectrum.hpp"
@@ -38,7 +40,6 @@
 #include "physics/sun_disk.hpp"
 #include "skyspec/units.hpp"
 #include "skyspec/version.hpp"
-#include "transport/build_stamps.hpp"
 
 namespace skyspec {
 
@@ -66,58 +67,6 @@ Spectrum make_sun_irradiance(const Scene& s, const WavelengthGrid& grid) {
   return (solar_irradiance_on_grid(grid, "spectrum") * scale).cast<float>();
 }
 
-// The scene keys the scattering-order tables depend on: the planet, the atmosphere, the ground,
-// the wavelength grid and the table settings (not the sun, the camera or the outputs).
-std::string scattering_tables_key(const Scene& s) {
-  std::istringstream in(scene_to_toml(s));
-  std::string line, table, key;
-  while (std::getline(in, line)) {
-    if (!line.empty() && line.front() == '[') {
-      table = line;
-      continue;
-    }
-    const bool render_key = table == "[render]" && (line.rfind("table_", 0) == 0 || line.rfind("ms_", 0) == 0 ||
-                                                    line.rfind("scattering_orders", 0) == 0);
-    if (table.rfind("[atmosphere", 0) == 0 || table == "[planet]" || table == "[ground]" || table == "[spectrum]" ||
-        render_key)
-      key += table + line + "\n";
-  }
-  return key;
-}
-
-// The part of a table's cache key that the scene does not show: the coefficients actually
-// computed (so a change in how they are derived invalidates old tables) and when the integrator's
-// code was compiled.
-std::string table_code_key(const AtmosphereModel& atm) {
-  std::ostringstream k;
-  k << "\ncode " << version_string() << " | " << build_stamp_single_scattering() << " | "
-    << build_stamp_multiple_scattering() << " | " << build_stamp_optical_depth() << " | "
-    << build_stamp_density_profile() << "\ncoefficients";
-  k << std::hexfloat;
-  for (const ScatteringSpecies* sp : {&atm.rayleigh(), &atm.mie(), &atm.ozone()}) {
-    for (int i = 0; i < sp->scattering_per_m.size(); ++i) k << ' ' << sp->scattering_per_m[i] << ' ' << sp->extinction_per_m[i];
-    k << " | " << sp->profile.describe();
-  }
-  for (int i = 0; i < atm.ground_albedo().size(); ++i) k << ' ' << atm.ground_albedo()[i];
-  for (int i = 0; i < atm.mie_g().size(); ++i) k << ' ' << atm.mie_g()[i];
-  return k.str();
-}
-
-// Where tables are cached on disk: $SKYSPEC_CACHE_DIR, else $XDG_CACHE_HOME/skyspec, else
-// ~/.cache/skyspec; the file name is a hash of the key (the file holds the whole key and is
-// used only if it matches). Empty when no folder can be named.
-std::string table_cache_path(const std::string& key) {
-  std::filesystem::path dir;
-  if (const char* d = std::getenv("SKYSPEC_CACHE_DIR"); d && *d) dir = d;
-  else if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) dir = std::filesystem::path(x) / "skyspec";
-  else if (const char* h = std::getenv("HOME"); h && *h) dir = std::filesystem::path(h) / ".cache" / "skyspec";
-  else return {};
-  const uint64_t hash = fnv1a64(key);
-  char name[64];
-  std::snprintf(name, sizeof name, "orders-%016llx.bin", static_cast<unsigned long long>(hash));
-  return (dir / name).string();
-}
-
 // render.threads, or all cores for 0.
 int thread_count(const Scene& s) {
   return s.render.threads > 0 ? s.render.threads : tbb::this_task_arena::max_concurrency();
@@ -132,38 +81,9 @@ SunColumnTable::MuBand sun_band(const Scene& s, const AtmosphereModel& atmospher
   return SunColumnTable::band_seen_from(atmosphere, make_camera(s)->origin_m(), sun_direction(s));
 }
 
-// Tables are reused across renders of the same atmosphere in one process (a time-lapse changes
-// only the sun). The last few are kept.
+// The scattering-order tables for orders 2 .. render.scattering_orders.
 std::shared_ptr<const ScatteringOrders> build_orders(const Scene& s, const SingleScattering& integrator) {
-  static std::mutex mutex;
-  static std::vector<std::pair<std::string, std::shared_ptr<const ScatteringOrders>>> cache;
-  const std::string key = scattering_tables_key(s);
-  {
-    std::lock_guard<std::mutex> lock(mutex);
-    for (const auto& [k, v] : cache)
-      if (k == key) return v;
-  }
-  MultipleScatteringSettings ms;
-  ms.orders = s.render.scattering_orders;
-  ms.altitude_samples = s.render.ms_altitude_samples;
-  ms.sun_samples = s.render.ms_sun_samples;
-  std::shared_ptr<const ScatteringOrders> orders;
-  const std::string cache_path = s.render.cache_tables ? table_cache_path(key) : std::string();
-  const std::string full_key = key + table_code_key(integrator.atmosphere());
-  if (!cache_path.empty()) orders = ScatteringOrders::load(cache_path, full_key, integrator.atmosphere(), ms);
-  if (!orders) {
-    auto built = std::make_shared<const ScatteringOrders>(integrator, ms);
-    if (!cache_path.empty()) {
-      std::error_code ec;
-      std::filesystem::create_directories(std::filesystem::path(cache_path).parent_path(), ec);
-      built->save(cache_path, full_key);
-    }
-    orders = built;
-  }
-  std::lock_guard<std::mutex> lock(mutex);
-  cache.emplace_back(key, orders);
-  if (cache.size() > 4) cache.erase(cache.begin());
-  return orders;
+  return scattering_orders_for(integrator, sun_table_resolution(s), multiple_scattering_settings(s), s.render.cache_tables);
 }
 }  // namespace
 
@@ -253,8 +173,7 @@ struct SkyRenderer::Impl {
       : scene(s),
         grid(make_wavelength_grid(s)),
         atmosphere(s.atmosphere, grid),
-        table(atmosphere, SunColumnTable::Resolution{s.render.table_altitude_samples, s.render.table_zenith_samples, 64},
-              sun_band(s, atmosphere)),
+        table(atmosphere, sun_table_resolution(s), sun_band(s, atmosphere)),
         sun_columns(table),
         integrator(atmosphere, sun_columns, IntegratorSettings{s.render.view_segments}),
         orders(s.render.scattering_orders >= 2 ? build_orders(s, integrator) : nullptr),

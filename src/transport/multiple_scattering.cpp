@@ -4,12 +4,15 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <fstream>
+#include <sstream>
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include "base/atomic_file.hpp"
+#include "base/embedded_data.hpp"
 #include "skyspec/units.hpp"
 
 namespace skyspec {
@@ -205,23 +208,31 @@ ScatteringOrders::ScatteringOrders(const SingleScattering& integrator, const Mul
 }
 
 namespace {
-constexpr char kCacheMagic[] = "skyspec scattering orders v1\n";
-}
+// The cache file: magic, key size and key (the inputs the tables depend on), table count, the
+// tables, and last an FNV-1a 64 checksum of everything before it, so that a file that was
+// truncated, damaged or edited is rebuilt rather than trusted.
+constexpr char kCacheMagic[] = "skyspec scattering orders v2\n";
+}  // namespace
 
 bool ScatteringOrders::save(const std::string& path, const std::string& key) const {
   try {
+    std::ostringstream out(std::ios::binary);
+    out.write(kCacheMagic, sizeof kCacheMagic - 1);
+    const uint64_t key_size = key.size();
+    out.write(reinterpret_cast<const char*>(&key_size), sizeof key_size);
+    out.write(key.data(), static_cast<std::streamsize>(key.size()));
+    const int32_t count = static_cast<int32_t>(orders_.size());
+    out.write(reinterpret_cast<const char*>(&count), sizeof count);
+    for (const auto& t : orders_) t->write(out);
+    sum_->write(out);
+    const std::string body = out.str();
+    const uint64_t checksum = fnv1a64(body);
     AtomicOutputFile file(path);
     {
-      std::ofstream out(file.temporary_path(), std::ios::binary);
-      out.write(kCacheMagic, sizeof kCacheMagic - 1);
-      const uint64_t key_size = key.size();
-      out.write(reinterpret_cast<const char*>(&key_size), sizeof key_size);
-      out.write(key.data(), static_cast<std::streamsize>(key.size()));
-      const int32_t count = static_cast<int32_t>(orders_.size());
-      out.write(reinterpret_cast<const char*>(&count), sizeof count);
-      for (const auto& t : orders_) t->write(out);
-      sum_->write(out);
-      if (!out.flush()) return false;
+      std::ofstream f(file.temporary_path(), std::ios::binary);
+      f.write(body.data(), static_cast<std::streamsize>(body.size()));
+      f.write(reinterpret_cast<const char*>(&checksum), sizeof checksum);
+      if (!f.flush()) return false;
     }
     file.commit();
     return true;
@@ -233,8 +244,20 @@ bool ScatteringOrders::save(const std::string& path, const std::string& key) con
 std::unique_ptr<ScatteringOrders> ScatteringOrders::load(const std::string& path, const std::string& key,
                                                          const AtmosphereModel& atm,
                                                          const MultipleScatteringSettings& settings) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return nullptr;
+  std::string bytes;
+  {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) return nullptr;
+    std::ostringstream all;
+    all << f.rdbuf();
+    bytes = all.str();
+  }
+  uint64_t checksum = 0;
+  if (bytes.size() < sizeof checksum) return nullptr;
+  std::memcpy(&checksum, bytes.data() + bytes.size() - sizeof checksum, sizeof checksum);
+  bytes.resize(bytes.size() - sizeof checksum);
+  if (fnv1a64(bytes) != checksum) return nullptr;
+  std::istringstream in(bytes, std::ios::binary);
   std::string magic(sizeof kCacheMagic - 1, '\0');
   if (!in.read(magic.data(), static_cast<std::streamsize>(magic.size())) || magic != kCacheMagic) return nullptr;
   uint64_t key_size = 0;
@@ -254,12 +277,8 @@ std::unique_ptr<ScatteringOrders> ScatteringOrders::load(const std::string& path
     o->orders_.push_back(std::move(t));
   }
   o->sum_ = make_table();
-  if (!o->sum_->read(in)) return nullptr;
+  if (!o->sum_->read(in) || in.peek() != std::char_traits<char>::eof()) return nullptr;
   return o;
 }
 
-}  // namespace skyspec
-
-namespace skyspec {
-const char* build_stamp_multiple_scattering() { return __DATE__ " " __TIME__; }
 }  // namespace skyspec

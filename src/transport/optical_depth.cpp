@@ -243,7 +243,3 @@ void SunColumnTable::lookup_many(int count, const double* r_m, const double* mu,
 }
 
 }  // namespace skyspec
-
-namespace skyspec {
-const char* build_stamp_optical_depth() { return __DATE__ " " __TIME__; }
-}  // namespace skyspec

@@ -582,7 +582,3 @@ void SingleScattering::radiance_parts_same_zenith(const Vec3& o, const Vec3* dir
 }
 
 }  // namespace skyspec
-
-namespace skyspec {
-const char* build_stamp_single_scattering() { return __DATE__ " " __TIME__; }
-}  // namespace skyspec

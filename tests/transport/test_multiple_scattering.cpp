@@ -2,9 +2,11 @@
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
+#include <cstring>
+#include <fstream>
+#include <iterator>
 #include <vector>
 
-#include <fstream>
 
 #include "atmosphere_fixtures.hpp"
 #include "scratch_folder.hpp"
@@ -150,8 +152,26 @@ BOOST_AUTO_TEST_CASE(tables_round_trip_through_the_cache) {
   BOOST_TEST(!ScatteringOrders::load(path, "key B", atm, ms));
   ms.sun_samples = 9;
   BOOST_TEST(!ScatteringOrders::load(path, "key A", atm, ms));
-  { std::ofstream(path, std::ios::binary | std::ios::trunc) << "skyspec scattering orders v1\n garbage"; }
   ms.sun_samples = 8;
-  BOOST_TEST(!ScatteringOrders::load(path, "key A", atm, ms));
   BOOST_TEST(dir.entries().size() == 1u);  // no temporary file left by save()
+
+  // Damaged files are rebuilt, never trusted: truncated, one value changed (the checksum no longer
+  // holds), garbage after a valid header, empty.
+  std::string bytes;
+  {
+    std::ifstream in(path, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  auto rewrite = [&](const std::string& content) {
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << content;
+    return ScatteringOrders::load(path, "key A", atm, ms) == nullptr;
+  };
+  BOOST_TEST(rewrite(bytes.substr(0, bytes.size() - 1)));
+  BOOST_TEST(rewrite(bytes.substr(0, bytes.size() / 2)));
+  std::string tampered = bytes;
+  tampered[tampered.size() / 2] = static_cast<char>(tampered[tampered.size() / 2] ^ 0x40);  // a table value changed
+  BOOST_TEST(rewrite(tampered));
+  BOOST_TEST(rewrite("skyspec scattering orders v2\n garbage"));
+  BOOST_TEST(rewrite(""));
+  BOOST_TEST(!rewrite(bytes));  // the intact file still loads
 }

@@ -1,0 +1,28 @@
+// Where the scattering-order tables come from: this process's last few, the disk cache, or a
+// fresh build (which is then saved). Keyed by scattering_tables_key.hpp, never by build stamps or
+// scene text: two builds of the same source share tables, a change of physics does not.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+
+#include "transport/multiple_scattering.hpp"
+#include "transport/scattering_tables_key.hpp"
+
+namespace skyspec {
+
+/// The disk cache's folder: $SKYSPEC_CACHE_DIR, else $XDG_CACHE_HOME/skyspec, else
+/// ~/.cache/skyspec; empty when none can be named.
+std::filesystem::path table_cache_directory();
+
+/// The tables for the integrator's atmosphere and sun columns (whose resolution is sun_table) with
+/// these settings. With use_disk_cache, a file in table_cache_directory() named by the key is used
+/// when it holds exactly this key's inputs and its checksum holds; otherwise the tables are built
+/// and saved there (a cache that cannot be written only costs time). The last four sets are kept
+/// in memory for the process (a time-lapse changes only the sun).
+std::shared_ptr<const ScatteringOrders> scattering_orders_for(const SingleScattering& integrator,
+                                                              const SunColumnTable::Resolution& sun_table,
+                                                              const MultipleScatteringSettings& settings,
+                                                              bool use_disk_cache);
+
+}  // namespace skyspec
