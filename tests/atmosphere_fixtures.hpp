@@ -31,6 +31,7 @@ inline AtmosphereSpec simple_atmosphere(ProfileKind profile, double top_m, const
   a.mie.scattering_per_m = beta_mie;
   a.mie.angstrom_exponent = 0;
   a.mie.extinction_to_scattering = mie_ratio;
+  a.ozone.enabled = false;
   return a;
 }
 

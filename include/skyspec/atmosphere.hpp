@@ -29,7 +29,9 @@ struct RayleighSpec {
   double scale_height_m = 8000.0;            ///< exponential profile
   double surface_pressure_Pa = 101325.0;     ///< exponential/constant profile: N(0) = P / (k T)
   double surface_temperature_K = 288.15;
-  RayleighDerivationInput derivation;        ///< refractive index formula and CO2
+  /// Refractive index formula and CO2 (420 ppm, present-day air; the derivation's own default is
+  /// Bodhaine et al.'s 360 ppm, at which their tables are computed).
+  RayleighDerivationInput derivation{ScatteringGas::Air, RefractiveIndexFormula::PeckReeder1972, 420 * 1e-6};  // as the reader stores 420 ppm
   std::vector<double> fixed_wavelengths_nm;  ///< Fixed source
   std::vector<double> fixed_beta_per_m;      ///< Fixed source, at altitude 0
 };
@@ -42,7 +44,7 @@ struct MieSpec {
   /// Angstrom law beta(lambda) = beta_ref (lambda / lambda_ref)^-alpha.
   double scattering_per_m = 21e-6;
   double reference_wavelength_nm = 550.0;
-  double angstrom_exponent = 0.0;
+  double angstrom_exponent = 1.3;  ///< continental aerosol, Angstrom's typical value
   /// beta_extinction = ratio * beta_scattering (the seed's 1.1: 10 % absorption).
   double extinction_to_scattering = 1.1;
   AerosolPhase phase;
@@ -56,7 +58,7 @@ struct MieSpec {
 
 /// An absorbing ozone layer: a tent profile holding a given column.
 struct OzoneSpec {
-  bool enabled = false;
+  bool enabled = true;
   double column_DU = 300.0;  ///< total column, Dobson units (1 DU = 2.6867e20 molecules m^-2)
   double bottom_m = 10e3, peak_m = 25e3, top_m = 40e3;
   /// Absorption cross-sections (m^2 per molecule) at these wavelengths, linearly interpolated; when

@@ -133,6 +133,13 @@ std::string scene_to_toml(const Scene& scene);
 /// All scene keys with their documentation ("key  (unit, range)  help"), for --help-keys.
 std::vector<std::pair<std::string, std::string>> scene_key_help();
 
+/// The key reference as a Markdown table (key, default, allowed values, meaning), generated from
+/// the same registry as the reader: docs/scene-keys.md is this text.
+std::string scene_keys_markdown();
+
+/// The built-in default scene: data/scenes/default.toml, which equals Scene{} key by key.
+Scene default_scene();
+
 /// The wavelength grid a scene asks for (validated).
 WavelengthGrid make_wavelength_grid(const Scene& scene);
 /// The sun direction (unit, east-north-up) of a scene.

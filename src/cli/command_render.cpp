@@ -38,7 +38,8 @@ std::vector<KeyFlag> render_flags() {
 struct RenderOptions {
   SceneOptions scene{"default", {}, {}, render_flags()};
   DisplayOptions display;
-  bool no_exr = false, no_png = false, quiet = false, help_keys = false, print_scene = false;
+  bool no_exr = false, no_png = false, quiet = false, print_scene = false;
+  std::string help_keys;  ///< "", "text" or "markdown"
   bool force = false, dry_run = false;
 };
 
@@ -71,7 +72,11 @@ std::string photometry_line(const SkyRenderer& r) {
 
 int run_render(RenderOptions& o) {
   if (list_displays_if_asked(o.display)) return kExitOk;
-  if (o.help_keys) {
+  if (o.help_keys == "markdown") {
+    std::cout << scene_keys_markdown();
+    return kExitOk;
+  }
+  if (!o.help_keys.empty()) {
     for (const auto& [key, doc] : scene_key_help()) std::cout << key << "  " << doc << "\n";
     return kExitOk;
   }
@@ -145,7 +150,10 @@ Command add_render_command(CLI::App& app) {
   render->add_flag("--no-exr", opts->no_exr, "do not write the spectral EXR");
   render->add_flag("--no-png", opts->no_png, "do not write the PNG preview");
   render->add_flag("-q,--quiet", opts->quiet, "no progress bar and no summary");
-  render->add_flag("--help-keys", opts->help_keys, "list every scene key with its unit and range, then exit");
+  render->add_flag("--help-keys{text}", opts->help_keys,
+                   "list every scene key with its unit and range, then exit; --help-keys=markdown prints the "
+                   "table of docs/scene-keys.md")
+      ->check(CLI::IsMember({"text", "markdown"}));
   render->add_flag("--print-scene", opts->print_scene, "print the effective scene as TOML, then exit");
   render->add_flag("--force", opts->force,
                    "render even if the outputs exceed the free disk, the memory needed exceeds what is available "
@@ -157,7 +165,7 @@ Command add_render_command(CLI::App& app) {
   return {render, [opts] { return run_render(*opts); },
           [opts] {  // run_render's checks, up to the rendering (Command::validate)
             if (opts->display.list) return void(OcioConfig(display_settings(opts->display).config));
-            if (opts->help_keys) return;
+            if (!opts->help_keys.empty()) return;
             const Scene scene = load_scene(*opts);
             if (opts->print_scene) return void(scene_to_toml(scene));
             const DisplaySettings display = display_settings(opts->display, exposure_flag_given(*opts));

@@ -807,4 +807,46 @@ std::vector<std::pair<std::string, std::string>> scene_key_help() {
   return out;
 }
 
+namespace {
+// A key's documentation is "(allowed values) meaning": split at the parenthesis that closes the first.
+std::pair<std::string, std::string> split_doc(const std::string& doc) {
+  if (doc.empty() || doc.front() != '(') return {"", doc};
+  int depth = 0;
+  for (size_t i = 0; i < doc.size(); ++i) {
+    if (doc[i] == '(') ++depth;
+    if (doc[i] == ')' && --depth == 0) {
+      const size_t start = doc.find_first_not_of(' ', i + 1);
+      return {doc.substr(1, i - 1), start == std::string::npos ? std::string() : doc.substr(start)};
+    }
+  }
+  return {"", doc};
+}
+
+std::string markdown_cell(std::string text) {
+  for (size_t at = text.find('|'); at != std::string::npos; at = text.find('|', at + 2)) text.replace(at, 1, "\\|");
+  return text;
+}
+}  // namespace
+
+std::string scene_keys_markdown() {
+  const Scene defaults = default_scene();
+  std::ostringstream out;
+  out << "# Scene keys\n\n"
+      << "Generated from the key registry (src/scene/scene.cpp) by `skyspec render --help-keys=markdown`;\n"
+      << "do not edit by hand. A scene file (TOML) or `--set KEY=VALUE` sets these; the default is the\n"
+      << "built-in default scene (data/scenes/default.toml, equal to `Scene{}`). Values outside the allowed\n"
+      << "range are refused with a message naming the key.\n\n"
+      << "| key | default | allowed | meaning |\n|---|---|---|---|\n";
+  for (const auto& k : registry()) {
+    const auto [allowed, meaning] = split_doc(k.doc);
+    std::string value = k.get(defaults);
+    if (value.empty()) value = "(none)";
+    out << "| `" << k.key << "` | " << markdown_cell(value) << " | " << markdown_cell(allowed) << " | "
+        << markdown_cell(meaning) << " |\n";
+  }
+  return out.str();
+}
+
+Scene default_scene() { return SceneLoader("default").finish(); }
+
 }  // namespace skyspec

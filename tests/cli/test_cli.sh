@@ -88,5 +88,8 @@ fi
 # --help is something a newcomer can follow, and --help-keys documents every key with its unit.
 "$skyspec" render --help | grep -q -- "--sun-elevation" && ok || bad "render --help lacks --sun-elevation"
 "$skyspec" render --help-keys | grep -q "atmosphere.rayleigh.scale_height_m  (a number in m" && ok || bad "--help-keys"
+# docs/scene-keys.md is generated from the key registry: it must be what the program prints now.
+"$skyspec" render --help-keys=markdown | cmp -s - "$(dirname "${BASH_SOURCE[0]}")/../../docs/scene-keys.md" && ok \
+  || bad "docs/scene-keys.md is stale: regenerate it with skyspec render --help-keys=markdown > docs/scene-keys.md"
 
 finish cli

@@ -6,7 +6,7 @@
 
 int main() {
   using namespace skyspec;
-  Scene scene = SceneLoader("default").finish();
+  Scene scene = default_scene();
   scene.camera.width = 8;
   scene.camera.height = 8;
   scene.render.scattering_orders = 1;

@@ -1,7 +1,10 @@
 #define BOOST_TEST_MODULE scene
 #include <boost/test/unit_test.hpp>
 
+#include <algorithm>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "skyspec/error.hpp"
 #include "skyspec/scene.hpp"
@@ -212,4 +215,39 @@ BOOST_AUTO_TEST_CASE(quality_levels) {
   const std::string e = error_of([] { SceneLoader().apply_quality("ultra"); });
   BOOST_TEST(contains(e, "--quality = \"ultra\""));
   BOOST_TEST(contains(e, "one of: draft, lean, default, high, reference"));
+}
+
+// One schema: the built-in defaults (Scene{}) and data/scenes/default.toml are the same scene, key
+// by key, so that a library user who starts from Scene{} renders what the CLI renders.
+BOOST_AUTO_TEST_CASE(built_in_defaults_are_the_default_scene_file) {
+  auto lines = [](const std::string& toml) {
+    std::vector<std::string> out;
+    std::istringstream in(toml);
+    std::string line, table;
+    while (std::getline(in, line)) {
+      if (line.empty()) continue;
+      if (line.front() == '[') table = line.substr(1, line.size() - 2);
+      else out.push_back(table + "." + line);
+    }
+    return out;
+  };
+  const std::vector<std::string> built_in = lines(scene_to_toml(Scene{}));
+  const std::vector<std::string> file = lines(scene_to_toml(SceneLoader("default").finish()));
+  BOOST_TEST(built_in.size() == file.size());
+  for (size_t i = 0; i < std::min(built_in.size(), file.size()); ++i) BOOST_TEST(built_in[i] == file[i]);
+  BOOST_TEST(default_scene().atmosphere.mie.angstrom_exponent == Scene{}.atmosphere.mie.angstrom_exponent);
+}
+
+// docs/scene-keys.md is generated from the key registry (`skyspec render --help-keys=markdown`):
+// every key appears once, with the default scene's value.
+BOOST_AUTO_TEST_CASE(key_reference_lists_every_key_with_its_default) {
+  const std::string md = scene_keys_markdown();
+  for (const auto& [key, doc] : scene_key_help()) {
+    BOOST_TEST_CONTEXT(key) {
+      const std::string cell = "| `" + key + "` |";
+      BOOST_TEST(md.find(cell) != std::string::npos);
+      BOOST_TEST(md.find(cell) == md.rfind(cell));
+    }
+  }
+  BOOST_TEST(md.find("| `camera.width` | 512 |") != std::string::npos);
 }
