@@ -417,81 +417,69 @@ std::string numbers_text(std::initializer_list<double> values) {
   return text;
 }
 
-}  // namespace
 
-RenderOutputs render_scene_to_files(const Scene& scene, const ProgressFn& progress) {
-  return render_scene_to_files(scene, DisplaySettings{}, progress);
+// The exposure of the preview: the display settings', unless the scene fixes output.exposure_ev
+// (a manual exposure) while the settings say automatic; automatic exposure meters the sky first.
+struct ChosenExposure {
+  ExposureSettings settings;
+  ResolvedExposure resolved;
+};
+ChosenExposure choose_exposure(const SkyRenderer& r, const DisplaySettings& display) {
+  ChosenExposure c{display.exposure, {}};
+  if (c.settings.mode == ExposureSettings::Mode::Automatic && r.scene().output.exposure_ev) {
+    c.settings.mode = ExposureSettings::Mode::Manual;
+    c.settings.ev = *r.scene().output.exposure_ev;
+  }
+  const bool automatic = c.settings.mode == ExposureSettings::Mode::Automatic;
+  c.resolved = resolve_exposure(c.settings, automatic ? meter_before_rendering(r) : 1.0);
+  return c;
 }
 
-RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& display, const ProgressFn& progress,
-                                    const PreparedFn& prepared) {
-  const auto t_start = std::chrono::steady_clock::now();
-  RenderOutputs out;
-  ensure_writable_directory(scene.output.directory, "output.directory");
-  const std::filesystem::path dir(scene.output.directory);
-  const bool working_exr = !display.exr_space.empty();
-  if (!scene.output.exr && !scene.output.png && !working_exr)
-    throw InputError("output.exr and output.png", "false", "at least one output to be true");
-  // The display pipeline checks its names (display, view, look, working space) before rendering.
-  std::optional<DisplayPipeline> pipeline;
-  if (scene.output.png || working_exr) pipeline.emplace(display);
-
-  using Clock = std::chrono::steady_clock;
-  const auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
-  SkyRenderer r(scene);
-  out.tables_seconds = since(t_start);
-  if (prepared) prepared(r);
-  const auto t_image = Clock::now();
-  const int w = r.width(), h = r.height(), n = r.grid().size();
-  const bool rgb_fast = scene.render.path == RenderSpec::Path::RgbFast;
-
-  ExposureSettings exposure = display.exposure;
-  if (exposure.mode == ExposureSettings::Mode::Automatic && scene.output.exposure_ev) {
-    exposure.mode = ExposureSettings::Mode::Manual;
-    exposure.ev = *scene.output.exposure_ev;
-  }
-  const bool automatic = exposure.mode == ExposureSettings::Mode::Automatic;
-  const ResolvedExposure chosen = resolve_exposure(exposure, automatic ? meter_before_rendering(r) : 1.0);
-  out.preview_scale = chosen.scale;
-  out.preview_ev = chosen.ev;
-  out.exposure = chosen.description;
+// The header attributes every output file carries: skyspec:version, skyspec:scene, skyspec:data
+// (provenance.hpp), then what this render chose.
+std::map<std::string, std::string> render_provenance(const SkyRenderer& r, const ResolvedExposure& exposure,
+                                                     bool builtin_ocio_config) {
+  const Scene& scene = r.scene();
   float sun_rgb[3];
   r.spectrum_to_rgb(r.sun_irradiance().data(), sun_rgb);
-
-  // skyspec:version, skyspec:scene, skyspec:data (provenance.hpp), then what this render chose.
-  std::map<std::string, std::string> provenance = provenance_attributes(scene, pipeline && pipeline->config().is_builtin());
-  provenance["skyspec:renderPath"] = rgb_fast ? "rgb-fast" : "spectral";
+  std::map<std::string, std::string> provenance = provenance_attributes(scene, builtin_ocio_config);
+  provenance["skyspec:renderPath"] = scene.render.path == RenderSpec::Path::RgbFast ? "rgb-fast" : "spectral";
   provenance["skyspec:wavelengths"] = r.grid().describe();
-  provenance["skyspec:exposure"] = chosen.description;
-  provenance["skyspec:exposureScale"] = numbers_text({chosen.scale});
+  provenance["skyspec:exposure"] = exposure.description;
+  provenance["skyspec:exposureScale"] = numbers_text({exposure.scale});
   provenance["skyspec:sunRGB"] = numbers_text({sun_rgb[0], sun_rgb[1], sun_rgb[2]});
+  return provenance;
+}
 
-  std::unique_ptr<SpectralExrWriter> exr;
-  if (scene.output.exr) {
-    SpectralExrMetadata meta;
-    meta.strings = provenance;
-    meta.compression = scene.output.exr_compression;
-    meta.threads = thread_count(scene);
-    meta.strings["skyspec:units"] =
-        rgb_fast ? "RGB-fast path: S0 channels and R,G,B in the sun's units (spectral_irradiance x sr^-1); "
-                   "R,G,B are the 680, 550, 440 nm values read as linear Rec.709"
-                 : "S0 channels: spectral radiance, W m^-2 sr^-1 nm^-1; R,G,B: linear Rec.709 (D65) with "
-                   "Y = luminance in cd m^-2";
-    out.exr = dir / (scene.output.name + ".exr");
-    exr = std::make_unique<SpectralExrWriter>(out.exr, w, h, r.grid().nanometres(), meta);
-  }
+// The spectral EXR, opened under a temporary name (it is renamed by finish()).
+std::unique_ptr<SpectralExrWriter> open_spectral_exr(const SkyRenderer& r, const std::filesystem::path& path,
+                                                     const std::map<std::string, std::string>& provenance) {
+  const Scene& scene = r.scene();
+  SpectralExrMetadata meta;
+  meta.strings = provenance;
+  meta.compression = scene.output.exr_compression;
+  meta.threads = thread_count(scene);
+  meta.strings["skyspec:units"] =
+      scene.render.path == RenderSpec::Path::RgbFast
+          ? "RGB-fast path: S0 channels and R,G,B in the sun's units (spectral_irradiance x sr^-1); "
+            "R,G,B are the 680, 550, 440 nm values read as linear Rec.709"
+          : "S0 channels: spectral radiance, W m^-2 sr^-1 nm^-1; R,G,B: linear Rec.709 (D65) with "
+            "Y = luminance in cd m^-2";
+  return std::make_unique<SpectralExrWriter>(path, r.width(), r.height(), r.grid().nanometres(), meta);
+}
 
-  // The image goes out in bands of rows, each rendered while the one before is compressed and
-  // written (OpenEXR compresses a band's line blocks in parallel on its own threads), so that
-  // rendering and compression overlap. With render.threads = 1 nothing overlaps: each band is
-  // written on the same thread, so that the render uses one core, as asked (the writer's flush to
-  // the disk runs on a helper thread that only waits: spectral_exr.cpp). 64 rows are two PIZ
-  // or four ZIP line blocks; wide images take fewer rows so that a band stays near 64 MB.
+// Renders the image in bands of rows, each rendered while the one before is compressed and
+// written (OpenEXR compresses a band's line blocks in parallel on its own threads), so that
+// rendering and compression overlap. With render.threads = 1 nothing overlaps: each band is
+// written on the same thread, so that the render uses one core, as asked (the writer's flush to
+// the disk runs on a helper thread that only waits: spectral_exr.cpp). 64 rows are two PIZ or
+// four ZIP line blocks; wide images take fewer rows so that a band stays near 64 MB. The whole
+// image's linear RGB is kept in `rgb` when it is not empty (for the PNG and the working-space EXR).
+void render_bands(const SkyRenderer& r, SpectralExrWriter* exr, std::vector<float>& rgb, const ProgressFn& progress) {
+  const int w = r.width(), h = r.height(), n = r.grid().size();
   const size_t band_row_bytes = static_cast<size_t>(w) * static_cast<size_t>(n + 3) * sizeof(float);
   const int band = static_cast<int>(std::clamp<size_t>((size_t{64} << 20) / band_row_bytes, 8, 64));
-  // Left uninitialised (render_rows writes every value): zero-filling 11 MB here took about 8 ms
-  // of page faults on one thread before any row was rendered; render_rows's threads touch the
-  // pages first instead, in parallel.
+  // Left uninitialised: render_rows writes every value, and its threads touch the pages first.
   struct Band {
     std::unique_ptr<float[]> spectral, rgb;
   };
@@ -500,17 +488,15 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
     b.spectral.reset(new float[static_cast<size_t>(band) * w * n]);
     b.rgb.reset(new float[static_cast<size_t>(band) * w * 3]);
   }
-  std::vector<float> rgb;  // whole image, for the PNG and the working-space EXR
-  if (pipeline) rgb.resize(static_cast<size_t>(w) * h * 3);
   std::future<void> writing;  // the previous band on its way to the file
-  const bool overlap = thread_count(scene) > 1;
+  const bool overlap = r.threads() > 1;
   for (int y = 0, k = 0; y < h; y += band, k ^= 1) {
     const int rows = std::min(band, h - y);
     Band& b = bands[k];
     r.render_rows(y, rows, b.spectral.get(), b.rgb.get());
     if (writing.valid()) writing.get();  // rethrows a write error
     if (exr && overlap)
-      writing = std::async(std::launch::async, [&exr, &b, rows] { exr->write_rows(rows, b.spectral.get(), b.rgb.get()); });
+      writing = std::async(std::launch::async, [exr, &b, rows] { exr->write_rows(rows, b.spectral.get(), b.rgb.get()); });
     else if (exr)
       exr->write_rows(rows, b.spectral.get(), b.rgb.get());
     if (!rgb.empty())
@@ -518,10 +504,79 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
     if (progress) progress(y + rows, h);
   }
   if (writing.valid()) writing.get();
+}
+
+void write_preview_png(const std::filesystem::path& path, const SkyRenderer& r, const DisplayPipeline& pipeline,
+                       const DisplaySettings& display, const std::vector<float>& rgb, const ResolvedExposure& exposure,
+                       const std::map<std::string, std::string>& provenance) {
+  const std::vector<std::pair<std::string, std::string>> text = {
+      {"Software", std::string("skyspec ") + version_string()},
+      {"skyspec:display", pipeline.describe()},
+      {"skyspec:exposure", exposure.description},
+      {kVersionAttribute, provenance.at(kVersionAttribute)},
+      {kSceneAttribute, provenance.at(kSceneAttribute)},
+      {kDataAttribute, provenance.at(kDataAttribute)}};
+  write_png_display(path, r.width(), r.height(), pipeline.encode(rgb, exposure.scale), display.png_bit_depth,
+                    pipeline.png_tag(), text);
+}
+
+void write_working_space_exr(const std::filesystem::path& path, const SkyRenderer& r, const DisplayPipeline& pipeline,
+                             const WorkingSpace& space, const std::vector<float>& rgb, const ExposureSettings& exposure,
+                             std::map<std::string, std::string> strings) {
+  strings["skyspec:workingSpace"] = space.name + " (scene-linear, converted by " + pipeline.config().describe() + ")";
+  std::map<std::string, float> floats;
+  if (exposure.mode == ExposureSettings::Mode::Camera) {  // OpenEXR's standard camera attributes
+    floats["expTime"] = static_cast<float>(exposure.shutter_s);
+    floats["aperture"] = static_cast<float>(exposure.f_number);
+    floats["isoSpeed"] = static_cast<float>(exposure.iso);
+  }
+  write_rgb_exr(path, r.width(), r.height(), to_working_space(pipeline.config(), rgb, space), space.chromaticities,
+                strings, floats);
+}
+
+}  // namespace
+
+RenderOutputs render_scene_to_files(const Scene& scene, const ProgressFn& progress) {
+  return render_scene_to_files(scene, DisplaySettings{}, progress);
+}
+
+RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& display, const ProgressFn& progress,
+                                    const PreparedFn& prepared) {
+  using Clock = std::chrono::steady_clock;
+  const auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  const auto t_start = Clock::now();
+  RenderOutputs out;
+  // 1. The outputs asked for, and the display pipeline's names, are checked before rendering.
+  ensure_writable_directory(scene.output.directory, "output.directory");
+  const std::filesystem::path dir(scene.output.directory);
+  const bool working_exr = !display.exr_space.empty();
+  if (!scene.output.exr && !scene.output.png && !working_exr)
+    throw InputError("output.exr and output.png", "false", "at least one output to be true");
+  std::optional<DisplayPipeline> pipeline;
+  if (scene.output.png || working_exr) pipeline.emplace(display);
+
+  // 2. Tables, then the caller's veto (the render budget), then the exposure.
+  SkyRenderer r(scene);
+  out.tables_seconds = since(t_start);
+  if (prepared) prepared(r);
+  const auto t_image = Clock::now();
+  const ChosenExposure exposure = choose_exposure(r, display);
+  out.preview_scale = exposure.resolved.scale;
+  out.preview_ev = exposure.resolved.ev;
+  out.exposure = exposure.resolved.description;
+  const auto provenance = render_provenance(r, exposure.resolved, pipeline && pipeline->config().is_builtin());
+
+  // 3. The image, streamed into the spectral EXR band by band.
+  std::unique_ptr<SpectralExrWriter> exr;
+  if (scene.output.exr) exr = open_spectral_exr(r, out.exr = dir / (scene.output.name + ".exr"), provenance);
+  std::vector<float> rgb;
+  if (pipeline) rgb.resize(static_cast<size_t>(r.width()) * r.height() * 3);
+  render_bands(r, exr.get(), rgb, progress);
   out.image_seconds = since(t_image);
+
+  // 4. The files completed, all or nothing. Completing the EXR (its offset table, fsync, rename)
+  // waits mostly for the disk: when other files follow, it runs beside their encoding.
   const auto t_output = Clock::now();
-  // Completing the EXR (its offset table, fsync, rename) waits mostly for the disk: when other
-  // files follow, it runs beside their encoding (the display transform, PNG's deflate).
   std::future<void> committing;
   if (exr && (scene.output.png || working_exr))
     committing = std::async(std::launch::async, [&exr] { exr->finish(); });
@@ -532,29 +587,13 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
     if (scene.output.png) {
       out.png = dir / (scene.output.name + ".png");
       out.display = pipeline->describe();
-      const std::vector<std::pair<std::string, std::string>> text = {
-          {"Software", std::string("skyspec ") + version_string()},
-          {"skyspec:display", out.display},
-          {"skyspec:exposure", chosen.description},
-          {kVersionAttribute, provenance[kVersionAttribute]},
-          {kSceneAttribute, provenance[kSceneAttribute]},
-          {kDataAttribute, provenance[kDataAttribute]}};
-      write_png_display(out.png, w, h, pipeline->encode(rgb, chosen.scale), display.png_bit_depth, pipeline->png_tag(), text);
+      write_preview_png(out.png, r, *pipeline, display, rgb, exposure.resolved, provenance);
       png_done = true;
     }
     if (working_exr) {
       const WorkingSpace& space = find_working_space(display.exr_space);
       out.working_exr = dir / (scene.output.name + "-" + space.file_suffix + ".exr");
-      std::map<std::string, std::string> strings = provenance;
-      strings["skyspec:workingSpace"] = space.name + " (scene-linear, converted by " + pipeline->config().describe() + ")";
-      std::map<std::string, float> floats;
-      if (exposure.mode == ExposureSettings::Mode::Camera) {  // OpenEXR's standard camera attributes
-        floats["expTime"] = static_cast<float>(exposure.shutter_s);
-        floats["aperture"] = static_cast<float>(exposure.f_number);
-        floats["isoSpeed"] = static_cast<float>(exposure.iso);
-      }
-      write_rgb_exr(out.working_exr, w, h, to_working_space(pipeline->config(), rgb, space), space.chromaticities,
-                    strings, floats);
+      write_working_space_exr(out.working_exr, r, *pipeline, space, rgb, exposure.settings, provenance);
       working_done = true;
     }
     if (committing.valid()) {
@@ -562,9 +601,9 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
       exr_done = true;
     }
   } catch (...) {
-    // All or nothing: do not leave the files of a render whose outputs did not all arrive. The
-    // EXR's completion is waited for first (it uses `exr`); only files this render completed are
-    // removed (a failed write leaves an earlier file of that name as it was).
+    // Do not leave the files of a render whose outputs did not all arrive. The EXR's completion
+    // is waited for first (it uses `exr`); only files this render completed are removed (a failed
+    // write leaves an earlier file of that name as it was).
     if (committing.valid()) {
       try {
         committing.get();

@@ -63,14 +63,14 @@ double column_on_nodes(const DensityProfile& profile, const Eigen::ArrayXd& alt,
     const double fine = dt * (e.sum() - ends);
     const double even = Eigen::Map<const Eigen::ArrayXd, 0, Eigen::InnerStride<2>>(e.data(), segments / 2 + 1).sum();
     const double coarse = 2.0 * dt * (even - ends);
-    return std::max(0.0, (4.0 * fine - coarse) / 3.0);
+    return richardson(fine, coarse);
   }
   l.resize(n);
   log_relative_all(profile, alt, l);
   e = l.exp();
   const double fine = dt * log_mean_sum(e, l, segments, 1, terms);
   const double coarse = 2.0 * dt * log_mean_sum(e, l, segments / 2, 2, terms);
-  return std::max(0.0, (4.0 * fine - coarse) / 3.0);
+  return richardson(fine, coarse);
 }
 
 // The columns of `count` profiles along [ta, tb] of that path, on one set of nodes.

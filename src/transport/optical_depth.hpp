@@ -13,31 +13,13 @@
 
 #include "skyspec/atmosphere.hpp"
 #include "skyspec/geometry.hpp"
+#include "transport/quadrature.hpp"
 
 namespace skyspec {
 
 /// Species indices used in column arrays. Ozone absorbs only.
 enum SpeciesIndex { kRayleigh = 0, kMie = 1, kOzone = 2, kSpeciesCount = 3 };
 using Columns = std::array<double, kSpeciesCount>;
-
-/// Log-mean of two positive values a, b given x = ln a - ln b: (a - b) / x, the exact integral
-/// mean of an exponential through both (a when x -> 0). Used to integrate log-linear pieces.
-inline double log_mean(double a, double b, double x) {
-  if (x > -1e-3 && x < 1e-3) return b * (1.0 + x * (0.5 + x * (1.0 / 6.0 + x / 24.0)));
-  return (a - b) / x;
-}
-
-/// log_mean without a branch, for loops over many values that the compiler should vectorise:
-/// both forms are computed and mixed with a weight w of 0 or 1 (the division by x + w is safe
-/// either way). `series_below` is the |x| under which the series is used (1e-3 in double
-/// precision, 1e-2 in single).
-template <typename T>
-inline T log_mean_branchless(T a, T b, T x, T series_below) {
-  const T w = (x < series_below && x > -series_below) ? T(1) : T(0);
-  const T series = b * (T(1) + x * (T(0.5) + x * (T(1) / T(6) + x * (T(1) / T(24)))));
-  const T exact = (a - b) / (x + w);
-  return exact + w * (series - exact);
-}
 
 /// Distance from radius r along zenith cosine mu to the sphere of radius top_r (r <= top_r).
 /// Inline and written with selects, so that loops over many points vectorise.

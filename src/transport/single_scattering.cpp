@@ -361,167 +361,189 @@ void SingleScattering::place_nodes(const Vec3& o, const Vec3& d, const Scatterin
 
 // The integrals over the nodes for the direction d (the nodes' positions and columns may come
 // from another ray with the same altitude profile: only the sun's angle is taken from d here).
+namespace {
+
+// A piece's segment lengths, densities and log density ratios, for the fine rule (nodes k, k + 1)
+// and the coarse one (nodes 2j, 2j + 2).
+template <typename NodeT>
+void fill_piece_segments(const NodeT* nodes, int segs, PieceSegments& g) {
+  const int m = segs + 1;
+  g.segments = segs;
+  g.dt.resize(segs);
+  g.dt2.resize(segs / 2);
+  for (int sp = 0; sp < 2; ++sp) {
+    g.rho[sp].resize(m);
+    g.log_ratio[sp].resize(segs);
+    g.log_ratio2[sp].resize(segs / 2);
+    for (int k = 0; k < m; ++k) g.rho[sp][k] = static_cast<float>(nodes[k].rho[sp]);
+    for (int k = 0; k < segs; ++k) g.log_ratio[sp][k] = static_cast<float>(nodes[k].log_rho[sp] - nodes[k + 1].log_rho[sp]);
+    for (int j = 0; j < segs / 2; ++j)
+      g.log_ratio2[sp][j] = static_cast<float>(nodes[2 * j].log_rho[sp] - nodes[2 * j + 2].log_rho[sp]);
+  }
+  for (int k = 0; k < segs; ++k) g.dt[k] = static_cast<float>(nodes[k + 1].t - nodes[k].t);
+  for (int j = 0; j < segs / 2; ++j) g.dt2[j] = static_cast<float>(nodes[2 * j + 2].t - nodes[2 * j].t);
+}
+
+}  // namespace
+
+// Per thread, reused from ray to ray: [node, species] columns, [node, wavelength] arrays (or
+// [wavelength, node] with many wavelengths: by_node false, see accumulate_piece).
+struct SingleScattering::PieceScratch {
+  bool by_node = true;
+  bool ozone = false;
+  PieceSegments seg;
+  Eigen::ArrayXXf columns, view_columns;
+  NodeArray tau, trans, source;
+  std::vector<double> node_r, node_mu_sun;  // the sun columns' arguments at a piece's nodes
+  std::vector<Columns> sun;
+  Eigen::ArrayXXf source_t;  // [wavelength, node], as the source tables write it
+};
+
+// tau = sum_s beta_ext,s(l) columns[k, s] (the optical depth), as [node k, wavelength l] or [l, k].
+void SingleScattering::optical_depths(const Eigen::ArrayXXf& columns, PieceScratch& sc, NodeArray& tau) const {
+  const Eigen::Index m = columns.rows(), n = sca_rayleigh_.size();
+  if (sc.by_node) {
+    tau.resize(m, n);
+    for (Eigen::Index l = 0; l < n; ++l) {
+      tau.col(l) = columns.col(kRayleigh) * ext_[kRayleigh][l] + columns.col(kMie) * ext_[kMie][l];
+      if (sc.ozone) tau.col(l) += columns.col(kOzone) * ext_[kOzone][l];
+    }
+    return;
+  }
+  tau.resize(n, m);
+  for (Eigen::Index k = 0; k < m; ++k) {
+    tau.col(k) = ext_[kRayleigh] * columns(k, kRayleigh) + ext_[kMie] * columns(k, kMie);
+    if (sc.ozone) tau.col(k) += ext_[kOzone] * columns(k, kOzone);
+  }
+}
+
+// Single scattering on one lit piece: the integrand of species s is rho_s exp(-tau_view - tau_sun);
+// its fine and coarse log-mean sums are added to `sums` (fine R, fine M, coarse R, coarse M).
+void SingleScattering::single_scattering_piece(const Node* nodes, int m, double os, double ds, PieceScratch& sc,
+                                               Spectrum* sums[4]) const {
+  const int species = sc.ozone ? 3 : 2;
+  sc.columns.resize(m, species);
+  sc.node_r.resize(static_cast<size_t>(m));
+  sc.node_mu_sun.resize(static_cast<size_t>(m));
+  sc.sun.resize(static_cast<size_t>(m));
+  for (int k = 0; k < m; ++k) {
+    sc.node_r[static_cast<size_t>(k)] = nodes[k].r;
+    sc.node_mu_sun[static_cast<size_t>(k)] = (os + nodes[k].t * ds) / nodes[k].r;
+  }
+  sun_.at_many(m, sc.node_r.data(), sc.node_mu_sun.data(), sc.sun.data());
+  for (int k = 0; k < m; ++k)
+    for (int sp = 0; sp < species; ++sp)
+      sc.columns(k, sp) = static_cast<float>(nodes[k].col[sp] + sc.sun[static_cast<size_t>(k)][sp]);
+  optical_depths(sc.columns, sc, sc.tau);
+  sc.trans = (-sc.tau).exp();
+  accumulate(sc, sums);
+}
+
+// Higher orders on one piece: the integrand of species s is beta_sca,s rho_s exp(-tau_view) J, J
+// the higher-order source. It is integrated by the same log-mean rule as single scattering, with
+// tau' = tau_view - ln J in the place of the optical depth and T' = exp(-tau_view) J in the place
+// of the transmittance (ln of the integrand is ln rho_s - tau' + const). J is floored at a tiny
+// positive value so that its logarithm is finite where the tables hold no light.
+void SingleScattering::higher_orders_piece(const Node* nodes, int m, double os, double ds,
+                                           const InScatteringSource& higher, PieceScratch& sc, Spectrum* sums[4]) const {
+  const int species = sc.ozone ? 3 : 2;
+  const Eigen::Index n = sca_rayleigh_.size();
+  sc.view_columns.resize(m, species);
+  sc.source_t.resize(n, m);
+  for (int k = 0; k < m; ++k) {
+    for (int sp = 0; sp < species; ++sp) sc.view_columns(k, sp) = static_cast<float>(nodes[k].col[sp]);
+    higher.source(nodes[k].r, (os + nodes[k].t * ds) / nodes[k].r, sc.source_t.col(k).data());
+  }
+  if (sc.by_node)
+    sc.source = sc.source_t.transpose().max(1e-30f);
+  else
+    sc.source = sc.source_t.max(1e-30f);
+  optical_depths(sc.view_columns, sc, sc.tau);
+  sc.trans = (-sc.tau).exp() * sc.source;
+  sc.tau -= sc.source.log();
+  accumulate(sc, sums);
+}
+
+// The fine and coarse log-mean sums of the piece in `sc` (tau, trans, seg), added to `sums`.
+void SingleScattering::accumulate(PieceScratch& sc, Spectrum* sums[4]) const {
+  if (sc.by_node)
+    accumulate_piece(sc.tau, sc.trans, sc.seg, *sums[0], *sums[1], *sums[2], *sums[3]);
+  else
+    accumulate_piece_by_wavelength(sc.tau, sc.trans, sc.seg, *sums[0], *sums[1], *sums[2], *sums[3]);
+}
+
+// The ground at the ray's end: Lambertian reflection of the direct sun (order 1) and of the sky
+// (higher orders), seen through the whole view ray; added to the isotropic part.
+void SingleScattering::ground_reflection(const Node& ground, double mu_sun, const ScatteringSources& sources,
+                                         ScatteringWorkspace& ws, RadianceParts& parts) const {
+  const double R = atm_.planet_radius_m();
+  view_optical_depth(ground, ws.view_tau);
+  ws.view_trans = (-ws.view_tau).exp();
+  ws.source.setZero();
+  if (sources.single && mu_sun > 0.0) {
+    Spectrum& tau_sun = ws.ground_sun;
+    const Columns sun = sun_.at(R, mu_sun);
+    tau_sun = ext_[kRayleigh] * static_cast<float>(sun[kRayleigh]) + ext_[kMie] * static_cast<float>(sun[kMie]) +
+              ext_[kOzone] * static_cast<float>(sun[kOzone]);
+    ws.source = (-tau_sun).exp() * static_cast<float>(mu_sun);
+  }
+  if (sources.higher) {
+    sources.higher->ground_irradiance(mu_sun, ws.ground_sky.data());
+    ws.source += ws.ground_sky;
+  }
+  parts.isotropic += ws.view_trans * albedo_over_pi_ * ws.source;
+}
+
+// The optical depth of the view ray from the camera to a node.
+void SingleScattering::view_optical_depth(const Node& node, Spectrum& tau) const {
+  tau = ext_[kRayleigh] * static_cast<float>(node.col[kRayleigh]) + ext_[kMie] * static_cast<float>(node.col[kMie]);
+  if (atm_.ozone().enabled()) tau += ext_[kOzone] * static_cast<float>(node.col[kOzone]);
+}
+
+// The radiance parts of one traced ray: the log-mean sums over its pieces (single scattering on
+// the lit ones, higher orders on all), Richardson-extrapolated, then the transmittance and the
+// ground's reflection at its end.
 void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, const Vec3& s,
                                  const ScatteringSources& sources, ScatteringWorkspace& ws, RadianceParts& parts) const {
   parts.rayleigh.setZero();
   parts.mie.setZero();
   parts.isotropic.setZero();
-  const double R = atm_.planet_radius_m();
-  const bool ozone = atm_.ozone().enabled();
   const bool higher = sources.higher != nullptr;
   const double os = o.dot(s), ds = d.dot(s);
-  auto mu_sun = [&](const Node& n) { return (os + n.t * ds) / n.r; };
-  auto view_tau = [&](const Node& n, Spectrum& tau) {
-    tau = ext_[kRayleigh] * static_cast<float>(n.col[kRayleigh]) + ext_[kMie] * static_cast<float>(n.col[kMie]);
-    if (ozone) tau += ext_[kOzone] * static_cast<float>(n.col[kOzone]);
-  };
-  ws.sum_rayleigh.setZero();
-  ws.sum_mie.setZero();
-  ws.coarse_rayleigh.setZero();
-  ws.coarse_mie.setZero();
-  ws.sum_ms_rayleigh.setZero();
-  ws.sum_ms_mie.setZero();
-  ws.coarse_ms_rayleigh.setZero();
-  ws.coarse_ms_mie.setZero();
+  for (Spectrum* sum : {&ws.sum_rayleigh, &ws.sum_mie, &ws.coarse_rayleigh, &ws.coarse_mie, &ws.sum_ms_rayleigh,
+                        &ws.sum_ms_mie, &ws.coarse_ms_rayleigh, &ws.coarse_ms_mie})
+    sum->setZero();
+  Spectrum* single_sums[4] = {&ws.sum_rayleigh, &ws.sum_mie, &ws.coarse_rayleigh, &ws.coarse_mie};
+  Spectrum* higher_sums[4] = {&ws.sum_ms_rayleigh, &ws.sum_ms_mie, &ws.coarse_ms_rayleigh, &ws.coarse_ms_mie};
 
-  // Per thread, reused from ray to ray: [node, species] columns, [node, wavelength] arrays.
-  struct Scratch {
-    PieceSegments seg;
-    Eigen::ArrayXXf columns, view_columns;
-    NodeArray tau, trans, source;
-    std::vector<double> node_r, node_mu_sun;  // the sun columns' arguments at a piece's nodes
-    std::vector<Columns> sun;
-    Eigen::ArrayXXf source_t;  // [wavelength, node], as the source tables write it
-  };
-  thread_local Scratch sc;
-  const Eigen::Index n = sca_rayleigh_.size();
-  const int species = ozone ? 3 : 2;
-  const bool by_node = n < kWavelengthsForWavelengthLoops;  // the arrays' layout, see accumulate_piece
-  // tau = sum_s beta_ext,s(l) columns[k, s], as [node k, wavelength l] or [l, k].
-  auto optical_depths = [&](const Eigen::ArrayXXf& columns, NodeArray& tau) {
-    const Eigen::Index m = columns.rows();
-    if (by_node) {
-      tau.resize(m, n);
-      for (Eigen::Index l = 0; l < n; ++l) {
-        tau.col(l) = columns.col(kRayleigh) * ext_[kRayleigh][l] + columns.col(kMie) * ext_[kMie][l];
-        if (ozone) tau.col(l) += columns.col(kOzone) * ext_[kOzone][l];
-      }
-      return;
-    }
-    tau.resize(n, m);
-    for (Eigen::Index k = 0; k < m; ++k) {
-      tau.col(k) = ext_[kRayleigh] * columns(k, kRayleigh) + ext_[kMie] * columns(k, kMie);
-      if (ozone) tau.col(k) += ext_[kOzone] * columns(k, kOzone);
-    }
-  };
-  auto accumulate = [&](PieceSegments& g, Spectrum& fine_r, Spectrum& fine_m, Spectrum& coarse_r, Spectrum& coarse_m) {
-    if (by_node)
-      accumulate_piece(sc.tau, sc.trans, g, fine_r, fine_m, coarse_r, coarse_m);
-    else
-      accumulate_piece_by_wavelength(sc.tau, sc.trans, g, fine_r, fine_m, coarse_r, coarse_m);
-  };
-
+  thread_local PieceScratch sc;
+  sc.ozone = atm_.ozone().enabled();
+  sc.by_node = sca_rayleigh_.size() < kWavelengthsForWavelengthLoops;
   for (int i = 0; i < ray.n_pieces; ++i) {
     const Piece& pc = ray.pieces[i];
     const bool single_here = sources.single && pc.lit;
     if (!single_here && !higher) continue;  // nothing to collect: its nodes only carried the columns
     const Node* nodes = ray.nodes.data() + pc.first_node;
-    const int segs = pc.segments, m = segs + 1;
-    PieceSegments& g = sc.seg;
-    g.segments = segs;
-    g.dt.resize(segs);
-    g.dt2.resize(segs / 2);
-    for (int sp = 0; sp < 2; ++sp) {
-      g.rho[sp].resize(m);
-      g.log_ratio[sp].resize(segs);
-      g.log_ratio2[sp].resize(segs / 2);
-      for (int k = 0; k < m; ++k) g.rho[sp][k] = static_cast<float>(nodes[k].rho[sp]);
-      for (int k = 0; k < segs; ++k)
-        g.log_ratio[sp][k] = static_cast<float>(nodes[k].log_rho[sp] - nodes[k + 1].log_rho[sp]);
-      for (int j = 0; j < segs / 2; ++j)
-        g.log_ratio2[sp][j] = static_cast<float>(nodes[2 * j].log_rho[sp] - nodes[2 * j + 2].log_rho[sp]);
-    }
-    for (int k = 0; k < segs; ++k) g.dt[k] = static_cast<float>(nodes[k + 1].t - nodes[k].t);
-    for (int j = 0; j < segs / 2; ++j) g.dt2[j] = static_cast<float>(nodes[2 * j + 2].t - nodes[2 * j].t);
-
-    if (single_here) {
-      // Columns along the view ray plus to the sun, at every node.
-      sc.columns.resize(m, species);
-      sc.node_r.resize(static_cast<size_t>(m));
-      sc.node_mu_sun.resize(static_cast<size_t>(m));
-      sc.sun.resize(static_cast<size_t>(m));
-      for (int k = 0; k < m; ++k) {
-        sc.node_r[static_cast<size_t>(k)] = nodes[k].r;
-        sc.node_mu_sun[static_cast<size_t>(k)] = mu_sun(nodes[k]);
-      }
-      sun_.at_many(m, sc.node_r.data(), sc.node_mu_sun.data(), sc.sun.data());
-      for (int k = 0; k < m; ++k)
-        for (int sp = 0; sp < species; ++sp)
-          sc.columns(k, sp) = static_cast<float>(nodes[k].col[sp] + sc.sun[static_cast<size_t>(k)][sp]);
-      optical_depths(sc.columns, sc.tau);
-      sc.trans = (-sc.tau).exp();
-      accumulate(g, ws.sum_rayleigh, ws.sum_mie, ws.coarse_rayleigh, ws.coarse_mie);
-    }
-    if (higher) {
-      // Higher orders: the integrand of species s is beta_sca,s rho_s exp(-tau_view) J, J the
-      // higher-order source. It is integrated by the same log-mean rule as single scattering, with
-      // tau' = tau_view - ln J in the place of the optical depth and T' = exp(-tau_view) J in the
-      // place of the transmittance (ln of the integrand is ln rho_s - tau' + const). J is floored
-      // at a tiny positive value so that its logarithm is finite where the tables hold no light.
-      sc.view_columns.resize(m, species);
-      sc.source_t.resize(n, m);
-      for (int k = 0; k < m; ++k) {
-        for (int sp = 0; sp < species; ++sp) sc.view_columns(k, sp) = static_cast<float>(nodes[k].col[sp]);
-        sources.higher->source(nodes[k].r, mu_sun(nodes[k]), sc.source_t.col(k).data());
-      }
-      if (by_node)
-        sc.source = sc.source_t.transpose().max(1e-30f);
-      else
-        sc.source = sc.source_t.max(1e-30f);
-      optical_depths(sc.view_columns, sc.tau);
-      sc.trans = (-sc.tau).exp() * sc.source;
-      sc.tau -= sc.source.log();
-      accumulate(g, ws.sum_ms_rayleigh, ws.sum_ms_mie, ws.coarse_ms_rayleigh, ws.coarse_ms_mie);
-    }
+    fill_piece_segments(nodes, pc.segments, sc.seg);
+    if (single_here) single_scattering_piece(nodes, pc.segments + 1, os, ds, sc, single_sums);
+    if (higher) higher_orders_piece(nodes, pc.segments + 1, os, ds, *sources.higher, sc, higher_sums);
   }
 
-  // Richardson extrapolation: each rule's error is O(dt^2), so (4 fine - coarse) / 3 cancels the
-  // leading term. Clamped at 0 in case a coarse pair is far off (it never is for smooth integrands).
   if (sources.single) {
-    parts.rayleigh = sca_rayleigh_ * ((4.0f * ws.sum_rayleigh - ws.coarse_rayleigh) * (1.0f / 3.0f)).max(0.0f);
-    parts.mie = sca_mie_ * ((4.0f * ws.sum_mie - ws.coarse_mie) * (1.0f / 3.0f)).max(0.0f);
+    parts.rayleigh = sca_rayleigh_ * richardson(ws.sum_rayleigh, ws.coarse_rayleigh);
+    parts.mie = sca_mie_ * richardson(ws.sum_mie, ws.coarse_mie);
   }
   if (higher)
-    parts.isotropic = sca_rayleigh_ * ((4.0f * ws.sum_ms_rayleigh - ws.coarse_ms_rayleigh) * (1.0f / 3.0f)).max(0.0f) +
-                      sca_mie_ * ((4.0f * ws.sum_ms_mie - ws.coarse_ms_mie) * (1.0f / 3.0f)).max(0.0f);
+    parts.isotropic = sca_rayleigh_ * richardson(ws.sum_ms_rayleigh, ws.coarse_ms_rayleigh) +
+                      sca_mie_ * richardson(ws.sum_ms_mie, ws.coarse_ms_mie);
 
   const Node& last = ray.nodes.back();
   if (sources.transmittance) {
-    view_tau(last, ws.view_tau);
+    view_optical_depth(last, ws.view_tau);
     *sources.transmittance = (-ws.view_tau).exp();
   }
-
-  // The ground: Lambertian reflection of the direct sun (order 1) and of the sky (higher orders),
-  // seen through the whole view ray.
-  if (ray.hits_ground && albedo_over_pi_.maxCoeff() > 0.0f) {
-    const Node& g = last;  // the last node is the ground point
-    const double g_mu_sun = mu_sun(g);
-    view_tau(g, ws.view_tau);
-    ws.view_trans = (-ws.view_tau).exp();
-    ws.source.setZero();
-    if (sources.single && g_mu_sun > 0.0) {
-      Spectrum& tau_sun = ws.ground_sun;
-      const Columns sun = sun_.at(R, g_mu_sun);
-      tau_sun = ext_[kRayleigh] * static_cast<float>(sun[kRayleigh]) + ext_[kMie] * static_cast<float>(sun[kMie]) +
-                ext_[kOzone] * static_cast<float>(sun[kOzone]);
-      ws.source = (-tau_sun).exp() * static_cast<float>(g_mu_sun);
-    }
-    if (higher) {
-      sources.higher->ground_irradiance(g_mu_sun, ws.ground_sky.data());
-      ws.source += ws.ground_sky;
-    }
-    parts.isotropic += ws.view_trans * albedo_over_pi_ * ws.source;
-  }
+  if (ray.hits_ground && albedo_over_pi_.maxCoeff() > 0.0f)  // the last node is the ground point
+    ground_reflection(last, (os + last.t * ds) / last.r, sources, ws, parts);
 }
 
 void SingleScattering::radiance_parts(const Vec3& o, const Vec3& d, const Vec3& s, const ScatteringSources& sources,

@@ -168,6 +168,16 @@ class SingleScattering {
   void place_nodes(const Vec3& o, const Vec3& d, const ScatteringSources& sources, Ray& ray) const;
   void integrate(const Ray& ray, const Vec3& o, const Vec3& d, const Vec3& s, const ScatteringSources& sources,
                  ScatteringWorkspace& ws, RadianceParts& parts) const;
+  // integrate's steps, one piece of a ray at a time (PieceScratch: per-thread arrays).
+  struct PieceScratch;
+  void optical_depths(const Eigen::ArrayXXf& columns, PieceScratch& sc, Eigen::ArrayXXf& tau) const;
+  void single_scattering_piece(const Node* nodes, int m, double os, double ds, PieceScratch& sc, Spectrum* sums[4]) const;
+  void higher_orders_piece(const Node* nodes, int m, double os, double ds, const InScatteringSource& higher,
+                           PieceScratch& sc, Spectrum* sums[4]) const;
+  void accumulate(PieceScratch& sc, Spectrum* sums[4]) const;
+  void ground_reflection(const Node& ground, double mu_sun, const ScatteringSources& sources, ScatteringWorkspace& ws,
+                         RadianceParts& parts) const;
+  void view_optical_depth(const Node& node, Spectrum& tau) const;
 };
 
 }  // namespace skyspec
