@@ -34,11 +34,14 @@ werror_flag() {
   if [ "${CI:-}" = true ]; then echo -DSKYSPEC_WERROR=ON; else echo -DSKYSPEC_WERROR=OFF; fi
 }
 
+# build [TARGET...]: configures build/ (Release) if needed, then builds the targets (all without any).
 build() {
   if [ ! -f build/CMakeCache.txt ] || [ "${CI:-}" = true ]; then
     cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "$(werror_flag)" >&2
   fi
-  cmake --build build -j"$(nproc)" >&2
+  local targets=()
+  for t in "$@"; do targets+=(--target "$t"); done
+  cmake --build build -j"$(nproc)" "${targets[@]}" >&2
 }
 
 # The same sources built with AddressSanitizer + UndefinedBehaviorSanitizer in build-asan/
@@ -59,7 +62,7 @@ build_sanitized() {
 # The fuzz targets (tests/fuzz/) with clang's libFuzzer, ASan and UBSan in build-fuzz/: only the
 # library, the CLI's internal library and the two fuzzers are built, not the test suites.
 # SKYSPEC_FUZZ_SECONDS (default 60) is how long each CTest fuzz_* test fuzzes. -O1 with line
-# tables only: symbolised reports for a fifth less compile time than -O2 -g.
+# tables only: symbolised reports at a lower compile cost than -O2 -g.
 build_fuzz() {
   if [ ! -f build-fuzz/CMakeCache.txt ] || [ "${CI:-}" = true ] || [ -n "${SKYSPEC_FUZZ_SECONDS:-}" ]; then
     cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=RelWithDebInfo \
