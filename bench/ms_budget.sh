@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The multiple-scattering figures of the README (section "Beyond single scattering"): how much
+# The multiple-scattering figures of docs/physics.md (section "Beyond single scattering"): how much
 # stopping at 6 orders and the default 24 x 48 tables change the default scene, per wavelength,
 # and what the higher orders add at the zenith. About a minute on 2 cores.
 #

@@ -4,7 +4,7 @@
 // total colour difference Delta E_00 (CIE 142-2001; ISO/CIE 11664-6:2014) as written out, with its
 // hue-angle conventions, by Sharma, Wu & Dalal 2005, "The CIEDE2000 color-difference formula:
 // implementation notes, supplementary test data, and mathematical observations", Color Research &
-// Application 30(1), 21-30, equations (1)-(24). tests/test_ciede2000.cpp checks the 34 pairs of
+// Application 30(1), 21-30, equations (1)-(24). tests/colour/test_ciede2000.cpp checks the 34 pairs of
 // the paper's Table 1 (tests/data/ciede2000_sharma2005.csv).
 #pragma once
 

@@ -1,4 +1,4 @@
-// The polynomial atan2 of the per-pixel path (src/fast_atan2.hpp) against libm's.
+// The polynomial atan2 of the per-pixel path (src/base/fast_atan2.hpp) against libm's.
 #define BOOST_TEST_MODULE fast_atan2
 #include <boost/test/unit_test.hpp>
 
