@@ -1,9 +1,9 @@
-// atan2 for the per-pixel hot path, about eight times cheaper than libm's correctly rounded one.
+// atan2 for the per-pixel hot path: a polynomial, cheaper than libm's correctly rounded one.
 //
 // Octant reduction to a = min(|x|, |y|) / max(|x|, |y|) in [0, 1], then atan(a) by an odd
 // polynomial of degree 19 fitted to atan on [0, 1] for the smallest largest error (Lawson's
-// iteratively reweighted least squares on 6000 Chebyshev nodes, numpy, 2026-11-30). Its largest
-// error is 8.9e-10 rad (tests/test_fast_atan2.cpp checks 1e-9 over all quadrants): two hundred
+// iteratively reweighted least squares on 6000 Chebyshev nodes). Its largest
+// error is 8.9e-10 rad (tests/base/test_fast_atan2.cpp checks 1e-9 over all quadrants): two hundred
 // times finer than anything the sky-view table resolves (its finest row spacing is about 1e-4
 // rad), and far coarser than libm's, so it is used only where angles index a table.
 #pragma once

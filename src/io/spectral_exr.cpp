@@ -136,9 +136,9 @@ class StdioOStream : public Imf::OStream {
   }
   /// Hands what has been written so far to the kernel and has a helper thread flush it to the
   /// disk (fdatasync) while the caller goes on with the next rows. The fsync when the file is
-  /// committed then finds little left to write: on this project's 2-core VM it took
-  /// 0.035 s for a 26 MB EXR after asynchronous writeback hints (sync_file_range) alone, because
-  /// the disk's cache flush waits for all the data since the last flush. The helper only waits for
+  /// committed then finds little left to write; asynchronous writeback hints (sync_file_range)
+  /// alone do not achieve that, because a disk's cache flush waits for all the data since the
+  /// last flush (docs/performance.md has the measurement). The helper only waits for
   /// the disk (no CPU time), so a one-thread render still computes on one core. While the
   /// previous flush runs, none is started (small fast bands would otherwise wait for the disk):
   /// the next one, or the commit's fsync, takes these rows. A flush error is reported by the next

@@ -79,9 +79,9 @@ RenderEstimate estimate_render(const RenderPlan& plan);
 /// When a row would take over a second even so, the cost of radiance() (every pixel marched),
 /// timed on up to 64 pixels spread over the image, is scaled instead. With a spectral EXR, the
 /// cost of compressing a rendered row into one (encoded in memory) is added. Building the
-/// renderer and the PNG are not included. Takes at most about 0.1 s: with a sky-view table, about
-/// 1 ms for the seed preset (3 wavelengths) and 0.016-0.021 s at 41 wavelengths with PIZ, nearly
-/// all of it the compression of the sample (measured 2026-11-30 on the 2-core machine).
+/// renderer and the PNG are not included. The sample is a row or two, so the estimate costs a
+/// small fraction of a render; with many wavelengths most of it is the compression of the sample
+/// (docs/performance.md).
 double measure_render_seconds(const SkyRenderer& renderer, const RenderPlan& plan);
 
 /// Throws InputError::refused naming every limit exceeded, the estimate and `force_flag`.

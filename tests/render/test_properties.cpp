@@ -194,5 +194,4 @@ BOOST_AUTO_TEST_CASE(radiance_is_finite_non_negative_and_bounded) {
   BOOST_TEST_MESSAGE(cases << " scenes, " << checked << " spectra checked in " << seconds
                            << " s; largest L / bound: single scattering " << worst_ratio
                            << ", 2-3 orders (not asserted) " << worst_ratio_ms);
-  BOOST_TEST(seconds < 60.0);  // ~6 s optimised, ~17 s under ASan+UBSan on 2 cores
 }
