@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE atomic_file
 #include <boost/test/unit_test.hpp>
 
 #include <unistd.h>
@@ -13,6 +12,8 @@
 #include "scratch_folder.hpp"
 #include "skyspec/error.hpp"
 #include "io/png_image.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_atomic_file)
 
 using namespace skyspec;
 using skyspec::test::ScratchFolder;
@@ -132,3 +133,5 @@ BOOST_AUTO_TEST_CASE(png_preview_is_written_atomically) {
   BOOST_CHECK_THROW(write_png_srgb8(bad, width, height, std::vector<float>(5), 1.0), IoError);
   BOOST_TEST(dir.entries() == std::vector<std::string>{"preview.png"});
 }
+
+BOOST_AUTO_TEST_SUITE_END()  // test_atomic_file

@@ -1,11 +1,12 @@
 // The polynomial atan2 of the per-pixel path (src/base/fast_atan2.hpp) against libm's.
-#define BOOST_TEST_MODULE fast_atan2
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
 #include <random>
 
 #include "base/fast_atan2.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_fast_atan2)
 
 using skyspec::detail::fast_atan2;
 
@@ -47,3 +48,5 @@ BOOST_AUTO_TEST_CASE(axes_and_diagonals_exact_enough) {
   }
   BOOST_TEST(monotone);
 }
+
+BOOST_AUTO_TEST_SUITE_END()  // test_fast_atan2

@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE tabulated_spectrum
 #include <boost/test/unit_test.hpp>
 
 // Spectral tables as functions of wavelength: exact integrals of the two readings (samples joined
@@ -12,6 +11,8 @@
 
 #include "skyspec/error.hpp"
 #include "base/tabulated_spectrum.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_tabulated_spectrum)
 
 using namespace skyspec;
 
@@ -175,3 +176,5 @@ BOOST_AUTO_TEST_CASE(a_grid_outside_the_table_is_an_input_error) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE_END()  // test_tabulated_spectrum

@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE ciede2000
 #include <boost/test/unit_test.hpp>
 
 #include <algorithm>
@@ -11,6 +10,8 @@
 #include "colour/chromatic_adaptation.hpp"
 #include "colour/ciede2000.hpp"
 #include "skyspec/colour.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_ciede2000)
 
 using namespace skyspec;
 
@@ -122,3 +123,5 @@ BOOST_AUTO_TEST_CASE(white_maps_to_white) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE_END()  // test_ciede2000

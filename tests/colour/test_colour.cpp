@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE colour
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
@@ -7,6 +6,8 @@
 #include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/spectrum.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_colour)
 
 using namespace skyspec;
 
@@ -291,3 +292,5 @@ BOOST_AUTO_TEST_CASE(chromaticity_of_xyz) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE_END()  // test_colour

@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE display_pipeline
 #include <boost/test/unit_test.hpp>
 
 #include <ImfChromaticities.h>
@@ -23,6 +22,8 @@
 #include "io/png_image.hpp"
 #include "io/rgb_exr.hpp"
 #include "colour/tone_mapping.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_display_pipeline)
 
 using namespace skyspec;
 using skyspec::test::ScratchFolder;
@@ -397,3 +398,5 @@ BOOST_AUTO_TEST_CASE(png_bit_depth_and_colour_chunks) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE_END()  // test_display_pipeline

@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE exposure
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
@@ -7,6 +6,8 @@
 
 #include "skyspec/error.hpp"
 #include "colour/exposure.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_exposure)
 
 using namespace skyspec;
 
@@ -83,3 +84,5 @@ BOOST_AUTO_TEST_CASE(resolved_descriptions) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE_END()  // test_exposure

@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE tone_mapping
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
@@ -6,6 +5,8 @@
 
 #include "colour/exposure.hpp"
 #include "colour/tone_mapping.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_tone_mapping)
 
 using namespace skyspec;
 
@@ -74,3 +75,5 @@ BOOST_AUTO_TEST_CASE(names) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE_END()  // test_tone_mapping

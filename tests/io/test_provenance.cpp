@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE provenance
 #include <boost/test/unit_test.hpp>
 
 #include <fstream>
@@ -9,6 +8,8 @@
 #include "io/provenance.hpp"
 #include "scene_fixtures.hpp"
 #include "skyspec/scene.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_provenance)
 
 using namespace skyspec;
 using skyspec::test::contains;
@@ -55,3 +56,5 @@ BOOST_AUTO_TEST_CASE(scene_text_reads_back_exactly) {
   // Short values stay short.
   BOOST_TEST(contains(scene_to_toml(s), "azimuth_deg = 0.1\n"));
 }
+
+BOOST_AUTO_TEST_SUITE_END()  // test_provenance

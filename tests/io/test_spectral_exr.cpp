@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE spectral_exr
 #include <boost/test/unit_test.hpp>
 
 #include <ImfChannelList.h>
@@ -27,6 +26,8 @@
 #include "io/png_image.hpp"
 #include "io/spectral_exr.hpp"
 #include "io/spectral_exr_encode.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_spectral_exr)
 
 using namespace skyspec;
 using skyspec::test::ScratchFolder;
@@ -371,3 +372,5 @@ BOOST_AUTO_TEST_CASE(exrheader_and_oiiotool_read_the_files) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE_END()  // test_spectral_exr

@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE date_time
 #include <boost/test/unit_test.hpp>
 
 // ISO 8601 date-times with a UTC offset, calendar rules and the Julian day (Meeus 1998, ch. 7,
@@ -9,6 +8,8 @@
 
 #include "physics/date_time.hpp"
 #include "skyspec/error.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_date_time)
 
 using namespace skyspec;
 
@@ -146,3 +147,5 @@ BOOST_AUTO_TEST_CASE(adding_time_crosses_days_months_and_years) {
   BOOST_TEST(back.hour == 23);
   BOOST_TEST(back.minute == 50);
 }
+
+BOOST_AUTO_TEST_SUITE_END()  // test_date_time

@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE ozone
 #include <boost/test/unit_test.hpp>
 
 // Ozone: the Chappuis band of the 233 K cross-section table (Serdyuchenko et al. 2014, 10 nm bin
@@ -12,6 +11,8 @@
 #include "skyspec/error.hpp"
 #include "physics/ozone.hpp"
 #include "skyspec/units.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_ozone)
 
 using namespace skyspec;
 
@@ -138,3 +139,5 @@ BOOST_AUTO_TEST_CASE(vertical_optical_depth_at_600_nm) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE_END()  // test_ozone

@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE phase_function
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
@@ -6,6 +5,8 @@
 
 #include "skyspec/phase_function.hpp"
 #include "skyspec/units.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_phase_function)
 
 using namespace skyspec;
 
@@ -51,3 +52,5 @@ BOOST_AUTO_TEST_CASE(forward_peak_for_positive_g) {
   const AerosolPhase hg{AerosolPhase::Model::HenyeyGreenstein, 0.76};
   BOOST_TEST(hg(1.0) == (1 + 0.76) / (4 * kPi * (1 - 0.76) * (1 - 0.76)), boost::test_tools::tolerance(1e-12));
 }
+
+BOOST_AUTO_TEST_SUITE_END()  // test_phase_function

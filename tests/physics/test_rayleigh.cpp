@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE rayleigh
 #include <boost/test/unit_test.hpp>
 
 // Rayleigh scattering of dry air against published figures (Bodhaine et al. 1999, J. Atmos.
@@ -16,6 +15,8 @@
 #include "skyspec/king_factor.hpp"
 #include "skyspec/rayleigh.hpp"
 #include "skyspec/refractive_index.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_rayleigh)
 
 using namespace skyspec;
 
@@ -256,3 +257,5 @@ BOOST_AUTO_TEST_CASE(air_composition) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE_END()  // test_rayleigh

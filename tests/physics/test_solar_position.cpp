@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE solar_position
 #include <boost/test/unit_test.hpp>
 
 // The Solar Position Algorithm against the worked example of Reda & Andreas (NREL/TP-560-34302,
@@ -15,6 +14,8 @@
 #include "physics/date_time.hpp"
 #include "skyspec/error.hpp"
 #include "physics/solar_position.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_solar_position)
 
 using namespace skyspec;
 
@@ -303,3 +304,5 @@ BOOST_AUTO_TEST_CASE(out_of_range_inputs_name_the_setting) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE_END()  // test_solar_position

@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE solar_spectrum
 #include <boost/test/unit_test.hpp>
 
 // The extraterrestrial solar spectrum (ASTM G173-03, ETR column): the transcription against
@@ -13,6 +12,8 @@
 
 #include "skyspec/error.hpp"
 #include "physics/solar_spectrum.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_solar_spectrum)
 
 using namespace skyspec;
 
@@ -173,3 +174,5 @@ BOOST_AUTO_TEST_CASE(distance_scaling) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE_END()  // test_solar_spectrum

@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE standard_atmosphere
 #include <boost/test/unit_test.hpp>
 
 // U.S. Standard Atmosphere 1976, computed from its layer definition, against the values printed
@@ -10,6 +9,8 @@
 
 #include "skyspec/error.hpp"
 #include "skyspec/standard_atmosphere.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_standard_atmosphere)
 
 using namespace skyspec;
 
@@ -135,3 +136,5 @@ BOOST_AUTO_TEST_CASE(range_ends_and_outside) {
     }
   }
 }
+
+BOOST_AUTO_TEST_SUITE_END()  // test_standard_atmosphere

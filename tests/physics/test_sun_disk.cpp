@@ -1,10 +1,11 @@
-#define BOOST_TEST_MODULE sun_disk
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
 
 #include "physics/sun_disk.hpp"
 #include "skyspec/units.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_sun_disk)
 
 using namespace skyspec;
 
@@ -37,3 +38,5 @@ BOOST_AUTO_TEST_CASE(disk_integrates_to_the_irradiance) {
   disk_radiance_per_irradiance(grid, theta, 1.5, L);
   BOOST_TEST(L.maxCoeff() == 0.0f);
 }
+
+BOOST_AUTO_TEST_SUITE_END()  // test_sun_disk

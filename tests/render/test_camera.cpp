@@ -1,5 +1,4 @@
 // Cameras (camera.hpp): each projection maps pixels to the directions its definition gives.
-#define BOOST_TEST_MODULE camera
 #include <boost/test/unit_test.hpp>
 
 #include <algorithm>
@@ -9,6 +8,8 @@
 
 #include "skyspec/camera.hpp"
 #include "skyspec/units.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_camera)
 
 using namespace skyspec;
 
@@ -115,3 +116,5 @@ BOOST_AUTO_TEST_CASE(lowest_cosine_bounds_the_pixels) {
       }
     }
 }
+
+BOOST_AUTO_TEST_SUITE_END()  // test_camera

@@ -4,7 +4,6 @@
 // below the horizon, and rays grazing the ground and the top of the atmosphere. Every radiance
 // must be finite, >= 0 and below an energy bound (derived below). The RNG is seeded, so a failure
 // is reproducible; the case's scene is printed with it.
-#define BOOST_TEST_MODULE properties
 #include <boost/test/unit_test.hpp>
 
 #include <algorithm>
@@ -20,6 +19,8 @@
 #include "skyspec/render.hpp"
 #include "skyspec/scene.hpp"
 #include "skyspec/units.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_properties)
 
 using namespace skyspec;
 
@@ -195,3 +196,5 @@ BOOST_AUTO_TEST_CASE(radiance_is_finite_non_negative_and_bounded) {
                            << " s; largest L / bound: single scattering " << worst_ratio
                            << ", 2-3 orders (not asserted) " << worst_ratio_ms);
 }
+
+BOOST_AUTO_TEST_SUITE_END()  // test_properties

@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE render_budget
 #include <boost/test/unit_test.hpp>
 
 #include <algorithm>
@@ -10,6 +9,8 @@
 #include "render/render_budget.hpp"
 #include "scene_fixtures.hpp"
 #include "skyspec/scene.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_render_budget)
 
 using namespace skyspec;
 using skyspec::test::contains;
@@ -125,3 +126,5 @@ BOOST_AUTO_TEST_CASE(measured_time_scales_with_pixels_frames_and_threads) {
   BOOST_TEST(many / one > 500.0 / 3);
   BOOST_TEST(many / one < 500.0 * 3);
 }
+
+BOOST_AUTO_TEST_SUITE_END()  // test_render_budget

@@ -1,7 +1,6 @@
 // The cache key of the scattering-order tables: a hash of exactly the physical inputs they depend
 // on. Changing any such input gives a new key; changing the sun, the camera, the exposure or the
 // outputs does not; the key carries no build stamp (the same scene gives the same key).
-#define BOOST_TEST_MODULE scene_tables
 #include <boost/test/unit_test.hpp>
 
 #include <string>
@@ -9,6 +8,8 @@
 
 #include "render/scene_tables.hpp"
 #include "scene_fixtures.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_scene_tables)
 
 using namespace skyspec;
 
@@ -83,3 +84,5 @@ BOOST_AUTO_TEST_CASE(sun_camera_exposure_and_outputs_leave_the_key_alone) {
     BOOST_TEST_CONTEXT(change) { BOOST_TEST(key_of(change).hash == base.hash); }
   }
 }
+
+BOOST_AUTO_TEST_SUITE_END()  // test_scene_tables

@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE seed_agreement
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
@@ -10,6 +9,8 @@
 #include "skyspec/render.hpp"
 #include "skyspec/scene.hpp"
 #include "transport/single_scattering.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_seed_agreement)
 
 using namespace skyspec;
 
@@ -61,3 +62,5 @@ BOOST_AUTO_TEST_CASE(seed_preset_matches_converged_baseline) {
   BOOST_TEST_MESSAGE("seed agreement: mean relative difference " << sum / compared << ", worst " << worst);
   BOOST_TEST(sum / compared < 3e-4);
 }
+
+BOOST_AUTO_TEST_SUITE_END()  // test_seed_agreement

@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE coefficient_report
 #include <boost/test/unit_test.hpp>
 
 // The coefficient derivation report: its comparisons with published tables (Bodhaine et al. 1999,
@@ -20,6 +19,8 @@
 #include "skyspec/scene.hpp"
 #include "skyspec/standard_atmosphere.hpp"
 #include "skyspec/units.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_coefficient_report)
 
 using namespace skyspec;
 
@@ -361,3 +362,5 @@ BOOST_AUTO_TEST_CASE(every_format_is_complete) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE_END()  // test_coefficient_report

@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE sky_comparison
 #include <boost/test/unit_test.hpp>
 
 #include <nlohmann/json.hpp>
@@ -15,6 +14,8 @@
 #include "report/comparison_report.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/sky_comparison.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_sky_comparison)
 
 using namespace skyspec;
 using skyspec::test::ScratchFolder;
@@ -219,3 +220,5 @@ BOOST_AUTO_TEST_CASE(markdown_json_and_pictures) {
 }
 
 BOOST_AUTO_TEST_SUITE_END()
+
+BOOST_AUTO_TEST_SUITE_END()  // test_sky_comparison

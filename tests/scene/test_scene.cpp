@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE scene
 #include <boost/test/unit_test.hpp>
 
 #include <algorithm>
@@ -8,6 +7,8 @@
 
 #include "skyspec/error.hpp"
 #include "skyspec/scene.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_scene)
 
 using namespace skyspec;
 
@@ -251,3 +252,5 @@ BOOST_AUTO_TEST_CASE(key_reference_lists_every_key_with_its_default) {
   }
   BOOST_TEST(md.find("| `camera.width` | 512 |") != std::string::npos);
 }
+
+BOOST_AUTO_TEST_SUITE_END()  // test_scene

@@ -1,10 +1,11 @@
-#define BOOST_TEST_MODULE geometry
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
 #include <random>
 
 #include "skyspec/geometry.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_geometry)
 
 using namespace skyspec;
 
@@ -124,3 +125,5 @@ BOOST_AUTO_TEST_CASE(shadow_matches_sun_ray_test_at_random_points) {
   }
   BOOST_TEST(checked > 10000);
 }
+
+BOOST_AUTO_TEST_SUITE_END()  // test_geometry

@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE multiple_scattering
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
@@ -13,6 +12,8 @@
 #include "skyspec/camera.hpp"
 #include "transport/multiple_scattering.hpp"
 #include "skyspec/units.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_multiple_scattering)
 
 using namespace skyspec;
 
@@ -175,3 +176,5 @@ BOOST_AUTO_TEST_CASE(tables_round_trip_through_the_cache) {
   BOOST_TEST(rewrite(""));
   BOOST_TEST(!rewrite(bytes));  // the intact file still loads
 }
+
+BOOST_AUTO_TEST_SUITE_END()  // test_multiple_scattering

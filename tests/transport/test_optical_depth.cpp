@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE optical_depth
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
@@ -10,6 +9,8 @@
 #include "skyspec/rayleigh.hpp"
 #include "skyspec/standard_atmosphere.hpp"
 #include "skyspec/units.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_optical_depth)
 
 using namespace skyspec;
 
@@ -167,3 +168,5 @@ BOOST_AUTO_TEST_CASE(lookup_many_equals_lookup) {
   BOOST_TEST_MESSAGE("batched vs single look-ups: largest relative difference " << worst);
   BOOST_TEST(worst < 1e-12);
 }
+
+BOOST_AUTO_TEST_SUITE_END()  // test_optical_depth

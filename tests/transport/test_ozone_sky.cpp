@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE ozone_sky
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
@@ -10,6 +9,8 @@
 #include "skyspec/render.hpp"
 #include "skyspec/scene.hpp"
 #include "skyspec/units.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_ozone_sky)
 
 using namespace skyspec;
 
@@ -61,3 +62,5 @@ BOOST_AUTO_TEST_CASE(ozone_keeps_the_twilight_zenith_blue) {
     for (size_t i = 0; i < a.size(); ++i) BOOST_TEST(a[i] <= b[i] * 1.0001f);
   }
 }
+
+BOOST_AUTO_TEST_SUITE_END()  // test_ozone_sky

@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE single_scattering
 #include <boost/test/unit_test.hpp>
 
 #include <Eigen/Geometry>
@@ -9,6 +8,8 @@
 #include "skyspec/camera.hpp"
 #include "skyspec/phase_function.hpp"
 #include "transport/single_scattering.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_single_scattering)
 
 using namespace skyspec;
 
@@ -214,3 +215,5 @@ BOOST_AUTO_TEST_CASE(rays_of_one_zenith_angle_share_nodes_exactly) {
       }
   BOOST_TEST(compared > 100);  // most rays see light
 }
+
+BOOST_AUTO_TEST_SUITE_END()  // test_single_scattering

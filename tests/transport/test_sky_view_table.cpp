@@ -1,4 +1,3 @@
-#define BOOST_TEST_MODULE sky_view_table
 #include <boost/test/unit_test.hpp>
 
 #include <algorithm>
@@ -9,6 +8,8 @@
 #include "atmosphere_fixtures.hpp"
 #include "skyspec/camera.hpp"
 #include "transport/sky_view_table.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_sky_view_table)
 
 using namespace skyspec;
 
@@ -163,3 +164,5 @@ BOOST_AUTO_TEST_CASE(interpolation_error_at_default_resolution) {
       BOOST_TEST_CONTEXT("camera " << height << " m, sun " << sun_el << " deg") { BOOST_TEST(p99 < 1e-3); }
     }
 }
+
+BOOST_AUTO_TEST_SUITE_END()  // test_sky_view_table
