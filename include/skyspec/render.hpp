@@ -40,11 +40,12 @@ class SkyRenderer {
   /// on the number of threads. Throws Error if any value is not finite.
   void render_rows(int y0, int rows, float* spectral, float* rgb) const;
 
-  /// Spectral radiance (grid size floats) of the sky, without the sun's disk, seen from the
-  /// scene's camera position looking along the world-space unit direction dir, and the same as
-  /// linear Rec.709. Where the image is interpolated from a sky-view table, so is this.
-  void radiance(const Vec3& dir, float* spectrum) const;
-  void radiance_rgb(const Vec3& dir, float rgb[3]) const;
+  /// Spectral radiance of the sky (one value per grid wavelength, W m^-2 sr^-1 nm^-1), without
+  /// the sun's disk, seen from the scene's camera position looking along the world-space direction
+  /// dir, and the same as linear Rec.709. Where the image is interpolated from a sky-view table,
+  /// so is this.
+  Spectrum radiance(const Vec3& dir) const;
+  Rgb radiance_rgb(const Vec3& dir) const;
 
   /// Aerial perspective for rows [y0, y0 + rows): for each pixel, the spectral transmittance from
   /// the camera to a surface at distance_m[pixel] along the pixel's ray, and the light the air
@@ -53,8 +54,9 @@ class SkyRenderer {
   /// [row][x], transmittance and inscatter [row][x][lambda].
   void aerial_rows(int y0, int rows, const float* distance_m, float* transmittance, float* inscatter) const;
 
-  /// Transmittance from the camera along dir to space (0 where the ground is in the way).
-  void transmittance(const Vec3& dir, float* out) const;
+  /// Transmittance from the camera along dir to space, per grid wavelength (0 where the ground is
+  /// in the way).
+  Spectrum transmittance(const Vec3& dir) const;
   /// The sun: spectral irradiance at the top of the atmosphere (W m^-2 nm^-1, or the flat
   /// spectrum's units), direction (world space, unit) and angular radius.
   const Spectrum& sun_irradiance() const;
@@ -66,7 +68,8 @@ class SkyRenderer {
 
   /// Linear Rec.709 from a spectrum: through CIE XYZ (spectral path, Y in cd m^-2 for radiance in
   /// W m^-2 sr^-1 nm^-1) or directly from the 680/550/440 nm values (RGB-fast path).
-  void spectrum_to_rgb(const float* spectrum, float rgb[3]) const;
+  /// The spectrum has one value per grid wavelength (a Spectrum, or a Map over a row buffer).
+  Rgb spectrum_to_rgb(const Eigen::Ref<const Spectrum>& spectrum) const;
 
  private:
   struct Impl;

@@ -16,6 +16,8 @@ namespace skyspec {
 using Spectrum = Eigen::ArrayXf;
 /// Per-wavelength values in double precision (coefficient derivation, tables).
 using SpectrumD = Eigen::ArrayXd;
+/// Linear RGB (R, G, B), e.g. Rec.709 as the renderer converts spectra.
+using Rgb = Eigen::Array3f;
 
 /// A set of sample wavelengths in nanometres, strictly increasing.
 class WavelengthGrid {

@@ -146,14 +146,11 @@ int run(AerialOptions& o) {
   // the sun's light after and before the path, per Rec.709 channel (what multiplies an RGB image
   // lit by the sun).
   std::vector<float> trans_rgb(static_cast<size_t>(width) * height * 3), light_rgb(trans_rgb.size());
-  float sun_rgb[3];
-  r.spectrum_to_rgb(r.sun_irradiance().data(), sun_rgb);
-  std::vector<float> tmp(static_cast<size_t>(n));
+  const Rgb sun_rgb = r.spectrum_to_rgb(r.sun_irradiance());
   for (size_t i = 0; i < dist.size(); ++i) {
-    r.spectrum_to_rgb(light.data() + i * n, light_rgb.data() + i * 3);
-    for (int l = 0; l < n; ++l) tmp[static_cast<size_t>(l)] = trans[i * n + l] * r.sun_irradiance()[l];
-    float t_rgb[3];
-    r.spectrum_to_rgb(tmp.data(), t_rgb);
+    const Eigen::Map<const Spectrum> inscatter(light.data() + i * n, n), transmittance(trans.data() + i * n, n);
+    Eigen::Map<Rgb>(light_rgb.data() + i * 3) = r.spectrum_to_rgb(inscatter);
+    const Rgb t_rgb = r.spectrum_to_rgb(transmittance * r.sun_irradiance());
     for (int c = 0; c < 3; ++c) trans_rgb[i * 3 + c] = sun_rgb[c] > 0 ? t_rgb[c] / sun_rgb[c] : 0.0f;
   }
 
@@ -179,7 +176,8 @@ int run(AerialOptions& o) {
   if (spectral_image) {
     std::vector<float> comp(trans.size()), comp_rgb(trans_rgb.size());
     for (size_t i = 0; i < comp.size(); ++i) comp[i] = spectral.spectral[i] * trans[i] + light[i];
-    for (size_t i = 0; i < dist.size(); ++i) r.spectrum_to_rgb(comp.data() + i * n, comp_rgb.data() + i * 3);
+    for (size_t i = 0; i < dist.size(); ++i)
+      Eigen::Map<Rgb>(comp_rgb.data() + i * 3) = r.spectrum_to_rgb(Eigen::Map<const Spectrum>(comp.data() + i * n, n));
     write_spectral("_composite.exr", comp, comp_rgb, "aerial perspective: image x transmittance + inscatter");
   } else if (image) {
     std::vector<float> ch[3];

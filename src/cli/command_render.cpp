@@ -60,8 +60,7 @@ bool exposure_flag_given(const RenderOptions& o) {
 // illuminance the sun and the sky put on a horizontal surface at the camera, from the renderer
 // that makes the image (its tables are built once: a few thousand rays or table look-ups).
 std::string photometry_line(const SkyRenderer& r) {
-  float rgb[3];
-  r.radiance_rgb(r.camera_origin_m().normalized(), rgb);
+  const Rgb rgb = r.radiance_rgb(r.camera_origin_m().normalized());
   const double zenith_cd_m2 = 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
   const IrradianceReport e = irradiance_at_camera(r, 16, 32);
   char buf[256];

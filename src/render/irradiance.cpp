@@ -34,10 +34,9 @@ IrradianceReport irradiance_at_camera(const SkyRenderer& r, int zenith_nodes, in
   IrradianceReport rep;
   rep.wavelengths_nm = grid.nanometres();
   // Direct.
-  std::vector<float> t(static_cast<size_t>(n));
-  r.transmittance(r.sun_direction(), t.data());
+  const Spectrum t = r.transmittance(r.sun_direction());
   rep.direct_normal.resize(n);
-  for (int i = 0; i < n; ++i) rep.direct_normal[i] = static_cast<double>(r.sun_irradiance()[i]) * t[static_cast<size_t>(i)];
+  for (int i = 0; i < n; ++i) rep.direct_normal[i] = static_cast<double>(r.sun_irradiance()[i]) * t[i];
   const double cos_sun = std::max(0.0, r.sun_direction().dot(up));
   rep.direct_horizontal = rep.direct_normal * cos_sun;
 
@@ -47,14 +46,13 @@ IrradianceReport irradiance_at_camera(const SkyRenderer& r, int zenith_nodes, in
   std::vector<SpectrumD> rows(static_cast<size_t>(zenith_nodes), SpectrumD::Zero(n));
   tbb::task_arena arena(r.threads());
   arena.execute([&] { tbb::parallel_for(0, zenith_nodes, [&](int i) {
-    std::vector<float> L(static_cast<size_t>(n));
     const double m = mu[static_cast<size_t>(i)], sin_t = std::sqrt(1 - m * m);
     for (int j = 0; j < azimuth_nodes; ++j) {
       const double phi = 2 * kPi * (j + 0.5) / azimuth_nodes;
       const Vec3 d = (sin_t * std::cos(phi)) * east + (sin_t * std::sin(phi)) * north + m * up;
-      r.radiance(d, L.data());
+      const Spectrum L = r.radiance(d);
       for (int l = 0; l < n; ++l)
-        rows[static_cast<size_t>(i)][l] += w[static_cast<size_t>(i)] * m * (2 * kPi / azimuth_nodes) * L[static_cast<size_t>(l)];
+        rows[static_cast<size_t>(i)][l] += w[static_cast<size_t>(i)] * m * (2 * kPi / azimuth_nodes) * L[l];
     }
   }); });
   rep.diffuse_horizontal = SpectrumD::Zero(n);

@@ -227,40 +227,34 @@ const Vec3& SkyRenderer::camera_origin_m() const { return impl_->camera->origin_
 double SkyRenderer::sun_angular_radius_rad() const { return impl_->sun_radius_rad; }
 const ScatteringOrders* SkyRenderer::scattering_orders() const { return impl_->orders.get(); }
 
-void SkyRenderer::transmittance(const Vec3& dir, float* out) const {
+Spectrum SkyRenderer::transmittance(const Vec3& dir) const {
   Spectrum t(impl_->grid.size());
   impl_->integrator.transmittance_to_space(impl_->camera->origin_m(), dir.normalized(), t);
-  std::copy(t.data(), t.data() + t.size(), out);
+  return t;
 }
 
-void SkyRenderer::spectrum_to_rgb(const float* spectrum, float rgb[3]) const {
+Rgb SkyRenderer::spectrum_to_rgb(const Eigen::Ref<const Spectrum>& spectrum) const {
   const auto& m = *impl_;
-  if (m.rgb_fast) {
-    for (int c = 0; c < 3; ++c) rgb[c] = spectrum[m.rgb_index[c]];
-    return;
-  }
-  const Eigen::Map<const Spectrum> s(spectrum, m.grid.size());
-  for (int c = 0; c < 3; ++c) rgb[c] = (m.to_rgb[c] * s).sum();
+  if (spectrum.size() != m.grid.size())
+    throw Error("spectrum_to_rgb: " + std::to_string(spectrum.size()) + " values for a grid of " +
+                std::to_string(m.grid.size()) + " wavelengths");
+  Rgb rgb;
+  for (int c = 0; c < 3; ++c) rgb[c] = m.rgb_fast ? spectrum[m.rgb_index[c]] : (m.to_rgb[c] * spectrum).sum();
+  return rgb;
 }
 
-void SkyRenderer::radiance(const Vec3& dir, float* spectrum) const {
+Spectrum SkyRenderer::radiance(const Vec3& dir) const {
   const auto& m = *impl_;
   const int n = m.grid.size();
   // Scratch kept per thread: callers (the exposure meter, tests) ask for many directions.
   thread_local std::optional<ScatteringWorkspace> ws;
-  thread_local Spectrum out;
   if (!ws || ws->view_tau.size() != n) ws.emplace(n);
-  out.resize(n);
+  Spectrum out(n);
   m.sky_radiance(dir.normalized(), *ws, out);  // the sky as the image shows it
-  std::copy(out.data(), out.data() + n, spectrum);
+  return out;
 }
 
-void SkyRenderer::radiance_rgb(const Vec3& dir, float rgb[3]) const {
-  thread_local std::vector<float> s;  // per thread, like radiance()'s scratch
-  s.resize(static_cast<size_t>(impl_->grid.size()));
-  radiance(dir, s.data());
-  spectrum_to_rgb(s.data(), rgb);
-}
+Rgb SkyRenderer::radiance_rgb(const Vec3& dir) const { return spectrum_to_rgb(radiance(dir)); }
 
 void SkyRenderer::aerial_rows(int y0, int rows, const float* distance_m, float* transmittance, float* inscatter) const {
   const auto& m = *impl_;
@@ -352,7 +346,8 @@ void SkyRenderer::render_rows(int y0, int rows, float* spectral, float* rgb) con
         for (int idx = c0; idx < c1; ++idx) {
           const float* px = spectral + static_cast<size_t>(idx) * n;
           float* px_rgb = rgb + static_cast<size_t>(idx) * 3;
-          spectrum_to_rgb(px, px_rgb);
+          const Rgb c = spectrum_to_rgb(Eigen::Map<const Spectrum>(px, n));
+          std::copy(c.data(), c.data() + 3, px_rgb);
           // Checked here, while the pixel is in cache, rather than in a pass over the band.
           if (!std::isfinite(px_rgb[0]) || !std::isfinite(px_rgb[1]) || !std::isfinite(px_rgb[2]) ||
               !Eigen::Map<const Spectrum>(px, n).allFinite())
@@ -398,9 +393,8 @@ double meter_before_rendering(const SkyRenderer& r) {
       for (size_t i = range.begin(); i != range.end(); ++i) {
         Vec3 dir;
         if (!camera->direction(pixels[i].first + 0.5, pixels[i].second + 0.5, dir)) continue;
-        float rgb[3];
-        r.radiance_rgb(dir, rgb);
-        luminance[i] = rec709_luminance(rgb);
+        const Rgb rgb = r.radiance_rgb(dir);
+        luminance[i] = rec709_luminance(rgb.data());
       }
     });
   });
@@ -440,8 +434,7 @@ ChosenExposure choose_exposure(const SkyRenderer& r, const DisplaySettings& disp
 std::map<std::string, std::string> render_provenance(const SkyRenderer& r, const ResolvedExposure& exposure,
                                                      bool builtin_ocio_config) {
   const Scene& scene = r.scene();
-  float sun_rgb[3];
-  r.spectrum_to_rgb(r.sun_irradiance().data(), sun_rgb);
+  const Rgb sun_rgb = r.spectrum_to_rgb(r.sun_irradiance());
   std::map<std::string, std::string> provenance = provenance_attributes(scene, builtin_ocio_config);
   provenance["skyspec:renderPath"] = scene.render.path == RenderSpec::Path::RgbFast ? "rgb-fast" : "spectral";
   provenance["skyspec:wavelengths"] = r.grid().describe();

@@ -178,7 +178,7 @@ double measure_render_seconds(const SkyRenderer& renderer, const RenderPlan& pla
   // over the image by the R2 low-discrepancy sequence (Roberts 2018). CPU time of the thread: what the work costs,
   // whatever else the machine is doing.
   const auto camera = make_camera(renderer.scene());
-  std::vector<float> spectrum(static_cast<size_t>(renderer.grid().size()));
+  Spectrum spectrum;
   const double a1 = 0.7548776662466927, a2 = 0.5698402909980532;
   const auto start = std::chrono::steady_clock::now();
   const double cpu_start = thread_cpu_seconds();
@@ -187,7 +187,7 @@ double measure_render_seconds(const SkyRenderer& renderer, const RenderPlan& pla
     const double k = static_cast<double>(samples + 1);
     Vec3 dir;
     if (camera->direction(std::fmod(0.5 + a1 * k, 1.0) * w, std::fmod(0.5 + a2 * k, 1.0) * h, dir))
-      renderer.radiance(dir, spectrum.data());
+      spectrum = renderer.radiance(dir);
     ++samples;
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (samples >= 64 || elapsed >= 0.1) break;

@@ -91,9 +91,7 @@ SkyImage render_sky_image(const Scene& scene, const ProgressFn& progress) {
     r.render_rows(y, rows, spectral.data(), image.rgb.data() + static_cast<size_t>(y) * w * 3);
     if (progress) progress(y + rows, image.height);
   }
-  float sun[3];
-  r.spectrum_to_rgb(r.sun_irradiance().data(), sun);
-  image.sun_rgb = Eigen::Vector3d(sun[0], sun[1], sun[2]);
+  image.sun_rgb = r.spectrum_to_rgb(r.sun_irradiance()).cast<double>().matrix();
   return image;
 }
 

@@ -183,10 +183,9 @@ BOOST_AUTO_TEST_CASE(radiance_is_finite_non_negative_and_bounded) {
         for (double d : {-1e-3, -1e-6, -1e-9, 0.0, 1e-9, 1e-6, 1e-3}) elevations.push_back(dip + d);
       }
       elevations.push_back(0.0);
-      std::vector<float> L(static_cast<size_t>(n));
       for (double elevation : elevations) {
         const double a = kPi * u(rng);
-        r.radiance(direction(up, elevation, a), L.data());
+        const Spectrum L = r.radiance(direction(up, elevation, a));
         check(L.data(), "direction at elevation " + num(elevation) + " rad");
       }
     }

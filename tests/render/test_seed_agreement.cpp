@@ -47,8 +47,7 @@ BOOST_AUTO_TEST_CASE(seed_preset_matches_converged_baseline) {
     const double z2 = x * x + y * y;
     const double phi = std::atan2(y, x), theta = std::acos(1 - z2);
     const Vec3 dir(std::sin(theta) * std::cos(phi), -std::sin(theta) * std::sin(phi), std::cos(theta));
-    float ours[3];
-    renderer->radiance_rgb(dir, ours);
+    const Rgb ours = renderer->radiance_rgb(dir);
     for (int c = 0; c < 3; ++c) {
       const double rel = std::abs(ours[c] - rgb[c]) / rgb[c];
       worst = std::max(worst, rel);
