@@ -1,6 +1,7 @@
 #include "transport/scattering_tables_key.hpp"
 
 #include <cstdio>
+#include <iomanip>
 #include <sstream>
 
 #include "base/embedded_data.hpp"
@@ -33,7 +34,7 @@ std::string ScatteringTablesKey::file_name() const {
 ScatteringTablesKey scattering_tables_key(const AtmosphereModel& atm, const SunColumnTable::Resolution& sun_table,
                                           const MultipleScatteringSettings& ms) {
   std::ostringstream out;
-  out << std::hexfloat;
+  out << std::scientific << std::setprecision(kKeySignificantDigits - 1);
   out << "format " << kScatteringTablesFormat << '\n';
   out << "planet_radius_m " << atm.planet_radius_m() << "\ntop_radius_m " << atm.top_radius_m() << '\n';
   write_array(out, "wavelengths_nm", atm.grid().nanometres());

@@ -24,8 +24,14 @@ namespace skyspec {
 /// integrator, its quadrature or the cache file's layout changes.
 inline constexpr int kScatteringTablesFormat = 2;
 
+/// Significant digits of every number in the key. Builds that differ only in the last bits of a
+/// derived coefficient (another compiler, optimisation level or instruction set: a few parts in
+/// 1e16) name the same tables; any physical change, and the tables' own accuracy (about 1e-3),
+/// are many orders of magnitude larger.
+inline constexpr int kKeySignificantDigits = 12;
+
 struct ScatteringTablesKey {
-  std::string inputs;  ///< the inputs written out exactly (hexadecimal floats), one per line
+  std::string inputs;  ///< the inputs, one per line, numbers to kKeySignificantDigits digits
   std::uint64_t hash;  ///< FNV-1a 64 of `inputs`
   /// "orders-<16 hex digits>.bin": the cache file's name.
   std::string file_name() const;
