@@ -45,7 +45,8 @@ build() {
 }
 
 # The same sources built with AddressSanitizer + UndefinedBehaviorSanitizer in build-asan/
-# (-O2 -g; no Python module: an instrumented extension cannot be loaded by an uninstrumented python3).
+# (-O1 with line tables, a unity build; no Python module: an instrumented extension cannot be
+# loaded by an uninstrumented python3).
 # This build also proves that the code builds for AVX-512 with warnings as errors: on a CPU with
 # AVX-512 it targets x86-64-v4 and runs the tests there; elsewhere it targets the machine and also
 # compiles every library source for x86-64-v4 without running it (SKYSPEC_ARCH_CHECK).
@@ -53,8 +54,8 @@ build_sanitized() {
   local arch=(-DSKYSPEC_ARCH=native -DSKYSPEC_ARCH_CHECK=x86-64-v4)
   grep -qw avx512f /proc/cpuinfo 2>/dev/null && arch=(-DSKYSPEC_ARCH=x86-64-v4 -DSKYSPEC_ARCH_CHECK=)
   if [ ! -f build-asan/CMakeCache.txt ] || [ "${CI:-}" = true ]; then
-    cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSKYSPEC_SANITIZE=ON \
-      -DSKYSPEC_BUILD_PYTHON=OFF "${arch[@]}" "$(werror_flag)" >&2
+    cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" \
+      -DSKYSPEC_SANITIZE=ON -DSKYSPEC_UNITY=ON -DSKYSPEC_BUILD_PYTHON=OFF "${arch[@]}" "$(werror_flag)" >&2
   fi
   cmake --build build-asan -j"$(nproc)" >&2
 }
@@ -66,7 +67,7 @@ build_sanitized() {
 build_fuzz() {
   if [ ! -f build-fuzz/CMakeCache.txt ] || [ "${CI:-}" = true ] || [ -n "${SKYSPEC_FUZZ_SECONDS:-}" ]; then
     cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-      -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" -DSKYSPEC_FUZZ=ON \
+      -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" -DSKYSPEC_FUZZ=ON -DSKYSPEC_UNITY=ON \
       -DSKYSPEC_BUILD_TESTS=OFF -DSKYSPEC_BUILD_PYTHON=OFF -DSKYSPEC_ARCH= \
       -DSKYSPEC_FUZZ_SECONDS="${SKYSPEC_FUZZ_SECONDS:-60}" >&2
   fi

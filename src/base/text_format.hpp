@@ -1,6 +1,7 @@
 // Number formatting for messages and reports (internal).
 #pragma once
 
+#include <cstdio>
 #include <iomanip>
 #include <sstream>
 #include <string>
@@ -12,6 +13,13 @@ inline std::string format_number(double v) {
   std::ostringstream s;
   s << std::setprecision(10) << v;
   return s.str();
+}
+
+/// A number with a fixed number of decimals ("%.*f").
+inline std::string format_fixed(double v, int decimals) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, v);
+  return text;
 }
 
 }  // namespace skyspec

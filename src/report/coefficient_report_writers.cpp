@@ -43,12 +43,6 @@ std::string sci(double v, int digits = 5) {
   return buf;
 }
 
-std::string fixed(double v, int decimals) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
-  return buf;
-}
-
 std::string signed_percent(double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%+.3f", v);
@@ -146,8 +140,8 @@ Document build_document(const CoefficientReport& r) {
                 "temperature.");
   std::vector<std::vector<std::string>> drows;
   for (const auto& s : r.derivation)
-    drows.push_back({sig(s.lambda_nm), sci(s.refractivity_ref, 7), sci(s.refractivity, 7), fixed(s.king_n2, 5),
-                     fixed(s.king_o2, 5), fixed(s.king_factor, 5), sci(s.cross_section_m2, 5)});
+    drows.push_back({sig(s.lambda_nm), sci(s.refractivity_ref, 7), sci(s.refractivity, 7), format_fixed(s.king_n2, 5),
+                     format_fixed(s.king_o2, 5), format_fixed(s.king_factor, 5), sci(s.cross_section_m2, 5)});
   d.table({"lambda (nm)", "n_s - 1 (formula)", "n_s - 1 (CO2-corrected)", "F(N2)", "F(O2)", "F(air)", "sigma (m^2)"}, drows);
 
   d.heading(2, "Number density at each altitude");
@@ -186,11 +180,11 @@ Document build_document(const CoefficientReport& r) {
     const auto& c = *r.conditions;
     d.heading(2, "Air at " + sig(c.air.pressure_Pa / 100.0) + " hPa and " + sig(c.air.temperature_K) + " K");
     d.paragraph("N = P / (k T) = " + sig(c.air.pressure_Pa) + " Pa / (1.380649e-23 J/K x " + sig(c.air.temperature_K) +
-                " K) = " + sci(c.number_density_per_m3, 6) + " m^-3, " + fixed(c.density_ratio, 5) +
+                " K) = " + sci(c.number_density_per_m3, 6) + " m^-3, " + format_fixed(c.density_ratio, 5) +
                 " x standard air. The cross-section is the same as above; (n - 1) scales with N. tau above: the "
                 "hydrostatic column above the level where the pressure is P, sigma P N_A / (m_a g) = sigma x " +
-                sci(c.column_molecules_per_m2, 6) + " m^-2, with g = " + fixed(c.column_gravity_m_per_s2, 5) +
-                " m s^-2 at the mass-weighted altitude of the column above " + fixed(c.pressure_altitude_m, 0) +
+                sci(c.column_molecules_per_m2, 6) + " m^-2, with g = " + format_fixed(c.column_gravity_m_per_s2, 5) +
+                " m s^-2 at the mass-weighted altitude of the column above " + format_fixed(c.pressure_altitude_m, 0) +
                 " m (the U.S. Standard Atmosphere 1976 altitude of that pressure).");
     std::vector<std::vector<std::string>> rows;
     for (size_t i = 0; i < r.wavelengths_nm.size(); ++i)
@@ -205,7 +199,7 @@ Document build_document(const CoefficientReport& r) {
   for (const auto& c : r.references) {
     d.heading(3, c.title);
     d.list({"Published conditions: " + c.conditions + ".", "Source: " + c.source + ".", "skyspec: " + c.method + ".",
-            "Largest |difference|: " + fixed(c.max_abs_difference_percent, 3) + " %."});
+            "Largest |difference|: " + format_fixed(c.max_abs_difference_percent, 3) + " %."});
     std::vector<std::vector<std::string>> rows;
     for (const auto& row : c.rows)
       rows.push_back({sig(row.wavelength_nm), sig(row.published, 6), sig(row.skyspec, 6), signed_percent(row.difference_percent)});

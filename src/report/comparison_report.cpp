@@ -1,5 +1,6 @@
 // Reports and figures of `skyspec compare`.
 #include "report/comparison_report.hpp"
+#include "base/text_format.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -21,22 +22,16 @@ namespace {
 
 constexpr SkyRegion kRegions[4] = {SkyRegion::NearSun, SkyRegion::Horizon, SkyRegion::Zenith, SkyRegion::Rest};
 
-std::string fixed(double v, int decimals) {
-  char text[64];
-  std::snprintf(text, sizeof text, "%.*f", decimals, v);
-  return text;
-}
-
-std::string percent(double share) { return fixed(100.0 * share, 1) + " %"; }
-std::string signed_percent(double v) { return (v >= 0 ? "+" : "") + fixed(100.0 * v, 1) + " %"; }
+std::string percent(double share) { return format_fixed(100.0 * share, 1) + " %"; }
+std::string signed_percent_of_share(double v) { return (v >= 0 ? "+" : "") + format_fixed(100.0 * v, 1) + " %"; }
 
 std::string table_row(const std::string& name, const RegionStats& s) {
   const auto& d = s.delta_e;
   if (d.pixels == 0) return "| " + name + " | 0 | | | | | | | | | |\n";
-  return "| " + name + " | " + std::to_string(d.pixels) + " | " + fixed(d.mean, 2) + " | " + fixed(d.median, 2) + " | " +
-         fixed(d.p95, 2) + " | " + fixed(d.max, 2) + " | " + percent(d.share_above_1) + " | " + percent(d.share_above_2) +
-         " | " + percent(d.share_above_5) + " | " + signed_percent(s.luminance.mean) + " | " +
-         fixed(100.0 * s.luminance.p95_abs, 1) + " % |\n";
+  return "| " + name + " | " + std::to_string(d.pixels) + " | " + format_fixed(d.mean, 2) + " | " + format_fixed(d.median, 2) + " | " +
+         format_fixed(d.p95, 2) + " | " + format_fixed(d.max, 2) + " | " + percent(d.share_above_1) + " | " + percent(d.share_above_2) +
+         " | " + percent(d.share_above_5) + " | " + signed_percent_of_share(s.luminance.mean) + " | " +
+         format_fixed(100.0 * s.luminance.p95_abs, 1) + " % |\n";
 }
 
 const char* kTableHead =
@@ -69,13 +64,13 @@ std::string comparison_markdown(const ComparisonRun& run) {
   out << "Made by skyspec " << version_string() << " with\n\n    " << run.command << "\n\n";
   out << "Scene: " << run.scene_summary << ". Reference: " << run.reference_label << ". Test: " << run.test_label
       << ".\n\n";
-  out << "## Sun elevation " << fixed(run.sun_elevation_deg, 1) << " deg\n\n";
+  out << "## Sun elevation " << format_fixed(run.sun_elevation_deg, 1) << " deg\n\n";
   out << "Delta E 2000 per pixel and relative luminance error (Y_RGB-fast - Y_spectral) / Y_spectral:\n\n";
   out << kTableHead << table_row("**all**", c.all);
   for (SkyRegion r : kRegions) out << table_row(to_string(r), c.regions[static_cast<size_t>(r)]);
   out << "\n";
   if (!run.delta_e_map_file.empty())
-    out << "![Delta E 2000 map (0 to " << fixed(run.delta_e_max, 0) << ")](" << run.delta_e_map_file << ")\n";
+    out << "![Delta E 2000 map (0 to " << format_fixed(run.delta_e_max, 0) << ")](" << run.delta_e_map_file << ")\n";
   if (!run.side_by_side_file.empty())
     out << "![spectral (left) and RGB-fast (right) on the common white and exposure](" << run.side_by_side_file << ")\n";
   out << "\n";
@@ -88,14 +83,14 @@ std::string comparison_markdown(const ComparisonRun& run) {
     const SweepPoint* worst = &run.sweep.front();
     for (const auto& p : run.sweep) {
       const auto& d = p.all.delta_e;
-      out << "| " << fixed(p.sun_elevation_deg, 1) << " | " << fixed(d.mean, 2) << " | " << fixed(d.median, 2) << " | "
-          << fixed(d.p95, 2) << " | " << fixed(d.max, 2) << " | " << percent(d.share_above_1) << " | "
+      out << "| " << format_fixed(p.sun_elevation_deg, 1) << " | " << format_fixed(d.mean, 2) << " | " << format_fixed(d.median, 2) << " | "
+          << format_fixed(d.p95, 2) << " | " << format_fixed(d.max, 2) << " | " << percent(d.share_above_1) << " | "
           << percent(d.share_above_2) << " | " << percent(d.share_above_5);
       for (SkyRegion r : kRegions) {
         const auto& rd = p.regions[static_cast<size_t>(r)].delta_e;
-        out << " | " << (rd.pixels ? fixed(rd.mean, 2) : std::string("-"));
+        out << " | " << (rd.pixels ? format_fixed(rd.mean, 2) : std::string("-"));
       }
-      out << " | " << signed_percent(p.all.luminance.mean) << " |\n";
+      out << " | " << signed_percent_of_share(p.all.luminance.mean) << " |\n";
       if (d.mean > worst->all.delta_e.mean) worst = &p;
     }
     const auto& w = worst->all.delta_e;
@@ -103,10 +98,10 @@ std::string comparison_markdown(const ComparisonRun& run) {
     for (SkyRegion r : kRegions)
       if (worst->regions[static_cast<size_t>(r)].delta_e.mean > worst->regions[static_cast<size_t>(worst_region)].delta_e.mean)
         worst_region = r;
-    out << "\nWorst: sun at " << fixed(worst->sun_elevation_deg, 1) << " deg, mean Delta E 2000 " << fixed(w.mean, 2)
-        << " (p95 " << fixed(w.p95, 2) << ", " << percent(w.share_above_2)
+    out << "\nWorst: sun at " << format_fixed(worst->sun_elevation_deg, 1) << " deg, mean Delta E 2000 " << format_fixed(w.mean, 2)
+        << " (p95 " << format_fixed(w.p95, 2) << ", " << percent(w.share_above_2)
         << " of pixels above 2); there the worst region is " << to_string(worst_region) << " (mean "
-        << fixed(worst->regions[static_cast<size_t>(worst_region)].delta_e.mean, 2) << ").\n\n";
+        << format_fixed(worst->regions[static_cast<size_t>(worst_region)].delta_e.mean, 2) << ").\n\n";
     if (!run.sweep_plot_file.empty()) out << "![Delta E 2000 against sun elevation](" << run.sweep_plot_file << ")\n\n";
   }
 

@@ -42,14 +42,22 @@ namespace {
 using NodeArray = Eigen::ArrayXXf;
 constexpr Eigen::Index kWavelengthsForWavelengthLoops = 8;  // one AVX vector of floats
 
+}  // namespace
+
 // What the segments of a piece share at every wavelength: lengths, densities and their log
-// ratios, for the fine rule (nodes k, k + 1) and the coarse one (nodes 2j, 2j + 2).
+// ratios, for the fine rule (nodes k, k + 1) and the coarse one (nodes 2j, 2j + 2). In a named
+// namespace: SingleScattering::PieceScratch (a member type) holds one.
+namespace detail {
 struct PieceSegments {
   int segments = 0;
   Eigen::ArrayXf dt, rho[2], log_ratio[2];              // fine: [k]; rho: [node]
   Eigen::ArrayXf dt2, log_ratio2[2];                    // coarse: [j]
   Eigen::ArrayXf terms_r, terms_m;                      // scratch
 };
+}  // namespace detail
+
+namespace {
+using detail::PieceSegments;
 
 inline float log_mean_term(float x, float f_a, float f_b) { return log_mean_branchless(f_a, f_b, x, 1e-2f); }
 
