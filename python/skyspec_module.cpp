@@ -284,7 +284,7 @@ PYBIND11_MODULE(skyspec, m) {
       "us_standard_atmosphere(z)   temperature, pressure, number density of the U.S. Standard Atmosphere 1976\n"
       "rayleigh_cross_section(...) sigma(lambda) in m^2\n"
       "render(...)                 a spectral sky image: (spectral HxWxN float32, wavelengths_nm, xyz, rgb)\n"
-      "scene_toml(...), preset_names()\n\n"
+      "scene_toml(...), preset_names(), scene_keys()\n\n"
       "Scenes: a preset ('default' or 'seed'), then an optional scene file or TOML text, then overrides, a dict\n"
       "of scene keys, e.g. {'camera.width': 64, 'sun.elevation_deg': 5} or {'sun': {'elevation_deg': 5}}\n"
       "(the keys of `skyspec render --help-keys`). Bad input raises ValueError naming the key.";
@@ -303,6 +303,15 @@ PYBIND11_MODULE(skyspec, m) {
   });
 
   m.def("preset_names", &preset_names, "Names of the built-in scene presets.");
+  m.def(
+      "scene_keys",
+      [] {
+        py::dict keys;
+        for (const auto& [key, doc] : scene_key_help()) keys[py::str(key)] = doc;
+        return keys;
+      },
+      "Every scene key that overrides= accepts, with its unit, allowed range and meaning (the same\n"
+      "registry as scene files, `skyspec render --set` and docs/scene-keys.md).");
 
   m.def(
       "scene_toml",

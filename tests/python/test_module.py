@@ -135,5 +135,29 @@ class PublishedValues(unittest.TestCase):
         self.assertEqual(len(refs["seed_constants"]["published"]), 3)
 
 
+class OneSchema(unittest.TestCase):
+    """overrides= takes exactly the keys of the registry that scene files and --set use."""
+
+    def test_every_key_round_trips_as_an_override(self):
+        import tomllib
+        keys = skyspec.scene_keys()
+        self.assertEqual(len(keys), len(cli("render", "--help-keys").splitlines()))
+        default = tomllib.loads(skyspec.scene_toml())
+        for key in keys:
+            table, _, leaf = key.rpartition(".")
+            node = default
+            for part in table.split("."):
+                node = node[part]
+            if leaf not in node:
+                continue  # keys with no value in the default scene (e.g. an unset exposure)
+            with self.subTest(key=key):
+                again = tomllib.loads(skyspec.scene_toml(overrides={key: node[leaf]}))
+                self.assertEqual(again, default)
+
+    def test_a_key_outside_the_registry_is_refused(self):
+        with self.assertRaisesRegex(ValueError, "camera.heigth"):
+            skyspec.scene_toml(overrides={"camera.heigth": 8})
+
+
 if __name__ == "__main__":
     unittest.main()
