@@ -147,25 +147,17 @@ py::dict derive(std::optional<std::vector<double>> wavelengths_nm, const std::st
   const size_t n = r.wavelengths_nm.size();
   py::dict d;
   d["wavelength_nm"] = array1(r.wavelengths_nm);
-  std::vector<double> nref, nco2, f, fn2, fo2, sigma;
-  for (const auto& s : r.derivation) {
-    nref.push_back(s.refractivity_ref);
-    nco2.push_back(s.refractivity);
-    f.push_back(s.king_factor);
-    fn2.push_back(s.king_n2);
-    fo2.push_back(s.king_o2);
-    sigma.push_back(s.cross_section_m2);
-  }
+  const DerivationColumns columns = derivation_columns(r);
   d["gas"] = to_string(r.gas);
   d["refractive_index"] = to_string(r.formula);
   d["co2_ppm"] = r.co2_ppv / kPpvPerPpm;
   d["rayleigh_source"] = r.rayleigh_derived ? "derived" : "fixed";
-  d["refractivity_formula_co2"] = array1(nref);
-  d["refractivity"] = array1(nco2);
-  d["king_factor_air"] = array1(f);
-  d["king_factor_n2"] = array1(fn2);
-  d["king_factor_o2"] = array1(fo2);
-  d["cross_section_m2"] = array1(sigma);
+  d["refractivity_formula_co2"] = array1(columns.refractivity_ref);
+  d["refractivity"] = array1(columns.refractivity);
+  d["king_factor_air"] = array1(columns.king_factor_air);
+  d["king_factor_n2"] = array1(columns.king_factor_n2);
+  d["king_factor_o2"] = array1(columns.king_factor_o2);
+  d["cross_section_m2"] = array1(columns.cross_section_m2);
   std::vector<double> alts, dens;
   for (const auto& l : r.levels) {
     alts.push_back(l.altitude_m);

@@ -126,6 +126,16 @@ struct CoefficientReport {
 /// "conditions.temperature_K", "latitude_deg", "wavelengths_nm" or a scene key) for bad requests.
 CoefficientReport make_coefficient_report(const CoefficientReportRequest& request);
 
+/// The Rayleigh derivation as columns over the wavelengths (one value per wavelength each), as
+/// the JSON report and the Python module hand them out.
+struct DerivationColumns {
+  std::vector<double> refractivity_ref;  ///< n_s - 1 from the formula at its own CO2
+  std::vector<double> refractivity;      ///< n_s - 1 at the report's CO2
+  std::vector<double> king_factor_air, king_factor_n2, king_factor_o2;
+  std::vector<double> cross_section_m2;
+};
+DerivationColumns derivation_columns(const CoefficientReport& report);
+
 /// The comparisons with published tables alone (they do not depend on the request): Bodhaine et
 /// al. 1999 Table 3 and text values, Bucholtz 1995's King factors and cross-section fit, and the
 /// seed tutorial's constants against standard air.

@@ -464,4 +464,17 @@ std::string format_report(const CoefficientReport& report, ReportFormat format) 
   return report_to_markdown(report);
 }
 
+DerivationColumns derivation_columns(const CoefficientReport& r) {
+  DerivationColumns c;
+  for (const RayleighDerivationStep& s : r.derivation) {
+    c.refractivity_ref.push_back(s.refractivity_ref);
+    c.refractivity.push_back(s.refractivity);
+    c.king_factor_air.push_back(s.king_factor);
+    c.king_factor_n2.push_back(s.king_n2);
+    c.king_factor_o2.push_back(s.king_o2);
+    c.cross_section_m2.push_back(s.cross_section_m2);
+  }
+  return c;
+}
+
 }  // namespace skyspec

@@ -457,23 +457,15 @@ std::string report_to_json(const CoefficientReport& r) {
                                 {"Ar", r.composition.ar_percent},
                                 {"CO2", r.composition.co2_percent}};
   ray["standard_number_density_per_m3"] = constants::kStandardNumberDensity_per_m3;
-  std::vector<double> nref, n, f, fn2, fo2, sigma;
-  for (const auto& st : r.derivation) {
-    nref.push_back(st.refractivity_ref);
-    n.push_back(st.refractivity);
-    f.push_back(st.king_factor);
-    fn2.push_back(st.king_n2);
-    fo2.push_back(st.king_o2);
-    sigma.push_back(st.cross_section_m2);
-  }
-  ray["refractivity_formula_co2"] = nref;
-  ray["refractivity"] = n;
-  ray["king_factor_air"] = f;
-  ray["king_factor_n2"] = fn2;
-  ray["king_factor_o2"] = fo2;
+  const DerivationColumns columns = derivation_columns(r);
+  ray["refractivity_formula_co2"] = columns.refractivity_ref;
+  ray["refractivity"] = columns.refractivity;
+  ray["king_factor_air"] = columns.king_factor_air;
+  ray["king_factor_n2"] = columns.king_factor_n2;
+  ray["king_factor_o2"] = columns.king_factor_o2;
   ray["king_factor_ar"] = kKingFactorAr;
   ray["king_factor_co2"] = kKingFactorCO2;
-  ray["cross_section_m2"] = sigma;
+  ray["cross_section_m2"] = columns.cross_section_m2;
   ray["profile"] = r.profile_description;
   ray["top_altitude_m"] = r.top_altitude_m;
   j["rayleigh"] = ray;

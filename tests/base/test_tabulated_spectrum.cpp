@@ -11,10 +11,12 @@
 
 #include "skyspec/error.hpp"
 #include "base/tabulated_spectrum.hpp"
+#include "check_helpers.hpp"
 
 BOOST_AUTO_TEST_SUITE(test_tabulated_spectrum)
 
 using namespace skyspec;
+using test::error_setting;
 
 namespace {
 
@@ -38,15 +40,6 @@ TabulatedSpectrum zigzag() {
     v.push_back(i % 2 == 0 ? 1.0 : 3.0);
   }
   return TabulatedSpectrum::samples("a zig-zag test table", nm, v);
-}
-
-std::string error_setting(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.setting();
-  }
-  return "(no error)";
 }
 
 }  // namespace

@@ -6,10 +6,12 @@
 #include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/spectrum.hpp"
+#include "check_helpers.hpp"
 
 BOOST_AUTO_TEST_SUITE(test_colour)
 
 using namespace skyspec;
+using test::relative;
 
 namespace {
 
@@ -36,7 +38,6 @@ double interpolate(const std::vector<double>& xs, const std::vector<double>& ys,
 const std::vector<double>& cmf_column(const CmfTable& t, int c) { return c == 0 ? t.x : c == 1 ? t.y : t.z; }
 
 /// Relative difference |a - b| / |b|.
-double relative(double a, double b) { return std::abs(a - b) / std::abs(b); }
 
 }  // namespace
 

@@ -12,25 +12,13 @@
 
 #include "skyspec/error.hpp"
 #include "physics/solar_spectrum.hpp"
+#include "check_helpers.hpp"
 
 BOOST_AUTO_TEST_SUITE(test_solar_spectrum)
 
 using namespace skyspec;
-
-namespace {
-
-double relative(double a, double b) { return std::abs(a - b) / std::abs(b); }
-
-std::string error_setting(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.setting();
-  }
-  return "(no error)";
-}
-
-}  // namespace
+using test::relative;
+using test::error_setting;
 
 BOOST_AUTO_TEST_SUITE(table)
 
