@@ -80,6 +80,27 @@ fi
   && [ -s "$work/ap/sky_inscatter.exr" ] && [ -s "$work/ap/sky_composite.exr" ] && ok || { bad "aerial failed"; cat "$work/stderr"; }
 "$skyspec" aerial -q --distance 2000 --depth-is sideways --image "$out/sky.exr" --out "$work/ap2" 2>"$work/stderr"
 [ $? = 2 ] && grep -q -- "--depth-is" "$work/stderr" && [ ! -e "$work/ap2" ] && ok || bad "aerial: bad --depth-is not rejected"
+# A depth pass (z along the view axis, 200 m at the top row to 5 km at the bottom) and an RGB
+# image, every row looking above the horizon: the composite is R,G,B = image x transmittance +
+# inscatter, pixel by pixel, and the air in front of the farther pixels lets less of the image
+# through.
+oiiotool --pattern fill:top=200:bottom=5000 24x16 1 --chnames Z -d float -o "$work/depth.exr" \
+  && oiiotool --pattern constant:color=0.5,0.4,0.3 24x16 3 --chnames R,G,B -d float -o "$work/rgb.exr" \
+  && "$skyspec" aerial -q --depth "$work/depth.exr" --depth-is z --image "$work/rgb.exr" --camera perspective \
+       --position 0,0,2 --look-at 0,1000,700 --fov 40 --out "$work/ap3" 2>"$work/stderr" \
+  && /usr/bin/python3 - "$work/rgb.exr" "$work/ap3" <<'PY' && ok || { bad "aerial with a depth pass and an RGB image"; cat "$work/stderr"; }
+import sys, numpy as np, OpenImageIO as oiio
+def read(path, channels):
+    spec = oiio.ImageInput.open(path).spec()
+    img = oiio.ImageBuf(path).get_pixels(oiio.FLOAT)
+    return np.stack([img[..., spec.channelnames.index(c)] for c in channels], axis=-1)
+rgb = read(sys.argv[1], "RGB")
+t = read(sys.argv[2] + "/sky_transmittance.exr", "RGB")
+l = read(sys.argv[2] + "/sky_inscatter.exr", "RGB")
+c = read(sys.argv[2] + "/sky_composite.exr", "RGB")
+assert np.allclose(c, rgb * t + l, rtol=1e-6, atol=0), "composite is not image x transmittance + inscatter"
+assert (t[-1] < t[0]).all(), "the farther bottom row should transmit less than the top row"
+PY
 
 # --quiet prints nothing at all on success.
 "$skyspec" render -q --out "$work/quiet" --width 4 --height 4 >"$work/stdout" 2>"$work/stderr"
