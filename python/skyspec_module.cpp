@@ -8,10 +8,12 @@
 #include <pybind11/stl.h>
 
 #include <Eigen/Core>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "base/text_format.hpp"
 #include "skyspec/coefficient_report.hpp"
 #include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
@@ -213,7 +215,14 @@ py::list comparisons() {
   return out;
 }
 
-py::dict standard_atmosphere(const py::array_t<double, py::array::c_style | py::array::forcecast>& altitude_m) {
+py::dict standard_atmosphere(const py::object& altitude) {
+  // None (and other non-numbers) would become NaN through numpy's cast: refused by name first.
+  if (altitude.is_none()) throw InputError("altitude_m", "None", "a number or an array of numbers, metres");
+  const auto altitude_m = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(altitude);
+  if (!altitude_m) {
+    PyErr_Clear();
+    throw InputError("altitude_m", py::str(altitude).cast<std::string>(), "a number or an array of numbers, metres");
+  }
   py::array_t<double> t(altitude_m.request().shape), p(altitude_m.request().shape), n(altitude_m.request().shape);
   const double* z = altitude_m.data();
   for (py::ssize_t i = 0; i < altitude_m.size(); ++i) {
@@ -380,7 +389,12 @@ Example: skyspec.derive(pressure_Pa=25000, temperature_K=220)["conditions_raylei
         in.formula = parse_refractive_index_formula(refractive_index, "refractive_index");
         in.co2_ppv = co2_ppm * kPpvPerPpm;
         std::vector<double> s;
-        for (double l : wavelengths_nm) s.push_back(rayleigh_cross_section_m2(l, in));
+        for (double l : wavelengths_nm) {
+          // The range every other skyspec wavelength takes (scene spectrum.*, the coefficient report).
+          if (!std::isfinite(l) || l < 360.0 || l > 830.0)
+            throw InputError("wavelengths_nm", format_number(l), "wavelengths within 360-830 nm");
+          s.push_back(rayleigh_cross_section_m2(l, in));
+        }
         return array1(s);
       },
       py::arg("wavelengths_nm"), py::arg("refractive_index") = "peck-reeder", py::arg("co2_ppm") = 360.0,

@@ -65,6 +65,8 @@ class SkyRenderer {
   const Vec3& camera_origin_m() const;
   /// The precomputed higher scattering orders, or null when rendering single scattering.
   const ScatteringOrders* scattering_orders() const;
+  /// Seconds spent building the sky-view table (0 without one).
+  double sky_view_table_seconds() const;
 
   /// Linear Rec.709 from a spectrum: through CIE XYZ (spectral path, Y in cd m^-2 for radiance in
   /// W m^-2 sr^-1 nm^-1) or directly from the 680/550/440 nm values (RGB-fast path).
@@ -113,6 +115,9 @@ RenderOutputs render_scene_to_files(const Scene& scene, const ProgressFn& progre
 using PreparedFn = std::function<void(const SkyRenderer& renderer)>;
 RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& display,
                                     const ProgressFn& progress = {}, const PreparedFn& prepared = {});
+/// The files render_scene_to_files writes for these settings: exr, png and working_exr set (empty
+/// where not asked for), nothing rendered. Unknown working spaces throw InputError.
+RenderOutputs render_output_paths(const Scene& scene, const DisplaySettings& display);
 
 
 }  // namespace skyspec

@@ -107,3 +107,24 @@ void ensure_writable_directory(const fs::path& dir, const std::string& setting) 
 }
 
 }  // namespace skyspec
+
+namespace skyspec {
+
+void refuse_output_replacing_input(const fs::path& output, const std::string& output_setting,
+                                   const std::vector<NamedInput>& inputs) {
+  for (const NamedInput& in : inputs) {
+    if (in.path.empty()) continue;
+    std::error_code ec;
+    bool same = fs::exists(output, ec) && fs::exists(in.path, ec) && fs::equivalent(output, in.path, ec);
+    if (!same) {
+      const fs::path a = fs::weakly_canonical(fs::absolute(output, ec), ec), b = fs::weakly_canonical(fs::absolute(in.path, ec), ec);
+      same = !a.empty() && a == b;
+    }
+    if (same)
+      throw InputError(output_setting, "\"" + output.string() + "\"",
+                       "an output that is not one of the inputs (it would replace " + in.setting + " " + in.path.string() +
+                           "); choose another --out or --name");
+  }
+}
+
+}  // namespace skyspec

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
+#include <vector>
 
 namespace skyspec {
 
@@ -32,5 +34,16 @@ class AtomicOutputFile {
 /// Check up front that a folder exists (or can be created) and is writable; throws InputError
 /// naming `setting` (e.g. "--out" or "output.directory") otherwise.
 void ensure_writable_directory(const std::filesystem::path& dir, const std::string& setting);
+
+/// An input file of a command and the flag that named it (e.g. {"--image", "beauty.exr"}).
+struct NamedInput {
+  std::string setting;
+  std::filesystem::path path;
+};
+/// Throws InputError naming `output_setting` when `output` is one of the inputs: the same file
+/// (device and inode) when both exist, the same absolute, normalised path (symbolic links
+/// resolved) otherwise. An output never replaces a file the command reads.
+void refuse_output_replacing_input(const std::filesystem::path& output, const std::string& output_setting,
+                                   const std::vector<NamedInput>& inputs);
 
 }  // namespace skyspec

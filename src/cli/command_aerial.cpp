@@ -14,6 +14,7 @@
 #include "progress.hpp"
 #include "scene_options.hpp"
 #include "base/atomic_file.hpp"
+#include "base/output_lock.hpp"
 #include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
 #include "io/exr_channels.hpp"
@@ -105,6 +106,7 @@ RenderPlan check_budget(const Scene& scene, const AerialInputs& in, bool force) 
                                (in.depth ? 4 : 0);
   ensure_writable_directory(scene.output.directory, "output.directory");  // its errors first
   if (!force) refuse_if_over_budget(estimate_render(plan));
+  if (!force) refuse_if_tables_over_budget(scene, estimate_render(plan));  // before the tables are built
   return plan;
 }
 
@@ -224,6 +226,13 @@ int run(AerialOptions& o) {
   if (scene.render.path != RenderSpec::Path::Spectral)
     throw InputError("render.path", "\"rgb-fast\"", "\"spectral\" for aerial perspective");
   const RenderPlan plan = check_budget(scene, in, o.force);
+  std::vector<NamedInput> inputs = scene_input_files(o.scene);
+  inputs.push_back({"--image", o.image});
+  inputs.push_back({"--depth", o.depth});
+  for (const char* suffix : {"_transmittance.exr", "_inscatter.exr", "_composite.exr"})
+    refuse_output_replacing_input(std::filesystem::path(scene.output.directory) / (scene.output.name + suffix),
+                                  "--out / --name", inputs);
+  const OutputLock lock(scene.output.directory, scene.output.name, "--out / --name");  // one writer per name
   const SkyRenderer r(scene);
   if (!o.force) {  // the time, once the renderer is built
     RenderEstimate estimate = estimate_render(plan);

@@ -212,6 +212,10 @@ int run_compare(const CompareOptions& o) {
   run.delta_e_map_file = o.name + "-delta-e.png";
   run.side_by_side_file = o.name + "-side-by-side.png";
   if (!run.sweep.empty()) run.sweep_plot_file = o.name + "-sweep.svg";
+  std::vector<NamedInput> inputs = scene_input_files(o.scene);
+  for (const auto& exr : o.exrs) inputs.push_back({"EXR", exr});
+  for (const auto& file : {run.delta_e_map_file, run.side_by_side_file, run.sweep_plot_file, o.name + ".json", o.name + ".md"})
+    if (!file.empty()) refuse_output_replacing_input(dir / file, "--out / --name", inputs);
   std::vector<std::filesystem::path> written;
   try {
     const auto keep = [&](const std::filesystem::path& p) { written.push_back(p); return p; };

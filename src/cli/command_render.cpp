@@ -85,6 +85,11 @@ int run_render(RenderOptions& o) {
     return kExitOk;
   }
   const DisplaySettings display = display_settings(o.display, exposure_flag_given(o));
+  {
+    const RenderOutputs outputs = render_output_paths(scene, display);
+    for (const auto& path : {outputs.exr, outputs.png, outputs.working_exr})
+      if (!path.empty()) refuse_output_replacing_input(path, "--out / --name", scene_input_files(o.scene));
+  }
   // Absurd requests are refused up front (render_budget.hpp): the sizes and the memory before the
   // renderer is built, the time once it is (measured on it, inside render_scene_to_files).
   const RenderPlan plan = RenderPlan::for_scene(scene, !display.exr_space.empty(), display.png_bit_depth);
@@ -92,19 +97,25 @@ int run_render(RenderOptions& o) {
   RenderEstimate estimate = estimate_render(plan);
   if (!o.force) refuse_if_over_budget(estimate);
   std::string photometry;
-  const auto measure = [&](const SkyRenderer& r) {
+  const auto measure = [&](const SkyRenderer& r) {  // once the tables are built
+    estimate.table_seconds.reset();
     estimate.seconds = measure_render_seconds(r, plan);
     if (!o.force) refuse_if_over_budget(estimate);
   };
+  if (o.dry_run) {  // nothing expensive: a light renderer, and the tables it leaves out estimated
+    const SkyRenderer light(scene_for_estimate(scene));
+    estimate.table_seconds = estimate_table_seconds(scene, light);
+    estimate.seconds = measure_render_seconds(light, plan);
+    if (!o.force) refuse_if_over_budget(estimate);
+    std::cout << "estimate: " << estimate.describe() << " (" << plan.settings() << ")\n";
+    return kExitOk;
+  }
+  // The scattering-order tables can take hours at extreme settings: refused before they are built.
+  if (!o.force) refuse_if_tables_over_budget(scene, estimate);
   const auto prepared = [&](const SkyRenderer& r) {
     measure(r);
     if (!o.quiet && scene.render.path == RenderSpec::Path::Spectral && r.grid().size() >= 2) photometry = photometry_line(r);
   };
-  if (o.dry_run) {
-    measure(SkyRenderer(scene));
-    std::cout << "estimate: " << estimate.describe() << " (" << plan.settings() << ")\n";
-    return kExitOk;
-  }
   ProgressBar bar("rendering", o.quiet);
   const auto out = render_scene_to_files(scene, display, [&](int done, int total) { bar.update(done, total); },
                                          prepared);

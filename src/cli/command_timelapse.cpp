@@ -1,6 +1,7 @@
 // `skyspec timelapse`: one image per time step between a start and an end date-time at a place,
 // the sun placed by the NREL solar position algorithm, with one exposure for every frame.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +16,10 @@
 #include "physics/date_time.hpp"
 #include "colour/display_pipeline.hpp"
 #include "base/atomic_file.hpp"
+#include "base/output_lock.hpp"
+#include "io/png_image.hpp"
+#include "io/provenance.hpp"
+#include "io/spectral_exr.hpp"
 #include "skyspec/error.hpp"
 #include "colour/exposure.hpp"
 #include "skyspec/render.hpp"
@@ -52,10 +57,48 @@ std::string frame_name(const std::string& base, int k) {
   return base + buf;
 }
 
-bool frame_done(const Scene& s) {
+// Whether a frame an earlier run left can be kept by --resume: files are untrusted, so each file
+// the frame's scene asks for must exist, decode completely (the EXR's pixels read through
+// OpenEXR; the PNG's rows with libpng's CRC and Adler-32 checks) and record exactly this frame's
+// scene (its skyspec:scene: the same place, time, size, quality, exposure and grid). `why` says
+// what was wrong otherwise.
+bool frame_intact(const Scene& s, std::string& why) {
   const std::filesystem::path dir(s.output.directory);
-  return (!s.output.exr || std::filesystem::exists(dir / (s.output.name + ".exr"))) &&
-         (!s.output.png || std::filesystem::exists(dir / (s.output.name + ".png")));
+  // render.threads changes no pixel (cli_determinism): a resumed run may use other threads.
+  const auto normalised = [](Scene scene) {
+    scene.render.threads = 0;
+    return scene_to_toml(scene);
+  };
+  const std::string expected = normalised(s);
+  const auto same_scene = [&](const std::string& recorded) {
+    try {
+      SceneLoader loader;
+      loader.apply_toml(recorded, "the frame's skyspec:scene");
+      return normalised(loader.finish()) == expected;
+    } catch (const InputError&) {
+      return false;
+    }
+  };
+  try {
+    if (s.output.exr) {
+      const auto exr = dir / (s.output.name + ".exr");
+      if (!std::filesystem::exists(exr)) return why = exr.filename().string() + " is missing", false;
+      read_spectral_exr(exr);  // every pixel
+      if (!same_scene(read_exr_provenance(exr).scene))
+        return why = exr.filename().string() + " records another scene", false;
+    }
+    if (s.output.png) {
+      const auto png = dir / (s.output.name + ".png");
+      if (!std::filesystem::exists(png)) return why = png.filename().string() + " is missing", false;
+      const auto text = read_png_text_verified(png);
+      const auto scene = text.find(kSceneAttribute);
+      if (scene == text.end() || !same_scene(scene->second))
+        return why = png.filename().string() + " records another scene", false;
+    }
+  } catch (const IoError& e) {
+    return why = e.what(), false;
+  }
+  return true;
 }
 
 int run(TimelapseOptions& o) {
@@ -87,6 +130,7 @@ int run(TimelapseOptions& o) {
   ensure_writable_directory(first.output.directory, "output.directory");  // its errors first
   RenderEstimate estimate = estimate_render(plan);
   if (!o.force) refuse_if_over_budget(estimate);
+  if (!o.force) refuse_if_tables_over_budget(first, estimate);  // before the tables are built
   bool measured = o.force;
   // One exposure for all frames: the one given, or the automatic exposure of the frame with the
   // highest sun, metered on a 64 x 64 render of it.
@@ -103,7 +147,12 @@ int run(TimelapseOptions& o) {
     meter.camera.width = 64;
     meter.camera.height = std::max(1, static_cast<int>(std::lround(64 * aspect)));
     const SpectralImageBuffer img = render_to_memory(meter);
-    const double ev = std::log2(metered_exposure_scale(img.rgb, img.width, img.height));
+    // Within output.exposure_ev's range: a night sky meters far above it (67.75 EV at a sun 18
+    // degrees down), and a frame must record a scene that loads again.
+    const double metered = std::log2(metered_exposure_scale(img.rgb, img.width, img.height));
+    const double ev = std::clamp(metered, -64.0, 64.0);
+    if (ev != metered && !o.quiet)
+      std::cout << "metered exposure " << metered << " EV is outside -64..64 EV; using " << ev << " EV\n";
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.6f", ev);
     ev_text = buf;
@@ -112,14 +161,23 @@ int run(TimelapseOptions& o) {
                 << best << " deg)\n";
   }
 
+  if (o.resume) {  // temporary files of a run that was killed (SIGKILL leaves them)
+    const int stale = remove_stale_temporaries(first.output.directory, first.output.name + "_");
+    if (stale > 0 && !o.quiet) std::cout << "removed " << stale << " temporary file(s) of an earlier run\n";
+  }
   ProgressBar bar("time-lapse", o.quiet);
-  int written = 0, skipped = 0;
+  int written = 0, skipped = 0, replaced = 0;
   for (int k = 0; k < frames; ++k) {
     Scene s = frame_scene(k, "output.name", "\"" + frame_name(first.output.name, k) + "\"");
     if (!ev_text.empty()) s.output.exposure_ev = std::stod(ev_text);
-    if (o.resume && frame_done(s)) {
+    std::string why;
+    if (o.resume && frame_intact(s, why)) {
       ++skipped;
     } else {
+      if (o.resume && why.find(" is missing") == std::string::npos) {
+        ++replaced;
+        if (!o.quiet) std::cerr << "skyspec: frame " << k << " rendered again: " << why << "\n";
+      }
       render_scene_to_files(s, DisplaySettings{}, {}, [&](const SkyRenderer& r) {
         if (measured) return;
         RenderPlan rest = plan;
@@ -135,6 +193,7 @@ int run(TimelapseOptions& o) {
   bar.finish();
   if (!o.quiet)
     std::cout << "wrote " << written << " frame(s)" << (skipped ? ", kept " + std::to_string(skipped) + " finished" : "")
+              << (replaced ? ", replaced " + std::to_string(replaced) + " damaged or foreign" : "")
               << " in " << first.output.directory << "\n";
   return kExitOk;
 }
@@ -155,7 +214,9 @@ Command add_timelapse_command(CLI::App& app) {
   cmd->add_option("--start", o->start, "first frame, ISO 8601 with UTC offset (e.g. 2026-06-21T19:00:00+02:00)");
   cmd->add_option("--end", o->end, "last frame at or before this time");
   cmd->add_option("--step-minutes", o->step_minutes, "time between frames, minutes");
-  cmd->add_flag("--resume", o->resume, "keep frames whose files exist (from an interrupted run)");
+  cmd->add_flag("--resume", o->resume,
+                "keep the frames an interrupted run finished: those whose files decode completely and record this "
+                "frame's scene (others are rendered again)");
   cmd->add_flag("--force", o->force,
                 "render even if the frames exceed the free disk, a frame needs more memory than is available or "
                 "the estimated time exceeds 24 hours");

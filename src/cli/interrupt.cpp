@@ -2,22 +2,13 @@
 
 #include <csignal>
 #include <cstring>
-#include <string>
 
 namespace skyspec::cli {
 namespace {
 
-// Lock-free sig_atomic_t-sized flag: the only thing the handler touches.
-volatile std::sig_atomic_t g_signal = 0;
-
-extern "C" void record_signal(int signal_number) { g_signal = signal_number; }
+extern "C" void record_signal(int signal_number) { skyspec::request_cancellation(signal_number); }
 
 }  // namespace
-
-Interrupted::Interrupted(int signal_number)
-    : Error(std::string("interrupted by ") + (signal_number == SIGINT ? "SIGINT" : signal_number == SIGTERM ? "SIGTERM" : "signal " + std::to_string(signal_number)) +
-            "; the unfinished output files were removed"),
-      signal_(signal_number) {}
 
 void install_interrupt_handlers() {
   struct sigaction action;
@@ -27,12 +18,6 @@ void install_interrupt_handlers() {
   action.sa_flags = SA_RESETHAND;  // a second signal gets the default action
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
-}
-
-int pending_interrupt() { return g_signal; }
-
-void throw_if_interrupted() {
-  if (const int s = g_signal) throw Interrupted(s);
 }
 
 }  // namespace skyspec::cli

@@ -76,7 +76,8 @@ void add_quality_option(CLI::App& app, SceneOptions& o) {
 
 void add_from_option(CLI::App& app, SceneOptions& o) {
   app.add_option("--from", o.from_file,
-                 "render the scene recorded in a skyspec EXR (its skyspec:scene header); other flags override it")
+                 "render the scene recorded in a skyspec EXR (its skyspec:scene header); other flags override it. "
+                 "Its recorded output folder and name are not used: --out and --name choose, as for any scene")
       ->excludes(app.get_option("--scene"))
       ->excludes(app.get_option("--preset"));
 }
@@ -103,11 +104,24 @@ std::string recorded_scene(const std::string& path) {
 }
 }  // namespace
 
+std::vector<NamedInput> scene_input_files(const SceneOptions& o) {
+  std::vector<NamedInput> files;
+  if (!o.scene_file.empty()) files.push_back({"--scene", o.scene_file});
+  if (!o.from_file.empty()) files.push_back({"--from", o.from_file});
+  return files;
+}
+
 Scene load_scene(const SceneOptions& o, const std::function<void(SceneLoader&)>& before_sets) {
   SceneLoader loader(o.preset);
   if (!o.from_file.empty()) {
     if (!o.from_scene) o.from_scene = recorded_scene(o.from_file);
+    // A file we did not necessarily write never chooses where we write: the recorded
+    // output.directory and output.name are replaced by the preset's (skyspec-out/sky), and --out,
+    // --name and --set choose as they do for any scene.
+    const Scene preset = SceneLoader(o.preset).finish();
     loader.apply_toml(*o.from_scene, "--from " + o.from_file);
+    loader.apply_override("output.directory", preset.output.directory, "--from (its recorded output.directory is not used)");
+    loader.apply_override("output.name", preset.output.name, "--from (its recorded output.name is not used)");
   }
   if (!o.quality.empty()) loader.apply_quality(o.quality, "--quality");
   if (!o.scene_file.empty()) loader.apply_file(o.scene_file);

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "base/atomic_file.hpp"
 #include "skyspec/scene.hpp"
 
 namespace skyspec::cli {
@@ -64,6 +65,9 @@ Scene load_scene(const SceneOptions& o, const std::function<void(SceneLoader&)>&
 /// of that level, applied after the preset (and --from) and before the scene file, flags and --set,
 /// so that sample counts given explicitly win.
 void add_quality_option(CLI::App& app, SceneOptions& o);
+
+/// The files the scene options read (--scene, --from), for refuse_output_replacing_input.
+std::vector<NamedInput> scene_input_files(const SceneOptions& o);
 
 /// "a,b,c" as a TOML array "[a,b,c]" (unchanged when it already is one).
 std::string as_toml_array(const std::string& csv);

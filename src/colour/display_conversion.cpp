@@ -6,6 +6,7 @@
 #include <map>
 
 #include "base/atomic_file.hpp"
+#include "base/output_lock.hpp"
 #include "skyspec/error.hpp"
 #include "io/png_image.hpp"
 #include "io/provenance.hpp"
@@ -35,6 +36,11 @@ ConversionOutputs convert_exr_for_display(const std::filesystem::path& input, co
   ensure_writable_directory(directory, "--out");
   const DisplayPipeline pipeline(settings);  // checks the names before reading anything
   if (!std::filesystem::is_regular_file(input)) throw InputError("INPUT", "'" + input.string() + "'", "an existing EXR file");
+  const OutputLock lock(directory, name, "--out / --name");  // one writer per name
+  if (png) refuse_output_replacing_input(directory / (name + ".png"), "--out / --name", {{"INPUT", input}});
+  if (!settings.exr_space.empty())
+    refuse_output_replacing_input(directory / (name + "-" + find_working_space(settings.exr_space).file_suffix + ".exr"),
+                                  "--out / --name", {{"INPUT", input}});
   const RgbExrImage image = read_rgb_exr(input);
   if (image.has_chromaticities && !is_rec709(image.chromaticities))
     throw InputError("input EXR", "'" + input.string() + "'",

@@ -13,15 +13,16 @@
 
 #include "base/atomic_file.hpp"
 #include "skyspec/colour.hpp"
+#include "io/exr_input.hpp"
 #include "skyspec/error.hpp"
 
 namespace skyspec {
 
 std::vector<std::string> exr_channel_names(const std::filesystem::path& path) {
   try {
-    Imf::InputFile file(path.string().c_str());
+    const auto file = open_exr_input(path);
     std::vector<std::string> names;
-    for (auto it = file.header().channels().begin(); it != file.header().channels().end(); ++it)
+    for (auto it = file->header().channels().begin(); it != file->header().channels().end(); ++it)
       names.emplace_back(it.name());
     return names;
   } catch (const std::exception& e) {
@@ -31,7 +32,9 @@ std::vector<std::string> exr_channel_names(const std::filesystem::path& path) {
 
 ExrChannels read_exr_channels(const std::filesystem::path& path, const std::vector<std::string>& names) {
   try {
-    Imf::InputFile file(path.string().c_str());
+    const auto input = open_exr_input(path);
+    Imf::InputFile& file = *input;
+    require_float_channels(file.header(), names, path.string() + ": ");
     const Imath::Box2i dw = file.header().dataWindow();
     ExrChannels out;
     out.width = dw.max.x - dw.min.x + 1;

@@ -186,4 +186,45 @@ void write_png_display(const std::filesystem::path& path, int width, int height,
   file.commit();
 }
 
+namespace {
+// Decodes every row and collects the text chunks. The objects with destructors live in the
+// caller's frame (reached through pointers): libpng's error handler longjmps out of this one.
+bool read_png_checked(FILE* in, PngErrorMessage* error, std::vector<png_byte>* row,
+                      std::map<std::string, std::string>* text) {
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, error, on_png_error, on_png_warning);
+  if (!png) return false;
+  png_infop info = png_create_info_struct(png);
+  if (!info || setjmp(png_jmpbuf(png))) {
+    png_destroy_read_struct(&png, info ? &info : nullptr, nullptr);
+    return false;
+  }
+  png_set_crc_action(png, PNG_CRC_ERROR_QUIT, PNG_CRC_ERROR_QUIT);  // ancillary chunks (the text) too
+  png_init_io(png, in);
+  png_read_info(png, info);
+  row->resize(png_get_rowbytes(png, info));
+  const int passes = png_set_interlace_handling(png);
+  for (int pass = 0; pass < passes; ++pass)
+    for (png_uint_32 y = 0; y < png_get_image_height(png, info); ++y) png_read_row(png, row->data(), nullptr);
+  png_read_end(png, info);
+  png_textp chunks = nullptr;
+  const int count = png_get_text(png, info, &chunks, nullptr);
+  for (int i = 0; i < count; ++i)
+    (*text)[chunks[i].key] = chunks[i].text ? std::string(chunks[i].text) : std::string();
+  png_destroy_read_struct(&png, &info, nullptr);
+  return true;
+}
+}  // namespace
+
+std::map<std::string, std::string> read_png_text_verified(const std::filesystem::path& path) {
+  FILE* in = std::fopen(path.c_str(), "rb");
+  if (!in) throw IoError("cannot read PNG '" + path.string() + "': " + std::strerror(errno));
+  PngErrorMessage error;
+  std::vector<png_byte> row;
+  std::map<std::string, std::string> text;
+  const bool intact = read_png_checked(in, &error, &row, &text);
+  std::fclose(in);
+  if (!intact) throw IoError("PNG '" + path.string() + "' is damaged or incomplete: " + error.text);
+  return text;
+}
+
 }  // namespace skyspec

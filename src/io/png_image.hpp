@@ -2,6 +2,7 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,5 +29,10 @@ enum class PngColourTag { None, Srgb, DisplayP3, Rec709, Rec2100Pq };
 void write_png_display(const std::filesystem::path& path, int width, int height,
                        const std::vector<float>& code_values, int bit_depth, PngColourTag tag,
                        const std::vector<std::pair<std::string, std::string>>& text = {});
+
+/// Reads a PNG completely (every row decoded: libpng checks each chunk's CRC and the image
+/// data's Adler-32) and returns its text chunks (keyword -> text). Throws IoError naming the file
+/// when it is not a complete, intact PNG. Used to verify files before they are kept.
+std::map<std::string, std::string> read_png_text_verified(const std::filesystem::path& path);
 
 }  // namespace skyspec

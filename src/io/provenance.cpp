@@ -10,6 +10,7 @@
 #include "skyspec/error.hpp"
 #include "skyspec/scene.hpp"
 #include "skyspec/version.hpp"
+#include "io/exr_input.hpp"
 
 namespace skyspec {
 
@@ -42,8 +43,8 @@ std::map<std::string, std::string> provenance_attributes(const Scene& scene, boo
 
 FileProvenance read_exr_provenance(const std::filesystem::path& path) {
   try {
-    const Imf::InputFile file(path.string().c_str());
-    const Imf::Header& header = file.header();
+    const auto file = open_exr_input(path);
+    const Imf::Header& header = file->header();
     auto text = [&](const char* name) {
       const auto* a = header.findTypedAttribute<Imf::StringAttribute>(name);
       return a ? a->value() : std::string();

@@ -20,6 +20,7 @@
 
 #include "base/atomic_file.hpp"
 #include "skyspec/error.hpp"
+#include "io/exr_input.hpp"
 
 namespace skyspec {
 namespace {
@@ -97,8 +98,10 @@ void write_rgb_exr(const std::filesystem::path& path, int width, int height, con
 RgbExrImage read_rgb_exr(const std::filesystem::path& path) {
   const std::string where = "EXR '" + path.string() + "': ";
   try {
-    Imf::InputFile in(path.c_str());
+    const auto input = open_exr_input(path);
+    Imf::InputFile& in = *input;
     const Imf::Header& header = in.header();
+    require_float_channels(header, {"R", "G", "B"}, where);
     const IMATH_NAMESPACE::Box2i window = header.dataWindow();
     RgbExrImage image;
     image.width = window.max.x - window.min.x + 1;

@@ -36,6 +36,7 @@
 #include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
 #include "io/spectral_exr_encode.hpp"
+#include "io/exr_input.hpp"
 
 namespace skyspec {
 namespace fs = std::filesystem;
@@ -487,7 +488,8 @@ void SpectralExrWriter::finish() {
 namespace {
 
 SpectralImage read_spectral_exr_unchecked(const fs::path& path) {
-  Imf::InputFile in(path.c_str());
+  const auto input = open_exr_input(path);
+  Imf::InputFile& in = *input;
   const Imf::Header& header = in.header();
   const IMATH_NAMESPACE::Box2i window = header.dataWindow();
   SpectralImage image;
@@ -501,11 +503,14 @@ SpectralImage read_spectral_exr_unchecked(const fs::path& path) {
   std::vector<std::pair<double, std::string>> spectral_channels;
   bool has_rgb = true;
   for (const char* name : kRgbNames) has_rgb = has_rgb && header.channels().findChannel(name);
+  require_float_channels(header, {kRgbNames[0], kRgbNames[1], kRgbNames[2]}, "spectral EXR '" + path.string() + "': ");
   for (auto it = header.channels().begin(); it != header.channels().end(); ++it) {
     if (it.channel().xSampling != 1 || it.channel().ySampling != 1)
       throw fail(std::string("channel ") + it.name() + " is subsampled (not supported)");
-    if (const std::optional<double> lambda_nm = parse_spectral_channel_name(it.name()))
+    if (const std::optional<double> lambda_nm = parse_spectral_channel_name(it.name())) {
+      if (it.channel().type == Imf::UINT) throw fail(std::string("channel ") + it.name() + " holds UINT samples; skyspec reads HALF or FLOAT");
       spectral_channels.emplace_back(*lambda_nm, it.name());
+    }
   }
   if (spectral_channels.empty()) throw fail("no S0.<wavelength> spectral channels");
   std::sort(spectral_channels.begin(), spectral_channels.end());

@@ -21,7 +21,9 @@
 #include <tbb/parallel_reduce.h>
 #include <tbb/task_arena.h>
 
+#include "base/cancellation.hpp"
 #include "base/atomic_file.hpp"
+#include "base/output_lock.hpp"
 #include "skyspec/colour.hpp"
 #include "colour/display_pipeline.hpp"
 #include "base/embedded_data.hpp"
@@ -98,6 +100,7 @@ struct SkyRenderer::Impl {
   ScatteringSources sources;
   std::unique_ptr<Camera> camera;
   std::unique_ptr<SkyViewTable> sky_view;  // null: every pixel is marched
+  double sky_view_seconds = 0.0;           // its build time
   Vec3 sun_dir;
   Spectrum sun_irradiance;
   double sun_radius_rad;
@@ -187,14 +190,18 @@ struct SkyRenderer::Impl {
     if (s.render.sky_view_table && SkyViewTable::applicable(atmosphere, camera->origin_m())) {
       const int rows = s.render.sky_view_zenith_samples;
       const bool below = image_sees_below_horizon();
+      const auto start = std::chrono::steady_clock::now();
       try {
         sky_view = std::make_unique<SkyViewTable>(
             integrator, sources, camera->origin_m(), sun_dir,
             SkyViewResolution{rows, std::max(2, rows / 2), s.render.sky_view_azimuth_samples, below},
             threads);
+      } catch (const Cancelled&) {
+        throw;
       } catch (const Error&) {
         sky_view.reset();  // a geometry the table cannot resolve (rows that coincide): march every pixel
       }
+      sky_view_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
     if (rgb_fast) {
       rgb_index[0] = grid.index_of(680);
@@ -226,6 +233,7 @@ const Vec3& SkyRenderer::sun_direction() const { return impl_->sun_dir; }
 const Vec3& SkyRenderer::camera_origin_m() const { return impl_->camera->origin_m(); }
 double SkyRenderer::sun_angular_radius_rad() const { return impl_->sun_radius_rad; }
 const ScatteringOrders* SkyRenderer::scattering_orders() const { return impl_->orders.get(); }
+double SkyRenderer::sky_view_table_seconds() const { return impl_->sky_view_seconds; }
 
 Spectrum SkyRenderer::transmittance(const Vec3& dir) const {
   Spectrum t(impl_->grid.size());
@@ -316,6 +324,7 @@ void SkyRenderer::render_rows(int y0, int rows, float* spectral, float* rgb) con
     tbb::parallel_for(tbb::blocked_range<int>(0, rows * w, kChunk), [&](const tbb::blocked_range<int>& r) {
       Scratch& sc = scratch.local();
       for (int c0 = r.begin(); c0 < r.end(); c0 += kChunk) {
+        throw_if_cancelled();  // every 64 pixels: a request stops the image within a second
         const int c1 = std::min(r.end(), c0 + kChunk);
         int count = 0;
         for (int idx = c0; idx < c1; ++idx) {
@@ -529,6 +538,16 @@ void write_working_space_exr(const std::filesystem::path& path, const SkyRendere
 
 }  // namespace
 
+RenderOutputs render_output_paths(const Scene& scene, const DisplaySettings& display) {
+  RenderOutputs out;
+  const std::filesystem::path dir(scene.output.directory);
+  if (scene.output.exr) out.exr = dir / (scene.output.name + ".exr");
+  if (scene.output.png) out.png = dir / (scene.output.name + ".png");
+  if (!display.exr_space.empty())
+    out.working_exr = dir / (scene.output.name + "-" + find_working_space(display.exr_space).file_suffix + ".exr");
+  return out;
+}
+
 RenderOutputs render_scene_to_files(const Scene& scene, const ProgressFn& progress) {
   return render_scene_to_files(scene, DisplaySettings{}, progress);
 }
@@ -538,10 +557,11 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
   using Clock = std::chrono::steady_clock;
   const auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   const auto t_start = Clock::now();
-  RenderOutputs out;
   // 1. The outputs asked for, and the display pipeline's names, are checked before rendering.
   ensure_writable_directory(scene.output.directory, "output.directory");
-  const std::filesystem::path dir(scene.output.directory);
+  const RenderOutputs paths = render_output_paths(scene, display);
+  const OutputLock lock(scene.output.directory, scene.output.name, "output.name");  // one writer per name
+  RenderOutputs out;
   const bool working_exr = !display.exr_space.empty();
   if (!scene.output.exr && !scene.output.png && !working_exr)
     throw InputError("output.exr and output.png", "false", "at least one output to be true");
@@ -561,7 +581,7 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
 
   // 3. The image, streamed into the spectral EXR band by band.
   std::unique_ptr<SpectralExrWriter> exr;
-  if (scene.output.exr) exr = open_spectral_exr(r, out.exr = dir / (scene.output.name + ".exr"), provenance);
+  if (scene.output.exr) exr = open_spectral_exr(r, out.exr = paths.exr, provenance);
   std::vector<float> rgb;
   if (pipeline) rgb.resize(static_cast<size_t>(r.width()) * r.height() * 3);
   render_bands(r, exr.get(), rgb, progress);
@@ -578,14 +598,14 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
   bool exr_done = exr && !committing.valid(), png_done = false, working_done = false;
   try {
     if (scene.output.png) {
-      out.png = dir / (scene.output.name + ".png");
+      out.png = paths.png;
       out.display = pipeline->describe();
       write_preview_png(out.png, r, *pipeline, display, rgb, exposure.resolved, provenance);
       png_done = true;
     }
     if (working_exr) {
       const WorkingSpace& space = find_working_space(display.exr_space);
-      out.working_exr = dir / (scene.output.name + "-" + space.file_suffix + ".exr");
+      out.working_exr = paths.working_exr;
       write_working_space_exr(out.working_exr, r, *pipeline, space, rgb, exposure.settings, provenance);
       working_done = true;
     }

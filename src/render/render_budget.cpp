@@ -17,6 +17,8 @@
 #include "skyspec/scene.hpp"
 #include "io/spectral_exr.hpp"
 #include "io/spectral_exr_encode.hpp"
+#include "render/scene_tables.hpp"
+#include "transport/scattering_tables_cache.hpp"
 
 namespace skyspec {
 namespace {
@@ -135,6 +137,7 @@ std::string RenderEstimate::describe() const {
   text += ", peak memory about " + format_bytes(peak_memory_bytes);
   if (memory_available_bytes) text += " (" + format_bytes(*memory_available_bytes) + " available)";
   if (seconds) text += ", about " + format_duration(*seconds) + " of rendering";
+  if (table_seconds) text += *table_seconds > 0 ? ", tables about " + format_duration(*table_seconds) : ", tables cached";
   return text;
 }
 
@@ -153,8 +156,13 @@ std::vector<std::string> RenderEstimate::problems() const {
   if (memory_available_bytes && peak_memory_bytes > *memory_available_bytes)
     out.push_back("would need about " + format_bytes(peak_memory_bytes) + " of memory but " +
                   format_bytes(*memory_available_bytes) + " is available");
-  if (seconds && *seconds > kMaxSeconds)
-    out.push_back("would take about " + format_duration(*seconds) + " at these settings (" + plan.settings() +
+  const double tables = table_seconds.value_or(0.0);
+  if (tables > kMaxSeconds)
+    out.push_back("would spend about " + format_duration(tables) + " building its tables at these settings (" +
+                  std::to_string(plan.wavelengths) + " wavelengths); use fewer scattering orders, smaller tables "
+                  "(render.ms_altitude_samples, render.ms_sun_samples, render.sky_view_*) or fewer wavelengths");
+  else if (seconds && *seconds + tables > kMaxSeconds)
+    out.push_back("would take about " + format_duration(*seconds + tables) + " at these settings (" + plan.settings() +
                   "); use a smaller image, fewer wavelengths or fewer view segments");
   return out;
 }
@@ -167,6 +175,35 @@ RenderEstimate estimate_render(const RenderPlan& plan) {
   e.disk_available_bytes = available_disk_bytes(plan.directory);
   e.memory_available_bytes = available_memory_bytes();
   return e;
+}
+
+Scene scene_for_estimate(const Scene& scene) {
+  Scene light = scene;
+  light.render.scattering_orders = 1;
+  light.render.sky_view_zenith_samples = std::min(scene.render.sky_view_zenith_samples, 32);
+  light.render.sky_view_azimuth_samples = std::min(scene.render.sky_view_azimuth_samples, 32);
+  return light;
+}
+
+double estimate_scattering_orders_seconds(const Scene& scene) {
+  if (scene.render.scattering_orders < 2) return 0.0;
+  if (scattering_orders_cached(scattering_tables_key(scene), scene.render.cache_tables)) return 0.0;
+  tbb::task_arena arena(scene.render.threads > 0 ? scene.render.threads : tbb::this_task_arena::max_concurrency());
+  return arena.execute([&] {
+    const AtmosphereModel atmosphere(scene.atmosphere, make_wavelength_grid(scene));
+    const SunColumnTable table(atmosphere, sun_table_resolution(scene), SunColumnTable::MuBand{});
+    const TableSunColumns columns(table);
+    const SingleScattering integrator(atmosphere, columns, IntegratorSettings{scene.render.view_segments});
+    return ScatteringOrders::estimate_build_seconds(integrator, multiple_scattering_settings(scene));
+  });
+}
+
+double estimate_table_seconds(const Scene& scene, const SkyRenderer& estimate_renderer) {
+  const Scene& light = estimate_renderer.scene();
+  const double full = static_cast<double>(scene.render.sky_view_zenith_samples) * scene.render.sky_view_azimuth_samples;
+  const double built = static_cast<double>(light.render.sky_view_zenith_samples) * light.render.sky_view_azimuth_samples;
+  const double sky_view = estimate_renderer.sky_view_table_seconds() * std::max(0.0, full / built - 1.0);
+  return estimate_scattering_orders_seconds(scene) + sky_view;
 }
 
 double measure_render_seconds(const SkyRenderer& renderer, const RenderPlan& plan) {
@@ -235,6 +272,12 @@ void refuse_if_over_budget(const RenderEstimate& estimate, const std::string& fo
   for (size_t i = 0; i < problems.size(); ++i) message += (i ? ", and " : " ") + problems[i];
   message += " (use " + force_flag + " to render anyway)";
   throw InputError::refused(force_flag, message);
+}
+
+void refuse_if_tables_over_budget(const Scene& scene, RenderEstimate estimate, const std::string& force_flag) {
+  if (scene.render.scattering_orders < 2) return;
+  estimate.table_seconds = estimate_scattering_orders_seconds(scene);
+  refuse_if_over_budget(estimate, force_flag);
 }
 
 std::optional<std::uint64_t> available_memory_bytes() {

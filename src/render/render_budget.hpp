@@ -64,8 +64,10 @@ struct RenderEstimate {
   std::uint64_t output_bytes = 0, peak_memory_bytes = 0;
   std::optional<std::uint64_t> disk_available_bytes;    ///< unknown: not checked
   std::optional<std::uint64_t> memory_available_bytes;  ///< unknown: not checked
-  std::optional<double> seconds;                        ///< wall time; unknown until measured
-  /// "outputs up to 46 MB (74 GB free), peak memory about 6 MB (22 GB available), about 2.1 s".
+  std::optional<double> seconds;                        ///< wall time of the image; unknown until measured
+  std::optional<double> table_seconds;                  ///< wall time of tables not yet built, if estimated
+  /// "outputs up to 46 MB (74 GB free), peak memory about 6 MB (22 GB available), about 2.1 s of
+  /// rendering[, tables about 40 s]".
   std::string describe() const;
   /// One sentence per limit exceeded: output > free disk, memory > MemAvailable, time > 24 h.
   std::vector<std::string> problems() const;
@@ -84,8 +86,27 @@ RenderEstimate estimate_render(const RenderPlan& plan);
 /// (docs/performance.md).
 double measure_render_seconds(const SkyRenderer& renderer, const RenderPlan& plan);
 
+/// The scene as `render --dry-run` builds it, so that nothing expensive is computed: single
+/// scattering only (no scattering-order tables) and a sky-view table of at most 32 x 32 entries.
+/// The cost of a pixel measured on its renderer is that of the render (a table look-up, or a
+/// march), less the look-ups of the higher orders.
+Scene scene_for_estimate(const Scene& scene);
+/// Seconds to build the scene's scattering-order tables (render.scattering_orders >= 2), or 0
+/// when they are cached (in this process or on disk): ScatteringOrders::estimate_build_seconds,
+/// which builds and times 16 entries of one order. Builds the scene's sun table to do so.
+double estimate_scattering_orders_seconds(const Scene& scene);
+/// Seconds to build the tables of `scene` that `estimate_renderer` (built from
+/// scene_for_estimate(scene)) left out: the scattering orders, and the rest of the sky-view table
+/// (its build time scaled by the ratio of the table sizes).
+double estimate_table_seconds(const Scene& scene, const SkyRenderer& estimate_renderer);
+
 /// Throws InputError::refused naming every limit exceeded, the estimate and `force_flag`.
 void refuse_if_over_budget(const RenderEstimate& estimate, const std::string& force_flag = "--force");
+
+/// Before a renderer is built: refuse_if_over_budget with the estimate of the scene's
+/// scattering-order tables added (estimate_scattering_orders_seconds), so that tables that would
+/// take more than a day are refused before they start.
+void refuse_if_tables_over_budget(const Scene& scene, RenderEstimate estimate, const std::string& force_flag = "--force");
 
 /// MemAvailable of /proc/meminfo, if readable.
 std::optional<std::uint64_t> available_memory_bytes();

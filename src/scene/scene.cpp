@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <functional>
 #include <iomanip>
 #include <limits>
@@ -20,6 +21,7 @@
 #include "base/embedded_data.hpp"
 #include "skyspec/error.hpp"
 #include "base/text_format.hpp"
+#include "scene/toml_limits.hpp"
 #include "skyspec/refractive_index.hpp"
 #include "skyspec/units.hpp"
 
@@ -593,6 +595,7 @@ void apply_table(Scene& scene, const toml::table& tbl, const std::string& prefix
 }
 
 toml::table parse_toml(const std::string& text, const std::string& origin) {
+  check_toml_limits(text, "scene file", origin);  // before the (recursive) parser sees it
   try {
     return toml::parse(text, origin);
   } catch (const toml::parse_error& e) {
@@ -644,6 +647,14 @@ void SceneLoader::apply_toml(const std::string& text, const std::string& origin)
 }
 
 void SceneLoader::apply_file(const std::string& path) {
+  // A folder, a FIFO or a device is refused before it is opened (opening a FIFO blocks until a
+  // writer comes; a folder reads as an empty scene).
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    throw InputError("--scene", "\"" + path + "\"",
+                     std::string("a TOML scene file (this is ") +
+                         (std::filesystem::is_directory(status) ? "a folder" : std::filesystem::is_fifo(status) ? "a FIFO" : "not a regular file") + ")");
   std::string text;
   {
     FILE* f = std::fopen(path.c_str(), "rb");
@@ -652,9 +663,9 @@ void SceneLoader::apply_file(const std::string& path) {
     size_t n;
     while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) {
       text.append(buf, n);
-      if (text.size() > (16u << 20)) {
+      if (text.size() > kMaxTomlBytes) {
         std::fclose(f);
-        throw InputError("--scene", "\"" + path + "\"", "a scene file of at most 16 MiB");
+        throw InputError("--scene", "\"" + path + "\"", "a scene file of at most " + std::to_string(kMaxTomlBytes >> 20) + " MiB");
       }
     }
     std::fclose(f);
@@ -666,6 +677,7 @@ void SceneLoader::apply_override(const std::string& key, const std::string& toml
   const KeyDef* def = find_key(key);
   if (!def) unknown_key(key, origin);
   toml::table tbl;
+  check_toml_limits(toml_value, origin, origin);
   try {
     tbl = toml::parse("v = " + toml_value, origin);
   } catch (const toml::parse_error&) {

@@ -11,6 +11,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include "base/cancellation.hpp"
 #include "base/atomic_file.hpp"
 #include "base/embedded_data.hpp"
 #include "skyspec/units.hpp"
@@ -130,9 +131,10 @@ double SourceTable::mean_source() const {
 
 namespace {
 
-// Fill `table` with J and G computed from the radiance field that `sources` describes.
+// Fill `table` with J and G computed from the radiance field that `sources` describes; with a
+// stride > 1, only every stride-th entry (altitude x sun angle, row-major) is computed.
 void integrate_order(const SingleScattering& integrator, const ScatteringSources& sources,
-                     const MultipleScatteringSettings& st, SourceTable& table) {
+                     const MultipleScatteringSettings& st, SourceTable& table, int stride = 1) {
   const AtmosphereModel& atm = integrator.atmosphere();
   const double R = atm.planet_radius_m();
   const int n = atm.grid().size();
@@ -148,7 +150,9 @@ void integrate_order(const SingleScattering& integrator, const ScatteringSources
   };
   tbb::enumerable_thread_specific<Scratch> scratch([n] { return Scratch(n); });
   const int entries = table.altitude_count() * table.sun_count();
-  tbb::parallel_for(0, entries, [&](int e) {
+  tbb::parallel_for(0, (entries + stride - 1) / stride, [&](int sample) {
+    const int e = sample * stride;
+    throw_if_cancelled();  // an entry is a few hundred rays: a request stops the tables within a second
     Scratch& sc = scratch.local();
     const int ih = e / table.sun_count(), imu = e % table.sun_count();
     // Stay half a metre inside the shell so that rays from the table's end points are unambiguous.
@@ -205,6 +209,31 @@ ScatteringOrders::ScatteringOrders(const SingleScattering& integrator, const Mul
     orders_.push_back(std::move(table));
   }
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+double ScatteringOrders::estimate_build_seconds(const SingleScattering& integrator,
+                                               const MultipleScatteringSettings& settings) {
+  if (settings.orders < 2) return 0.0;
+  const AtmosphereModel& atm = integrator.atmosphere();
+  const SingleScattering builder(atm, integrator.sun_columns(), IntegratorSettings{settings.view_segments});
+  // A table of the real shape holding only the sampled entries (J is alt x sun x wavelengths
+  // floats; at the largest settings that is too much to allocate for an estimate, so the entries
+  // are sampled from a table of at most 64 x 64 spread the same way).
+  const int n_alt = std::min(settings.altitude_samples, 64), n_sun = std::min(settings.sun_samples, 64);
+  const int entries = n_alt * n_sun, stride = std::max(1, entries / 48);
+  const int sampled = (entries + stride - 1) / stride;
+  SourceTable table(atm.planet_radius_m(), atm.top_radius_m(), n_alt, n_sun, atm.grid().size());
+  const SourceTable previous(atm.planet_radius_m(), atm.top_radius_m(), 4, 4, atm.grid().size());  // zeros
+  const auto seconds_per_entry = [&](const ScatteringSources& sources) {
+    const auto t0 = std::chrono::steady_clock::now();
+    integrate_order(builder, sources, settings, table, stride);
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / sampled;
+  };
+  // Order 2 integrates single scattering along its rays; orders 3 and up look the previous order up.
+  const double second = seconds_per_entry(ScatteringSources{true, nullptr});
+  const double higher = settings.orders > 2 ? seconds_per_entry(ScatteringSources{false, &previous}) : 0.0;
+  const double all_entries = static_cast<double>(settings.altitude_samples) * settings.sun_samples;
+  return all_entries * (second + higher * (settings.orders - 2));
 }
 
 namespace {

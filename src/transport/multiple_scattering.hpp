@@ -84,6 +84,12 @@ class ScatteringOrders : public InScatteringSource {
   const SourceTable& sum() const { return *sum_; }
   double build_seconds() const { return build_seconds_; }
 
+  /// Seconds the constructor would take for these settings, without building them: orders 2 of a
+  /// 4 x 4 table (the same rays per entry as the real one) are built and timed, and the time is
+  /// scaled by the entries (altitudes x sun angles) and the orders. Orders after the second cost
+  /// about what the second does (a table look-up replaces the single-scattering sum at each step).
+  static double estimate_build_seconds(const SingleScattering& integrator, const MultipleScatteringSettings& settings);
+
   /// Saves the tables to `path` atomically, tagged with `key` (the scene keys they depend on).
   /// Returns false (and leaves no file) if it cannot.
   bool save(const std::string& path, const std::string& key) const;

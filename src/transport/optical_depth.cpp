@@ -6,6 +6,7 @@
 #include <Eigen/Core>
 #include <tbb/parallel_for.h>
 
+#include "base/cancellation.hpp"
 #include "skyspec/units.hpp"
 
 namespace skyspec {
@@ -145,6 +146,7 @@ SunColumnTable::SunColumnTable(const AtmosphereModel& atm, Resolution res, MuBan
   };
   const bool whole = band.lo <= -1.0 && band.hi >= 1.0;
   tbb::parallel_for(0, res_.n_r, [&](int ir) {
+    throw_if_cancelled();  // a row of the table: a request stops it within a second
     const double r = radius_of_row(ir);
     if (!whole) {
       // The band of the look-ups at radii up to the next row's (the band widens with altitude).

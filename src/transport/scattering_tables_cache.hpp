@@ -25,4 +25,9 @@ std::shared_ptr<const ScatteringOrders> scattering_orders_for(const SingleScatte
                                                               const MultipleScatteringSettings& settings,
                                                               bool use_disk_cache);
 
+/// Whether scattering_orders_for would take the tables of `key` from memory or from the disk
+/// cache rather than build them (a file of the key's name counts; its checksum is checked when it
+/// is read, and a damaged file is rebuilt then).
+bool scattering_orders_cached(const ScatteringTablesKey& key, bool use_disk_cache);
+
 }  // namespace skyspec

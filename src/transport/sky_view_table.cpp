@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "base/cancellation.hpp"
 #include "skyspec/atmosphere.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/units.hpp"
@@ -208,6 +209,7 @@ SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringS
     tbb::parallel_for(tbb::blocked_range<int>(0, total_rows, 1), [&](const tbb::blocked_range<int>& range) {
       RowScratch& sc = scratch.local();
       for (int row_all = range.begin(); row_all != range.end(); ++row_all) {
+        throw_if_cancelled();  // a row of the table: a request stops it within a second
         const bool sky_side = row_all < res_.sky_rows;
         const int row = sky_side ? row_all : row_all - res_.sky_rows;
         for (int column = 0; column < m; ++column) sc.dirs[static_cast<size_t>(column)] = direction(sky_side, row, column);

@@ -19,19 +19,8 @@ using namespace skyspec;
 using skyspec::test::ScratchFolder;
 namespace fs = std::filesystem;
 
-namespace {
-
-std::string read_all(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
-void write_text(const fs::path& path, const std::string& text) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out << text;
-}
-
-}  // namespace
+using skyspec::test::read_all;
+using skyspec::test::write_text;
 
 BOOST_AUTO_TEST_CASE(commit_renames_the_temporary_file) {
   ScratchFolder dir;

@@ -159,5 +159,29 @@ class OneSchema(unittest.TestCase):
             skyspec.scene_toml(overrides={"camera.heigth": 8})
 
 
+class HostileInput(unittest.TestCase):
+    """Issue 19: input that once crashed the interpreter or slipped through is a ValueError."""
+
+    def test_deep_toml_is_an_error_not_a_crash(self):
+        for text in ["a" + ".a" * 70000 + " = 1", "[" + "a." * 40000 + "a]", "x = " + "[" * 40000 + "]" * 40000]:
+            with self.assertRaises(ValueError) as e:
+                skyspec.scene_toml(scene_toml=text)
+            self.assertIn("scene_toml:1:", str(e.exception))
+
+    def test_a_folder_is_not_a_scene_file(self):
+        with self.assertRaises(ValueError) as e:
+            skyspec.scene_toml(scene_file=tempfile.gettempdir())
+        self.assertIn("this is a folder", str(e.exception))
+
+    def test_wavelengths_and_altitudes_are_checked(self):
+        for bad in [1e300, float("nan"), 100.0]:
+            with self.assertRaises(ValueError) as e:
+                skyspec.rayleigh_cross_section([550.0, bad])
+            self.assertIn("wavelengths_nm", str(e.exception))
+        with self.assertRaises(ValueError) as e:
+            skyspec.us_standard_atmosphere(None)
+        self.assertIn("altitude_m = None", str(e.exception))
+
+
 if __name__ == "__main__":
     unittest.main()

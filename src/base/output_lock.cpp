@@ -1,0 +1,76 @@
+#include "base/output_lock.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+
+#include "skyspec/error.hpp"
+
+namespace skyspec {
+namespace fs = std::filesystem;
+
+OutputLock::OutputLock(const fs::path& folder, const std::string& name, const std::string& setting)
+    : path_((folder.empty() ? fs::path(".") : folder) / ("." + name + ".lock")) {
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd_ < 0) throw IoError("cannot create the lock file '" + path_.string() + "': " + std::strerror(errno));
+    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+      const int error_number = errno;
+      std::string holder;
+      if (error_number == EWOULDBLOCK) std::getline(std::ifstream(path_), holder);
+      ::close(fd_);
+      fd_ = -1;
+      if (error_number != EWOULDBLOCK) throw IoError("cannot lock '" + path_.string() + "': " + std::strerror(error_number));
+      throw InputError::refused(setting, "another skyspec run" + (holder.empty() ? std::string() : " (process " + holder + ")") +
+                                             " is writing the outputs named \"" + name + "\" in " + folder.string() +
+                                             "; wait for it to finish or choose another --out or --name");
+    }
+    // Locked: but if the holder before us removed the file meanwhile, ours is no longer the file
+    // at that path and a third run could lock a new one. Then start again.
+    struct stat held {}, named {};
+    if (::fstat(fd_, &held) == 0 && ::stat(path_.c_str(), &named) == 0 && held.st_dev == named.st_dev &&
+        held.st_ino == named.st_ino) {
+      const std::string pid = std::to_string(::getpid()) + "\n";
+      if (::ftruncate(fd_, 0) == 0 && ::write(fd_, pid.data(), pid.size()) < 0) {
+        // The process id is only for the message of a run that finds the lock taken.
+      }
+      return;
+    }
+    ::close(fd_);
+    fd_ = -1;
+  }
+  throw IoError("cannot lock '" + path_.string() + "': it keeps being replaced");
+}
+
+OutputLock::~OutputLock() {
+  if (fd_ < 0) return;
+  ::unlink(path_.c_str());  // while still locked: the next run creates (and locks) a new file
+  ::close(fd_);
+}
+
+int remove_stale_temporaries(const fs::path& folder, const std::string& prefix) {
+  int removed = 0;
+  std::error_code ec;
+  for (fs::directory_iterator it(folder.empty() ? fs::path(".") : folder, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string file = it->path().filename().string();
+    if (file.rfind(prefix, 0) != 0) continue;
+    const std::size_t tmp = file.rfind(".tmp-");
+    if (tmp == std::string::npos) continue;
+    const std::size_t dash = file.find('-', tmp + 5);
+    if (dash == std::string::npos) continue;
+    char* end_of_pid = nullptr;
+    const long pid = std::strtol(file.c_str() + tmp + 5, &end_of_pid, 10);
+    if (pid <= 0 || end_of_pid != file.c_str() + dash) continue;
+    if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;  // its writer still runs
+    if (std::error_code rm; fs::remove(it->path(), rm)) ++removed;
+  }
+  return removed;
+}
+
+}  // namespace skyspec

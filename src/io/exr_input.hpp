@@ -1,0 +1,38 @@
+// Opening OpenEXR files that skyspec did not necessarily write (render --from, convert, compare,
+// aerial): the header is checked against the file before OpenEXR allocates anything for it.
+//
+// OpenEXR believes the sizes a header declares: a 49 kB file that declares a 2 GB string
+// attribute gets 2 GB allocated before it fails, one that declares 8000 x 8000 pixels gets our
+// whole-image buffers. check_exr_declared_sizes() walks the header itself (magic, version flags,
+// every attribute's declared size against the bytes that follow it) and bounds the pixel data a
+// part declares by what its chunks can hold: for a scan-line file every entry of the offset table
+// must point inside the file, and the decoded size may not exceed the file's size times the
+// largest ratio the part's compression can reach.
+#pragma once
+
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace skyspec {
+
+/// Largest decoded / stored size ratio of each OpenEXR compression, an upper bound (deflate's
+/// limit is about 1032:1; RLE's 64:1; PIZ's run-length Huffman codes stay below a few hundred).
+double exr_max_compression_ratio(int compression);
+
+/// Throws IoError naming the file when it is not a regular file, not OpenEXR, or its header
+/// declares more than the file holds (see above). Reads only the header and the offset table.
+void check_exr_declared_sizes(const std::filesystem::path& path);
+
+/// check_exr_declared_sizes, then an Imf::InputFile (OpenEXR's exceptions pass through).
+std::unique_ptr<Imf::InputFile> open_exr_input(const std::filesystem::path& path);
+
+/// Throws IoError unless each named channel present in the header holds HALF or FLOAT samples
+/// (a UINT channel is an id or a mask, not light: reading it as radiance would be wrong).
+void require_float_channels(const Imf::Header& header, const std::vector<std::string>& names, const std::string& where);
+
+}  // namespace skyspec
