@@ -26,6 +26,9 @@ constexpr double kMaxLuminousEfficacy_lm_per_W = 683.0;
 constexpr double kDobsonUnit_per_m2 = 2.6867e20;
 }  // namespace constants
 
+/// Length units of wavelengths: the dispersion formulas take micrometres, the rest nanometres.
+constexpr double kNanometresPerMicrometre = 1000.0;
+
 constexpr double degrees_to_radians(double deg) { return deg * kPi / 180.0; }
 constexpr double radians_to_degrees(double rad) { return rad * 180.0 / kPi; }
 

@@ -187,30 +187,27 @@ void write_png_display(const std::filesystem::path& path, int width, int height,
 }
 
 namespace {
-// Decodes every row and collects the text chunks. The objects with destructors live in the
-// caller's frame (reached through pointers): libpng's error handler longjmps out of this one.
-bool read_png_checked(FILE* in, PngErrorMessage* error, std::vector<png_byte>* row,
-                      std::map<std::string, std::string>* text) {
-  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, error, on_png_error, on_png_warning);
-  if (!png) return false;
-  png_infop info = png_create_info_struct(png);
-  if (!info || setjmp(png_jmpbuf(png))) {
-    png_destroy_read_struct(&png, info ? &info : nullptr, nullptr);
-    return false;
-  }
-  png_set_crc_action(png, PNG_CRC_ERROR_QUIT, PNG_CRC_ERROR_QUIT);  // ancillary chunks (the text) too
-  png_init_io(png, in);
-  png_read_info(png, info);
-  row->resize(png_get_rowbytes(png, info));
-  const int passes = png_set_interlace_handling(png);
+// What decode_png leaves for its caller to read and free (libpng's own allocations only).
+struct PngReadState {
+  png_structp png = nullptr;
+  png_infop info = nullptr;
+  png_bytep row = nullptr;
+};
+
+// Decodes every row. No C++ object lives in this frame: libpng's error handler longjmps out of it.
+bool decode_png(FILE* in, PngErrorMessage* error, PngReadState* st) {
+  st->png = png_create_read_struct(PNG_LIBPNG_VER_STRING, error, on_png_error, on_png_warning);
+  if (!st->png) return false;
+  st->info = png_create_info_struct(st->png);
+  if (!st->info || setjmp(png_jmpbuf(st->png))) return false;
+  png_set_crc_action(st->png, PNG_CRC_ERROR_QUIT, PNG_CRC_ERROR_QUIT);  // ancillary chunks (the text) too
+  png_init_io(st->png, in);
+  png_read_info(st->png, st->info);
+  st->row = static_cast<png_bytep>(png_malloc(st->png, png_get_rowbytes(st->png, st->info)));
+  const int passes = png_set_interlace_handling(st->png);
   for (int pass = 0; pass < passes; ++pass)
-    for (png_uint_32 y = 0; y < png_get_image_height(png, info); ++y) png_read_row(png, row->data(), nullptr);
-  png_read_end(png, info);
-  png_textp chunks = nullptr;
-  const int count = png_get_text(png, info, &chunks, nullptr);
-  for (int i = 0; i < count; ++i)
-    (*text)[chunks[i].key] = chunks[i].text ? std::string(chunks[i].text) : std::string();
-  png_destroy_read_struct(&png, &info, nullptr);
+    for (png_uint_32 y = 0; y < png_get_image_height(st->png, st->info); ++y) png_read_row(st->png, st->row, nullptr);
+  png_read_end(st->png, st->info);
   return true;
 }
 }  // namespace
@@ -219,9 +216,16 @@ std::map<std::string, std::string> read_png_text_verified(const std::filesystem:
   FILE* in = std::fopen(path.c_str(), "rb");
   if (!in) throw IoError("cannot read PNG '" + path.string() + "': " + std::strerror(errno));
   PngErrorMessage error;
-  std::vector<png_byte> row;
+  PngReadState st;
+  const bool intact = decode_png(in, &error, &st);
   std::map<std::string, std::string> text;
-  const bool intact = read_png_checked(in, &error, &row, &text);
+  if (intact) {
+    png_textp chunks = nullptr;
+    const int count = png_get_text(st.png, st.info, &chunks, nullptr);
+    for (int i = 0; i < count; ++i) text[chunks[i].key] = chunks[i].text ? std::string(chunks[i].text) : std::string();
+  }
+  if (st.row) png_free(st.png, st.row);
+  if (st.png) png_destroy_read_struct(&st.png, st.info ? &st.info : nullptr, nullptr);
   std::fclose(in);
   if (!intact) throw IoError("PNG '" + path.string() + "' is damaged or incomplete: " + error.text);
   return text;

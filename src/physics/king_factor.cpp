@@ -10,12 +10,12 @@
 #include <sstream>
 
 #include "skyspec/error.hpp"
+#include "skyspec/units.hpp"
 #include "base/text_format.hpp"
 
 namespace skyspec {
 namespace {
 
-constexpr double kNanometresPerMicrometre = 1000.0;
 constexpr double kPercentPerPartPerVolume = 100.0;
 
 /// Bates 1984 fit for N2: F = 1.034 + 3.17e-4 / lambda_um^2.

@@ -12,12 +12,12 @@
 #include <sstream>
 
 #include "skyspec/error.hpp"
+#include "skyspec/units.hpp"
 #include "base/text_format.hpp"
 
 namespace skyspec {
 namespace {
 
-constexpr double kNanometresPerMicrometre = 1000.0;
 
 /// The formulas give the refractivity in units of 1e-8: (n - 1) * 1e8.
 constexpr double kRefractivityUnit = 1.0e-8;

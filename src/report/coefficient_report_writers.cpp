@@ -212,15 +212,6 @@ Document build_document(const CoefficientReport& r) {
   return d;
 }
 
-std::string markdown_cell(const std::string& s) {
-  std::string out;
-  for (char ch : s) {
-    if (ch == '|') out += "\\|";
-    else out += ch;
-  }
-  return out;
-}
-
 std::string render_markdown(const Document& d) {
   std::ostringstream s;
   for (const auto& b : d.blocks) {

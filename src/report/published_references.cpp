@@ -9,12 +9,12 @@
 
 #include "base/embedded_data.hpp"
 #include "skyspec/error.hpp"
+#include "skyspec/units.hpp"
 #include "base/text_format.hpp"
 
 namespace skyspec {
 namespace {
 
-constexpr double kNanometresPerMicrometre = 1000.0;
 constexpr double kSquareMetresPerSquareCentimetre = 1.0e-4;
 constexpr double kFractionPerPercent = 0.01;
 

@@ -834,10 +834,6 @@ std::pair<std::string, std::string> split_doc(const std::string& doc) {
   return {"", doc};
 }
 
-std::string markdown_cell(std::string text) {
-  for (size_t at = text.find('|'); at != std::string::npos; at = text.find('|', at + 2)) text.replace(at, 1, "\\|");
-  return text;
-}
 }  // namespace
 
 std::string scene_keys_markdown() {
