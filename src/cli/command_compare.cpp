@@ -130,6 +130,11 @@ void check_regions(const RegionSettings& r) {
   check(r.zenith_deg, "--zenith-deg");
 }
 
+// The outputs besides <name>.json and <name>.md.
+constexpr const char* kDeltaEMapSuffix = "-delta-e.png";
+constexpr const char* kSideBySideSuffix = "-side-by-side.png";
+constexpr const char* kSweepPlotSuffix = "-sweep.svg";
+
 int run_compare(const CompareOptions& o) {
   if (list_displays_if_asked(o.display)) return kExitOk;
   check_regions(o.regions);
@@ -143,6 +148,12 @@ int run_compare(const CompareOptions& o) {
   const std::vector<double> elevations = o.sweep.empty() ? std::vector<double>{} : parse_sweep(o.sweep);
   const DisplayPipeline pipeline(display_settings(o.display));  // names checked before any work
   ensure_writable_directory(o.out, "--out");
+  {  // before anything is rendered: no output may replace an input
+    std::vector<NamedInput> inputs = scene_input_files(o.scene);
+    for (const auto& exr : o.exrs) inputs.push_back({"EXR", exr});
+    for (const char* suffix : {kDeltaEMapSuffix, kSideBySideSuffix, kSweepPlotSuffix, ".json", ".md"})
+      refuse_output_replacing_input(std::filesystem::path(o.out) / (o.name + suffix), "--out / --name", inputs);
+  }
 
   ComparisonRun run;
   run.command = command_line(o);
@@ -209,13 +220,9 @@ int run_compare(const CompareOptions& o) {
   run.comparison = compare_skies(reference, test, pixel_geometry(scene, o.regions));
 
   const std::filesystem::path dir(o.out);
-  run.delta_e_map_file = o.name + "-delta-e.png";
-  run.side_by_side_file = o.name + "-side-by-side.png";
-  if (!run.sweep.empty()) run.sweep_plot_file = o.name + "-sweep.svg";
-  std::vector<NamedInput> inputs = scene_input_files(o.scene);
-  for (const auto& exr : o.exrs) inputs.push_back({"EXR", exr});
-  for (const auto& file : {run.delta_e_map_file, run.side_by_side_file, run.sweep_plot_file, o.name + ".json", o.name + ".md"})
-    if (!file.empty()) refuse_output_replacing_input(dir / file, "--out / --name", inputs);
+  run.delta_e_map_file = o.name + kDeltaEMapSuffix;
+  run.side_by_side_file = o.name + kSideBySideSuffix;
+  if (!run.sweep.empty()) run.sweep_plot_file = o.name + kSweepPlotSuffix;
   std::vector<std::filesystem::path> written;
   try {
     const auto keep = [&](const std::filesystem::path& p) { written.push_back(p); return p; };

@@ -19,7 +19,7 @@
 #include "base/output_lock.hpp"
 #include "io/png_image.hpp"
 #include "io/provenance.hpp"
-#include "io/spectral_exr.hpp"
+#include "io/exr_input.hpp"
 #include "skyspec/error.hpp"
 #include "colour/exposure.hpp"
 #include "skyspec/render.hpp"
@@ -83,7 +83,7 @@ bool frame_intact(const Scene& s, std::string& why) {
     if (s.output.exr) {
       const auto exr = dir / (s.output.name + ".exr");
       if (!std::filesystem::exists(exr)) return why = exr.filename().string() + " is missing", false;
-      read_spectral_exr(exr);  // every pixel
+      verify_exr_pixels(exr);  // every chunk decoded, a band at a time
       if (!same_scene(read_exr_provenance(exr).scene))
         return why = exr.filename().string() + " records another scene", false;
     }

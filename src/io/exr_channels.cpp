@@ -13,7 +13,7 @@
 
 #include "base/atomic_file.hpp"
 #include "skyspec/colour.hpp"
-#include "io/exr_input.hpp"
+#include "io/exr_open.hpp"
 #include "skyspec/error.hpp"
 
 namespace skyspec {

@@ -2,12 +2,14 @@
 
 #include <ImfChannelList.h>
 #include <ImfCompression.h>
+#include <ImfFrameBuffer.h>
 
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
 
+#include "io/exr_open.hpp"
 #include "skyspec/error.hpp"
 
 namespace skyspec {
@@ -202,6 +204,37 @@ void check_exr_declared_sizes(const fs::path& path) {
 std::unique_ptr<Imf::InputFile> open_exr_input(const fs::path& path) {
   check_exr_declared_sizes(path);
   return std::make_unique<Imf::InputFile>(path.c_str());
+}
+
+void verify_exr_pixels(const fs::path& path) {
+  try {
+    const auto file = open_exr_input(path);
+    const Imath::Box2i window = file->header().dataWindow();
+    const std::size_t width = static_cast<std::size_t>(window.max.x - window.min.x + 1);
+    std::size_t channels = 0;
+    for (auto it = file->header().channels().begin(); it != file->header().channels().end(); ++it) ++channels;
+    constexpr int kRows = 16;
+    std::vector<float> band(static_cast<std::size_t>(kRows) * width * std::max<std::size_t>(channels, 1));
+    for (int y0 = window.min.y; y0 <= window.max.y; y0 += kRows) {
+      const int y1 = std::min(window.max.y, y0 + kRows - 1);
+      // Row y of channel c lands at band[((y - y0) * channels + c) * width]: the slice's base is
+      // moved so that (window.min.x, y0) is the start of the buffer.
+      Imf::FrameBuffer frame;
+      std::size_t c = 0;
+      for (auto it = file->header().channels().begin(); it != file->header().channels().end(); ++it, ++c) {
+        char* origin = reinterpret_cast<char*>(band.data() + c * width);
+        const std::ptrdiff_t x_stride = sizeof(float), y_stride = static_cast<std::ptrdiff_t>(channels * width * sizeof(float));
+        char* base = origin - static_cast<std::ptrdiff_t>(window.min.x) * x_stride - static_cast<std::ptrdiff_t>(y0) * y_stride;
+        frame.insert(it.name(), Imf::Slice(Imf::FLOAT, base, x_stride, static_cast<std::size_t>(y_stride)));
+      }
+      file->setFrameBuffer(frame);
+      file->readPixels(y0, y1);
+    }
+  } catch (const IoError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw IoError("EXR '" + path.string() + "' is damaged or incomplete: " + e.what());
+  }
 }
 
 void require_float_channels(const Imf::Header& header, const std::vector<std::string>& names, const std::string& where) {

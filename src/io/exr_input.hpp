@@ -7,14 +7,11 @@
 // every attribute's declared size against the bytes that follow it) and bounds the pixel data a
 // part declares by what its chunks can hold: for a scan-line file every entry of the offset table
 // must point inside the file, and the decoded size may not exceed the file's size times the
-// largest ratio the part's compression can reach.
+// largest ratio the part's compression can reach. The readers in io/ open files through
+// io/exr_open.hpp, which applies this check (this header stays free of OpenEXR's).
 #pragma once
 
-#include <ImfHeader.h>
-#include <ImfInputFile.h>
-
 #include <filesystem>
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -28,11 +25,9 @@ double exr_max_compression_ratio(int compression);
 /// declares more than the file holds (see above). Reads only the header and the offset table.
 void check_exr_declared_sizes(const std::filesystem::path& path);
 
-/// check_exr_declared_sizes, then an Imf::InputFile (OpenEXR's exceptions pass through).
-std::unique_ptr<Imf::InputFile> open_exr_input(const std::filesystem::path& path);
-
-/// Throws IoError unless each named channel present in the header holds HALF or FLOAT samples
-/// (a UINT channel is an id or a mask, not light: reading it as radiance would be wrong).
-void require_float_channels(const Imf::Header& header, const std::vector<std::string>& names, const std::string& where);
+/// Reads every pixel of every channel of the file, 16 rows at a time into one small buffer, and
+/// throws IoError naming the file if any chunk cannot be read or decoded (truncated, damaged).
+/// Memory: 16 rows x width x channels floats, whatever the image's size.
+void verify_exr_pixels(const std::filesystem::path& path);
 
 }  // namespace skyspec

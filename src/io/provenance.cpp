@@ -10,7 +10,7 @@
 #include "skyspec/error.hpp"
 #include "skyspec/scene.hpp"
 #include "skyspec/version.hpp"
-#include "io/exr_input.hpp"
+#include "io/exr_open.hpp"
 
 namespace skyspec {
 

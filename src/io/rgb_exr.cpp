@@ -20,7 +20,7 @@
 
 #include "base/atomic_file.hpp"
 #include "skyspec/error.hpp"
-#include "io/exr_input.hpp"
+#include "io/exr_open.hpp"
 
 namespace skyspec {
 namespace {

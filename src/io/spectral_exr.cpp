@@ -36,7 +36,7 @@
 #include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
 #include "io/spectral_exr_encode.hpp"
-#include "io/exr_input.hpp"
+#include "io/exr_open.hpp"
 
 namespace skyspec {
 namespace fs = std::filesystem;

@@ -114,6 +114,15 @@ BOOST_AUTO_TEST_CASE(uint_channels_folders_and_other_files_are_refused) {
   BOOST_TEST(error_of(dir.path / "text.exr").find("magic number") != std::string::npos);
 }
 
+BOOST_AUTO_TEST_CASE(pixel_verification_decodes_every_chunk) {
+  ScratchFolder dir;
+  const fs::path path = good_exr(dir);
+  BOOST_CHECK_NO_THROW(verify_exr_pixels(path));
+  const std::string bytes = read_all(path);
+  write_text(dir.path / "cut.exr", bytes.substr(0, bytes.size() - 40));
+  BOOST_CHECK_THROW(verify_exr_pixels(dir.path / "cut.exr"), IoError);
+}
+
 BOOST_AUTO_TEST_CASE(png_verification_reads_every_row_and_the_text) {
   ScratchFolder dir;
   const fs::path png = dir.path / "a.png";
