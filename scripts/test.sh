@@ -3,7 +3,7 @@
 # AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/) and runs the Boost.Test suites and
 # the command-line tests there (no Python or notebooks: that build has no Python module). Any
 # sanitizer report aborts the process under test and fails its test. Last, it fuzzes the scene
-# loader and the command line with libFuzzer for a bounded time (build-fuzz/, tests/fuzz/).
+# loader, the command line and the EXR readers with libFuzzer for a bounded time (build-fuzz/, tests/fuzz/).
 # Each stage's wall time is printed to stderr ("skyspec test: <stage> <seconds> s").
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 # Tests keep their multiple-scattering table cache inside the build folder, not in ~/.cache.
@@ -25,7 +25,7 @@ ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan --output-on-failure -j"$(nproc)" -E '^(python_|notebook_|install_consumer)'
 stage "sanitizer tests"
-# Fuzz the scene loader and the command line for a bounded time each (tests/fuzz/), with clang.
+# Fuzz the scene loader, the command line and the EXR readers for a bounded time each (tests/fuzz/), with clang.
 build_fuzz
 stage "fuzz build"
 ctest --test-dir build-fuzz --output-on-failure -j"$(nproc)" -R '^fuzz_'
