@@ -36,6 +36,23 @@ expect_error compare_bad_sweep 2 '--sweep = "0:x:5"' compare --preset seed "${sm
 
 # The shipped config passes OpenColorIO's own check, and --list-displays shows it.
 ociocheck --iconfig "$config" >"$work/ociocheck" 2>&1 && ok || { bad "ociocheck failed"; cat "$work/ociocheck"; }
+grep -qi "warning" "$work/ociocheck" && bad "ociocheck warns: $(grep -i warning "$work/ociocheck")" || ok
+
+# Other tools with the shipped config: OpenImageIO labels our EXR "Linear", which the config
+# knows (an alias of Linear Rec.709, also the scene_linear role and the default file rule), so
+# oiiotool converts it to the sRGB display without being told its colour space; with the
+# recorded exposure it gives skyspec's own PNG, code value for code value.
+out="$work/oiio"
+"$skyspec" render -q --out "$out" "${small[@]}" --width 32 || bad "render for oiiotool failed"
+scale=$(exrheader "$out/sky.exr" | sed -n 's/^skyspec:exposureScale (type string): "\(.*\)"$/\1/p')
+oiiotool --colorconfig "$config" "$out/sky.exr" --ch R,G,B --mulc "$scale,$scale,$scale" \
+  --ociodisplay sRGB Un-tone-mapped -d uint8 -o "$out/oiio.png" 2>"$work/stderr" && ok || { bad "oiiotool --ociodisplay failed"; cat "$work/stderr"; }
+[ "$(oiiotool "$out/oiio.png" "$out/sky.png" --diff 2>&1 | grep -c 'PASS')" = 1 ] && ok \
+  || bad "oiiotool's sRGB image differs from skyspec's: $(oiiotool "$out/oiio.png" "$out/sky.png" --diff 2>&1 | tail -3)"
+for name in Linear lin_rec709 "scene-linear Rec.709-sRGB"; do
+  oiiotool --colorconfig "$config" "$out/sky.exr" --ch R,G,B --iscolorspace "$name" --ociodisplay sRGB Un-tone-mapped \
+    -o "$out/named.png" 2>/dev/null && ok || bad "the config does not know \"$name\""
+done
 "$skyspec" render --list-displays | grep -q "ACES 1.1 - HDR Video (1000 nits & Rec.2020 lim)" && ok || bad "--list-displays"
 
 # A render through Display P3 at 16 bits with an ACEScg EXR beside it.
