@@ -7,6 +7,7 @@
 
 #include "base/atomic_file.hpp"
 #include "base/output_lock.hpp"
+#include "base/text_format.hpp"
 #include "skyspec/error.hpp"
 #include "io/png_image.hpp"
 #include "io/provenance.hpp"
@@ -54,15 +55,24 @@ ConversionOutputs convert_exr_for_display(const std::filesystem::path& input, co
     exposure.mode = ExposureSettings::Mode::Manual;
     exposure.ev = *manual_ev;
   }
-  const auto recorded = image.strings.find("skyspec:exposureScale");
-  if (exposure.mode == ExposureSettings::Mode::Automatic && recorded != image.strings.end()) {
-    const double scale = std::strtod(recorded->second.c_str(), nullptr);
+  // The recorded scale: a double attribute, or text in files written before it was one.
+  std::optional<double> recorded;
+  std::string recorded_text;
+  if (const auto d = image.doubles.find(kExposureScaleAttribute); d != image.doubles.end()) {
+    recorded = d->second;
+    recorded_text = format_number(d->second);
+  } else if (const auto t = image.strings.find(kExposureScaleAttribute); t != image.strings.end()) {
+    recorded = std::strtod(t->second.c_str(), nullptr);
+    recorded_text = t->second;
+  }
+  if (exposure.mode == ExposureSettings::Mode::Automatic && recorded) {
+    const double scale = *recorded;
     if (!(scale > 0.0) || !std::isfinite(scale))
-      throw IoError("EXR '" + input.string() + "': skyspec:exposureScale \"" + recorded->second + "\" is not a positive number");
+      throw IoError("EXR '" + input.string() + "': skyspec:exposureScale \"" + recorded_text + "\" is not a positive number");
     out.exposure = resolve_exposure(exposure, scale);
     const auto text = image.strings.find("skyspec:exposure");
     out.exposure.description =
-        "recorded in the file: " + (text != image.strings.end() ? text->second : "scale " + recorded->second);
+        "recorded in the file: " + (text != image.strings.end() ? text->second : "scale " + recorded_text);
   } else {
     out.exposure = resolve_exposure(exposure, exposure.mode == ExposureSettings::Mode::Automatic
                                                   ? metered_exposure_scale(image.rgb, image.width, image.height)
@@ -75,9 +85,7 @@ ConversionOutputs convert_exr_for_display(const std::filesystem::path& input, co
     if (key.rfind("skyspec:", 0) == 0) provenance[key] = value;
   provenance["skyspec:convertedFrom"] = input.string();
   provenance["skyspec:exposure"] = out.exposure.description;
-  char scale_text[32];
-  std::snprintf(scale_text, sizeof scale_text, "%.9g", out.exposure.scale);
-  provenance["skyspec:exposureScale"] = scale_text;
+  provenance.erase(kExposureScaleAttribute);  // a number: written as a double attribute below
 
   try {
     if (png) {
@@ -95,8 +103,10 @@ ConversionOutputs convert_exr_for_display(const std::filesystem::path& input, co
       const WorkingSpace& space = find_working_space(settings.exr_space);
       out.working_exr = directory / (name + "-" + space.file_suffix + ".exr");
       provenance["skyspec:workingSpace"] = space.name + " (scene-linear, converted by " + pipeline.config().describe() + ")";
+      const auto path = image.strings.find("skyspec:renderPath");
+      provenance["skyspec:units"] = working_space_units(space, path != image.strings.end() && path->second == "rgb-fast");
       write_rgb_exr(out.working_exr, image.width, image.height, to_working_space(pipeline.config(), image.rgb, space),
-                    space.chromaticities, provenance);
+                    space.chromaticities, provenance, {}, {{kExposureScaleAttribute, out.exposure.scale}});
     }
   } catch (...) {
     std::error_code ec;

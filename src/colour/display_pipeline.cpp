@@ -354,4 +354,10 @@ std::string describe_displays_and_looks(const OcioConfig& config) {
   return out.str();
 }
 
+std::string working_space_units(const WorkingSpace& space, bool rgb_fast) {
+  return "R,G,B: scene-linear " + space.name + " (primaries and white in the chromaticities attribute)" +
+         (rgb_fast ? ", converted from the RGB-fast path's 680, 550, 440 nm values in the sun's units"
+                   : ", with Y = luminance in cd m^-2");
+}
+
 }  // namespace skyspec

@@ -108,6 +108,9 @@ struct WorkingSpace {
 const std::vector<WorkingSpace>& working_spaces();
 /// Throws InputError(setting, name, the list) for an unknown name (case-insensitive match).
 const WorkingSpace& find_working_space(const std::string& name, const std::string& setting = "--exr-space");
+/// The skyspec:units text of an RGB EXR in `space`: what its R, G, B are (scene-linear in that
+/// space; luminance in cd/m^2 on the spectral path, the sun's units on the RGB-fast path).
+std::string working_space_units(const WorkingSpace& space, bool rgb_fast);
 
 /// skyspec's linear Rec.709 values ([n][3]) in a working space, converted by the config (the
 /// config must have a colour space of that name).

@@ -19,6 +19,9 @@ struct Scene;
 
 inline constexpr const char* kVersionAttribute = "skyspec:version";
 inline constexpr const char* kSceneAttribute = "skyspec:scene";
+/// The exposure's scale factor (linear RGB x scale = what the preview encodes): a double
+/// attribute; files before it was one hold it as text.
+inline constexpr const char* kExposureScaleAttribute = "skyspec:exposureScale";
 inline constexpr const char* kDataAttribute = "skyspec:data";
 
 /// The embedded tables (paths below data/) a render of the scene reads: the CIE 1931 observer

@@ -3,6 +3,7 @@
 
 #include <ImfChannelList.h>
 #include <ImfChromaticities.h>
+#include <ImfDoubleAttribute.h>
 #include <ImfFloatAttribute.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
@@ -53,7 +54,7 @@ IMATH_NAMESPACE::V2f v2f(const double xy[2]) {
 
 void write_rgb_exr(const std::filesystem::path& path, int width, int height, const std::vector<float>& rgb,
                    const Chromaticities& c, const std::map<std::string, std::string>& strings,
-                   const std::map<std::string, float>& floats) {
+                   const std::map<std::string, float>& floats, const std::map<std::string, double>& doubles) {
   const std::string where = "RGB EXR '" + path.string() + "': ";
   if (width <= 0 || height <= 0)
     throw IoError(where + "image size " + std::to_string(width) + " x " + std::to_string(height) + " must be positive");
@@ -73,6 +74,7 @@ void write_rgb_exr(const std::filesystem::path& path, int width, int height, con
     Imf::addChromaticities(header, Imf::Chromaticities(v2f(c.red), v2f(c.green), v2f(c.blue), v2f(c.white)));
     for (const auto& [key, value] : strings) header.insert(key, Imf::StringAttribute(value));
     for (const auto& [key, value] : floats) header.insert(key, Imf::FloatAttribute(value));
+    for (const auto& [key, value] : doubles) header.insert(key, Imf::DoubleAttribute(value));
     Imf::FrameBuffer frame;
     const size_t x_stride = 3 * sizeof(float), y_stride = static_cast<size_t>(width) * x_stride;
     for (int ch = 0; ch < 3; ++ch)
@@ -129,6 +131,7 @@ RgbExrImage read_rgb_exr(const std::filesystem::path& path) {
     for (auto it = header.begin(); it != header.end(); ++it) {
       if (const auto* text = dynamic_cast<const Imf::StringAttribute*>(&it.attribute())) image.strings[it.name()] = text->value();
       if (const auto* number = dynamic_cast<const Imf::FloatAttribute*>(&it.attribute())) image.floats[it.name()] = number->value();
+      if (const auto* number = dynamic_cast<const Imf::DoubleAttribute*>(&it.attribute())) image.doubles[it.name()] = number->value();
     }
     return image;
   } catch (const IoError&) {

@@ -16,11 +16,12 @@
 
 namespace skyspec {
 
-/// Writes R, G, B float channels ([y][x][c]) with the chromaticities attribute and extra string
-/// and float attributes (ZIP compression). Non-finite values are rejected with IoError; atomic.
+/// Writes R, G, B float channels ([y][x][c]) with the chromaticities attribute and extra string,
+/// float and double attributes (ZIP compression). Non-finite values are rejected with IoError; atomic.
 void write_rgb_exr(const std::filesystem::path& path, int width, int height, const std::vector<float>& rgb,
                    const Chromaticities& chromaticities, const std::map<std::string, std::string>& strings = {},
-                   const std::map<std::string, float>& floats = {});
+                   const std::map<std::string, float>& floats = {},
+                   const std::map<std::string, double>& doubles = {});
 
 struct RgbExrImage {
   int width = 0, height = 0;
@@ -29,6 +30,7 @@ struct RgbExrImage {
   Chromaticities chromaticities{};  ///< OpenEXR's default (Rec.709, D65) when absent
   std::map<std::string, std::string> strings;
   std::map<std::string, float> floats;
+  std::map<std::string, double> doubles;
 };
 /// Reads R, G, B (and the attributes) of any OpenEXR file; throws IoError naming the file.
 RgbExrImage read_rgb_exr(const std::filesystem::path& path);

@@ -3,6 +3,7 @@
 
 #include <ImfChannelList.h>
 #include <ImfChromaticities.h>
+#include <ImfDoubleAttribute.h>
 #include <ImfFloatAttribute.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
@@ -330,6 +331,7 @@ Imf::Header spectral_header(int width, int height, const std::vector<std::string
   Imf::addChromaticities(header, Imf::Chromaticities(v2f(c.red), v2f(c.green), v2f(c.blue), v2f(c.white)));
 
   for (const auto& [key, value] : meta.strings) header.insert(key, Imf::StringAttribute(value));
+  for (const auto& [key, value] : meta.doubles) header.insert(key, Imf::DoubleAttribute(value));
   // The layout's own attributes last, so that they win over a clashing extra string.
   header.insert("spectralLayoutVersion", Imf::StringAttribute("1.0"));
   header.insert("emissiveUnits", Imf::StringAttribute("W.m^-2.sr^-1"));

@@ -25,6 +25,7 @@ std::optional<double> parse_spectral_channel_name(const std::string& name);
 
 struct SpectralExrMetadata {
   std::map<std::string, std::string> strings;  ///< extra string attributes, e.g. "skyspec:scene"
+  std::map<std::string, double> doubles;       ///< extra double attributes, e.g. "skyspec:exposureScale"
   std::optional<float> ev;                     ///< the layout's optional EV attribute
   std::string compression = "piz";             ///< lossless: piz, zip, zips, rle or none
   /// Not stored in the file: how many cores compression may use (0: all; 1: the calling thread

@@ -448,17 +448,19 @@ std::map<std::string, std::string> render_provenance(const SkyRenderer& r, const
   provenance["skyspec:renderPath"] = scene.render.path == RenderSpec::Path::RgbFast ? "rgb-fast" : "spectral";
   provenance["skyspec:wavelengths"] = r.grid().describe();
   provenance["skyspec:exposure"] = exposure.description;
-  provenance["skyspec:exposureScale"] = numbers_text({exposure.scale});
   provenance["skyspec:sunRGB"] = numbers_text({sun_rgb[0], sun_rgb[1], sun_rgb[2]});
   return provenance;
 }
 
-// The spectral EXR, opened under a temporary name (it is renamed by finish()).
+// The spectral EXR, opened under a temporary name (it is renamed by finish()). The exposure's
+// scale is a number (a double attribute), the rest text.
 std::unique_ptr<SpectralExrWriter> open_spectral_exr(const SkyRenderer& r, const std::filesystem::path& path,
-                                                     const std::map<std::string, std::string>& provenance) {
+                                                     const std::map<std::string, std::string>& provenance,
+                                                     double exposure_scale) {
   const Scene& scene = r.scene();
   SpectralExrMetadata meta;
   meta.strings = provenance;
+  meta.doubles[kExposureScaleAttribute] = exposure_scale;
   meta.compression = scene.output.exr_compression;
   meta.threads = thread_count(scene);
   meta.strings["skyspec:units"] =
@@ -524,8 +526,9 @@ void write_preview_png(const std::filesystem::path& path, const SkyRenderer& r, 
 
 void write_working_space_exr(const std::filesystem::path& path, const SkyRenderer& r, const DisplayPipeline& pipeline,
                              const WorkingSpace& space, const std::vector<float>& rgb, const ExposureSettings& exposure,
-                             std::map<std::string, std::string> strings) {
+                             double exposure_scale, std::map<std::string, std::string> strings) {
   strings["skyspec:workingSpace"] = space.name + " (scene-linear, converted by " + pipeline.config().describe() + ")";
+  strings["skyspec:units"] = working_space_units(space, r.scene().render.path == RenderSpec::Path::RgbFast);
   std::map<std::string, float> floats;
   if (exposure.mode == ExposureSettings::Mode::Camera) {  // OpenEXR's standard camera attributes
     floats["expTime"] = static_cast<float>(exposure.shutter_s);
@@ -533,7 +536,7 @@ void write_working_space_exr(const std::filesystem::path& path, const SkyRendere
     floats["isoSpeed"] = static_cast<float>(exposure.iso);
   }
   write_rgb_exr(path, r.width(), r.height(), to_working_space(pipeline.config(), rgb, space), space.chromaticities,
-                strings, floats);
+                strings, floats, {{kExposureScaleAttribute, exposure_scale}});
 }
 
 }  // namespace
@@ -581,7 +584,7 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
 
   // 3. The image, streamed into the spectral EXR band by band.
   std::unique_ptr<SpectralExrWriter> exr;
-  if (scene.output.exr) exr = open_spectral_exr(r, out.exr = paths.exr, provenance);
+  if (scene.output.exr) exr = open_spectral_exr(r, out.exr = paths.exr, provenance, exposure.resolved.scale);
   std::vector<float> rgb;
   if (pipeline) rgb.resize(static_cast<size_t>(r.width()) * r.height() * 3);
   render_bands(r, exr.get(), rgb, progress);
@@ -606,7 +609,8 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
     if (working_exr) {
       const WorkingSpace& space = find_working_space(display.exr_space);
       out.working_exr = paths.working_exr;
-      write_working_space_exr(out.working_exr, r, *pipeline, space, rgb, exposure.settings, provenance);
+      write_working_space_exr(out.working_exr, r, *pipeline, space, rgb, exposure.settings, exposure.resolved.scale,
+                              provenance);
       working_done = true;
     }
     if (committing.valid()) {

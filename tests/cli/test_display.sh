@@ -44,8 +44,9 @@ grep -qi "warning" "$work/ociocheck" && bad "ociocheck warns: $(grep -i warning 
 # recorded exposure it gives skyspec's own PNG, code value for code value.
 out="$work/oiio"
 "$skyspec" render -q --out "$out" "${small[@]}" --width 32 || bad "render for oiiotool failed"
-scale=$(exrheader "$out/sky.exr" | sed -n 's/^skyspec:exposureScale (type string): "\(.*\)"$/\1/p')
-oiiotool --colorconfig "$config" "$out/sky.exr" --ch R,G,B --mulc "$scale,$scale,$scale" \
+scale=$(/usr/bin/python3 -c "import OpenImageIO as o, sys
+print(repr(o.ImageInput.open(sys.argv[1]).spec().getattribute('skyspec:exposureScale')))" "$out/sky.exr")
+oiiotool --colorconfig "$config" "$out/sky.exr" --ch R,G,B --mulc "$scale" \
   --ociodisplay sRGB Un-tone-mapped -d uint8 -o "$out/oiio.png" 2>"$work/stderr" && ok || { bad "oiiotool --ociodisplay failed"; cat "$work/stderr"; }
 [ "$(oiiotool "$out/oiio.png" "$out/sky.png" --diff 2>&1 | grep -c 'PASS')" = 1 ] && ok \
   || bad "oiiotool's sRGB image differs from skyspec's: $(oiiotool "$out/oiio.png" "$out/sky.png" --diff 2>&1 | tail -3)"
@@ -62,8 +63,26 @@ if "$skyspec" render -q --out "$out" "${small[@]}" --width 16 --display "Display
   oiiotool --info -v "$out/sky.png" | grep -q "uint16 png" && ok || bad "PNG is not 16-bit"
   exrheader "$out/sky-acescg.exr" | grep -q "red   (0.713 0.293)" && ok || bad "ACEScg chromaticities missing"
   exrheader "$out/sky-acescg.exr" | grep -q "white (0.32168 0.33767)" && ok || bad "ACES white missing"
-  exrheader "$out/sky.exr" | grep -q "skyspec:exposureScale" && ok || bad "spectral EXR lacks the exposure"
+  exrheader "$out/sky.exr" | grep -q "skyspec:exposureScale (type double)" && ok || bad "spectral EXR lacks the exposure"
   exrheader "$out/sky.exr" | grep -q 'skyspec:exposure (type string): "automatic' && ok || bad "exposure rule not recorded"
+  # Each file's metadata, read back with OpenImageIO: units that describe that file's channels,
+  # the exposure scale as a number (also in a converted file).
+  "$skyspec" convert "$out/sky.exr" --out "$out" --name conv --exr-space "Linear Rec.709" --no-png -q || bad "convert failed"
+  /usr/bin/python3 - "$out" >"$work/meta" 2>&1 <<'PY' && ok || { bad "metadata"; cat "$work/meta"; }
+import sys
+import OpenImageIO as oiio
+folder = sys.argv[1]
+def spec(name):
+    return oiio.ImageInput.open(folder + "/" + name).spec()
+for name, units in [("sky.exr", "S0 channels: spectral radiance"), ("sky-acescg.exr", "R,G,B: scene-linear ACEScg"),
+                    ("conv-linear-rec709.exr", "R,G,B: scene-linear Linear Rec.709")]:
+    s = spec(name)
+    u = s.getattribute("skyspec:units")
+    assert u.startswith(units), (name, u)
+    assert "S0" not in u or name == "sky.exr", (name, u)
+    scale = s.getattribute("skyspec:exposureScale")
+    assert isinstance(scale, float) and scale > 0, (name, scale)
+PY
 else
   bad "p3 render failed"; cat "$work/stderr"
 fi
