@@ -112,10 +112,23 @@ py::array_t<double> array2(const std::vector<ReportLevel>& levels, size_t n, Get
   return a;
 }
 
-CoefficientReport make_report(std::optional<std::vector<double>> wavelengths_nm, const std::string& preset,
+// A number or a list / array of numbers, as a list: one wavelength or altitude is naturally a
+// scalar. None and what is not numbers are a ValueError naming the argument.
+std::vector<double> numbers_arg(const py::object& value, const std::string& name) {
+  const std::string allowed = "a number or a list/array of numbers";
+  if (value.is_none()) throw InputError(name, "None", allowed);
+  const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
+  if (!a) {
+    PyErr_Clear();
+    throw InputError(name, py::str(value).cast<std::string>(), allowed);
+  }
+  return std::vector<double>(a.data(), a.data() + a.size());
+}
+
+CoefficientReport make_report(const py::object& wavelengths, const std::string& preset,
                               const std::optional<std::string>& scene_file,
                               const std::optional<std::string>& scene_toml, const std::optional<py::dict>& overrides,
-                              std::vector<double> altitudes_m, std::optional<double> pressure_Pa,
+                              const py::object& altitudes, std::optional<double> pressure_Pa,
                               std::optional<double> temperature_K, double latitude_deg,
                               const std::optional<std::string>& refractive_index, std::optional<double> co2_ppm) {
   Scene scene = load_scene(preset, scene_file, scene_toml, overrides);
@@ -130,8 +143,8 @@ CoefficientReport make_report(std::optional<std::vector<double>> wavelengths_nm,
                      "both pressure_Pa and temperature_K, or neither");
   CoefficientReportRequest req;
   req.atmosphere = scene.atmosphere;
-  req.wavelengths_nm = wavelengths_nm ? *wavelengths_nm : make_wavelength_grid(scene).nanometres();
-  req.altitudes_m = std::move(altitudes_m);
+  req.wavelengths_nm = wavelengths.is_none() ? make_wavelength_grid(scene).nanometres() : numbers_arg(wavelengths, "wavelengths_nm");
+  req.altitudes_m = numbers_arg(altitudes, "altitudes_m");
   if (pressure_Pa) req.conditions = AirConditions{*pressure_Pa, *temperature_K};
   req.latitude_deg = latitude_deg;
   req.origin = "Python: preset " + preset + (scene_file ? ", scene file " + *scene_file : std::string()) +
@@ -139,9 +152,9 @@ CoefficientReport make_report(std::optional<std::vector<double>> wavelengths_nm,
   return make_coefficient_report(req);
 }
 
-py::dict derive(std::optional<std::vector<double>> wavelengths_nm, const std::string& preset,
+py::dict derive(const py::object& wavelengths_nm, const std::string& preset,
                 const std::optional<std::string>& scene_file, const std::optional<std::string>& scene_toml,
-                const std::optional<py::dict>& overrides, std::vector<double> altitudes_m,
+                const std::optional<py::dict>& overrides, const py::object& altitudes_m,
                 std::optional<double> pressure_Pa, std::optional<double> temperature_K, double latitude_deg,
                 const std::optional<std::string>& refractive_index, std::optional<double> co2_ppm) {
   const CoefficientReport r = make_report(wavelengths_nm, preset, scene_file, scene_toml, overrides, altitudes_m,
@@ -327,20 +340,20 @@ PYBIND11_MODULE(skyspec, m) {
   const char* derive_doc = R"(Derive the scattering coefficients of a scene's atmosphere, per wavelength.
 
 Arguments (all optional):
-  wavelengths_nm    list/array of wavelengths in nm (default: the scene's spectrum)
+  wavelengths_nm    a wavelength or a list/array of them, nm (default: the scene's spectrum)
   preset, scene_file, scene_toml, overrides   the atmosphere, as for render()
-  altitudes_m       altitudes (m above sea level) for beta(z) and tau(z -> top); default (0,)
+  altitudes_m       an altitude or a list/array (m above sea level) for beta(z) and tau(z -> top); default 0
   pressure_Pa, temperature_K   an extra state of the air, e.g. 25000, 220: N = P / (k T)
   latitude_deg      gravity for the hydrostatic column above that pressure level (default 45)
   refractive_index  'peck-reeder', 'edlen' or 'ciddor' (default: the scene's)
   co2_ppm           CO2 in ppm (default: the scene's)
 
-Returns a dict of NumPy arrays (n wavelengths, k altitudes):
+Returns a dict of NumPy arrays, for n wavelengths and k altitudes (shapes (n,), (k,) or (k, n)):
   wavelength_nm (n); refractivity_formula_co2, refractivity (n_s - 1 at the formula's own and at the
   requested CO2); king_factor_air, king_factor_n2, king_factor_o2; cross_section_m2 (sigma, m^2);
   altitude_m (k); number_density_per_m3 (k); rayleigh_scattering_per_m, rayleigh_optical_depth,
   mie_scattering_per_m, mie_extinction_per_m, mie_optical_depth, ozone_absorption_per_m,
-  ozone_optical_depth, total_optical_depth (k x n; optical depths are vertical, from the altitude to
+  ozone_optical_depth, total_optical_depth ((k, n): a row per altitude; optical depths are vertical, from the altitude to
   the top of the atmosphere). With pressure_Pa and temperature_K also: conditions_number_density_per_m3,
   conditions_refractivity, conditions_rayleigh_scattering_per_m (sigma N) and
   conditions_rayleigh_optical_depth_above (hydrostatic column above that pressure level).
@@ -349,15 +362,15 @@ Also the strings refractive_index, rayleigh_source and the float co2_ppm.
 Example: skyspec.derive(pressure_Pa=25000, temperature_K=220)["conditions_rayleigh_scattering_per_m"])";
   m.def("derive", &derive, py::arg("wavelengths_nm") = py::none(), py::kw_only(), py::arg("preset") = "default",
         py::arg("scene_file") = py::none(), py::arg("scene_toml") = py::none(), py::arg("overrides") = py::none(),
-        py::arg("altitudes_m") = std::vector<double>{0.0}, py::arg("pressure_Pa") = py::none(),
+        py::arg("altitudes_m") = 0.0, py::arg("pressure_Pa") = py::none(),
         py::arg("temperature_K") = py::none(), py::arg("latitude_deg") = 45.0, py::arg("refractive_index") = py::none(),
         py::arg("co2_ppm") = py::none(), derive_doc);
 
   m.def(
       "coefficient_report",
-      [](const std::string& format, std::optional<std::vector<double>> wavelengths_nm, const std::string& preset,
+      [](const std::string& format, const py::object& wavelengths_nm, const std::string& preset,
          const std::optional<std::string>& scene_file, const std::optional<std::string>& scene_toml,
-         const std::optional<py::dict>& overrides, std::vector<double> altitudes_m, std::optional<double> pressure_Pa,
+         const std::optional<py::dict>& overrides, const py::object& altitudes_m, std::optional<double> pressure_Pa,
          std::optional<double> temperature_K, double latitude_deg, const std::optional<std::string>& refractive_index,
          std::optional<double> co2_ppm) {
         const ReportFormat f = parse_report_format(format, "format");
@@ -367,7 +380,7 @@ Example: skyspec.derive(pressure_Pa=25000, temperature_K=220)["conditions_raylei
       },
       py::arg("format") = "md", py::kw_only(), py::arg("wavelengths_nm") = py::none(), py::arg("preset") = "default",
       py::arg("scene_file") = py::none(), py::arg("scene_toml") = py::none(), py::arg("overrides") = py::none(),
-      py::arg("altitudes_m") = std::vector<double>{0.0}, py::arg("pressure_Pa") = py::none(),
+      py::arg("altitudes_m") = 0.0, py::arg("pressure_Pa") = py::none(),
       py::arg("temperature_K") = py::none(), py::arg("latitude_deg") = 45.0, py::arg("refractive_index") = py::none(),
       py::arg("co2_ppm") = py::none(),
       "The coefficient derivation report as text: format 'md', 'csv', 'json' or 'html' (the output of\n"
@@ -384,12 +397,14 @@ Example: skyspec.derive(pressure_Pa=25000, temperature_K=220)["conditions_raylei
 
   m.def(
       "rayleigh_cross_section",
-      [](const std::vector<double>& wavelengths_nm, const std::string& refractive_index, double co2_ppm) {
+      [](const py::object& wavelengths_nm, const std::string& refractive_index, std::optional<double> co2_ppm) {
         RayleighDerivationInput in;
         in.formula = parse_refractive_index_formula(refractive_index, "refractive_index");
-        in.co2_ppv = co2_ppm * kPpvPerPpm;
+        // One CO2 default everywhere: the scenes' (420 ppm, present-day air).
+        in.co2_ppv = co2_ppm ? *co2_ppm * kPpvPerPpm : default_scene().atmosphere.rayleigh.derivation.co2_ppv;
+        if (co2_ppm && !(*co2_ppm >= 0.0 && *co2_ppm <= 1e6)) throw InputError("co2_ppm", format_number(*co2_ppm), "0 to 1e6 ppm");
         std::vector<double> s;
-        for (double l : wavelengths_nm) {
+        for (double l : numbers_arg(wavelengths_nm, "wavelengths_nm")) {
           // The range every other skyspec wavelength takes (scene spectrum.*, the coefficient report).
           if (!std::isfinite(l) || l < 360.0 || l > 830.0)
             throw InputError("wavelengths_nm", format_number(l), "wavelengths within 360-830 nm");
@@ -397,8 +412,10 @@ Example: skyspec.derive(pressure_Pa=25000, temperature_K=220)["conditions_raylei
         }
         return array1(s);
       },
-      py::arg("wavelengths_nm"), py::arg("refractive_index") = "peck-reeder", py::arg("co2_ppm") = 360.0,
-      "Rayleigh cross-section of dry air per molecule, m^2 (Bodhaine et al. 1999 eq. 2), at each wavelength (nm).");
+      py::arg("wavelengths_nm"), py::arg("refractive_index") = "peck-reeder", py::arg("co2_ppm") = py::none(),
+      "Rayleigh cross-section of dry air per molecule, m^2 (Bodhaine et al. 1999 eq. 2), at each wavelength (nm;\n"
+      "a number or a list/array, 360-830 nm), with co2_ppm of CO2 (default: the scenes' 420 ppm; Bodhaine's\n"
+      "tables are at 360).");
 
   m.def("render", &render, py::arg("preset") = "default", py::kw_only(), py::arg("scene_file") = py::none(),
         py::arg("scene_toml") = py::none(), py::arg("overrides") = py::none(),

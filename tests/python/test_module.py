@@ -159,6 +159,24 @@ class OneSchema(unittest.TestCase):
             skyspec.scene_toml(overrides={"camera.heigth": 8})
 
 
+class ScalarsAndDefaults(unittest.TestCase):
+    """Issue 20: a scalar wherever an array is taken; one CO2 default (the scenes' 420 ppm)."""
+
+    def test_a_scalar_wavelength_or_altitude(self):
+        one = skyspec.derive(550, altitudes_m=1000)
+        listed = skyspec.derive([550.0], altitudes_m=[1000.0])
+        self.assertEqual(one["rayleigh_scattering_per_m"].shape, (1, 1))
+        np.testing.assert_array_equal(one["rayleigh_scattering_per_m"], listed["rayleigh_scattering_per_m"])
+        self.assertEqual(skyspec.rayleigh_cross_section(550).shape, (1,))
+        self.assertIn("550", skyspec.coefficient_report("csv", wavelengths_nm=550))
+
+    def test_one_co2_default(self):
+        scene_co2 = skyspec.derive(550)["co2_ppm"]
+        self.assertEqual(scene_co2, 420.0)
+        self.assertEqual(skyspec.rayleigh_cross_section(550)[0], skyspec.rayleigh_cross_section(550, co2_ppm=scene_co2)[0])
+        self.assertNotEqual(skyspec.rayleigh_cross_section(550)[0], skyspec.rayleigh_cross_section(550, co2_ppm=360)[0])
+
+
 class HostileInput(unittest.TestCase):
     """Issue 19: input that once crashed the interpreter or slipped through is a ValueError."""
 
