@@ -193,9 +193,21 @@ void check_exr_declared_sizes(const fs::path& path) {
       const auto* t = reinterpret_cast<const unsigned char*>(table.data());
       for (std::uint64_t c = 0; c < chunks; ++c) {
         const std::int64_t offset = le(t + 8 * c, 8);
-        // 0 marks a chunk not written (an incomplete file); OpenEXR reconstructs those or fails.
-        if (offset != 0 && (offset < static_cast<std::int64_t>(header_end + 8 * chunks) || static_cast<std::uint64_t>(offset) >= file_size))
+        // 0 marks a chunk never written: the writer did not finish. OpenEXR would rebuild the table
+        // by walking the chunks, believing each one's declared size; such a file is refused.
+        if (offset == 0)
+          walker.fail("its offset table is incomplete (chunk " + std::to_string(c) + " was never written: the file was not finished)");
+        if (offset < static_cast<std::int64_t>(header_end + 8 * chunks) || static_cast<std::uint64_t>(offset) + 8 > file_size)
           walker.fail("chunk " + std::to_string(c) + " of its offset table points outside the file");
+        // The chunk starts with its first line's y and the size of its data (int32 each); OpenEXR
+        // allocates that size before reading, so it must fit in the file.
+        unsigned char chunk_header[8];
+        in.seekg(offset);
+        in.read(reinterpret_cast<char*>(chunk_header), 8);
+        const std::int64_t packed = le(chunk_header + 4, 4);
+        if (!in || packed < 0 || static_cast<std::uint64_t>(offset) + 8 + static_cast<std::uint64_t>(packed) > file_size)
+          walker.fail("chunk " + std::to_string(c) + " declares " + std::to_string(packed) +
+                      " bytes of data, more than the file holds after it");
       }
     }
   }

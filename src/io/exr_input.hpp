@@ -6,8 +6,10 @@
 // whole-image buffers. check_exr_declared_sizes() walks the header itself (magic, version flags,
 // every attribute's declared size against the bytes that follow it) and bounds the pixel data a
 // part declares by what its chunks can hold: for a scan-line file every entry of the offset table
-// must point inside the file, and the decoded size may not exceed the file's size times the
-// largest ratio the part's compression can reach. The readers in io/ open files through
+// must point inside the file (an unfinished file, with entries 0, is refused rather than rebuilt
+// by OpenEXR from the chunks' own sizes) and every chunk's declared data size must fit in it, and
+// the decoded size may not exceed the file's size times the largest ratio the part's compression
+// can reach. The readers in io/ open files through
 // io/exr_open.hpp, which applies this check (this header stays free of OpenEXR's).
 #pragma once
 

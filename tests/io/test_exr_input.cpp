@@ -90,10 +90,21 @@ BOOST_AUTO_TEST_CASE(an_offset_outside_the_file_is_refused) {
   // The offset table follows the header's final 0 byte, after its last attribute (OpenEXR writes
   // them sorted by name): 8 rows of ZIP (16 lines per chunk) are one chunk.
   const std::size_t table = value_of(bytes, "screenWindowWidth", "float") + 4 + 1;
-  const std::int64_t far = 1 << 30;
-  std::memcpy(&bytes[table], &far, 8);
-  write_text(dir.path / "offset.exr", bytes);
+  std::string far_bytes = bytes, zero_bytes = bytes, size_bytes = bytes;
+  const std::int64_t far = 1 << 30, zero = 0;
+  std::memcpy(&far_bytes[table], &far, 8);
+  write_text(dir.path / "offset.exr", far_bytes);
   BOOST_TEST(error_of(dir.path / "offset.exr").find("points outside the file") != std::string::npos);
+  // An unfinished file (offset 0): OpenEXR would rebuild the table from the chunks' sizes.
+  std::memcpy(&zero_bytes[table], &zero, 8);
+  write_text(dir.path / "zero.exr", zero_bytes);
+  BOOST_TEST(error_of(dir.path / "zero.exr").find("its offset table is incomplete") != std::string::npos);
+  // A chunk whose declared data size exceeds the file (OpenEXR allocates that size).
+  std::int64_t chunk = 0;
+  std::memcpy(&chunk, &bytes[table], 8);
+  put_int(size_bytes, static_cast<std::size_t>(chunk) + 4, 1600000000);
+  write_text(dir.path / "size.exr", size_bytes);
+  BOOST_TEST(error_of(dir.path / "size.exr").find("declares 1600000000 bytes of data") != std::string::npos);
 }
 
 BOOST_AUTO_TEST_CASE(uint_channels_folders_and_other_files_are_refused) {
