@@ -31,7 +31,7 @@ struct PartHeader {
   std::int64_t x_min = 0, y_min = 0, x_max = -1, y_max = -1;
   std::int64_t bytes_per_pixel = 0;  // sum over channels, per sampled pixel
   int compression = 0;
-  bool tiled = false, deep = false;
+  bool tiled = false, deep = false;  // from the header's type and tiles attributes
 };
 
 // The scan lines one chunk of a scan-line part holds.
@@ -155,61 +155,56 @@ void check_exr_declared_sizes(const fs::path& path) {
     throw IoError("cannot read " + path.string() + " as OpenEXR: it does not start with the OpenEXR magic number");
   const std::int64_t flags = le(b + 4, 4);
   const bool single_tiled = flags & 0x200, long_names = flags & 0x400, multipart = flags & 0x1000;
+  // Only what skyspec writes and what its readers need: one part of scan lines. Tiled, deep and
+  // multi-part files have offset tables this check does not walk, and OpenEXR rebuilds damaged
+  // ones from the chunks' own declared sizes.
+  if (single_tiled || multipart || (flags & 0x800))
+    throw IoError("cannot read " + path.string() + ": it is a " +
+                  (multipart ? "multi-part" : (flags & 0x800) ? "deep" : "tiled") +
+                  " OpenEXR file; skyspec reads single-part scan-line images (convert with "
+                  "`oiiotool IN.exr --scanline -o OUT.exr`)");
   HeaderWalker walker(path, head);
-  std::vector<PartHeader> parts;
-  do {
-    parts.push_back(walker.part(long_names ? 255 : 31, file_size));
-    if (parts.back().deep || (!multipart && (flags & 0x800))) parts.back().deep = true;
-    if (!multipart) parts.back().tiled = parts.back().tiled || single_tiled;
-    if (parts.size() > 1024) walker.fail("more than 1024 parts");
-  } while (multipart && walker.position() < head.size() && head[walker.position()] != '\0');
-  if (multipart) walker.name(0);  // the empty header that ends the list
-
+  const PartHeader p = walker.part(long_names ? 255 : 31, file_size);
+  if (p.tiled || p.deep) walker.fail("a tiled or deep image; skyspec reads scan-line images");
   const std::uint64_t header_end = walker.position();
-  for (std::size_t i = 0; i < parts.size(); ++i) {
-    const PartHeader& p = parts[i];
-    if (!p.has_window) walker.fail("no dataWindow attribute");
-    if (p.x_max < p.x_min || p.y_max < p.y_min) walker.fail("an empty or inverted dataWindow");
-    if (p.deep) continue;  // deep data is refused by the readers that follow
-    const long double width = static_cast<long double>(p.x_max - p.x_min + 1);
-    const long double height = static_cast<long double>(p.y_max - p.y_min + 1);
-    const long double decoded = width * height * static_cast<long double>(p.bytes_per_pixel);
-    const long double bound = static_cast<long double>(file_size) * exr_max_compression_ratio(p.compression) + 65536.0L;
-    if (decoded > bound)
-      walker.fail("it declares " + std::to_string(static_cast<long long>(width)) + " x " + std::to_string(static_cast<long long>(height)) +
-                  " pixels (" + std::to_string(static_cast<long long>(decoded / 1e6L)) + " MB decoded) but holds only " +
-                  std::to_string(file_size) + " bytes, which that compression cannot expand to more than " +
-                  std::to_string(static_cast<long long>(bound / 1e6L)) + " MB");
-    // A single-part scan-line file: every chunk's offset must lie inside the file.
-    if (!multipart && !p.tiled) {
-      const std::uint64_t chunks = static_cast<std::uint64_t>((height + lines_per_chunk(p.compression) - 1) / lines_per_chunk(p.compression));
-      if (header_end + 8 * chunks > file_size)
-        walker.fail("its offset table of " + std::to_string(chunks) + " chunks is longer than the file");
-      std::string table(static_cast<std::size_t>(8 * chunks), '\0');
-      in.clear();
-      in.seekg(static_cast<std::streamoff>(header_end));
-      in.read(table.data(), static_cast<std::streamsize>(table.size()));
-      if (!in) walker.fail("cannot read its offset table");
-      const auto* t = reinterpret_cast<const unsigned char*>(table.data());
-      for (std::uint64_t c = 0; c < chunks; ++c) {
-        const std::int64_t offset = le(t + 8 * c, 8);
-        // 0 marks a chunk never written: the writer did not finish. OpenEXR would rebuild the table
-        // by walking the chunks, believing each one's declared size; such a file is refused.
-        if (offset == 0)
-          walker.fail("its offset table is incomplete (chunk " + std::to_string(c) + " was never written: the file was not finished)");
-        if (offset < static_cast<std::int64_t>(header_end + 8 * chunks) || static_cast<std::uint64_t>(offset) + 8 > file_size)
-          walker.fail("chunk " + std::to_string(c) + " of its offset table points outside the file");
-        // The chunk starts with its first line's y and the size of its data (int32 each); OpenEXR
-        // allocates that size before reading, so it must fit in the file.
-        unsigned char chunk_header[8];
-        in.seekg(offset);
-        in.read(reinterpret_cast<char*>(chunk_header), 8);
-        const std::int64_t packed = le(chunk_header + 4, 4);
-        if (!in || packed < 0 || static_cast<std::uint64_t>(offset) + 8 + static_cast<std::uint64_t>(packed) > file_size)
-          walker.fail("chunk " + std::to_string(c) + " declares " + std::to_string(packed) +
-                      " bytes of data, more than the file holds after it");
-      }
-    }
+  if (!p.has_window) walker.fail("no dataWindow attribute");
+  if (p.x_max < p.x_min || p.y_max < p.y_min) walker.fail("an empty or inverted dataWindow");
+  const long double width = static_cast<long double>(p.x_max - p.x_min + 1);
+  const long double height = static_cast<long double>(p.y_max - p.y_min + 1);
+  const long double decoded = width * height * static_cast<long double>(p.bytes_per_pixel);
+  const long double bound = static_cast<long double>(file_size) * exr_max_compression_ratio(p.compression) + 65536.0L;
+  if (decoded > bound)
+    walker.fail("it declares " + std::to_string(static_cast<long long>(width)) + " x " + std::to_string(static_cast<long long>(height)) +
+                " pixels (" + std::to_string(static_cast<long long>(decoded / 1e6L)) + " MB decoded) but holds only " +
+                std::to_string(file_size) + " bytes, which that compression cannot expand to more than " +
+                std::to_string(static_cast<long long>(bound / 1e6L)) + " MB");
+  // Every chunk's offset, and the data size the chunk declares, must lie inside the file.
+  const std::uint64_t chunks = static_cast<std::uint64_t>((height + lines_per_chunk(p.compression) - 1) / lines_per_chunk(p.compression));
+  if (header_end + 8 * chunks > file_size)
+    walker.fail("its offset table of " + std::to_string(chunks) + " chunks is longer than the file");
+  std::string table(static_cast<std::size_t>(8 * chunks), '\0');
+  in.clear();
+  in.seekg(static_cast<std::streamoff>(header_end));
+  in.read(table.data(), static_cast<std::streamsize>(table.size()));
+  if (!in) walker.fail("cannot read its offset table");
+  const auto* t = reinterpret_cast<const unsigned char*>(table.data());
+  for (std::uint64_t c = 0; c < chunks; ++c) {
+    const std::int64_t offset = le(t + 8 * c, 8);
+    // 0 marks a chunk never written: the writer did not finish. OpenEXR would rebuild the table
+    // by walking the chunks, believing each one's declared size; such a file is refused.
+    if (offset == 0)
+      walker.fail("its offset table is incomplete (chunk " + std::to_string(c) + " was never written: the file was not finished)");
+    if (offset < static_cast<std::int64_t>(header_end + 8 * chunks) || static_cast<std::uint64_t>(offset) + 8 > file_size)
+      walker.fail("chunk " + std::to_string(c) + " of its offset table points outside the file");
+    // The chunk starts with its first line's y and the size of its data (int32 each); OpenEXR
+    // allocates that size before reading, so it must fit in the file.
+    unsigned char chunk_header[8];
+    in.seekg(offset);
+    in.read(reinterpret_cast<char*>(chunk_header), 8);
+    const std::int64_t packed = le(chunk_header + 4, 4);
+    if (!in || packed < 0 || static_cast<std::uint64_t>(offset) + 8 + static_cast<std::uint64_t>(packed) > file_size)
+      walker.fail("chunk " + std::to_string(c) + " declares " + std::to_string(packed) +
+                  " bytes of data, more than the file holds after it");
   }
 }
 

@@ -96,6 +96,10 @@ $craft "$good" "$work/window.exr" window 8000 8000
 run_expecting_error exr_window 3 "it declares 8000 x 8000 pixels" "$work/cv" "$skyspec" convert "$work/window.exr" --out "$work/cv"
 run_expecting_error from_window 3 "it declares 8000 x 8000 pixels" "$work/cv" \
   "$skyspec" render -q --from "$work/window.exr" --out "$work/cv"
+# Tiled (and deep, multi-part) files are refused with the command that converts them.
+oiiotool "$good" --ch R,G,B --tile 16 16 -o "$work/tiled.exr"
+run_expecting_error exr_tiled 3 "it is a tiled OpenEXR file; skyspec reads single-part scan-line images (convert with" \
+  "$work/cv" "$skyspec" convert "$work/tiled.exr" --out "$work/cv"
 $craft "$good" "$work/uint.exr" channel-type R 0
 run_expecting_error exr_uint_convert 3 "channel R holds UINT samples" "$work/cv" "$skyspec" convert "$work/uint.exr" --out "$work/cv"
 run_expecting_error exr_uint_compare 3 "channel R holds UINT samples" "$work/cv" \
