@@ -62,15 +62,15 @@ build_sanitized() {
 
 # The fuzz targets (tests/fuzz/) with clang's libFuzzer, ASan and UBSan in build-fuzz/: only the
 # library, the CLI's internal library and the three fuzzers are built, not the test suites.
-# SKYSPEC_FUZZ_SECONDS (default 20) is how long each CTest fuzz_* test fuzzes (three targets on
-# two cores: about 45 s). -O1 with line
+# SKYSPEC_FUZZ_SECONDS (default 12) is how long each CTest fuzz_* test fuzzes (three targets on
+# two cores: about 30 s). -O1 with line
 # tables only: symbolised reports at a lower compile cost than -O2 -g.
 build_fuzz() {
   if [ ! -f build-fuzz/CMakeCache.txt ] || [ "${CI:-}" = true ] || [ -n "${SKYSPEC_FUZZ_SECONDS:-}" ]; then
     cmake -S . -B build-fuzz -DCMAKE_CXX_COMPILER=clang++-14 -DCMAKE_BUILD_TYPE=RelWithDebInfo \
       -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -gline-tables-only -DNDEBUG" -DSKYSPEC_FUZZ=ON -DSKYSPEC_UNITY=ON \
       -DSKYSPEC_BUILD_TESTS=OFF -DSKYSPEC_BUILD_PYTHON=OFF -DSKYSPEC_ARCH= \
-      -DSKYSPEC_FUZZ_SECONDS="${SKYSPEC_FUZZ_SECONDS:-20}" >&2
+      -DSKYSPEC_FUZZ_SECONDS="${SKYSPEC_FUZZ_SECONDS:-12}" >&2
   fi
   cmake --build build-fuzz -j"$(nproc)" --target fuzz_scene fuzz_cli fuzz_exr >&2
 }

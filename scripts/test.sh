@@ -21,7 +21,7 @@ ctest --test-dir build --output-on-failure -j"$(nproc)"
 stage "release tests"
 build_sanitized
 stage "sanitizer build"
-ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
+SKYSPEC_SANITIZER_STAGE=1 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan --output-on-failure -j"$(nproc)" -E '^(python_|notebook_|install_consumer)'
 stage "sanitizer tests"
