@@ -112,9 +112,10 @@ py::array_t<double> array2(const std::vector<ReportLevel>& levels, size_t n, Get
   return a;
 }
 
-// A number or a list / array of numbers, as a list: one wavelength or altitude is naturally a
-// scalar. None and what is not numbers are a ValueError naming the argument.
-std::vector<double> numbers_arg(const py::object& value, const std::string& name) {
+// A number or a list / array of numbers as a NumPy array of doubles (a scalar: shape ()). None
+// and what is not numbers are a ValueError naming the argument (numpy's cast would make None a
+// NaN).
+py::array_t<double, py::array::c_style> numbers_array(const py::object& value, const std::string& name) {
   const std::string allowed = "a number or a list/array of numbers";
   if (value.is_none()) throw InputError(name, "None", allowed);
   const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(value);
@@ -122,6 +123,12 @@ std::vector<double> numbers_arg(const py::object& value, const std::string& name
     PyErr_Clear();
     throw InputError(name, py::str(value).cast<std::string>(), allowed);
   }
+  return a;
+}
+
+// The same as a list: one wavelength or altitude is naturally a scalar.
+std::vector<double> numbers_arg(const py::object& value, const std::string& name) {
+  const auto a = numbers_array(value, name);
   return std::vector<double>(a.data(), a.data() + a.size());
 }
 
@@ -229,13 +236,7 @@ py::list comparisons() {
 }
 
 py::dict standard_atmosphere(const py::object& altitude) {
-  // None (and other non-numbers) would become NaN through numpy's cast: refused by name first.
-  if (altitude.is_none()) throw InputError("altitude_m", "None", "a number or an array of numbers, metres");
-  const auto altitude_m = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(altitude);
-  if (!altitude_m) {
-    PyErr_Clear();
-    throw InputError("altitude_m", py::str(altitude).cast<std::string>(), "a number or an array of numbers, metres");
-  }
+  const auto altitude_m = numbers_array(altitude, "altitude_m");
   py::array_t<double> t(altitude_m.request().shape), p(altitude_m.request().shape), n(altitude_m.request().shape);
   const double* z = altitude_m.data();
   for (py::ssize_t i = 0; i < altitude_m.size(); ++i) {

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 
@@ -36,10 +37,9 @@ OutputLock::OutputLock(const fs::path& folder, const std::string& name, const st
     struct stat held {}, named {};
     if (::fstat(fd_, &held) == 0 && ::stat(path_.c_str(), &named) == 0 && held.st_dev == named.st_dev &&
         held.st_ino == named.st_ino) {
+      // The process id, for the message of a run that finds the lock taken; not writing it is harmless.
       const std::string pid = std::to_string(::getpid()) + "\n";
-      if (::ftruncate(fd_, 0) == 0 && ::write(fd_, pid.data(), pid.size()) < 0) {
-        // The process id is only for the message of a run that finds the lock taken.
-      }
+      if (::ftruncate(fd_, 0) == 0) static_cast<void>(::write(fd_, pid.data(), pid.size()) > 0);
       return;
     }
     ::close(fd_);

@@ -105,8 +105,11 @@ RenderPlan check_budget(const Scene& scene, const AerialInputs& in, bool force) 
                                (in.spectral_image ? 2 * (4 * n_lambda + 12) : in.image ? 2 * 12 : 0) +
                                (in.depth ? 4 : 0);
   ensure_writable_directory(scene.output.directory, "output.directory");  // its errors first
-  if (!force) refuse_if_over_budget(estimate_render(plan));
-  if (!force) refuse_if_tables_over_budget(scene, estimate_render(plan));  // before the tables are built
+  if (!force) {
+    const RenderEstimate estimate = estimate_render(plan);
+    refuse_if_over_budget(estimate);
+    refuse_if_tables_over_budget(scene, estimate);  // before the tables are built
+  }
   return plan;
 }
 
