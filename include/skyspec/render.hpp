@@ -21,6 +21,9 @@ using ProgressFn = std::function<void(int rows_done, int rows_total)>;
 
 /// The camera a scene describes (world-space, planet-centred).
 std::unique_ptr<Camera> make_camera(const Scene& scene);
+/// Whether the camera makes a whole-sphere latitude-longitude panorama (equirectangular,
+/// min_elevation_deg = -90): its EXRs carry OpenEXR's envmap = latlong attribute.
+bool is_latlong_envmap(const CameraSpec& camera);
 
 /// Everything needed to render one scene, built once: atmosphere on the grid, the sun's column
 /// table, the integrator, the camera, and the colour conversion.

@@ -7,11 +7,13 @@
 #pragma once
 
 #include <optional>
+#include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "skyspec/atmosphere.hpp"
+#include "skyspec/camera.hpp"
 #include "skyspec/geometry.hpp"
 
 namespace skyspec {
@@ -48,7 +50,16 @@ struct CameraSpec {
   Vec3 look_at_m = Vec3(0, 1000, 1);
   double fov_deg = 60.0;            ///< perspective: vertical field of view
   double min_elevation_deg = -90.0;  ///< equirectangular: elevation of the bottom edge (0: upper hemisphere)
+  /// equirectangular: how columns and rows map to directions (skyspec, Blender/Cycles, OpenEXR).
+  PanoramaConvention panorama_convention = PanoramaConvention::Skyspec;
 };
+
+/// The ground albedo a panorama that sees below the horizon (equirectangular, min_elevation_deg <
+/// 0) gets when no preset, scene file or flag sets one (SceneLoader::finish): a black lower
+/// hemisphere lights nothing from below in image-based lighting. 0.25 is pvlib's default ground
+/// albedo ("typically 0.1-0.4 for bare or vegetated ground", pvlib.irradiance.get_ground_diffuse);
+/// fresh grass is about 0.26 in its SURFACE_ALBEDOS table. Set ground.albedo = 0 for a black ground.
+inline constexpr double kPanoramaGroundAlbedo = 0.25;
 
 struct SpectrumSpec {
   double min_nm = 380.0, max_nm = 780.0, step_nm = 10.0;
@@ -122,6 +133,7 @@ class SceneLoader {
 
  private:
   Scene scene_;
+  std::set<std::string> given_;  ///< keys set by a preset (not the default), a file, a quality level or a flag
 };
 
 /// The quality levels, fastest first: draft, lean, default, high, reference.

@@ -180,6 +180,7 @@ void write_outputs(const Scene& scene, const SkyRenderer& r, const AerialInputs&
   const std::filesystem::path dir(scene.output.directory);
   SpectralExrMetadata meta;
   meta.strings = provenance_attributes(scene, false);  // version, scene, data tables
+  meta.latlong_envmap = is_latlong_envmap(scene.camera);  // the depth of a whole-sphere panorama
   auto write_spectral = [&](const std::string& suffix, const std::vector<float>& spectral,
                             const std::vector<float>& rgb, const std::string& what) {
     SpectralExrMetadata m = meta;

@@ -31,6 +31,8 @@ std::vector<KeyFlag> camera_flags(bool size) {
       {"--position", "camera.position_m", "camera position east,north,height in m", {}, true},
       {"--look-at", "camera.look_at_m", "perspective: target east,north,height in m", {}, true},
       {"--fov", "camera.fov_deg", "perspective: vertical field of view, degrees", {}, false},
+      {"--panorama-convention", "camera.panorama_convention",
+       "equirectangular: skyspec, blender (Cycles, north on +Y) or openexr (lat-long envmap)", {}, false},
   });
   return flags;
 }

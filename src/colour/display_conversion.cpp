@@ -106,7 +106,8 @@ ConversionOutputs convert_exr_for_display(const std::filesystem::path& input, co
       const auto path = image.strings.find("skyspec:renderPath");
       provenance["skyspec:units"] = working_space_units(space, path != image.strings.end() && path->second == "rgb-fast");
       write_rgb_exr(out.working_exr, image.width, image.height, to_working_space(pipeline.config(), image.rgb, space),
-                    space.chromaticities, provenance, {}, {{kExposureScaleAttribute, out.exposure.scale}});
+                    space.chromaticities, provenance, {}, {{kExposureScaleAttribute, out.exposure.scale}},
+                    image.latlong_envmap);
     }
   } catch (...) {
     std::error_code ec;

@@ -54,7 +54,8 @@ IMATH_NAMESPACE::V2f v2f(const double xy[2]) {
 
 void write_rgb_exr(const std::filesystem::path& path, int width, int height, const std::vector<float>& rgb,
                    const Chromaticities& c, const std::map<std::string, std::string>& strings,
-                   const std::map<std::string, float>& floats, const std::map<std::string, double>& doubles) {
+                   const std::map<std::string, float>& floats, const std::map<std::string, double>& doubles,
+                   bool latlong_envmap) {
   const std::string where = "RGB EXR '" + path.string() + "': ";
   if (width <= 0 || height <= 0)
     throw IoError(where + "image size " + std::to_string(width) + " x " + std::to_string(height) + " must be positive");
@@ -75,6 +76,7 @@ void write_rgb_exr(const std::filesystem::path& path, int width, int height, con
     for (const auto& [key, value] : strings) header.insert(key, Imf::StringAttribute(value));
     for (const auto& [key, value] : floats) header.insert(key, Imf::FloatAttribute(value));
     for (const auto& [key, value] : doubles) header.insert(key, Imf::DoubleAttribute(value));
+    if (latlong_envmap) Imf::addEnvmap(header, Imf::ENVMAP_LATLONG);
     Imf::FrameBuffer frame;
     const size_t x_stride = 3 * sizeof(float), y_stride = static_cast<size_t>(width) * x_stride;
     for (int ch = 0; ch < 3; ++ch)
@@ -119,6 +121,7 @@ RgbExrImage read_rgb_exr(const std::filesystem::path& path) {
     in.setFrameBuffer(frame);
     in.readPixels(window.min.y, window.max.y);
     image.has_chromaticities = Imf::hasChromaticities(header);
+    image.latlong_envmap = Imf::hasEnvmap(header) && Imf::envmap(header) == Imf::ENVMAP_LATLONG;
     const Imf::Chromaticities chroma = image.has_chromaticities ? Imf::chromaticities(header) : Imf::Chromaticities();
     const auto put = [](double out[2], const IMATH_NAMESPACE::V2f& v) {
       out[0] = v.x;

@@ -16,12 +16,13 @@
 
 namespace skyspec {
 
-/// Writes R, G, B float channels ([y][x][c]) with the chromaticities attribute and extra string,
-/// float and double attributes (ZIP compression). Non-finite values are rejected with IoError; atomic.
+/// Writes R, G, B float channels ([y][x][c]) with the chromaticities attribute, extra string,
+/// float and double attributes and, for a whole-sphere latitude-longitude panorama, OpenEXR's
+/// envmap = latlong (ZIP compression). Non-finite values are rejected with IoError; atomic.
 void write_rgb_exr(const std::filesystem::path& path, int width, int height, const std::vector<float>& rgb,
                    const Chromaticities& chromaticities, const std::map<std::string, std::string>& strings = {},
                    const std::map<std::string, float>& floats = {},
-                   const std::map<std::string, double>& doubles = {});
+                   const std::map<std::string, double>& doubles = {}, bool latlong_envmap = false);
 
 struct RgbExrImage {
   int width = 0, height = 0;
@@ -31,6 +32,7 @@ struct RgbExrImage {
   std::map<std::string, std::string> strings;
   std::map<std::string, float> floats;
   std::map<std::string, double> doubles;
+  bool latlong_envmap = false;  ///< the file has envmap = latlong
 };
 /// Reads R, G, B (and the attributes) of any OpenEXR file; throws IoError naming the file.
 RgbExrImage read_rgb_exr(const std::filesystem::path& path);

@@ -4,6 +4,7 @@
 #include <ImfChannelList.h>
 #include <ImfChromaticities.h>
 #include <ImfDoubleAttribute.h>
+#include <ImfStandardAttributes.h>
 #include <ImfFloatAttribute.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
@@ -336,6 +337,7 @@ Imf::Header spectral_header(int width, int height, const std::vector<std::string
   header.insert("spectralLayoutVersion", Imf::StringAttribute("1.0"));
   header.insert("emissiveUnits", Imf::StringAttribute("W.m^-2.sr^-1"));
   if (meta.ev) header.insert("EV", Imf::FloatAttribute(*meta.ev));
+  if (meta.latlong_envmap) Imf::addEnvmap(header, Imf::ENVMAP_LATLONG);
   return header;
 }
 

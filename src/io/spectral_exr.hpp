@@ -27,6 +27,9 @@ struct SpectralExrMetadata {
   std::map<std::string, std::string> strings;  ///< extra string attributes, e.g. "skyspec:scene"
   std::map<std::string, double> doubles;       ///< extra double attributes, e.g. "skyspec:exposureScale"
   std::optional<float> ev;                     ///< the layout's optional EV attribute
+  /// OpenEXR's standard envmap attribute = latlong (ImfEnvmap.h): the image is a whole-sphere
+  /// latitude-longitude panorama.
+  bool latlong_envmap = false;
   std::string compression = "piz";             ///< lossless: piz, zip, zips, rle or none
   /// Not stored in the file: how many cores compression may use (0: all; 1: the calling thread
   /// only, as for a render limited to one thread).

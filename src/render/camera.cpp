@@ -74,16 +74,52 @@ std::string PerspectiveCamera::describe() const {
   return s.str();
 }
 
-EquirectangularCamera::EquirectangularCamera(int width, int height, Vec3 origin_m, double min_elevation_deg)
-    : Camera(width, height, std::move(origin_m)), min_elevation_deg_(min_elevation_deg) {
+const char* panorama_convention_name(PanoramaConvention c) {
+  switch (c) {
+    case PanoramaConvention::Blender: return "blender";
+    case PanoramaConvention::OpenExr: return "openexr";
+    case PanoramaConvention::Skyspec: break;
+  }
+  return "skyspec";
+}
+
+EquirectangularCamera::EquirectangularCamera(int width, int height, Vec3 origin_m, double min_elevation_deg,
+                                             PanoramaConvention convention)
+    : Camera(width, height, std::move(origin_m)), min_elevation_deg_(min_elevation_deg), convention_(convention) {
   if (!(min_elevation_deg >= -90.0 && min_elevation_deg < 90.0))
     throw std::invalid_argument("EquirectangularCamera: min_elevation_deg must be in [-90, 90)");
+  if (convention != PanoramaConvention::Skyspec && min_elevation_deg != -90.0)
+    throw std::invalid_argument("EquirectangularCamera: the blender and openexr conventions cover the whole sphere "
+                                "(min_elevation_deg = -90)");
+  if (convention == PanoramaConvention::OpenExr && (width < 2 || height < 2))
+    throw std::invalid_argument("EquirectangularCamera: the openexr convention needs at least 2 x 2 pixels");
+}
+
+void EquirectangularCamera::angles(double x, double y, double& azimuth_deg, double& elevation_deg) const {
+  switch (convention_) {
+    case PanoramaConvention::Skyspec:
+      azimuth_deg = 360.0 * x / width_;
+      elevation_deg = 90.0 - (90.0 - min_elevation_deg_) * y / height_;
+      return;
+    case PanoramaConvention::Blender:  // u = x / width = 1/4 + azimuth / 360; v = 1 - y / height
+      azimuth_deg = 360.0 * x / width_ - 90.0;
+      elevation_deg = 90.0 - 180.0 * y / height_;
+      return;
+    case PanoramaConvention::OpenExr: {  // pixel i's centre is x = i + 1/2
+      const double longitude_deg = 180.0 - 360.0 * (x - 0.5) / (width_ - 1);
+      azimuth_deg = 180.0 - longitude_deg;
+      elevation_deg = 90.0 - 180.0 * (y - 0.5) / (height_ - 1);
+      return;
+    }
+  }
 }
 
 bool EquirectangularCamera::direction(double x, double y, Vec3& dir) const {
-  const double azimuth_deg = 360.0 * x / width_;
-  const double elevation_deg = 90.0 - (90.0 - min_elevation_deg_) * y / height_;
-  dir = direction_from_angles(azimuth_deg, elevation_deg);
+  double azimuth_deg, elevation_deg;
+  angles(x, y, azimuth_deg, elevation_deg);
+  // OpenEXR's first and last rows are the poles' centres; points beyond them (x, y outside the
+  // pixel centres) stay on the sphere.
+  dir = direction_from_angles(azimuth_deg, std::clamp(elevation_deg, -90.0, 90.0));
   return true;
 }
 
@@ -93,7 +129,7 @@ std::string EquirectangularCamera::describe() const {
   if (min_elevation_deg_ == -90.0) s << "full sphere";
   else if (min_elevation_deg_ == 0.0) s << "upper hemisphere";
   else s << "elevation 90 down to " << min_elevation_deg_ << " deg";
-  s << "), " << width_ << "x" << height_;
+  s << ", " << panorama_convention_name(convention_) << " convention), " << width_ << "x" << height_;
   return s.str();
 }
 

@@ -55,9 +55,14 @@ std::unique_ptr<Camera> make_camera(const Scene& scene) {
     case CameraSpec::Type::Perspective:
       return std::make_unique<PerspectiveCamera>(c.width, c.height, world(c.position_m), world(c.look_at_m), c.fov_deg);
     case CameraSpec::Type::Equirectangular:
-      return std::make_unique<EquirectangularCamera>(c.width, c.height, world(c.position_m), c.min_elevation_deg);
+      return std::make_unique<EquirectangularCamera>(c.width, c.height, world(c.position_m), c.min_elevation_deg,
+                                                     c.panorama_convention);
   }
   return nullptr;
+}
+
+bool is_latlong_envmap(const CameraSpec& camera) {
+  return camera.type == CameraSpec::Type::Equirectangular && camera.min_elevation_deg == -90.0;
 }
 
 namespace {
@@ -463,6 +468,7 @@ std::unique_ptr<SpectralExrWriter> open_spectral_exr(const SkyRenderer& r, const
   meta.doubles[kExposureScaleAttribute] = exposure_scale;
   meta.compression = scene.output.exr_compression;
   meta.threads = thread_count(scene);
+  meta.latlong_envmap = is_latlong_envmap(scene.camera);
   meta.strings["skyspec:units"] =
       scene.render.path == RenderSpec::Path::RgbFast
           ? "RGB-fast path: S0 channels and R,G,B in the sun's units (spectral_irradiance x sr^-1); "
@@ -536,7 +542,7 @@ void write_working_space_exr(const std::filesystem::path& path, const SkyRendere
     floats["isoSpeed"] = static_cast<float>(exposure.iso);
   }
   write_rgb_exr(path, r.width(), r.height(), to_working_space(pipeline.config(), rgb, space), space.chromaticities,
-                strings, floats, {{kExposureScaleAttribute, exposure_scale}});
+                strings, floats, {{kExposureScaleAttribute, exposure_scale}}, is_latlong_envmap(r.scene().camera));
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include <iomanip>
 #include <limits>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include <toml++/toml.h>
@@ -380,7 +381,10 @@ const std::vector<KeyDef>& registry() {
     r.push_back(number_key("atmosphere.ozone.top_m", "m", {0.0, 1e7}, "top of the ozone layer",
                            [](Scene& s) -> double& { return s.atmosphere.ozone.top_m; }));
     // ground
-    r.push_back(number_key("ground.albedo", "", {0.0, 1.0}, "Lambertian albedo of the ground (0: black)",
+    r.push_back(number_key("ground.albedo", "", {0.0, 1.0},
+                           "Lambertian albedo of the ground (0: black); unless a preset, file or flag sets a ground "
+                           "albedo, a panorama that sees below the horizon (equirectangular, min_elevation_deg < 0) "
+                           "gets 0.25 (pvlib's default ground albedo)",
                            [](Scene& s) -> double& { return s.atmosphere.ground.albedo; }));
     r.push_back(list_key("ground.albedo_wavelengths_nm", "nm", {1.0, 1e5}, 1024,
                          "spectral albedo: wavelengths (replaces ground.albedo when not empty)",
@@ -469,6 +473,17 @@ const std::vector<KeyDef>& registry() {
                            "equirectangular: elevation of the bottom edge (-90: the whole sphere; 0: the upper "
                            "hemisphere only, as sky-dome textures are)",
                            [](Scene& s) -> double& { return s.camera.min_elevation_deg; }));
+    r.push_back(choice_key(
+        "camera.panorama_convention", {"skyspec", "blender", "openexr"},
+        "equirectangular: skyspec (north at the left edge, east a quarter in), blender (Cycles' mapping with north "
+        "on Blender's +Y: east at the centre) or openexr (OpenEXR's lat-long map, up +Y, north -Z); blender and "
+        "openexr need min_elevation_deg = -90 (docs/other-tools.md)",
+        [](Scene& s, const std::string& v) {
+          s.camera.panorama_convention = v == "blender"   ? PanoramaConvention::Blender
+                                         : v == "openexr" ? PanoramaConvention::OpenExr
+                                                          : PanoramaConvention::Skyspec;
+        },
+        [](const Scene& s) { return std::string(panorama_convention_name(s.camera.panorama_convention)); }));
     // spectrum
     r.push_back(number_key("spectrum.min_nm", "nm", {1.0, 1e5}, "first wavelength",
                            [](Scene& s) -> double& { return s.spectrum.min_nm; }));
@@ -576,7 +591,8 @@ const KeyDef* find_key(const std::string& key) {
   throw InputError::unknown_key(key, hint, origin);
 }
 
-void apply_table(Scene& scene, const toml::table& tbl, const std::string& prefix, const std::string& fallback_origin) {
+void apply_table(Scene& scene, const toml::table& tbl, const std::string& prefix, const std::string& fallback_origin,
+                 std::set<std::string>& applied) {
   for (const auto& [k, node] : tbl) {
     const std::string key = prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
     if (auto sub = node.as_table()) {
@@ -585,12 +601,13 @@ void apply_table(Scene& scene, const toml::table& tbl, const std::string& prefix
       for (const auto& def : registry())
         if (def.key.rfind(key + ".", 0) == 0) any = true;
       if (!any) unknown_key(key, origin_of_key(k, fallback_origin));
-      apply_table(scene, *sub, key, fallback_origin);
+      apply_table(scene, *sub, key, fallback_origin, applied);
       continue;
     }
     const KeyDef* def = find_key(key);
     if (!def) unknown_key(key, origin_of_key(k, fallback_origin));
     def->set(scene, node, origin_of(node, fallback_origin));
+    applied.insert(key);
   }
 }
 
@@ -606,6 +623,30 @@ toml::table parse_toml(const std::string& text, const std::string& origin) {
                      origin + ":" + std::to_string(e.source().begin.line) + ":" +
                          std::to_string(e.source().begin.column));
   }
+}
+
+// The Blender and OpenEXR lat-long conventions map the whole image to the whole sphere.
+void check_panorama(const CameraSpec& c) {
+  if (c.panorama_convention == PanoramaConvention::Skyspec) return;
+  const std::string name = panorama_convention_name(c.panorama_convention);
+  if (c.min_elevation_deg != -90.0)
+    throw InputError("camera.min_elevation_deg", format_number(c.min_elevation_deg),
+                     "-90 with camera.panorama_convention = \"" + name +
+                         "\" (its lat-long map covers the whole sphere; a partial panorama takes the skyspec convention)");
+  if (c.panorama_convention == PanoramaConvention::OpenExr && (c.width < 2 || c.height < 2))
+    throw InputError("camera.width x camera.height", std::to_string(c.width) + "x" + std::to_string(c.height),
+                     "at least 2x2 pixels with camera.panorama_convention = \"openexr\" (its first and last pixel "
+                     "centres are the poles and the seam)");
+}
+
+bool sees_below_horizon_as_panorama(const CameraSpec& c) {
+  return c.type == CameraSpec::Type::Equirectangular && c.min_elevation_deg < 0.0;
+}
+
+bool ground_albedo_given(const std::set<std::string>& given) {
+  for (const char* key : {"ground.albedo", "ground.albedo_wavelengths_nm", "ground.albedo_values"})
+    if (given.count(key)) return true;
+  return false;
 }
 
 }  // namespace
@@ -627,6 +668,7 @@ SceneLoader::SceneLoader(const std::string& preset) {
     throw InputError("preset", "\"" + preset + "\"", "one of: " + join(names, ", "));
   // Every preset is the default scene plus the keys its file changes.
   apply_toml(std::string(embedded_file("scenes/default.toml")), "preset default");
+  given_.clear();  // the defaults are not choices
   if (preset != "default") apply_toml(std::string(embedded_file("scenes/" + preset + ".toml")), "preset " + preset);
 }
 
@@ -643,7 +685,7 @@ void SceneLoader::apply_quality(const std::string& name, const std::string& orig
 
 void SceneLoader::apply_toml(const std::string& text, const std::string& origin) {
   const toml::table tbl = parse_toml(text, origin);
-  apply_table(scene_, tbl, "", origin);
+  apply_table(scene_, tbl, "", origin, given_);
 }
 
 void SceneLoader::apply_file(const std::string& path) {
@@ -704,6 +746,7 @@ void SceneLoader::apply_override(const std::string& key, const std::string& toml
   } else {
     def->set(scene_, *n, origin);
   }
+  given_.insert(key);
 }
 
 Scene SceneLoader::finish() const {
@@ -721,6 +764,8 @@ Scene SceneLoader::finish() const {
   if (static_cast<double>(s.camera.width) * s.camera.height > 1.0e9)
     throw InputError("camera.width x camera.height", std::to_string(s.camera.width) + "x" + std::to_string(s.camera.height),
                      "at most 1e9 pixels");
+  if (s.camera.type == CameraSpec::Type::Equirectangular) check_panorama(s.camera);
+  if (sees_below_horizon_as_panorama(s.camera) && !ground_albedo_given(given_)) s.atmosphere.ground.albedo = kPanoramaGroundAlbedo;
   if (!s.sun.date_time.empty()) {
     // The sun's position and distance for the date, time and place (NREL SPA).
     Observer where;

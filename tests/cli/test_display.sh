@@ -87,6 +87,33 @@ else
   bad "p3 render failed"; cat "$work/stderr"
 fi
 
+# A whole-sphere panorama says so in OpenEXR's envmap attribute (OpenImageIO: "LatLong
+# Environment", up +Y), in the spectral EXR, the RGB-only working-space EXR and a conversion of
+# it; a hemisphere panorama does not; maketx makes a lat-long environment texture of the RGB file.
+pano=(--camera equirectangular --width 16 --height 8 --set render.scattering_orders=1 --set spectrum.count=4)
+if "$skyspec" render -q --out "$work/pano" "${pano[@]}" --panorama-convention blender --exr-space "Linear Rec.709" \
+   && "$skyspec" convert "$work/pano/sky.exr" --out "$work/pano" --name conv --exr-space ACEScg --no-png -q \
+   && "$skyspec" render -q --out "$work/dome" "${pano[@]}" --set camera.min_elevation_deg=0 --exr-space "Linear Rec.709"; then
+  /usr/bin/python3 - "$work" >"$work/meta" 2>&1 <<'PY' && ok || { bad "panorama metadata"; cat "$work/meta"; }
+import sys
+import OpenImageIO as oiio
+work = sys.argv[1]
+for name in ["pano/sky.exr", "pano/sky-linear-rec709.exr", "pano/conv-acescg.exr"]:
+    s = oiio.ImageInput.open(work + "/" + name).spec()
+    assert s.getattribute("textureformat") == "LatLong Environment", (name, s.getattribute("textureformat"))
+    assert s.getattribute("oiio:updirection") == "y", name
+for name in ["dome/sky.exr", "dome/sky-linear-rec709.exr"]:
+    s = oiio.ImageInput.open(work + "/" + name).spec()
+    assert s.getattribute("textureformat") is None, (name, s.getattribute("textureformat"))
+scene = oiio.ImageInput.open(work + "/pano/sky.exr").spec().getattribute("skyspec:scene")
+assert 'panorama_convention = "blender"' in scene and "albedo = 0.25" in scene, scene
+PY
+  maketx --envlatl "$work/pano/sky-linear-rec709.exr" -o "$work/pano/sky.tx" >"$work/maketx" 2>&1 && ok \
+    || { bad "maketx --envlatl refused the panorama"; cat "$work/maketx"; }
+else
+  bad "panorama render failed"
+fi
+
 # The config named through $OCIO gives the same image as the built-in one.
 OCIO="$config" "$skyspec" render -q --out "$work/env" "${small[@]}" --no-exr && ok || bad "render with OCIO=config failed"
 "$skyspec" render -q --out "$work/builtin" "${small[@]}"

@@ -68,7 +68,8 @@ BOOST_AUTO_TEST_CASE(sun_camera_exposure_and_outputs_leave_the_key_alone) {
       "sun.azimuth_deg = 90",
       "sun.distance_au = 1.5",
       "sun.disk = false",
-      "camera.type = \"equirectangular\"",
+      "camera.type = \"perspective\"",
+      "camera.type = \"equirectangular\"\nground.albedo = 0.0",  // alone it brings a grey ground
       "camera.width = 64",
       "camera.position_m = [0, 0, 2000]",
       "location.latitude_deg = 45",

@@ -132,6 +132,61 @@ BOOST_AUTO_TEST_CASE(equirectangular_elevation_range) {
   BOOST_TEST(contains(e, "<= 89"));
 }
 
+// A panorama that sees the ground gets kPanoramaGroundAlbedo unless a preset, file or flag sets
+// a ground albedo (0 included); other cameras, and panoramas of the upper hemisphere, keep the
+// scene's (0 by default). A recorded scene sets every key, so it keeps its albedo.
+BOOST_AUTO_TEST_CASE(panoramas_get_a_grey_ground_unless_one_is_set) {
+  const auto albedo = [](std::initializer_list<std::pair<std::string, std::string>> keys) {
+    SceneLoader l;
+    for (const auto& [key, value] : keys) l.apply_override(key, value, "test");
+    return l.finish().atmosphere.ground.albedo;
+  };
+  BOOST_TEST(albedo({}) == 0.0);
+  BOOST_TEST(albedo({{"camera.type", "equirectangular"}}) == kPanoramaGroundAlbedo);
+  BOOST_TEST(albedo({{"camera.type", "equirectangular"}, {"camera.min_elevation_deg", "-10"}}) == kPanoramaGroundAlbedo);
+  BOOST_TEST(albedo({{"camera.type", "equirectangular"}, {"camera.min_elevation_deg", "0"}}) == 0.0);
+  BOOST_TEST(albedo({{"camera.type", "equirectangular"}, {"ground.albedo", "0"}}) == 0.0);
+  BOOST_TEST(albedo({{"camera.type", "equirectangular"}, {"ground.albedo", "0.6"}}) == 0.6);
+  BOOST_TEST(albedo({{"camera.type", "perspective"}}) == 0.0);
+  SceneLoader file;
+  file.apply_toml("[camera]\ntype = \"equirectangular\"\n[ground]\nalbedo = 0.0\n", "scene.toml");
+  BOOST_TEST(file.finish().atmosphere.ground.albedo == 0.0);
+  SceneLoader spectral;
+  spectral.apply_toml("[camera]\ntype = \"equirectangular\"\n[ground]\nalbedo_wavelengths_nm = [400, 700]\n"
+                      "albedo_values = [0.1, 0.3]\n",
+                      "scene.toml");
+  BOOST_TEST(spectral.finish().atmosphere.ground.albedo == 0.0);  // the spectral albedo is the choice
+  // The effective scene of a panorama records the albedo it used; loading it gives the same.
+  SceneLoader panorama;
+  panorama.apply_override("camera.type", "equirectangular", "--camera");
+  const std::string recorded = scene_to_toml(panorama.finish());
+  SceneLoader again;
+  again.apply_toml(recorded, "recorded");
+  again.apply_override("camera.type", "fisheye", "--camera");  // a flag on top does not reset it
+  BOOST_TEST(again.finish().atmosphere.ground.albedo == kPanoramaGroundAlbedo);
+}
+
+BOOST_AUTO_TEST_CASE(blender_and_openexr_conventions_need_the_whole_sphere) {
+  for (const char* convention : {"blender", "openexr"}) {
+    const std::string e = error_of([convention] {
+      SceneLoader l;
+      l.apply_override("camera.type", "equirectangular", "--camera");
+      l.apply_override("camera.panorama_convention", convention, "--panorama-convention");
+      l.apply_override("camera.min_elevation_deg", "0", "--set camera.min_elevation_deg");
+      l.finish();
+    });
+    BOOST_TEST_CONTEXT(convention) {
+      BOOST_TEST(contains(e, "camera.min_elevation_deg = 0"));
+      BOOST_TEST(contains(e, "-90 with camera.panorama_convention = \"" + std::string(convention) + "\""));
+    }
+  }
+  const std::string e = error_of([] {
+    SceneLoader l;
+    l.apply_override("camera.panorama_convention", "cycles", "--panorama-convention");
+  });
+  BOOST_TEST(contains(e, "one of: skyspec, blender, openexr"));
+}
+
 BOOST_AUTO_TEST_CASE(effective_scene_round_trips_through_toml) {
   SceneLoader a("default");
   a.apply_override("sun.elevation_deg", "7.25", "test");
