@@ -9,11 +9,15 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <memory>
+#include <utility>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "base/text_format.hpp"
+#include "colour/display_pipeline.hpp"
+#include "skyspec/camera.hpp"
 #include "skyspec/coefficient_report.hpp"
 #include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
@@ -252,22 +256,31 @@ py::dict standard_atmosphere(const py::object& altitude) {
   return d;
 }
 
-py::object render(const std::string& preset, const std::optional<std::string>& scene_file,
-                  const std::optional<std::string>& scene_toml, const std::optional<py::dict>& overrides) {
-  const Scene scene = load_scene(preset, scene_file, scene_toml, overrides);
-  SpectralImageBuffer img;
-  {
-    py::gil_scoped_release release;
-    img = render_to_memory(scene);
-  }
+// ---- rendering ------------------------------------------------------------------------------
+
+// A render in memory with what it shows. The NumPy arrays spectral, rgb, directions and
+// wavelengths_nm are views of the C++ buffer (each keeps it alive), so write_exr / write_png write
+// what the arrays hold.
+struct RenderResult {
+  std::shared_ptr<SpectralImageBuffer> image;
+  py::array_t<float> xyz;
+};
+
+template <class T>
+py::array_t<T> view_of(const std::shared_ptr<SpectralImageBuffer>& image, std::vector<py::ssize_t> shape, T* data) {
+  auto* keep = new std::shared_ptr<SpectralImageBuffer>(image);
+  py::capsule owner(keep, [](void* p) { delete static_cast<std::shared_ptr<SpectralImageBuffer>*>(p); });
+  return py::array_t<T>(std::move(shape), data, owner);
+}
+
+// CIE XYZ of every pixel: from the spectrum (spectral path), or from linear Rec.709 (RGB-fast).
+py::array_t<float> xyz_of(const SpectralImageBuffer& img) {
   const auto h = static_cast<py::ssize_t>(img.height), w = static_cast<py::ssize_t>(img.width);
   const auto nl = static_cast<py::ssize_t>(img.wavelengths_nm.size());
-  py::array_t<float> spectral({h, w, nl}), rgb({h, w, py::ssize_t{3}}), xyz({h, w, py::ssize_t{3}});
-  std::copy(img.spectral.begin(), img.spectral.end(), spectral.mutable_data());
-  std::copy(img.rgb.begin(), img.rgb.end(), rgb.mutable_data());
+  py::array_t<float> xyz({h, w, py::ssize_t{3}});
   float* out = xyz.mutable_data();
   const size_t pixels = static_cast<size_t>(h * w);
-  if (scene.render.path == RenderSpec::Path::Spectral) {
+  if (img.scene.render.path == RenderSpec::Path::Spectral) {
     const SpectrumToXyz to_xyz(WavelengthGrid::from_list(img.wavelengths_nm), constants::kMaxLuminousEfficacy_lm_per_W);
     const auto& W = to_xyz.weights();
     for (size_t p = 0; p < pixels; ++p) {
@@ -283,9 +296,166 @@ py::object render(const std::string& preset, const std::optional<std::string>& s
       for (int k = 0; k < 3; ++k) out[p * 3 + static_cast<size_t>(k)] = static_cast<float>(v[k]);
     }
   }
-  static py::object result_type = py::module_::import("collections")
-                                       .attr("namedtuple")("RenderResult", py::make_tuple("spectral", "wavelengths_nm", "xyz", "rgb"));
-  return result_type(spectral, array1(img.wavelengths_nm), xyz, rgb);
+  return xyz;
+}
+
+RenderResult render(const std::string& preset, const std::optional<std::string>& scene_file,
+                    const std::optional<std::string>& scene_toml, const std::optional<py::dict>& overrides) {
+  const Scene scene = load_scene(preset, scene_file, scene_toml, overrides);
+  auto image = std::make_shared<SpectralImageBuffer>();
+  {
+    py::gil_scoped_release release;
+    *image = render_to_memory(scene);
+  }
+  return {image, xyz_of(*image)};
+}
+
+// The pixel whose view direction is nearest (azimuth, elevation): (row, column).
+std::pair<int, int> nearest_pixel(const SpectralImageBuffer& img, double azimuth_deg, double elevation_deg) {
+  if (!std::isfinite(azimuth_deg)) throw InputError("azimuth_deg", format_number(azimuth_deg), "a finite number of degrees");
+  if (!(elevation_deg >= -90.0 && elevation_deg <= 90.0))
+    throw InputError("elevation_deg", format_number(elevation_deg), "-90 to 90 degrees");
+  const Vec3 want = direction_from_angles(azimuth_deg, elevation_deg);
+  double best = -2.0;
+  std::pair<int, int> at{-1, -1};
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      const double* d = &img.directions[(static_cast<size_t>(y) * img.width + x) * 3];
+      if (d[0] == 0.0 && d[1] == 0.0 && d[2] == 0.0) continue;  // no direction there
+      const double c = d[0] * want.x() + d[1] * want.y() + d[2] * want.z();
+      if (c > best) {
+        best = c;
+        at = {y, x};
+      }
+    }
+  if (at.first < 0) throw InputError("azimuth_deg, elevation_deg", "any direction", "an image with pixels that look somewhere");
+  return at;
+}
+
+DisplaySettings display_settings(const std::optional<std::string>& display, const std::optional<std::string>& view,
+                                 const std::optional<std::string>& look, int bits, const std::optional<double>& exposure_ev,
+                                 const std::optional<std::string>& ocio) {
+  DisplaySettings d;
+  if (ocio) d.config = {*ocio, "ocio"};
+  if (display) d.display = *display;
+  if (view) d.view = *view;
+  if (look) d.look = *look;
+  d.png_bit_depth = bits;
+  if (exposure_ev) {
+    if (!std::isfinite(*exposure_ev)) throw InputError("exposure_ev", format_number(*exposure_ev), "a finite number of stops");
+    d.exposure.mode = ExposureSettings::Mode::Manual;
+    d.exposure.ev = *exposure_ev;
+  }
+  return d;
+}
+
+void bind_render_result(py::module_& m) {
+  py::class_<RenderResult>(m, "RenderResult", R"(A sky rendered into memory, with what it shows (skyspec.render() makes it).
+
+Arrays (row 0 is the top of the image, as in the EXR; h x w pixels, n wavelengths):
+  spectral        float32 (h, w, n): spectral radiance, W m^-2 sr^-1 nm^-1 (absolute with sun.spectrum =
+                  "solar"; with "flat", in units of sun.spectral_irradiance; RGB-fast path: the 3 values)
+  wavelengths_nm  float64 (n)
+  xyz             float32 (h, w, 3): CIE 1931 XYZ, Y in cd m^-2 (RGB-fast path: from its linear Rec.709)
+  rgb             float32 (h, w, 3): linear Rec.709 (D65), the EXR's R, G, B
+  directions      float64 (h, w, 3): unit view direction through each pixel's centre, east-north-up at the
+                  scene's reference point (x east, y north, z up); (0, 0, 0) where the camera has none
+  valid           bool (h, w): the pixel has a direction (False outside a fisheye's circle)
+spectral, rgb, directions and wavelengths_nm are views of the result: write_exr/write_png write them.)")
+      .def_property_readonly("spectral", [](const RenderResult& r) {
+        auto& i = *r.image;
+        return view_of<float>(r.image, {i.height, i.width, static_cast<py::ssize_t>(i.wavelengths_nm.size())}, i.spectral.data());
+      }, "float32 (h, w, n): spectral radiance, W m^-2 sr^-1 nm^-1")
+      .def_property_readonly("wavelengths_nm", [](const RenderResult& r) {
+        return view_of<double>(r.image, {static_cast<py::ssize_t>(r.image->wavelengths_nm.size())}, r.image->wavelengths_nm.data());
+      }, "float64 (n,): the wavelengths, nm")
+      .def_readonly("xyz", &RenderResult::xyz, "float32 (h, w, 3): CIE 1931 XYZ, Y in cd m^-2")
+      .def_property_readonly("rgb", [](const RenderResult& r) {
+        return view_of<float>(r.image, {r.image->height, r.image->width, 3}, r.image->rgb.data());
+      }, "float32 (h, w, 3): linear Rec.709 (D65), the EXR's R, G, B")
+      .def_property_readonly("directions", [](const RenderResult& r) {
+        return view_of<double>(r.image, {r.image->height, r.image->width, 3}, r.image->directions.data());
+      }, "float64 (h, w, 3): unit view direction of each pixel's centre, east-north-up; (0, 0, 0) where none")
+      .def_property_readonly("valid", [](const RenderResult& r) {
+        const auto& i = *r.image;
+        py::array_t<bool> valid({static_cast<py::ssize_t>(i.height), static_cast<py::ssize_t>(i.width)});
+        bool* out = valid.mutable_data();
+        for (size_t p = 0; p < static_cast<size_t>(i.width) * static_cast<size_t>(i.height); ++p)
+          out[p] = i.directions[p * 3] != 0.0 || i.directions[p * 3 + 1] != 0.0 || i.directions[p * 3 + 2] != 0.0;
+        return valid;
+      }, "bool (h, w): whether the pixel has a view direction")
+      .def_property_readonly("width", [](const RenderResult& r) { return r.image->width; }, "pixels")
+      .def_property_readonly("height", [](const RenderResult& r) { return r.image->height; }, "pixels")
+      .def_property_readonly("sun_direction", [](const RenderResult& r) {
+        const Vec3& s = r.image->sun_direction;
+        return array1({s.x(), s.y(), s.z()});
+      }, "float64 (3,): unit vector towards the sun's centre, east-north-up (the frame of directions)")
+      .def_property_readonly("sun_azimuth_deg", [](const RenderResult& r) { return r.image->scene.sun.azimuth_deg; },
+                             "the sun's azimuth, degrees clockwise from north (computed for sun.date_time when set)")
+      .def_property_readonly("sun_elevation_deg", [](const RenderResult& r) { return r.image->scene.sun.elevation_deg; },
+                             "the sun's elevation above the horizon, degrees")
+      .def_property_readonly("exposure_scale", [](const RenderResult& r) { return preview_exposure(*r.image).scale; },
+                             "the factor the preview applies to rgb (the EXR's skyspec:exposureScale): output.exposure_ev when\n"
+                             "the scene sets it, else the automatic one (log-average luminance -> 0.18)")
+      .def_property_readonly("exposure_ev", [](const RenderResult& r) { return std::log2(preview_exposure(*r.image).scale); },
+                             "log2(exposure_scale)")
+      .def_property_readonly("exposure", [](const RenderResult& r) { return preview_exposure(*r.image).description; },
+                             "how the exposure was chosen, in words (the EXR's skyspec:exposure)")
+      .def_property_readonly("scene_toml", [](const RenderResult& r) { return scene_to_toml(r.image->scene); },
+                             "the effective scene as TOML, every key (the EXR's skyspec:scene; render(scene_toml=...) again\n"
+                             "gives the same image)")
+      .def_property_readonly("scene", [](const RenderResult& r) {
+        return py::module_::import("tomllib").attr("loads")(scene_to_toml(r.image->scene));
+      }, "the effective scene as a nested dict (scene_toml read with tomllib)")
+      .def(
+          "pixel",
+          [](const RenderResult& r, double azimuth_deg, double elevation_deg) {
+            return nearest_pixel(*r.image, azimuth_deg, elevation_deg);
+          },
+          py::arg("azimuth_deg"), py::arg("elevation_deg"),
+          "(row, column) of the pixel whose view direction is nearest to (azimuth clockwise from north, elevation),\n"
+          "degrees")
+      .def(
+          "spectrum_at",
+          [](const RenderResult& r, double azimuth_deg, double elevation_deg) {
+            const auto [y, x] = nearest_pixel(*r.image, azimuth_deg, elevation_deg);
+            const size_t n = r.image->wavelengths_nm.size();
+            const float* s = &r.image->spectral[(static_cast<size_t>(y) * r.image->width + x) * n];
+            return array1(std::vector<double>(s, s + n));
+          },
+          py::arg("azimuth_deg"), py::arg("elevation_deg"),
+          "float64 (n,): the spectral radiance of the pixel nearest that direction (see pixel()), W m^-2 sr^-1 nm^-1")
+      .def(
+          "write_exr",
+          [](const RenderResult& r, const std::string& path) {
+            py::gil_scoped_release release;
+            write_spectral_exr(*r.image, path);
+          },
+          py::arg("path"),
+          "Write the spectral EXR, as `skyspec render` writes it for this scene (channels, values, header: scene,\n"
+          "exposure, units, envmap), atomically. OSError if it cannot be written.")
+      .def(
+          "write_png",
+          [](const RenderResult& r, const std::string& path, const std::optional<std::string>& display,
+             const std::optional<std::string>& view, const std::optional<std::string>& look, int bits,
+             const std::optional<double>& exposure_ev, const std::optional<std::string>& ocio) {
+            const DisplaySettings settings = display_settings(display, view, look, bits, exposure_ev, ocio);
+            py::gil_scoped_release release;
+            return write_display_png(*r.image, path, settings);
+          },
+          py::arg("path"), py::kw_only(), py::arg("display") = py::none(), py::arg("view") = py::none(),
+          py::arg("look") = py::none(), py::arg("bits") = 8, py::arg("exposure_ev") = py::none(),
+          py::arg("ocio") = py::none(),
+          "Write the image through an OpenColorIO display and view as a PNG, as `skyspec render` writes its preview\n"
+          "(default: skyspec's config, sRGB, Un-tone-mapped, 8 bits, the recorded exposure; exposure_ev: a manual\n"
+          "one; ocio: another config file), atomically. Returns the exposure's scale. ValueError names a bad\n"
+          "display, view, look or bit depth.")
+      .def("__repr__", [](const RenderResult& r) {
+        const auto& i = *r.image;
+        return "<skyspec.RenderResult " + std::to_string(i.width) + "x" + std::to_string(i.height) + ", " +
+               std::to_string(i.wavelengths_nm.size()) + " wavelengths, sun azimuth " +
+               format_number(i.scene.sun.azimuth_deg) + " elevation " + format_number(i.scene.sun.elevation_deg) + ">";
+      });
 }
 
 }  // namespace
@@ -298,7 +468,7 @@ PYBIND11_MODULE(skyspec, m) {
       "published_comparisons()     skyspec against Bodhaine et al. 1999, Bucholtz 1995 and the seed constants\n"
       "us_standard_atmosphere(z)   temperature, pressure, number density of the U.S. Standard Atmosphere 1976\n"
       "rayleigh_cross_section(...) sigma(lambda) in m^2\n"
-      "render(...)                 a spectral sky image: (spectral HxWxN float32, wavelengths_nm, xyz, rgb)\n"
+      "render(...)                 a spectral sky image with its directions, sun, exposure and scene (RenderResult)\n"
       "scene_toml(...), preset_names(), scene_keys()\n\n"
       "Scenes: a preset ('default' or 'seed'), then an optional scene file or TOML text, then overrides, a dict\n"
       "of scene keys, e.g. {'camera.width': 64, 'sun.elevation_deg': 5} or {'sun': {'elevation_deg': 5}}\n"
@@ -418,18 +588,15 @@ Example: skyspec.derive(pressure_Pa=25000, temperature_K=220)["conditions_raylei
       "a number or a list/array, 360-830 nm), with co2_ppm of CO2 (default: the scenes' 420 ppm; Bodhaine's\n"
       "tables are at 360).");
 
+  bind_render_result(m);
   m.def("render", &render, py::arg("preset") = "default", py::kw_only(), py::arg("scene_file") = py::none(),
         py::arg("scene_toml") = py::none(), py::arg("overrides") = py::none(),
-        R"(Render a scene into memory (no files are written).
+        R"(Render a scene into memory; returns a RenderResult (no files are written until you ask).
 
-Returns a named tuple (spectral, wavelengths_nm, xyz, rgb):
-  spectral        float32 array (height, width, n): spectral radiance, W m^-2 sr^-1 nm^-1 (absolute with
-                  sun.spectrum = "solar"; with "flat", in units of sun.spectral_irradiance;
-                  RGB-fast path: the 3 values read as linear RGB)
-  wavelengths_nm  float64 array (n)
-  xyz             float32 (height, width, 3): CIE 1931 XYZ, Y in cd m^-2 (spectral path: integrated
-                  from the spectrum; RGB-fast path: converted from its linear Rec.709 values)
-  rgb             float32 (height, width, 3): linear Rec.709 (D65), as in the EXR's R, G, B
-Row 0 is the top of the image, as in the EXR. Example:
-  img = skyspec.render(overrides={"camera.width": 64, "camera.height": 64, "sun.elevation_deg": 10}))");
+The result holds the image (spectral, wavelengths_nm, xyz, rgb), where each pixel looks (directions,
+valid, pixel(), spectrum_at()), the sun (sun_direction, sun_azimuth_deg, sun_elevation_deg), the exposure
+(exposure_scale, exposure_ev, exposure) and the effective scene (scene_toml, scene), and writes the files
+`skyspec render` would (write_exr(), write_png()). Example:
+  img = skyspec.render(overrides={"camera.width": 64, "camera.height": 64, "sun.elevation_deg": 10})
+  img.spectrum_at(azimuth_deg=0, elevation_deg=45); img.write_exr("sky.exr"))");
 }

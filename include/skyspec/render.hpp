@@ -81,14 +81,48 @@ class SkyRenderer {
   std::unique_ptr<Impl> impl_;
 };
 
-/// A whole image in memory (tests, Python, small renders).
+/// A whole image in memory (tests, Python, small renders), with what it shows.
 struct SpectralImageBuffer {
   int width = 0, height = 0;
   std::vector<double> wavelengths_nm;
   std::vector<float> spectral;  ///< [y][x][lambda]
   std::vector<float> rgb;       ///< [y][x][c]
+  Scene scene;                  ///< the effective scene it is a render of
+  /// [y][x][3]: the unit view direction through each pixel's centre, in the east-north-up frame of
+  /// the scene's reference point (x east, y north, z up; camera.hpp); (0, 0, 0) where the camera
+  /// has none (outside the fisheye's circle).
+  std::vector<double> directions;
+  Vec3 sun_direction = Vec3::Zero();  ///< unit, towards the sun's centre, the same frame
+  Rgb sun_rgb = Rgb::Zero();          ///< the sun's top-of-atmosphere irradiance in the image's RGB
+  /// The automatic exposure's reading: the scale that takes the log-average luminance of the sky
+  /// (without the sun's disk) at the metered pixels to 0.18 (exposure.hpp). The exposure the files
+  /// record and apply is this unless the scene (output.exposure_ev) or the display settings fix one.
+  double metered_exposure_scale = 1.0;
 };
 SpectralImageBuffer render_to_memory(const Scene& scene, const ProgressFn& progress = {});
+
+/// The exposure the files of an image record and apply (render_scene_to_files' rule): the display
+/// settings' manual or camera exposure; else output.exposure_ev when the scene sets it; else the
+/// automatic one (metered_exposure_scale). With how it was chosen, in words.
+struct PreviewExposure {
+  double scale = 1.0;
+  std::string description;
+};
+PreviewExposure preview_exposure(const SpectralImageBuffer& image);
+PreviewExposure preview_exposure(const SpectralImageBuffer& image, const DisplaySettings& display);
+
+/// The spectral EXR of an image in memory, as render_scene_to_files writes it for the same scene
+/// and display settings: the same channels, values and header (provenance, exposure, units,
+/// envmap), written atomically. Throws Error for a buffer render_to_memory did not make (size,
+/// channels and scene disagree) and IoError for a value that is not finite or a failed write.
+void write_spectral_exr(const SpectralImageBuffer& image, const std::filesystem::path& path);
+void write_spectral_exr(const SpectralImageBuffer& image, const std::filesystem::path& path,
+                        const DisplaySettings& display);
+/// The image through a display pipeline as a PNG, as render_scene_to_files writes its preview (the
+/// same code values and text chunks), atomically; returns the exposure's scale.
+double write_display_png(const SpectralImageBuffer& image, const std::filesystem::path& path);
+double write_display_png(const SpectralImageBuffer& image, const std::filesystem::path& path,
+                         const DisplaySettings& display);
 
 struct RenderOutputs {
   std::filesystem::path exr, png;  ///< empty when not written

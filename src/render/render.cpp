@@ -2,17 +2,12 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <future>
 #include <limits>
-#include <map>
 #include <mutex>
-#include <optional>
 #include <sstream>
 
 #include <tbb/enumerable_thread_specific.h>
@@ -22,26 +17,16 @@
 #include <tbb/task_arena.h>
 
 #include "base/cancellation.hpp"
-#include "base/atomic_file.hpp"
-#include "base/output_lock.hpp"
 #include "skyspec/colour.hpp"
-#include "colour/display_pipeline.hpp"
-#include "base/embedded_data.hpp"
 #include "skyspec/error.hpp"
-#include "colour/exposure.hpp"
-#include "io/png_image.hpp"
-#include "io/provenance.hpp"
-#include "io/rgb_exr.hpp"
 #include "transport/multiple_scattering.hpp"
 #include "transport/scattering_tables_cache.hpp"
 #include "render/scene_tables.hpp"
 #include "transport/single_scattering.hpp"
 #include "transport/sky_view_table.hpp"
 #include "physics/solar_spectrum.hpp"
-#include "io/spectral_exr.hpp"
 #include "physics/sun_disk.hpp"
 #include "skyspec/units.hpp"
-#include "skyspec/version.hpp"
 
 namespace skyspec {
 
@@ -372,277 +357,6 @@ void SkyRenderer::render_rows(int y0, int rows, float* spectral, float* rgb) con
   });
   if (non_finite.load())
     throw Error("internal error: a non-finite radiance or RGB value was computed; no file was written");
-}
-
-SpectralImageBuffer render_to_memory(const Scene& scene, const ProgressFn& progress) {
-  SkyRenderer r(scene);
-  SpectralImageBuffer img;
-  img.width = r.width();
-  img.height = r.height();
-  img.wavelengths_nm = r.grid().nanometres();
-  const size_t n = static_cast<size_t>(r.grid().size());
-  img.spectral.resize(static_cast<size_t>(img.width) * img.height * n);
-  img.rgb.resize(static_cast<size_t>(img.width) * img.height * 3);
-  const int band = 16;
-  for (int y = 0; y < img.height; y += band) {
-    const int rows = std::min(band, img.height - y);
-    r.render_rows(y, rows, img.spectral.data() + static_cast<size_t>(y) * img.width * n,
-                  img.rgb.data() + static_cast<size_t>(y) * img.width * 3);
-    if (progress) progress(y + rows, img.height);
-  }
-  return img;
-}
-
-namespace {
-
-/// The automatic exposure, metered before rendering so that the EXR header can record it: the
-/// sky's radiance (without the sun's disk) at the pixels metering_pixels() picks (exposure.hpp).
-double meter_before_rendering(const SkyRenderer& r) {
-  const auto camera = make_camera(r.scene());
-  const auto pixels = metering_pixels(r.width(), r.height());
-  std::vector<double> luminance(pixels.size(), 0.0);  // 0 (ignored by the meter): outside the image circle
-  tbb::task_arena arena(thread_count(r.scene()));
-  arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels.size(), 256), [&](const tbb::blocked_range<size_t>& range) {
-      for (size_t i = range.begin(); i != range.end(); ++i) {
-        Vec3 dir;
-        if (!camera->direction(pixels[i].first + 0.5, pixels[i].second + 0.5, dir)) continue;
-        const Rgb rgb = r.radiance_rgb(dir);
-        luminance[i] = rec709_luminance(rgb.data());
-      }
-    });
-  });
-  return key_exposure_scale(luminance);
-}
-
-std::string numbers_text(std::initializer_list<double> values) {
-  std::string text;
-  char buffer[32];
-  for (double v : values) {
-    std::snprintf(buffer, sizeof buffer, "%.9g", v);
-    text += (text.empty() ? "" : " ") + std::string(buffer);
-  }
-  return text;
-}
-
-
-// The exposure of the preview: the display settings', unless the scene fixes output.exposure_ev
-// (a manual exposure) while the settings say automatic; automatic exposure meters the sky first.
-struct ChosenExposure {
-  ExposureSettings settings;
-  ResolvedExposure resolved;
-};
-ChosenExposure choose_exposure(const SkyRenderer& r, const DisplaySettings& display) {
-  ChosenExposure c{display.exposure, {}};
-  if (c.settings.mode == ExposureSettings::Mode::Automatic && r.scene().output.exposure_ev) {
-    c.settings.mode = ExposureSettings::Mode::Manual;
-    c.settings.ev = *r.scene().output.exposure_ev;
-  }
-  const bool automatic = c.settings.mode == ExposureSettings::Mode::Automatic;
-  c.resolved = resolve_exposure(c.settings, automatic ? meter_before_rendering(r) : 1.0);
-  return c;
-}
-
-// The header attributes every output file carries: skyspec:version, skyspec:scene, skyspec:data
-// (provenance.hpp), then what this render chose.
-std::map<std::string, std::string> render_provenance(const SkyRenderer& r, const ResolvedExposure& exposure,
-                                                     bool builtin_ocio_config) {
-  const Scene& scene = r.scene();
-  const Rgb sun_rgb = r.spectrum_to_rgb(r.sun_irradiance());
-  std::map<std::string, std::string> provenance = provenance_attributes(scene, builtin_ocio_config);
-  provenance["skyspec:renderPath"] = scene.render.path == RenderSpec::Path::RgbFast ? "rgb-fast" : "spectral";
-  provenance["skyspec:wavelengths"] = r.grid().describe();
-  provenance["skyspec:exposure"] = exposure.description;
-  provenance["skyspec:sunRGB"] = numbers_text({sun_rgb[0], sun_rgb[1], sun_rgb[2]});
-  return provenance;
-}
-
-// The spectral EXR, opened under a temporary name (it is renamed by finish()). The exposure's
-// scale is a number (a double attribute), the rest text.
-std::unique_ptr<SpectralExrWriter> open_spectral_exr(const SkyRenderer& r, const std::filesystem::path& path,
-                                                     const std::map<std::string, std::string>& provenance,
-                                                     double exposure_scale) {
-  const Scene& scene = r.scene();
-  SpectralExrMetadata meta;
-  meta.strings = provenance;
-  meta.doubles[kExposureScaleAttribute] = exposure_scale;
-  meta.compression = scene.output.exr_compression;
-  meta.threads = thread_count(scene);
-  meta.latlong_envmap = is_latlong_envmap(scene.camera);
-  meta.strings["skyspec:units"] =
-      scene.render.path == RenderSpec::Path::RgbFast
-          ? "RGB-fast path: S0 channels and R,G,B in the sun's units (spectral_irradiance x sr^-1); "
-            "R,G,B are the 680, 550, 440 nm values read as linear Rec.709"
-          : "S0 channels: spectral radiance, W m^-2 sr^-1 nm^-1; R,G,B: linear Rec.709 (D65) with "
-            "Y = luminance in cd m^-2";
-  return std::make_unique<SpectralExrWriter>(path, r.width(), r.height(), r.grid().nanometres(), meta);
-}
-
-// Renders the image in bands of rows, each rendered while the one before is compressed and
-// written (OpenEXR compresses a band's line blocks in parallel on its own threads), so that
-// rendering and compression overlap. With render.threads = 1 nothing overlaps: each band is
-// written on the same thread, so that the render uses one core, as asked (the writer's flush to
-// the disk runs on a helper thread that only waits: spectral_exr.cpp). 64 rows are two PIZ or
-// four ZIP line blocks; wide images take fewer rows so that a band stays near 64 MB. The whole
-// image's linear RGB is kept in `rgb` when it is not empty (for the PNG and the working-space EXR).
-void render_bands(const SkyRenderer& r, SpectralExrWriter* exr, std::vector<float>& rgb, const ProgressFn& progress) {
-  const int w = r.width(), h = r.height(), n = r.grid().size();
-  const size_t band_row_bytes = static_cast<size_t>(w) * static_cast<size_t>(n + 3) * sizeof(float);
-  const int band = static_cast<int>(std::clamp<size_t>((size_t{64} << 20) / band_row_bytes, 8, 64));
-  // Left uninitialised: render_rows writes every value, and its threads touch the pages first.
-  struct Band {
-    std::unique_ptr<float[]> spectral, rgb;
-  };
-  Band bands[2];
-  for (Band& b : bands) {
-    b.spectral.reset(new float[static_cast<size_t>(band) * w * n]);
-    b.rgb.reset(new float[static_cast<size_t>(band) * w * 3]);
-  }
-  std::future<void> writing;  // the previous band on its way to the file
-  const bool overlap = r.threads() > 1;
-  for (int y = 0, k = 0; y < h; y += band, k ^= 1) {
-    const int rows = std::min(band, h - y);
-    Band& b = bands[k];
-    r.render_rows(y, rows, b.spectral.get(), b.rgb.get());
-    if (writing.valid()) writing.get();  // rethrows a write error
-    if (exr && overlap)
-      writing = std::async(std::launch::async, [exr, &b, rows] { exr->write_rows(rows, b.spectral.get(), b.rgb.get()); });
-    else if (exr)
-      exr->write_rows(rows, b.spectral.get(), b.rgb.get());
-    if (!rgb.empty())
-      std::copy(b.rgb.get(), b.rgb.get() + static_cast<long>(rows) * w * 3, rgb.begin() + static_cast<long>(y) * w * 3);
-    if (progress) progress(y + rows, h);
-  }
-  if (writing.valid()) writing.get();
-}
-
-void write_preview_png(const std::filesystem::path& path, const SkyRenderer& r, const DisplayPipeline& pipeline,
-                       const DisplaySettings& display, const std::vector<float>& rgb, const ResolvedExposure& exposure,
-                       const std::map<std::string, std::string>& provenance) {
-  const std::vector<std::pair<std::string, std::string>> text = {
-      {"Software", std::string("skyspec ") + version_string()},
-      {"skyspec:display", pipeline.describe()},
-      {"skyspec:exposure", exposure.description},
-      {kVersionAttribute, provenance.at(kVersionAttribute)},
-      {kSceneAttribute, provenance.at(kSceneAttribute)},
-      {kDataAttribute, provenance.at(kDataAttribute)}};
-  write_png_display(path, r.width(), r.height(), pipeline.encode(rgb, exposure.scale), display.png_bit_depth,
-                    pipeline.png_tag(), text);
-}
-
-void write_working_space_exr(const std::filesystem::path& path, const SkyRenderer& r, const DisplayPipeline& pipeline,
-                             const WorkingSpace& space, const std::vector<float>& rgb, const ExposureSettings& exposure,
-                             double exposure_scale, std::map<std::string, std::string> strings) {
-  strings["skyspec:workingSpace"] = space.name + " (scene-linear, converted by " + pipeline.config().describe() + ")";
-  strings["skyspec:units"] = working_space_units(space, r.scene().render.path == RenderSpec::Path::RgbFast);
-  std::map<std::string, float> floats;
-  if (exposure.mode == ExposureSettings::Mode::Camera) {  // OpenEXR's standard camera attributes
-    floats["expTime"] = static_cast<float>(exposure.shutter_s);
-    floats["aperture"] = static_cast<float>(exposure.f_number);
-    floats["isoSpeed"] = static_cast<float>(exposure.iso);
-  }
-  write_rgb_exr(path, r.width(), r.height(), to_working_space(pipeline.config(), rgb, space), space.chromaticities,
-                strings, floats, {{kExposureScaleAttribute, exposure_scale}}, is_latlong_envmap(r.scene().camera));
-}
-
-}  // namespace
-
-RenderOutputs render_output_paths(const Scene& scene, const DisplaySettings& display) {
-  RenderOutputs out;
-  const std::filesystem::path dir(scene.output.directory);
-  if (scene.output.exr) out.exr = dir / (scene.output.name + ".exr");
-  if (scene.output.png) out.png = dir / (scene.output.name + ".png");
-  if (!display.exr_space.empty())
-    out.working_exr = dir / (scene.output.name + "-" + find_working_space(display.exr_space).file_suffix + ".exr");
-  return out;
-}
-
-RenderOutputs render_scene_to_files(const Scene& scene, const ProgressFn& progress) {
-  return render_scene_to_files(scene, DisplaySettings{}, progress);
-}
-
-RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& display, const ProgressFn& progress,
-                                    const PreparedFn& prepared) {
-  using Clock = std::chrono::steady_clock;
-  const auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
-  const auto t_start = Clock::now();
-  // 1. The outputs asked for, and the display pipeline's names, are checked before rendering.
-  ensure_writable_directory(scene.output.directory, "output.directory");
-  const RenderOutputs paths = render_output_paths(scene, display);
-  const OutputLock lock(scene.output.directory, scene.output.name, "output.name");  // one writer per name
-  RenderOutputs out;
-  const bool working_exr = !display.exr_space.empty();
-  if (!scene.output.exr && !scene.output.png && !working_exr)
-    throw InputError("output.exr and output.png", "false", "at least one output to be true");
-  std::optional<DisplayPipeline> pipeline;
-  if (scene.output.png || working_exr) pipeline.emplace(display);
-
-  // 2. Tables, then the caller's veto (the render budget), then the exposure.
-  SkyRenderer r(scene);
-  out.tables_seconds = since(t_start);
-  if (prepared) prepared(r);
-  const auto t_image = Clock::now();
-  const ChosenExposure exposure = choose_exposure(r, display);
-  out.preview_scale = exposure.resolved.scale;
-  out.preview_ev = exposure.resolved.ev;
-  out.exposure = exposure.resolved.description;
-  const auto provenance = render_provenance(r, exposure.resolved, pipeline && pipeline->config().is_builtin());
-
-  // 3. The image, streamed into the spectral EXR band by band.
-  std::unique_ptr<SpectralExrWriter> exr;
-  if (scene.output.exr) exr = open_spectral_exr(r, out.exr = paths.exr, provenance, exposure.resolved.scale);
-  std::vector<float> rgb;
-  if (pipeline) rgb.resize(static_cast<size_t>(r.width()) * r.height() * 3);
-  render_bands(r, exr.get(), rgb, progress);
-  out.image_seconds = since(t_image);
-
-  // 4. The files completed, all or nothing. Completing the EXR (its offset table, fsync, rename)
-  // waits mostly for the disk: when other files follow, it runs beside their encoding.
-  const auto t_output = Clock::now();
-  std::future<void> committing;
-  if (exr && (scene.output.png || working_exr))
-    committing = std::async(std::launch::async, [&exr] { exr->finish(); });
-  else if (exr)
-    exr->finish();
-  bool exr_done = exr && !committing.valid(), png_done = false, working_done = false;
-  try {
-    if (scene.output.png) {
-      out.png = paths.png;
-      out.display = pipeline->describe();
-      write_preview_png(out.png, r, *pipeline, display, rgb, exposure.resolved, provenance);
-      png_done = true;
-    }
-    if (working_exr) {
-      const WorkingSpace& space = find_working_space(display.exr_space);
-      out.working_exr = paths.working_exr;
-      write_working_space_exr(out.working_exr, r, *pipeline, space, rgb, exposure.settings, exposure.resolved.scale,
-                              provenance);
-      working_done = true;
-    }
-    if (committing.valid()) {
-      committing.get();  // rethrows the EXR's error
-      exr_done = true;
-    }
-  } catch (...) {
-    // Do not leave the files of a render whose outputs did not all arrive. The EXR's completion
-    // is waited for first (it uses `exr`); only files this render completed are removed (a failed
-    // write leaves an earlier file of that name as it was).
-    if (committing.valid()) {
-      try {
-        committing.get();
-        exr_done = true;
-      } catch (...) {  // the first error is the one reported
-      }
-    }
-    std::error_code ec;
-    if (exr_done) std::filesystem::remove(out.exr, ec);
-    if (png_done) std::filesystem::remove(out.png, ec);
-    if (working_done) std::filesystem::remove(out.working_exr, ec);
-    throw;
-  }
-  out.output_seconds = since(t_output);
-  out.seconds = since(t_start);
-  return out;
 }
 
 }  // namespace skyspec

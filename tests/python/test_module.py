@@ -105,6 +105,85 @@ class RenderAgainstCli(unittest.TestCase):
         rgb = img.xyz.astype(np.float64) @ m.T
         np.testing.assert_allclose(rgb, img.rgb, rtol=2e-3, atol=1e-3 * float(np.abs(img.rgb).max()))
 
+    def test_result_writes_the_files_the_cli_writes(self):
+        # write_exr / write_png of a render in memory are the CLI's files for the same scene: the same
+        # pixels, PNG code values and header (scene, exposure as a double, units, envmap).
+        import OpenImageIO as oiio
+        overrides = {"camera.width": 16, "camera.height": 8, "camera.type": "equirectangular",
+                     "camera.panorama_convention": "blender", "sun.elevation_deg": 12, "sun.azimuth_deg": 200,
+                     "render.scattering_orders": 1, "spectrum.count": 6}
+        with tempfile.TemporaryDirectory() as tmp:
+            img = skyspec.render(overrides=dict(overrides, **{"output.directory": tmp}))
+            cli("render", "-q", "--scene", self.write_scene(tmp, img.scene_toml))
+            img.write_exr(os.path.join(tmp, "py.exr"))
+            scale = img.write_png(os.path.join(tmp, "py.png"))
+            self.assertEqual(scale, img.exposure_scale)
+            a, b = oiio.ImageBuf(os.path.join(tmp, "sky.exr")), oiio.ImageBuf(os.path.join(tmp, "py.exr"))
+            np.testing.assert_array_equal(a.get_pixels(oiio.FLOAT), b.get_pixels(oiio.FLOAT))
+            self.assertEqual(list(a.spec().channelnames), list(b.spec().channelnames))
+            for key in ["skyspec:scene", "skyspec:units", "skyspec:exposure", "skyspec:exposureScale",
+                        "skyspec:wavelengths", "skyspec:sunRGB", "textureformat", "chromaticities"]:
+                self.assertEqual(a.spec().getattribute(key), b.spec().getattribute(key), key)
+            self.assertEqual(b.spec().getattribute("skyspec:exposureScale"), img.exposure_scale)
+            pa = oiio.ImageBuf(os.path.join(tmp, "sky.png")).get_pixels(oiio.UINT8)
+            pb = oiio.ImageBuf(os.path.join(tmp, "py.png")).get_pixels(oiio.UINT8)
+            np.testing.assert_array_equal(pa, pb)
+            # Another display through the same call; a bad name is a ValueError naming it.
+            img.write_png(os.path.join(tmp, "p3.png"), display="Display P3", bits=16)
+            self.assertEqual(oiio.ImageBuf(os.path.join(tmp, "p3.png")).spec().format, oiio.UINT16)
+            with self.assertRaises(ValueError) as e:
+                img.write_png(os.path.join(tmp, "x.png"), view="Filmic")
+            self.assertIn("Un-tone-mapped", str(e.exception))
+            self.assertFalse(os.path.exists(os.path.join(tmp, "x.png")))
+            # A NaN put into the arrays is refused, and nothing is written.
+            img.rgb[0, 0, 0] = np.nan
+            with self.assertRaises(Exception):
+                img.write_png(os.path.join(tmp, "nan.png"))
+            self.assertFalse(os.path.exists(os.path.join(tmp, "nan.png")))
+
+    @staticmethod
+    def write_scene(folder, text):
+        path = os.path.join(folder, "scene.toml")
+        with open(path, "w") as f:
+            f.write(text)
+        return path
+
+    def test_result_says_where_each_pixel_looks(self):
+        # Directions: unit vectors; for a Blender-layout panorama the column of azimuth A is
+        # (A / 360 + 1/4) of the width (Cycles' mapping with north on +Y). The sun's vector is its
+        # azimuth and elevation; the scene comes back as TOML and as a dict.
+        img = skyspec.render(overrides={"camera.width": 72, "camera.height": 36, "camera.type": "equirectangular",
+                                        "camera.panorama_convention": "blender", "sun.elevation_deg": 25,
+                                        "sun.azimuth_deg": 150, "render.scattering_orders": 1, "spectrum.count": 4})
+        d = img.directions
+        self.assertEqual(d.shape, (36, 72, 3))
+        np.testing.assert_allclose(np.linalg.norm(d, axis=2), 1.0, rtol=1e-12)
+        self.assertTrue(img.valid.all())
+        row, column = img.pixel(azimuth_deg=92, elevation_deg=1)  # east: the centre, just above the horizon
+        self.assertEqual((row, column), (17, 36))
+        az, el = np.radians(150), np.radians(25)
+        np.testing.assert_allclose(img.sun_direction, [np.cos(el) * np.sin(az), np.cos(el) * np.cos(az), np.sin(el)],
+                                   atol=1e-12)
+        self.assertEqual((img.sun_azimuth_deg, img.sun_elevation_deg), (150, 25))
+        row, column = img.pixel(150, 25)
+        np.testing.assert_array_equal(img.spectrum_at(150, 25), img.spectral[row, column])
+        self.assertEqual(column, int((150 / 360 + 0.25) * 72))
+        self.assertEqual(img.scene["camera"]["panorama_convention"], "blender")
+        self.assertEqual(img.scene["ground"]["albedo"], 0.25)  # a panorama's ground
+        self.assertIn('panorama_convention = "blender"', img.scene_toml)
+        self.assertGreater(img.exposure_scale, 0)
+        self.assertAlmostEqual(img.exposure_ev, np.log2(img.exposure_scale))
+        self.assertIn("automatic", img.exposure)
+        again = skyspec.render(scene_toml=img.scene_toml)  # the recorded scene renders the same pixels
+        np.testing.assert_array_equal(again.spectral, img.spectral)
+        # A fisheye's corners look nowhere.
+        fish = skyspec.render(overrides={"camera.width": 8, "camera.height": 8, "render.scattering_orders": 1,
+                                         "spectrum.count": 4})
+        self.assertFalse(fish.valid[0, 0])
+        np.testing.assert_array_equal(fish.directions[0, 0], [0, 0, 0])
+        with self.assertRaises(ValueError):
+            fish.pixel(0, 95)
+
     def test_bad_override_names_the_key(self):
         with self.assertRaises(ValueError) as e:
             skyspec.render(overrides={"camera": {"width": -5}})

@@ -1,0 +1,170 @@
+"""Type stubs of the `skyspec` module (python/skyspec_module.cpp), installed beside it.
+
+skyspec: a spectral, physically based sky simulator. Scenes are a preset ("default", "seed", ...),
+then an optional scene file or TOML text, then `overrides`, a dict of scene keys, flat
+({"sun.elevation_deg": 5}) or nested ({"sun": {"elevation_deg": 5}}); every key is in scene_keys()
+and docs/scene-keys.md. Bad input raises ValueError naming the key; files, OSError.
+tests/python/test_stubs.py checks that these names and parameters are the module's.
+"""
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+
+import numpy as np
+import numpy.typing as npt
+
+__version__: str
+
+Numbers = Union[float, Sequence[float], npt.NDArray[np.float64]]
+"""A number, or a list/array of numbers (a wavelength in nm, an altitude in m)."""
+
+class RenderResult:
+    """A sky rendered into memory, with what it shows (render() makes it).
+
+    Row 0 is the top of the image, as in the EXR; h x w pixels, n wavelengths. spectral, rgb,
+    directions and wavelengths_nm are views of the result: write_exr / write_png write them.
+    """
+
+    @property
+    def spectral(self) -> npt.NDArray[np.float32]:
+        """(h, w, n): spectral radiance, W m^-2 sr^-1 nm^-1 (absolute with sun.spectrum = "solar")."""
+    @property
+    def wavelengths_nm(self) -> npt.NDArray[np.float64]:
+        """(n,): the wavelengths, nm."""
+    @property
+    def xyz(self) -> npt.NDArray[np.float32]:
+        """(h, w, 3): CIE 1931 XYZ, Y in cd m^-2."""
+    @property
+    def rgb(self) -> npt.NDArray[np.float32]:
+        """(h, w, 3): linear Rec.709 (D65), the EXR's R, G, B; Y in cd m^-2."""
+    @property
+    def directions(self) -> npt.NDArray[np.float64]:
+        """(h, w, 3): unit view direction through each pixel's centre, east-north-up at the scene's
+        reference point (x east, y north, z up); (0, 0, 0) where the camera has none."""
+    @property
+    def valid(self) -> npt.NDArray[np.bool_]:
+        """(h, w): whether the pixel has a view direction (False outside a fisheye's circle)."""
+    @property
+    def width(self) -> int:
+        """Pixels."""
+    @property
+    def height(self) -> int:
+        """Pixels."""
+    @property
+    def sun_direction(self) -> npt.NDArray[np.float64]:
+        """(3,): unit vector towards the sun's centre, in the frame of directions."""
+    @property
+    def sun_azimuth_deg(self) -> float:
+        """The sun's azimuth, degrees clockwise from north (computed for sun.date_time when set)."""
+    @property
+    def sun_elevation_deg(self) -> float:
+        """The sun's elevation above the horizon, degrees."""
+    @property
+    def exposure_scale(self) -> float:
+        """The factor the preview applies to rgb (the EXR's skyspec:exposureScale): output.exposure_ev
+        when the scene sets it, else the automatic one (log-average luminance -> 0.18)."""
+    @property
+    def exposure_ev(self) -> float:
+        """log2(exposure_scale)."""
+    @property
+    def exposure(self) -> str:
+        """How the exposure was chosen, in words (the EXR's skyspec:exposure)."""
+    @property
+    def scene_toml(self) -> str:
+        """The effective scene as TOML, every key (the EXR's skyspec:scene)."""
+    @property
+    def scene(self) -> Dict[str, Any]:
+        """The effective scene as a nested dict (scene_toml read with tomllib)."""
+    def pixel(self, azimuth_deg: float, elevation_deg: float) -> Tuple[int, int]:
+        """(row, column) of the pixel whose view direction is nearest (azimuth clockwise from north,
+        elevation), degrees."""
+    def spectrum_at(self, azimuth_deg: float, elevation_deg: float) -> npt.NDArray[np.float64]:
+        """(n,): the spectral radiance of the pixel nearest that direction, W m^-2 sr^-1 nm^-1."""
+    def write_exr(self, path: str) -> None:
+        """Write the spectral EXR as `skyspec render` writes it for this scene (channels, values and
+        header), atomically."""
+    def write_png(
+        self,
+        path: str,
+        *,
+        display: Optional[str] = None,
+        view: Optional[str] = None,
+        look: Optional[str] = None,
+        bits: int = 8,
+        exposure_ev: Optional[float] = None,
+        ocio: Optional[str] = None,
+    ) -> float:
+        """Write the image through an OpenColorIO display and view as a PNG, as `skyspec render`
+        writes its preview (default: skyspec's config, sRGB, Un-tone-mapped, 8 bits, the recorded
+        exposure), atomically. Returns the exposure's scale."""
+
+def render(
+    preset: str = "default",
+    *,
+    scene_file: Optional[str] = None,
+    scene_toml: Optional[str] = None,
+    overrides: Optional[Dict[str, Any]] = None,
+) -> RenderResult:
+    """Render a scene into memory; no files are written until you ask (RenderResult.write_exr)."""
+
+def derive(
+    wavelengths_nm: Optional[Numbers] = None,
+    *,
+    preset: str = "default",
+    scene_file: Optional[str] = None,
+    scene_toml: Optional[str] = None,
+    overrides: Optional[Dict[str, Any]] = None,
+    altitudes_m: Numbers = 0.0,
+    pressure_Pa: Optional[float] = None,
+    temperature_K: Optional[float] = None,
+    latitude_deg: float = 45.0,
+    refractive_index: Optional[str] = None,
+    co2_ppm: Optional[float] = None,
+) -> Dict[str, Any]:
+    """The scattering coefficients of a scene's atmosphere per wavelength, from n(lambda) and N: a
+    dict of NumPy arrays (shapes (n,), (k,) or (k, n) for n wavelengths and k altitudes) and the
+    strings refractive_index, rayleigh_source and the float co2_ppm. help(skyspec.derive) lists the keys."""
+
+def coefficient_report(
+    format: str = "md",
+    *,
+    wavelengths_nm: Optional[Numbers] = None,
+    preset: str = "default",
+    scene_file: Optional[str] = None,
+    scene_toml: Optional[str] = None,
+    overrides: Optional[Dict[str, Any]] = None,
+    altitudes_m: Numbers = 0.0,
+    pressure_Pa: Optional[float] = None,
+    temperature_K: Optional[float] = None,
+    latitude_deg: float = 45.0,
+    refractive_index: Optional[str] = None,
+    co2_ppm: Optional[float] = None,
+) -> str:
+    """The coefficient derivation report as text: format "md", "csv", "json" or "html" (the output of
+    `skyspec coefficients`); the other arguments are derive()'s."""
+
+def published_comparisons() -> List[Dict[str, Any]]:
+    """skyspec's derivation against published values at the published conditions."""
+
+def us_standard_atmosphere(altitude_m: Numbers) -> Dict[str, npt.NDArray[np.float64]]:
+    """U.S. Standard Atmosphere 1976 at geometric altitudes (m, -5 km to 100 km): temperature_K,
+    pressure_Pa and number_density_per_m3, shaped like altitude_m."""
+
+def rayleigh_cross_section(
+    wavelengths_nm: Numbers, refractive_index: str = "peck-reeder", co2_ppm: Optional[float] = None
+) -> npt.NDArray[np.float64]:
+    """Rayleigh cross-section of dry air per molecule, m^2 (Bodhaine et al. 1999 eq. 2), 360-830 nm;
+    co2_ppm defaults to the scenes' 420 ppm."""
+
+def scene_toml(
+    preset: str = "default",
+    *,
+    scene_file: Optional[str] = None,
+    scene_toml: Optional[str] = None,
+    overrides: Optional[Dict[str, Any]] = None,
+) -> str:
+    """The effective scene as TOML text, every key."""
+
+def scene_keys() -> Dict[str, str]:
+    """Every scene key that overrides= accepts, with its unit, allowed range and meaning."""
+
+def preset_names() -> List[str]:
+    """Names of the built-in scene presets."""

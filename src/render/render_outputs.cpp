@@ -1,0 +1,375 @@
+// Rendering into memory and into files: the image with what it shows (directions, sun, the
+// exposure's meter reading), the exposure chosen for the preview, the files' headers, and the
+// files themselves (spectral EXR streamed band by band, PNG, working-space EXR), each atomic.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <future>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "base/atomic_file.hpp"
+#include "base/output_lock.hpp"
+#include "colour/display_pipeline.hpp"
+#include "colour/exposure.hpp"
+#include "io/png_image.hpp"
+#include "io/provenance.hpp"
+#include "io/rgb_exr.hpp"
+#include "io/spectral_exr.hpp"
+#include "skyspec/error.hpp"
+#include "skyspec/render.hpp"
+#include "skyspec/version.hpp"
+
+namespace skyspec {
+
+namespace {
+
+/// The automatic exposure, metered before rendering so that the EXR header can record it: the
+/// sky's radiance (without the sun's disk) at the pixels metering_pixels() picks (exposure.hpp).
+double meter_before_rendering(const SkyRenderer& r) {
+  const auto camera = make_camera(r.scene());
+  const auto pixels = metering_pixels(r.width(), r.height());
+  std::vector<double> luminance(pixels.size(), 0.0);  // 0 (ignored by the meter): outside the image circle
+  tbb::task_arena arena(r.threads());
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, pixels.size(), 256), [&](const tbb::blocked_range<size_t>& range) {
+      for (size_t i = range.begin(); i != range.end(); ++i) {
+        Vec3 dir;
+        if (!camera->direction(pixels[i].first + 0.5, pixels[i].second + 0.5, dir)) continue;
+        const Rgb rgb = r.radiance_rgb(dir);
+        luminance[i] = rec709_luminance(rgb.data());
+      }
+    });
+  });
+  return key_exposure_scale(luminance);
+}
+
+std::string numbers_text(std::initializer_list<double> values) {
+  std::string text;
+  char buffer[32];
+  for (double v : values) {
+    std::snprintf(buffer, sizeof buffer, "%.9g", v);
+    text += (text.empty() ? "" : " ") + std::string(buffer);
+  }
+  return text;
+}
+
+
+// The exposure of the preview: the display settings', unless the scene fixes output.exposure_ev
+// (a manual exposure) while the settings say automatic; automatic exposure meters the sky first.
+struct ChosenExposure {
+  ExposureSettings settings;
+  ResolvedExposure resolved;
+};
+ChosenExposure choose_exposure(const Scene& scene, const DisplaySettings& display, const std::function<double()>& meter) {
+  ChosenExposure c{display.exposure, {}};
+  if (c.settings.mode == ExposureSettings::Mode::Automatic && scene.output.exposure_ev) {
+    c.settings.mode = ExposureSettings::Mode::Manual;
+    c.settings.ev = *scene.output.exposure_ev;
+  }
+  const bool automatic = c.settings.mode == ExposureSettings::Mode::Automatic;
+  c.resolved = resolve_exposure(c.settings, automatic ? meter() : 1.0);
+  return c;
+}
+
+// The header attributes every output file carries: skyspec:version, skyspec:scene, skyspec:data
+// (provenance.hpp), then what this render chose.
+std::map<std::string, std::string> render_provenance(const Scene& scene, const Rgb& sun_rgb,
+                                                     const ResolvedExposure& exposure, bool builtin_ocio_config) {
+  std::map<std::string, std::string> provenance = provenance_attributes(scene, builtin_ocio_config);
+  provenance["skyspec:renderPath"] = scene.render.path == RenderSpec::Path::RgbFast ? "rgb-fast" : "spectral";
+  provenance["skyspec:wavelengths"] = make_wavelength_grid(scene).describe();
+  provenance["skyspec:exposure"] = exposure.description;
+  provenance["skyspec:sunRGB"] = numbers_text({sun_rgb[0], sun_rgb[1], sun_rgb[2]});
+  return provenance;
+}
+
+// The spectral EXR's header: the provenance, the exposure's scale as a number (a double
+// attribute), what the channels hold, and envmap for a whole-sphere panorama.
+SpectralExrMetadata spectral_exr_metadata(const Scene& scene, const std::map<std::string, std::string>& provenance,
+                                          double exposure_scale, int threads) {
+  SpectralExrMetadata meta;
+  meta.strings = provenance;
+  meta.doubles[kExposureScaleAttribute] = exposure_scale;
+  meta.compression = scene.output.exr_compression;
+  meta.threads = threads;
+  meta.latlong_envmap = is_latlong_envmap(scene.camera);
+  meta.strings["skyspec:units"] =
+      scene.render.path == RenderSpec::Path::RgbFast
+          ? "RGB-fast path: S0 channels and R,G,B in the sun's units (spectral_irradiance x sr^-1); "
+            "R,G,B are the 680, 550, 440 nm values read as linear Rec.709"
+          : "S0 channels: spectral radiance, W m^-2 sr^-1 nm^-1; R,G,B: linear Rec.709 (D65) with "
+            "Y = luminance in cd m^-2";
+  return meta;
+}
+
+// Renders the image in bands of rows, each rendered while the one before is compressed and
+// written (OpenEXR compresses a band's line blocks in parallel on its own threads), so that
+// rendering and compression overlap. With render.threads = 1 nothing overlaps: each band is
+// written on the same thread, so that the render uses one core, as asked (the writer's flush to
+// the disk runs on a helper thread that only waits: spectral_exr.cpp). 64 rows are two PIZ or
+// four ZIP line blocks; wide images take fewer rows so that a band stays near 64 MB. The whole
+// image's linear RGB is kept in `rgb` when it is not empty (for the PNG and the working-space EXR).
+void render_bands(const SkyRenderer& r, SpectralExrWriter* exr, std::vector<float>& rgb, const ProgressFn& progress) {
+  const int w = r.width(), h = r.height(), n = r.grid().size();
+  const size_t band_row_bytes = static_cast<size_t>(w) * static_cast<size_t>(n + 3) * sizeof(float);
+  const int band = static_cast<int>(std::clamp<size_t>((size_t{64} << 20) / band_row_bytes, 8, 64));
+  // Left uninitialised: render_rows writes every value, and its threads touch the pages first.
+  struct Band {
+    std::unique_ptr<float[]> spectral, rgb;
+  };
+  Band bands[2];
+  for (Band& b : bands) {
+    b.spectral.reset(new float[static_cast<size_t>(band) * w * n]);
+    b.rgb.reset(new float[static_cast<size_t>(band) * w * 3]);
+  }
+  std::future<void> writing;  // the previous band on its way to the file
+  const bool overlap = r.threads() > 1;
+  for (int y = 0, k = 0; y < h; y += band, k ^= 1) {
+    const int rows = std::min(band, h - y);
+    Band& b = bands[k];
+    r.render_rows(y, rows, b.spectral.get(), b.rgb.get());
+    if (writing.valid()) writing.get();  // rethrows a write error
+    if (exr && overlap)
+      writing = std::async(std::launch::async, [exr, &b, rows] { exr->write_rows(rows, b.spectral.get(), b.rgb.get()); });
+    else if (exr)
+      exr->write_rows(rows, b.spectral.get(), b.rgb.get());
+    if (!rgb.empty())
+      std::copy(b.rgb.get(), b.rgb.get() + static_cast<long>(rows) * w * 3, rgb.begin() + static_cast<long>(y) * w * 3);
+    if (progress) progress(y + rows, h);
+  }
+  if (writing.valid()) writing.get();
+}
+
+void write_preview_png(const std::filesystem::path& path, int width, int height, const DisplayPipeline& pipeline,
+                       const DisplaySettings& display, const std::vector<float>& rgb, const ResolvedExposure& exposure,
+                       const std::map<std::string, std::string>& provenance) {
+  const std::vector<std::pair<std::string, std::string>> text = {
+      {"Software", std::string("skyspec ") + version_string()},
+      {"skyspec:display", pipeline.describe()},
+      {"skyspec:exposure", exposure.description},
+      {kVersionAttribute, provenance.at(kVersionAttribute)},
+      {kSceneAttribute, provenance.at(kSceneAttribute)},
+      {kDataAttribute, provenance.at(kDataAttribute)}};
+  write_png_display(path, width, height, pipeline.encode(rgb, exposure.scale), display.png_bit_depth,
+                    pipeline.png_tag(), text);
+}
+
+void write_working_space_exr(const std::filesystem::path& path, const Scene& scene, const DisplayPipeline& pipeline,
+                             const WorkingSpace& space, const std::vector<float>& rgb, const ExposureSettings& exposure,
+                             double exposure_scale, std::map<std::string, std::string> strings) {
+  strings["skyspec:workingSpace"] = space.name + " (scene-linear, converted by " + pipeline.config().describe() + ")";
+  strings["skyspec:units"] = working_space_units(space, scene.render.path == RenderSpec::Path::RgbFast);
+  std::map<std::string, float> floats;
+  if (exposure.mode == ExposureSettings::Mode::Camera) {  // OpenEXR's standard camera attributes
+    floats["expTime"] = static_cast<float>(exposure.shutter_s);
+    floats["aperture"] = static_cast<float>(exposure.f_number);
+    floats["isoSpeed"] = static_cast<float>(exposure.iso);
+  }
+  write_rgb_exr(path, scene.camera.width, scene.camera.height, to_working_space(pipeline.config(), rgb, space),
+                space.chromaticities, strings, floats, {{kExposureScaleAttribute, exposure_scale}},
+                is_latlong_envmap(scene.camera));
+}
+
+}  // namespace
+
+SpectralImageBuffer render_to_memory(const Scene& scene, const ProgressFn& progress) {
+  SkyRenderer r(scene);
+  SpectralImageBuffer img;
+  img.width = r.width();
+  img.height = r.height();
+  img.wavelengths_nm = r.grid().nanometres();
+  const size_t n = static_cast<size_t>(r.grid().size());
+  const size_t pixels = static_cast<size_t>(img.width) * static_cast<size_t>(img.height);
+  img.spectral.resize(pixels * n);
+  img.rgb.resize(pixels * 3);
+  const int band = 16;
+  for (int y = 0; y < img.height; y += band) {
+    const int rows = std::min(band, img.height - y);
+    r.render_rows(y, rows, img.spectral.data() + static_cast<size_t>(y) * img.width * n,
+                  img.rgb.data() + static_cast<size_t>(y) * img.width * 3);
+    if (progress) progress(y + rows, img.height);
+  }
+  // What the pixels show.
+  img.scene = r.scene();
+  img.directions.assign(pixels * 3, 0.0);
+  const auto camera = make_camera(r.scene());
+  for (int y = 0; y < img.height; ++y)
+    for (int x = 0; x < img.width; ++x) {
+      Vec3 d;
+      if (camera->direction(x + 0.5, y + 0.5, d))
+        std::copy(d.data(), d.data() + 3, img.directions.begin() + static_cast<long>((static_cast<size_t>(y) * img.width + x) * 3));
+    }
+  img.sun_direction = r.sun_direction();
+  img.sun_rgb = r.spectrum_to_rgb(r.sun_irradiance());
+  img.metered_exposure_scale = meter_before_rendering(r);
+  return img;
+}
+
+namespace {
+// The exposure a write of an image in memory records and applies.
+ChosenExposure exposure_of(const SpectralImageBuffer& image, const DisplaySettings& display) {
+  return choose_exposure(image.scene, display, [&image] { return image.metered_exposure_scale; });
+}
+
+void check_image_buffer(const SpectralImageBuffer& image, const std::filesystem::path& path) {
+  const size_t pixels = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
+  if (image.width != image.scene.camera.width || image.height != image.scene.camera.height ||
+      image.rgb.size() != pixels * 3 || image.spectral.size() != pixels * image.wavelengths_nm.size())
+    throw Error("'" + path.string() + "': the image in memory is not one render_to_memory made (its size, "
+                "channels and scene disagree)");
+  // The EXR writer checks every value it writes; a display encoding would turn a NaN into a code value.
+  for (size_t i = 0; i < image.rgb.size(); ++i)
+    if (!std::isfinite(image.rgb[i]))
+      throw Error("'" + path.string() + "': the image's R, G, B have a non-finite value at x = " +
+                  std::to_string(i / 3 % static_cast<size_t>(image.width)) +
+                  ", y = " + std::to_string(i / 3 / static_cast<size_t>(image.width)) + "; nothing was written");
+}
+}  // namespace
+
+PreviewExposure preview_exposure(const SpectralImageBuffer& image) { return preview_exposure(image, DisplaySettings{}); }
+
+PreviewExposure preview_exposure(const SpectralImageBuffer& image, const DisplaySettings& display) {
+  const ResolvedExposure e = exposure_of(image, display).resolved;
+  return {e.scale, e.description};
+}
+
+void write_spectral_exr(const SpectralImageBuffer& image, const std::filesystem::path& path) {
+  write_spectral_exr(image, path, DisplaySettings{});
+}
+
+void write_spectral_exr(const SpectralImageBuffer& image, const std::filesystem::path& path,
+                        const DisplaySettings& display) {
+  check_image_buffer(image, path);
+  const ChosenExposure exposure = exposure_of(image, display);
+  const auto provenance = render_provenance(image.scene, image.sun_rgb, exposure.resolved, false);
+  SpectralExrWriter exr(path, image.width, image.height, image.wavelengths_nm,
+                        spectral_exr_metadata(image.scene, provenance, exposure.resolved.scale, image.scene.render.threads));
+  exr.write_rows(image.height, image.spectral.data(), image.rgb.data());
+  exr.finish();
+}
+
+double write_display_png(const SpectralImageBuffer& image, const std::filesystem::path& path) {
+  return write_display_png(image, path, DisplaySettings{});
+}
+
+double write_display_png(const SpectralImageBuffer& image, const std::filesystem::path& path,
+                         const DisplaySettings& display) {
+  check_image_buffer(image, path);
+  const DisplayPipeline pipeline(display);
+  const ChosenExposure exposure = exposure_of(image, display);
+  const auto provenance = render_provenance(image.scene, image.sun_rgb, exposure.resolved, pipeline.config().is_builtin());
+  write_preview_png(path, image.width, image.height, pipeline, display, image.rgb, exposure.resolved, provenance);
+  return exposure.resolved.scale;
+}
+
+RenderOutputs render_output_paths(const Scene& scene, const DisplaySettings& display) {
+  RenderOutputs out;
+  const std::filesystem::path dir(scene.output.directory);
+  if (scene.output.exr) out.exr = dir / (scene.output.name + ".exr");
+  if (scene.output.png) out.png = dir / (scene.output.name + ".png");
+  if (!display.exr_space.empty())
+    out.working_exr = dir / (scene.output.name + "-" + find_working_space(display.exr_space).file_suffix + ".exr");
+  return out;
+}
+
+RenderOutputs render_scene_to_files(const Scene& scene, const ProgressFn& progress) {
+  return render_scene_to_files(scene, DisplaySettings{}, progress);
+}
+
+RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& display, const ProgressFn& progress,
+                                    const PreparedFn& prepared) {
+  using Clock = std::chrono::steady_clock;
+  const auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  const auto t_start = Clock::now();
+  // 1. The outputs asked for, and the display pipeline's names, are checked before rendering.
+  ensure_writable_directory(scene.output.directory, "output.directory");
+  const RenderOutputs paths = render_output_paths(scene, display);
+  const OutputLock lock(scene.output.directory, scene.output.name, "output.name");  // one writer per name
+  RenderOutputs out;
+  const bool working_exr = !display.exr_space.empty();
+  if (!scene.output.exr && !scene.output.png && !working_exr)
+    throw InputError("output.exr and output.png", "false", "at least one output to be true");
+  std::optional<DisplayPipeline> pipeline;
+  if (scene.output.png || working_exr) pipeline.emplace(display);
+
+  // 2. Tables, then the caller's veto (the render budget), then the exposure.
+  SkyRenderer r(scene);
+  out.tables_seconds = since(t_start);
+  if (prepared) prepared(r);
+  const auto t_image = Clock::now();
+  const ChosenExposure exposure = choose_exposure(scene, display, [&r] { return meter_before_rendering(r); });
+  out.preview_scale = exposure.resolved.scale;
+  out.preview_ev = exposure.resolved.ev;
+  out.exposure = exposure.resolved.description;
+  const auto provenance = render_provenance(scene, r.spectrum_to_rgb(r.sun_irradiance()), exposure.resolved,
+                                            pipeline && pipeline->config().is_builtin());
+
+  // 3. The image, streamed into the spectral EXR band by band.
+  std::unique_ptr<SpectralExrWriter> exr;
+  if (scene.output.exr)
+    exr = std::make_unique<SpectralExrWriter>(out.exr = paths.exr, r.width(), r.height(), r.grid().nanometres(),
+                                              spectral_exr_metadata(scene, provenance, exposure.resolved.scale, r.threads()));
+  std::vector<float> rgb;
+  if (pipeline) rgb.resize(static_cast<size_t>(r.width()) * r.height() * 3);
+  render_bands(r, exr.get(), rgb, progress);
+  out.image_seconds = since(t_image);
+
+  // 4. The files completed, all or nothing. Completing the EXR (its offset table, fsync, rename)
+  // waits mostly for the disk: when other files follow, it runs beside their encoding.
+  const auto t_output = Clock::now();
+  std::future<void> committing;
+  if (exr && (scene.output.png || working_exr))
+    committing = std::async(std::launch::async, [&exr] { exr->finish(); });
+  else if (exr)
+    exr->finish();
+  bool exr_done = exr && !committing.valid(), png_done = false, working_done = false;
+  try {
+    if (scene.output.png) {
+      out.png = paths.png;
+      out.display = pipeline->describe();
+      write_preview_png(out.png, r.width(), r.height(), *pipeline, display, rgb, exposure.resolved, provenance);
+      png_done = true;
+    }
+    if (working_exr) {
+      const WorkingSpace& space = find_working_space(display.exr_space);
+      out.working_exr = paths.working_exr;
+      write_working_space_exr(out.working_exr, scene, *pipeline, space, rgb, exposure.settings, exposure.resolved.scale,
+                              provenance);
+      working_done = true;
+    }
+    if (committing.valid()) {
+      committing.get();  // rethrows the EXR's error
+      exr_done = true;
+    }
+  } catch (...) {
+    // Do not leave the files of a render whose outputs did not all arrive. The EXR's completion
+    // is waited for first (it uses `exr`); only files this render completed are removed (a failed
+    // write leaves an earlier file of that name as it was).
+    if (committing.valid()) {
+      try {
+        committing.get();
+        exr_done = true;
+      } catch (...) {  // the first error is the one reported
+      }
+    }
+    std::error_code ec;
+    if (exr_done) std::filesystem::remove(out.exr, ec);
+    if (png_done) std::filesystem::remove(out.png, ec);
+    if (working_done) std::filesystem::remove(out.working_exr, ec);
+    throw;
+  }
+  out.output_seconds = since(t_output);
+  out.seconds = since(t_start);
+  return out;
+}
+
+}  // namespace skyspec
