@@ -1,11 +1,12 @@
-// CIELAB and the CIEDE2000 colour difference.
+// CIELAB and the CIEDE2000 colour difference, computed by Little CMS 2.
 //
 // CIELAB (CIE 015:2004, section 8.2.1) from XYZ relative to a reference white, and the CIEDE2000
-// total colour difference Delta E_00 (CIE 142-2001; ISO/CIE 11664-6:2014) as written out, with its
-// hue-angle conventions, by Sharma, Wu & Dalal 2005, "The CIEDE2000 color-difference formula:
-// implementation notes, supplementary test data, and mathematical observations", Color Research &
-// Application 30(1), 21-30, equations (1)-(24). tests/colour/test_ciede2000.cpp checks the 34 pairs of
-// the paper's Table 1 (tests/data/ciede2000_sharma2005.csv).
+// total colour difference Delta E_00 (CIE 142-2001; ISO/CIE 11664-6:2014), as Sharma, Wu & Dalal
+// 2005 ("The CIEDE2000 color-difference formula: implementation notes, supplementary test data,
+// and mathematical observations", Color Research & Application 30(1), 21-30) write it out. Little
+// CMS's cmsXYZ2Lab and cmsCIE2000DeltaE do both (docs/architecture.md says why we use them rather
+// than our own); tests/colour/test_ciede2000.cpp checks the 34 pairs of the paper's Table 1
+// (tests/data/ciede2000_sharma2005.csv).
 #pragma once
 
 #include <Eigen/Core>
@@ -20,17 +21,8 @@ struct Lab {
 /// the white (L* > 100) follow the same formula, as CIE 015 allows for self-luminous colours.
 Lab xyz_to_lab(const Eigen::Vector3d& xyz, const Eigen::Vector3d& white_xyz);
 
-/// The intermediate quantities of Sharma et al.'s Table 1, for tests and for people checking.
-struct Ciede2000Terms {
-  double a1_prime, a2_prime, C1_prime, C2_prime, h1_prime_deg, h2_prime_deg;
-  double mean_h_prime_deg, G, T, S_L, S_C, S_H, R_T;
-  double delta_E;
-};
-
 /// Delta E_00 between a reference (lab1) and a sample (lab2) with the parametric factors
 /// k_L = k_C = k_H = 1 unless given. Symmetric in its two colours.
-Ciede2000Terms ciede2000_terms(const Lab& lab1, const Lab& lab2, double k_L = 1.0, double k_C = 1.0,
-                               double k_H = 1.0);
 double ciede2000(const Lab& lab1, const Lab& lab2, double k_L = 1.0, double k_C = 1.0, double k_H = 1.0);
 
 }  // namespace skyspec

@@ -1,5 +1,11 @@
-// Civil date-times, ISO 8601 text and the Julian day; see date_time.hpp.
+// Civil date-times, ISO 8601 text and the Julian day; see date_time.hpp. The calendars (leap years,
+// month lengths, day counts) are Howard Hinnant's date library (date/date.h: the proleptic
+// Gregorian calendar; date/julian.h: the Julian one); the ISO 8601 reader is ours, for its
+// messages (docs/architecture.md).
 #include "physics/date_time.hpp"
+
+#include <date/date.h>
+#include <date/julian.h>
 
 #include <cmath>
 #include <cstdio>
@@ -79,14 +85,14 @@ class Cursor {
 }  // namespace
 
 bool is_leap_year(int year) {
-  if (year < 1582) return year % 4 == 0;  // Julian calendar (also right for negative years: -4, 0, 4)
-  return (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
+  if (year < 1582) return julian::year{year}.is_leap();
+  return date::year{year}.is_leap();
 }
 
 int days_in_month(int year, int month) {
-  static const int kDays[12] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
-  if (month == 2 && is_leap_year(year)) return 29;
-  return kDays[month - 1];
+  const auto m = static_cast<unsigned>(month);
+  if (year < 1582) return static_cast<int>(static_cast<unsigned>((julian::year{year} / julian::month{m} / julian::last).day()));
+  return static_cast<int>(static_cast<unsigned>((date::year{year} / date::month{m} / date::last).day()));
 }
 
 void validate(const DateTime& t, const std::string& setting) {
@@ -197,31 +203,10 @@ double julian_day_utc(const DateTime& t, const std::string& setting) {
 double decimal_year(const DateTime& t) { return t.year + (t.month - 0.5) / 12.0; }
 
 namespace {
-// Days since 1970-01-01 of a proleptic Gregorian date, and back (the era-based algorithms of
-// H. Hinnant, "chrono-Compatible Low-Level Date Algorithms").
-long days_from_civil(long y, long m, long d) {
-  y -= m <= 2;
-  const long era = (y >= 0 ? y : y - 399) / 400;
-  const long yoe = y - era * 400;
-  const long doy = (153 * (m + (m > 2 ? -3 : 9)) + 2) / 5 + d - 1;
-  const long doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
-  return era * 146097 + doe - 719468;
-}
-void civil_from_days(long z, long& y, long& m, long& d) {
-  z += 719468;
-  const long era = (z >= 0 ? z : z - 146096) / 146097;
-  const long doe = z - era * 146097;
-  const long yoe = (doe - doe / 1460 + doe / 36524 - doe / 146096) / 365;
-  const long doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-  const long mp = (5 * doy + 2) / 153;
-  d = doy - (153 * mp + 2) / 5 + 1;
-  m = mp + (mp < 10 ? 3 : -9);
-  y = yoe + era * 400 + (m <= 2);
-}
 // Seconds since 1970-01-01T00:00 in the date-time's own local time.
 double local_seconds(const DateTime& t) {
-  return static_cast<double>(days_from_civil(t.year, t.month, t.day)) * 86400.0 + t.hour * 3600.0 + t.minute * 60.0 +
-         t.second;
+  const date::sys_days day = date::year{t.year} / static_cast<unsigned>(t.month) / static_cast<unsigned>(t.day);
+  return static_cast<double>(day.time_since_epoch().count()) * 86400.0 + t.hour * 3600.0 + t.minute * 60.0 + t.second;
 }
 }  // namespace
 
@@ -229,12 +214,11 @@ DateTime add_seconds(const DateTime& t, double seconds) {
   const double total = local_seconds(t) + seconds;
   const double day_floor = std::floor(total / 86400.0);
   double rest = total - day_floor * 86400.0;
-  long y, m, d;
-  civil_from_days(static_cast<long>(day_floor), y, m, d);
+  const date::year_month_day ymd{date::sys_days{date::days{static_cast<int>(day_floor)}}};
   DateTime out = t;
-  out.year = static_cast<int>(y);
-  out.month = static_cast<int>(m);
-  out.day = static_cast<int>(d);
+  out.year = static_cast<int>(ymd.year());
+  out.month = static_cast<int>(static_cast<unsigned>(ymd.month()));
+  out.day = static_cast<int>(static_cast<unsigned>(ymd.day()));
   out.hour = static_cast<int>(rest / 3600.0);
   rest -= out.hour * 3600.0;
   out.minute = static_cast<int>(rest / 60.0);

@@ -72,16 +72,6 @@ BOOST_AUTO_TEST_CASE(identical_colours_differ_by_zero) {
   for (const auto& p : sharma_pairs()) BOOST_TEST(ciede2000(p.lab1, p.lab1) == 0.0);
 }
 
-// Pair 17 of Table 1: a colour on the positive a* axis has hue angle h'_1 = 0, and G (eq. 4) lies
-// in (0, 0.5) for a non-zero mean chroma, stretching a* by 1 + G.
-BOOST_AUTO_TEST_CASE(intermediate_terms_behave) {
-  const auto t = ciede2000_terms(Lab{50, 2.5, 0}, Lab{73, 25, -18});
-  BOOST_TEST(t.h1_prime_deg == 0.0);
-  BOOST_TEST(t.G > 0.0);
-  BOOST_TEST(t.G < 0.5);
-  BOOST_TEST(t.a1_prime == 2.5 * (1.0 + t.G));
-}
-
 BOOST_AUTO_TEST_SUITE_END()
 
 BOOST_AUTO_TEST_SUITE(cielab)

@@ -3,7 +3,12 @@
 // ISO 8601 date-times with a UTC offset, calendar rules and the Julian day (Meeus 1998, ch. 7,
 // whose examples give the reference Julian days below).
 
+#include <date/date.h>
+#include <date/julian.h>
+
 #include <cmath>
+#include <initializer_list>
+#include <sstream>
 #include <string>
 
 #include "physics/date_time.hpp"
@@ -116,6 +121,41 @@ BOOST_AUTO_TEST_CASE(julian_days_of_meeus_examples) {
   BOOST_TEST(julian_day_utc(DateTime{2000, 1, 1, 12, 0, 0.0, 0.0}) == 2451545.0);
   BOOST_TEST(julian_day_utc(DateTime{1582, 10, 15, 0, 0, 0.0, 0.0}) == 2299160.5);
   BOOST_TEST(julian_day_utc(DateTime{1582, 10, 4, 0, 0, 0.0, 0.0}) == 2299159.5);
+}
+
+// Meeus' Julian-day formula (the SPA's eq. 4, what solar_position uses) against the day count of
+// Howard Hinnant's date library, an independent implementation of both calendars: JD =
+// 2440587.5 + days since 1970-01-01 (in the calendar in force) + the fraction of the day.
+BOOST_AUTO_TEST_CASE(julian_days_agree_with_the_date_library) {
+  for (int year : {-1000, -1, 0, 4, 333, 1000, 1582, 1583, 1600, 1700, 1900, 2000, 2024, 2026, 3000, 6000})
+    for (int month : {1, 2, 3, 10, 12})
+      for (int day : {1, 4, 15, 28}) {
+        if (year == 1582 && month == 10 && day > 4 && day < 15) continue;  // did not exist
+        const bool julian_calendar = year < 1582 || (year == 1582 && (month < 10 || (month == 10 && day < 15)));
+        const date::sys_days d =
+            julian_calendar ? date::sys_days(julian::year{year} / static_cast<unsigned>(month) / static_cast<unsigned>(day))
+                            : date::sys_days(date::year{year} / static_cast<unsigned>(month) / static_cast<unsigned>(day));
+        const double expected = 2440587.5 + d.time_since_epoch().count() + 0.25;  // 06:00
+        BOOST_TEST_CONTEXT(year << "-" << month << "-" << day) {
+          BOOST_TEST(julian_day_utc(DateTime{year, month, day, 6, 0, 0.0, 0.0}) == expected);
+        }
+      }
+}
+
+// The ISO 8601 reader gives the instant the date library's parser gives for the forms both read.
+BOOST_AUTO_TEST_CASE(the_reader_agrees_with_date_parse) {
+  const DateTime epoch{1970, 1, 1, 0, 0, 0.0, 0.0};
+  for (const char* text : {"2026-06-21T12:00:00+02:00", "2026-06-21T10:00:00Z", "1999-12-31T23:59:59-07:00",
+                           "2024-02-29T00:00:00+05:30", "1600-03-01T12:34:56-11:00", "2100-02-28T23:00:00+14:00"}) {
+    std::istringstream in(text);
+    date::sys_seconds instant;
+    const std::string form = std::string(text).back() == 'Z' ? "%FT%TZ" : "%FT%T%Ez";
+    in >> date::parse(form, instant);
+    BOOST_TEST_CONTEXT(text) {
+      BOOST_REQUIRE(!in.fail());
+      BOOST_TEST(seconds_between(epoch, parse_iso8601(text)) == static_cast<double>(instant.time_since_epoch().count()));
+    }
+  }
 }
 
 BOOST_AUTO_TEST_CASE(leap_years) {
