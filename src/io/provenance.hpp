@@ -23,6 +23,9 @@ inline constexpr const char* kSceneAttribute = "skyspec:scene";
 /// attribute; files before it was one hold it as text.
 inline constexpr const char* kExposureScaleAttribute = "skyspec:exposureScale";
 inline constexpr const char* kDataAttribute = "skyspec:data";
+/// The sun's top-of-atmosphere irradiance in the spectral EXR's R, G, B (linear Rec.709): a v3d
+/// attribute; files before it was one hold it as text ("r g b").
+inline constexpr const char* kSunRgbAttribute = "skyspec:sunRGB";
 
 /// The embedded tables (paths below data/) a render of the scene reads: the CIE 1931 observer
 /// (spectral path), the ASTM G173 sun (sun.spectrum = "solar"), the ozone cross-sections (ozone

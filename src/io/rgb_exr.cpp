@@ -11,6 +11,7 @@
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImfStandardAttributes.h>
+#include <ImfVecAttribute.h>
 #include <ImfStringAttribute.h>
 
 #include <cerrno>
@@ -135,6 +136,10 @@ RgbExrImage read_rgb_exr(const std::filesystem::path& path) {
       if (const auto* text = dynamic_cast<const Imf::StringAttribute*>(&it.attribute())) image.strings[it.name()] = text->value();
       if (const auto* number = dynamic_cast<const Imf::FloatAttribute*>(&it.attribute())) image.floats[it.name()] = number->value();
       if (const auto* number = dynamic_cast<const Imf::DoubleAttribute*>(&it.attribute())) image.doubles[it.name()] = number->value();
+      if (const auto* v = dynamic_cast<const Imf::V3dAttribute*>(&it.attribute()))
+        image.vectors[it.name()] = {v->value().x, v->value().y, v->value().z};
+      if (const auto* v = dynamic_cast<const Imf::V3fAttribute*>(&it.attribute()))
+        image.vectors[it.name()] = {v->value().x, v->value().y, v->value().z};
     }
     return image;
   } catch (const IoError&) {

@@ -32,6 +32,7 @@ struct RgbExrImage {
   std::map<std::string, std::string> strings;
   std::map<std::string, float> floats;
   std::map<std::string, double> doubles;
+  std::map<std::string, std::array<double, 3>> vectors;  ///< v3f and v3d attributes
   bool latlong_envmap = false;  ///< the file has envmap = latlong
 };
 /// Reads R, G, B (and the attributes) of any OpenEXR file; throws IoError naming the file.

@@ -5,6 +5,7 @@
 #include <ImfChromaticities.h>
 #include <ImfDoubleAttribute.h>
 #include <ImfStandardAttributes.h>
+#include <ImfVecAttribute.h>
 #include <ImfFloatAttribute.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
@@ -333,6 +334,7 @@ Imf::Header spectral_header(int width, int height, const std::vector<std::string
 
   for (const auto& [key, value] : meta.strings) header.insert(key, Imf::StringAttribute(value));
   for (const auto& [key, value] : meta.doubles) header.insert(key, Imf::DoubleAttribute(value));
+  for (const auto& [key, v] : meta.vectors) header.insert(key, Imf::V3dAttribute(IMATH_NAMESPACE::V3d(v[0], v[1], v[2])));
   // The layout's own attributes last, so that they win over a clashing extra string.
   header.insert("spectralLayoutVersion", Imf::StringAttribute("1.0"));
   header.insert("emissiveUnits", Imf::StringAttribute("W.m^-2.sr^-1"));

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <filesystem>
+#include <array>
 #include <map>
 #include <memory>
 #include <optional>
@@ -26,6 +27,7 @@ std::optional<double> parse_spectral_channel_name(const std::string& name);
 struct SpectralExrMetadata {
   std::map<std::string, std::string> strings;  ///< extra string attributes, e.g. "skyspec:scene"
   std::map<std::string, double> doubles;       ///< extra double attributes, e.g. "skyspec:exposureScale"
+  std::map<std::string, std::array<double, 3>> vectors;  ///< extra v3d attributes, e.g. "skyspec:sunRGB"
   std::optional<float> ev;                     ///< the layout's optional EV attribute
   /// OpenEXR's standard envmap attribute = latlong (ImfEnvmap.h): the image is a whole-sphere
   /// latitude-longitude panorama.

@@ -52,17 +52,6 @@ double meter_before_rendering(const SkyRenderer& r) {
   return key_exposure_scale(luminance);
 }
 
-std::string numbers_text(std::initializer_list<double> values) {
-  std::string text;
-  char buffer[32];
-  for (double v : values) {
-    std::snprintf(buffer, sizeof buffer, "%.9g", v);
-    text += (text.empty() ? "" : " ") + std::string(buffer);
-  }
-  return text;
-}
-
-
 // The exposure of the preview: the display settings', unless the scene fixes output.exposure_ev
 // (a manual exposure) while the settings say automatic; automatic exposure meters the sky first.
 struct ChosenExposure {
@@ -82,23 +71,23 @@ ChosenExposure choose_exposure(const Scene& scene, const DisplaySettings& displa
 
 // The header attributes every output file carries: skyspec:version, skyspec:scene, skyspec:data
 // (provenance.hpp), then what this render chose.
-std::map<std::string, std::string> render_provenance(const Scene& scene, const Rgb& sun_rgb,
-                                                     const ResolvedExposure& exposure, bool builtin_ocio_config) {
+std::map<std::string, std::string> render_provenance(const Scene& scene, const ResolvedExposure& exposure,
+                                                     bool builtin_ocio_config) {
   std::map<std::string, std::string> provenance = provenance_attributes(scene, builtin_ocio_config);
   provenance["skyspec:renderPath"] = scene.render.path == RenderSpec::Path::RgbFast ? "rgb-fast" : "spectral";
   provenance["skyspec:wavelengths"] = make_wavelength_grid(scene).describe();
   provenance["skyspec:exposure"] = exposure.description;
-  provenance["skyspec:sunRGB"] = numbers_text({sun_rgb[0], sun_rgb[1], sun_rgb[2]});
   return provenance;
 }
 
 // The spectral EXR's header: the provenance, the exposure's scale as a number (a double
 // attribute), what the channels hold, and envmap for a whole-sphere panorama.
 SpectralExrMetadata spectral_exr_metadata(const Scene& scene, const std::map<std::string, std::string>& provenance,
-                                          double exposure_scale, int threads) {
+                                          double exposure_scale, const Rgb& sun_rgb, int threads) {
   SpectralExrMetadata meta;
   meta.strings = provenance;
   meta.doubles[kExposureScaleAttribute] = exposure_scale;
+  meta.vectors[kSunRgbAttribute] = {sun_rgb[0], sun_rgb[1], sun_rgb[2]};
   meta.compression = scene.output.exr_compression;
   meta.threads = threads;
   meta.latlong_envmap = is_latlong_envmap(scene.camera);
@@ -250,9 +239,10 @@ void write_spectral_exr(const SpectralImageBuffer& image, const std::filesystem:
                         const DisplaySettings& display) {
   check_image_buffer(image, path);
   const ChosenExposure exposure = exposure_of(image, display);
-  const auto provenance = render_provenance(image.scene, image.sun_rgb, exposure.resolved, false);
+  const auto provenance = render_provenance(image.scene, exposure.resolved, false);
   SpectralExrWriter exr(path, image.width, image.height, image.wavelengths_nm,
-                        spectral_exr_metadata(image.scene, provenance, exposure.resolved.scale, image.scene.render.threads));
+                        spectral_exr_metadata(image.scene, provenance, exposure.resolved.scale, image.sun_rgb,
+                                              image.scene.render.threads));
   exr.write_rows(image.height, image.spectral.data(), image.rgb.data());
   exr.finish();
 }
@@ -266,7 +256,7 @@ double write_display_png(const SpectralImageBuffer& image, const std::filesystem
   check_image_buffer(image, path);
   const DisplayPipeline pipeline(display);
   const ChosenExposure exposure = exposure_of(image, display);
-  const auto provenance = render_provenance(image.scene, image.sun_rgb, exposure.resolved, pipeline.config().is_builtin());
+  const auto provenance = render_provenance(image.scene, exposure.resolved, pipeline.config().is_builtin());
   write_preview_png(path, image.width, image.height, pipeline, display, image.rgb, exposure.resolved, provenance);
   return exposure.resolved.scale;
 }
@@ -310,14 +300,14 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
   out.preview_scale = exposure.resolved.scale;
   out.preview_ev = exposure.resolved.ev;
   out.exposure = exposure.resolved.description;
-  const auto provenance = render_provenance(scene, r.spectrum_to_rgb(r.sun_irradiance()), exposure.resolved,
-                                            pipeline && pipeline->config().is_builtin());
+  const auto provenance = render_provenance(scene, exposure.resolved, pipeline && pipeline->config().is_builtin());
 
   // 3. The image, streamed into the spectral EXR band by band.
   std::unique_ptr<SpectralExrWriter> exr;
   if (scene.output.exr)
     exr = std::make_unique<SpectralExrWriter>(out.exr = paths.exr, r.width(), r.height(), r.grid().nanometres(),
-                                              spectral_exr_metadata(scene, provenance, exposure.resolved.scale, r.threads()));
+                                              spectral_exr_metadata(scene, provenance, exposure.resolved.scale,
+                                                                    r.spectrum_to_rgb(r.sun_irradiance()), r.threads()));
   std::vector<float> rgb;
   if (pipeline) rgb.resize(static_cast<size_t>(r.width()) * r.height() * 3);
   render_bands(r, exr.get(), rgb, progress);

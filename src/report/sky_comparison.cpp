@@ -13,6 +13,7 @@
 #include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
 #include "colour/exposure.hpp"
+#include "io/provenance.hpp"
 #include "io/rgb_exr.hpp"
 #include "skyspec/units.hpp"
 #include "base/text_format.hpp"
@@ -111,10 +112,14 @@ SkyImage read_sky_image(const std::filesystem::path& path, Scene* scene) {
   image.rgb = exr.rgb;
   image.path = attribute("skyspec:renderPath");
   image.label = image.path + " (" + path.filename().string() + ")";
-  std::istringstream sun(attribute("skyspec:sunRGB"));
-  sun.imbue(std::locale::classic());
-  sun >> image.sun_rgb[0] >> image.sun_rgb[1] >> image.sun_rgb[2];
-  if (!sun) throw IoError("EXR '" + path.string() + "': skyspec:sunRGB is not three numbers");
+  if (const auto v = exr.vectors.find(kSunRgbAttribute); v != exr.vectors.end()) {
+    for (int c = 0; c < 3; ++c) image.sun_rgb[c] = v->second[static_cast<size_t>(c)];
+  } else {  // files before it was a v3d attribute
+    std::istringstream sun(attribute(kSunRgbAttribute));
+    sun.imbue(std::locale::classic());
+    sun >> image.sun_rgb[0] >> image.sun_rgb[1] >> image.sun_rgb[2];
+    if (!sun) throw IoError("EXR '" + path.string() + "': skyspec:sunRGB is not three numbers");
+  }
   for (float v : image.rgb)
     if (!std::isfinite(v)) throw IoError("EXR '" + path.string() + "': non-finite R, G, B values");
   if (scene) {

@@ -82,7 +82,13 @@ for name, units in [("sky.exr", "S0 channels: spectral radiance"), ("sky-acescg.
     assert "S0" not in u or name == "sky.exr", (name, u)
     scale = s.getattribute("skyspec:exposureScale")
     assert isinstance(scale, float) and scale > 0, (name, scale)
+    sun = s.getattribute("skyspec:sunRGB")  # Rec.709: only in the file whose R, G, B are Rec.709
+    assert (sun is not None and len(sun) == 3 and all(isinstance(v, float) and v > 0 for v in sun)) == (name == "sky.exr"), (name, sun)
 PY
+  # A file of before sunRGB was a v3d attribute (text "r g b") still compares.
+  oiiotool "$out/sky.exr" --attrib "skyspec:sunRGB" "1.5 1.5 1.5" -o "$out/old-text.exr" \
+    && "$skyspec" compare -q "$out/old-text.exr" "$out/sky.exr" --out "$out/cmp-old" && [ -s "$out/cmp-old/compare.md" ] && ok \
+    || bad "compare refused a file with the text form of skyspec:sunRGB"
 else
   bad "p3 render failed"; cat "$work/stderr"
 fi
