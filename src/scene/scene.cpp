@@ -384,7 +384,7 @@ const std::vector<KeyDef>& registry() {
     r.push_back(number_key("ground.albedo", "", {0.0, 1.0},
                            "Lambertian albedo of the ground (0: black); unless a preset, file or flag sets a ground "
                            "albedo, a panorama that sees below the horizon (equirectangular, min_elevation_deg < 0) "
-                           "gets 0.25 (pvlib's default ground albedo)",
+                           "gets " + format_number(kPanoramaGroundAlbedo) + " (pvlib's default ground albedo)",
                            [](Scene& s) -> double& { return s.atmosphere.ground.albedo; }));
     r.push_back(list_key("ground.albedo_wavelengths_nm", "nm", {1.0, 1e5}, 1024,
                          "spectral albedo: wavelengths (replaces ground.albedo when not empty)",
