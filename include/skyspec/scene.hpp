@@ -65,6 +65,8 @@ struct SpectrumSpec {
   double min_nm = 380.0, max_nm = 780.0, step_nm = 10.0;
   int count = 0;  ///< when > 0: this many samples evenly over [min_nm, max_nm] (replaces step_nm)
   std::vector<double> wavelengths_nm;  ///< explicit list; overrides min/max/step when non-empty
+  /// The band each sample stands for (WavelengthGrid::bandwidth_nm).
+  double bandwidth_nm = WavelengthGrid::kDefaultBandwidth_nm;
 };
 
 struct RenderSpec {

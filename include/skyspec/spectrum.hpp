@@ -19,10 +19,17 @@ using SpectrumD = Eigen::ArrayXd;
 /// Linear RGB (R, G, B), e.g. Rec.709 as the renderer converts spectra.
 using Rgb = Eigen::Array3f;
 
-/// A set of sample wavelengths in nanometres, strictly increasing.
+/// A set of sample wavelengths in nanometres, strictly increasing, each standing for a band of
+/// the same width around it (bandwidth_nm): tabulated inputs finer than the sky's sampling (the
+/// solar spectrum, ozone cross-sections) are averaged over [lambda - w/2, lambda + w/2] at every
+/// sample, whatever the other samples are (tabulated_spectrum.hpp), as a spectrometer with a
+/// rectangular slit of width w would see them.
 class WavelengthGrid {
  public:
   static constexpr int kMaxWavelengths = 1024;
+  /// The band each sample stands for unless a scene says otherwise (spectrum.bandwidth_nm): the
+  /// default grid's 10 nm step, and the resolution of the embedded ozone table.
+  static constexpr double kDefaultBandwidth_nm = 10.0;
 
   /// Evenly spaced samples from min_nm to max_nm inclusive, step_nm apart. max_nm - min_nm must be a
   /// whole number of steps (to 1e-6 nm). Throws InputError (setting "spectrum.step_nm" etc.).
@@ -41,10 +48,16 @@ class WavelengthGrid {
   int index_of(double lambda_nm) const;
   /// A short description, e.g. "41 samples, 380-780 nm, 10 nm step".
   std::string describe() const;
+  /// The width of the band each sample stands for, nm.
+  double bandwidth_nm() const { return bandwidth_nm_; }
+  /// The same samples standing for bands of another width. Throws InputError
+  /// ("spectrum.bandwidth_nm", ...) unless 0 < width <= 1000 nm.
+  WavelengthGrid with_bandwidth(double width_nm) const;
 
  private:
   explicit WavelengthGrid(std::vector<double> nm);
   std::vector<double> nm_;
+  double bandwidth_nm_ = kDefaultBandwidth_nm;
 };
 
 }  // namespace skyspec

@@ -85,6 +85,14 @@ int WavelengthGrid::index_of(double lambda_nm) const {
   return -1;
 }
 
+WavelengthGrid WavelengthGrid::with_bandwidth(double width_nm) const {
+  if (!(width_nm > 0.0 && width_nm <= 1000.0))
+    throw InputError("spectrum.bandwidth_nm", format_number(width_nm), "a width of more than 0 and at most 1000 nm");
+  WavelengthGrid g = *this;
+  g.bandwidth_nm_ = width_nm;
+  return g;
+}
+
 std::string WavelengthGrid::describe() const {
   std::ostringstream s;
   s << size() << (size() == 1 ? " sample, " : " samples, ") << min_nm();

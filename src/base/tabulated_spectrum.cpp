@@ -96,14 +96,9 @@ double TabulatedSpectrum::mean(double lo_nm, double hi_nm, const std::string& se
 }
 
 std::vector<TabulatedSpectrum::Bin> TabulatedSpectrum::grid_bins(const WavelengthGrid& grid) {
-  const int n = grid.size();
-  std::vector<Bin> bins(static_cast<size_t>(n));
-  for (int k = 0; k < n; ++k) {
-    // Half the distance to each neighbour; the end samples mirror their one neighbour.
-    const double below_nm = k > 0 ? grid.nm(k) - grid.nm(k - 1) : (n > 1 ? grid.nm(1) - grid.nm(0) : 0.0);
-    const double above_nm = k + 1 < n ? grid.nm(k + 1) - grid.nm(k) : (n > 1 ? grid.nm(k) - grid.nm(k - 1) : 0.0);
-    bins[static_cast<size_t>(k)] = {grid.nm(k) - 0.5 * below_nm, grid.nm(k) + 0.5 * above_nm};
-  }
+  std::vector<Bin> bins(static_cast<size_t>(grid.size()));
+  const double half = 0.5 * grid.bandwidth_nm();
+  for (int k = 0; k < grid.size(); ++k) bins[static_cast<size_t>(k)] = {grid.nm(k) - half, grid.nm(k) + half};
   return bins;
 }
 

@@ -8,16 +8,16 @@
 //                   (e.g. the 10 nm resamplings of laboratory cross-sections).
 // Either way the integral of the table over any interval is exact and closed form.
 //
-// Onto a grid, each sample lambda_k stands for the bin between the midpoints to its neighbours,
-// [(lambda_k-1 + lambda_k) / 2, (lambda_k + lambda_k+1) / 2]; the first and last bins extend by
-// the same half step outwards, so on a uniform grid every sample sits at the centre of its bin
-// (on an uneven one, an interior sample is off centre by a quarter of the step change). The grid value is
-// the table's exact mean over the bin, (1 / |bin|) integral_bin f(lambda) dlambda, not f(lambda_k):
-// a 10 nm grid then carries the energy of the fine structure (Fraunhofer lines, absorption bands)
-// between its samples, and sum_k |bin_k| value_k equals the table's integral over the bins. On a
-// grid finer than the table the mean approaches the point value (exactly, for a table that is
-// linear across the bin). A bin that reaches past the end of the table is cut at the table's end
-// (the table says nothing beyond it); a grid sample outside the table is an error.
+// Onto a grid, each sample lambda_k stands for the band of the grid's bandwidth w centred on it,
+// [lambda_k - w/2, lambda_k + w/2], whatever the other samples are: the value at 680 nm is the
+// same on the grid 440, 550, 680 nm as on a 1 nm grid (with the same w). The grid value is the
+// table's exact mean over the band, (1 / w) integral_band f(lambda) dlambda, not f(lambda_k): a
+// sample then carries the energy of the fine structure (Fraunhofer lines, absorption bands) within
+// its band, and on a uniform grid whose step is w the bands tile the range, so sum_k w value_k
+// equals the table's integral over them. A band much narrower than the table's own steps gives the
+// point value (exactly, for a table that is linear across the band). A band that reaches past the
+// end of the table is cut at the table's end (the table says nothing beyond it); a grid sample
+// outside the table is an error.
 #pragma once
 
 #include <string>
@@ -57,15 +57,15 @@ class TabulatedSpectrum {
   /// integral(lo, hi) / (hi - lo); value_at(lo) when lo == hi.
   double mean(double lo_nm, double hi_nm, const std::string& setting = "wavelength range") const;
 
-  /// The bin of every grid sample (see the file comment), before cutting at the table's ends.
+  /// The band of every grid sample (see the file comment), before cutting at the table's ends.
   struct Bin {
     double lo_nm, hi_nm;
   };
   static std::vector<Bin> grid_bins(const WavelengthGrid& grid);
 
-  /// The table's mean over each grid sample's bin (cut at the table's ends). Throws
+  /// The table's mean over each grid sample's band (cut at the table's ends). Throws
   /// InputError(setting, grid description, allowed range) if a grid wavelength lies outside the
-  /// table. A one-sample grid has an empty bin and takes the point value.
+  /// table.
   SpectrumD mean_on_grid(const WavelengthGrid& grid, const std::string& setting = "spectrum") const;
 
  private:

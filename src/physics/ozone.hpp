@@ -33,7 +33,8 @@ namespace skyspec {
 /// The 233 K cross-section table, m^2 per molecule, 360-840 nm in 10 nm bins.
 const TabulatedSpectrum& ozone_cross_section_table();
 
-/// The table's mean cross-section over each grid sample's bin (tabulated_spectrum.hpp), m^2.
+/// The table's mean cross-section over each grid sample's band, lambda +- bandwidth/2
+/// (tabulated_spectrum.hpp), m^2: the same at a wavelength whatever the grid's other samples.
 /// Throws InputError(setting, ...) if a grid wavelength lies outside 360-840 nm.
 SpectrumD ozone_cross_section_on_grid(const WavelengthGrid& grid, const std::string& setting = "spectrum");
 

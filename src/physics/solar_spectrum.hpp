@@ -20,8 +20,8 @@ namespace skyspec {
 /// The ASTM G173-03 extraterrestrial table, W m^-2 nm^-1 at 1 AU (parsed once, thread-safe).
 const TabulatedSpectrum& solar_irradiance_table();
 
-/// The table's mean over each grid sample's bin (edges halfway to the neighbouring samples; see
-/// tabulated_spectrum.hpp), W m^-2 nm^-1 at 1 AU. Throws InputError(setting, ...) if a grid
+/// The table's mean over each grid sample's band, lambda +- bandwidth/2 (tabulated_spectrum.hpp),
+/// W m^-2 nm^-1 at 1 AU. Throws InputError(setting, ...) if a grid
 /// wavelength lies outside 280-4000 nm.
 SpectrumD solar_irradiance_on_grid(const WavelengthGrid& grid, const std::string& setting = "spectrum");
 

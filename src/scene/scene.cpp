@@ -494,6 +494,11 @@ const std::vector<KeyDef>& registry() {
     r.push_back(integer_key("spectrum.count", 0, WavelengthGrid::kMaxWavelengths,
                             "number of evenly spread wavelengths over min..max (0: use step_nm)",
                             [](Scene& s) -> int& { return s.spectrum.count; }));
+    r.push_back(number_key("spectrum.bandwidth_nm", "nm", {0.0, 1000.0, true},
+                           "each sample stands for this band around it: the solar spectrum and the ozone "
+                           "cross-sections are averaged over lambda +- bandwidth/2 at every sample, whatever the "
+                           "other samples are",
+                           [](Scene& s) -> double& { return s.spectrum.bandwidth_nm; }));
     r.push_back(list_key("spectrum.wavelengths_nm", "nm", {1.0, 1e5}, WavelengthGrid::kMaxWavelengths,
                          "explicit wavelengths (replaces min/max/step when not empty)",
                          [](Scene& s) -> std::vector<double>& { return s.spectrum.wavelengths_nm; }));
@@ -830,9 +835,11 @@ Scene SceneLoader::finish() const {
 }
 
 WavelengthGrid make_wavelength_grid(const Scene& s) {
-  if (!s.spectrum.wavelengths_nm.empty()) return WavelengthGrid::from_list(s.spectrum.wavelengths_nm);
-  if (s.spectrum.count > 0) return WavelengthGrid::with_count(s.spectrum.min_nm, s.spectrum.max_nm, s.spectrum.count);
-  return WavelengthGrid::uniform(s.spectrum.min_nm, s.spectrum.max_nm, s.spectrum.step_nm);
+  const double w = s.spectrum.bandwidth_nm;
+  if (!s.spectrum.wavelengths_nm.empty()) return WavelengthGrid::from_list(s.spectrum.wavelengths_nm).with_bandwidth(w);
+  if (s.spectrum.count > 0)
+    return WavelengthGrid::with_count(s.spectrum.min_nm, s.spectrum.max_nm, s.spectrum.count).with_bandwidth(w);
+  return WavelengthGrid::uniform(s.spectrum.min_nm, s.spectrum.max_nm, s.spectrum.step_nm).with_bandwidth(w);
 }
 
 Vec3 sun_direction(const Scene& s) { return direction_from_angles(s.sun.azimuth_deg, s.sun.elevation_deg); }

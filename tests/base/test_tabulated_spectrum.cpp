@@ -95,62 +95,70 @@ BOOST_AUTO_TEST_SUITE_END()
 
 BOOST_AUTO_TEST_SUITE(onto_a_grid)
 
-BOOST_AUTO_TEST_CASE(bins_reach_halfway_to_the_neighbours) {
-  const auto bins = TabulatedSpectrum::grid_bins(WavelengthGrid::from_list({400.0, 410.0, 430.0}));
+BOOST_AUTO_TEST_CASE(bands_are_centred_on_their_samples) {
+  const WavelengthGrid grid = WavelengthGrid::from_list({400.0, 410.0, 430.0});
+  const auto bins = TabulatedSpectrum::grid_bins(grid);  // the default 10 nm
   BOOST_TEST(bins.size() == 3u);
   BOOST_TEST(bins[0].lo_nm == 395.0);
   BOOST_TEST(bins[0].hi_nm == 405.0);
   BOOST_TEST(bins[1].lo_nm == 405.0);
-  BOOST_TEST(bins[1].hi_nm == 420.0);
-  BOOST_TEST(bins[2].lo_nm == 420.0);
-  BOOST_TEST(bins[2].hi_nm == 440.0);
-  // Uneven spacing: the middle sample is off its bin's centre, and the linear table gives the
-  // value at the centre, 412.5 nm.
-  const TabulatedSpectrum t = linear_samples(300.0, 900.0, 10.0);
-  const SpectrumD means = t.mean_on_grid(WavelengthGrid::from_list({400.0, 410.0, 430.0}));
-  BOOST_TEST(std::abs(means[1] - linear(412.5)) < 1e-12);
-  const auto single = TabulatedSpectrum::grid_bins(WavelengthGrid::from_list({550.0}));
-  BOOST_TEST(single[0].lo_nm == 550.0);
-  BOOST_TEST(single[0].hi_nm == 550.0);
+  BOOST_TEST(bins[1].hi_nm == 415.0);
+  BOOST_TEST(bins[2].lo_nm == 425.0);
+  BOOST_TEST(bins[2].hi_nm == 435.0);
+  const auto wide = TabulatedSpectrum::grid_bins(grid.with_bandwidth(30.0));
+  BOOST_TEST(wide[2].lo_nm == 415.0);
+  BOOST_TEST(wide[2].hi_nm == 445.0);
+  BOOST_CHECK_THROW(grid.with_bandwidth(0.0), InputError);
 }
 
 BOOST_AUTO_TEST_CASE(a_linear_table_gives_its_point_values) {
-  // The mean of a linear function over a bin centred on a sample is its value there, so on any
-  // uniform grid whose bins lie inside the table, bin means and point samples agree. (On an
-  // uneven grid a sample is off its bin's centre and takes the value at the centre instead.)
+  // The mean of a linear function over a band centred on a sample is its value there, on any grid
+  // (uniform or not) whose bands lie inside the table.
   const TabulatedSpectrum t = linear_samples(300.0, 900.0, 10.0);
   for (const WavelengthGrid& grid : {WavelengthGrid::uniform(380.0, 780.0, 1.0), WavelengthGrid::uniform(380.0, 780.0, 40.0),
-                                     WavelengthGrid::uniform(420.5, 650.5, 115.0)}) {
+                                     WavelengthGrid::uniform(420.5, 650.5, 115.0),
+                                     WavelengthGrid::from_list({400.0, 410.0, 430.0}).with_bandwidth(25.0)}) {
     const SpectrumD means = t.mean_on_grid(grid);
     for (int k = 0; k < grid.size(); ++k)
       BOOST_TEST(std::abs(means[k] - linear(grid.nm(k))) < 1e-12, grid.describe() << " at " << grid.nm(k));
   }
 }
 
+// The issue this answers: a sample's value was the mean over the cell between its neighbours, so
+// it changed when other samples were added or removed. Now it is the mean over its own band.
+BOOST_AUTO_TEST_CASE(a_sample_does_not_depend_on_the_others) {
+  const TabulatedSpectrum t = zigzag();
+  const SpectrumD sparse = t.mean_on_grid(WavelengthGrid::from_list({420.0, 447.0, 550.0}));
+  const SpectrumD dense = t.mean_on_grid(WavelengthGrid::uniform(410.0, 590.0, 1.0));
+  BOOST_TEST(sparse[1] == dense[447 - 410]);
+  BOOST_TEST(sparse[1] == t.mean(442.0, 452.0));
+  BOOST_TEST(sparse[2] == dense[550 - 410]);
+}
+
 BOOST_AUTO_TEST_CASE(a_coarse_grid_keeps_the_integral) {
   // Sampled at every other knot, the zig-zag reads 1, 1, 1, ...: point sampling loses the energy of
-  // the peaks in between; bin means keep it: sum |bin| mean = integral over the bins.
+  // the peaks in between; band means keep it: with bands as wide as the step, sum w mean = the
+  // integral over the bands.
   const TabulatedSpectrum t = zigzag();
-  const WavelengthGrid grid = WavelengthGrid::uniform(420.0, 580.0, 20.0);
+  const WavelengthGrid grid = WavelengthGrid::uniform(420.0, 580.0, 20.0).with_bandwidth(20.0);
   const SpectrumD means = t.mean_on_grid(grid);
   double sum = 0.0;
-  const auto bins = TabulatedSpectrum::grid_bins(grid);
   for (int k = 0; k < grid.size(); ++k) {
     BOOST_TEST(t.value_at(grid.nm(k)) == 1.0);
     BOOST_TEST(std::abs(means[k] - 2.0) < 1e-12);  // the zig-zag's true mean over 20 nm
-    sum += (bins[static_cast<size_t>(k)].hi_nm - bins[static_cast<size_t>(k)].lo_nm) * means[k];
+    sum += grid.bandwidth_nm() * means[k];
   }
   BOOST_TEST(std::abs(sum - t.integral(410.0, 590.0)) < 1e-10);
 }
 
-BOOST_AUTO_TEST_CASE(end_bins_are_cut_at_the_table_ends) {
-  // A grid sample on the table's first wavelength: its bin [395, 405] is cut to [400, 405].
+BOOST_AUTO_TEST_CASE(end_bands_are_cut_at_the_table_ends) {
+  // A grid sample on the table's first wavelength: its band [395, 405] is cut to [400, 405].
   const TabulatedSpectrum t = zigzag();
   const SpectrumD means = t.mean_on_grid(WavelengthGrid::uniform(400.0, 600.0, 10.0));
   BOOST_TEST(std::abs(means[0] - t.mean(400.0, 405.0)) < 1e-12);
   BOOST_TEST(std::abs(means[20] - t.mean(595.0, 600.0)) < 1e-12);
-  // A one-sample grid takes the point value.
-  BOOST_TEST(t.mean_on_grid(WavelengthGrid::from_list({405.0}))[0] == 2.0);
+  // A one-sample grid takes the mean over its band too.
+  BOOST_TEST(t.mean_on_grid(WavelengthGrid::from_list({405.0}))[0] == t.mean(400.0, 410.0));
 }
 
 BOOST_AUTO_TEST_CASE(a_grid_outside_the_table_is_an_input_error) {

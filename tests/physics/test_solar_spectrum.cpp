@@ -83,7 +83,7 @@ BOOST_AUTO_TEST_CASE(a_grid_as_fine_as_the_table) {
   // On a 1 nm grid over the table's 1 nm part each bin [x - 0.5, x + 0.5] straddles one knot: the
   // mean of the linear interpolant is f(x) + (f(x+1) - 2 f(x) + f(x-1)) / 8, a light 1-6-1 smoothing
   // of the point samples, and is the point sample wherever the table is locally straight.
-  const WavelengthGrid grid = WavelengthGrid::uniform(401.0, 1400.0, 1.0);
+  const WavelengthGrid grid = WavelengthGrid::uniform(401.0, 1400.0, 1.0).with_bandwidth(1.0);
   const SpectrumD means = solar_irradiance_on_grid(grid);
   const TabulatedSpectrum& t = solar_irradiance_table();
   double worst = 0.0;
@@ -100,12 +100,12 @@ BOOST_AUTO_TEST_CASE(a_grid_finer_than_the_table_gives_point_samples) {
   // inside it and their means are the point samples. Over the infrared (5 nm table steps) a 1 nm
   // grid differs from point sampling only at the table's knots, by (0.5 / 4) times the change of
   // slope there: under 0.5 %.
-  const WavelengthGrid inside = WavelengthGrid::uniform(1706.0, 1709.0, 1.0);
+  const WavelengthGrid inside = WavelengthGrid::uniform(1706.0, 1709.0, 1.0).with_bandwidth(1.0);
   const SpectrumD means = solar_irradiance_on_grid(inside);
   for (int k = 0; k < inside.size(); ++k)
     BOOST_TEST(relative(means[k], solar_irradiance_table().value_at(inside.nm(k))) < 1e-12);
 
-  const WavelengthGrid infrared = WavelengthGrid::uniform(2000.0, 3000.0, 1.0);
+  const WavelengthGrid infrared = WavelengthGrid::uniform(2000.0, 3000.0, 1.0).with_bandwidth(1.0);
   const SpectrumD ir_means = solar_irradiance_on_grid(infrared);
   double worst = 0.0;
   for (int k = 0; k < infrared.size(); ++k)
@@ -135,7 +135,7 @@ BOOST_AUTO_TEST_CASE(a_coarse_grid_preserves_the_integral) {
   BOOST_TEST(solar_irradiance_table().value_at(430.0) == 1.212);
   BOOST_TEST(means[grid.index_of(430.0)] > 1.5);
   // And a single grid covering 360-830 nm at 5 nm keeps its integral too.
-  const WavelengthGrid fine = WavelengthGrid::uniform(360.0, 830.0, 5.0);
+  const WavelengthGrid fine = WavelengthGrid::uniform(360.0, 830.0, 5.0).with_bandwidth(5.0);
   const SpectrumD fine_means = solar_irradiance_on_grid(fine);
   const auto fine_bins = TabulatedSpectrum::grid_bins(fine);
   double fine_sum = 0.0;
