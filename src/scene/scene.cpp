@@ -264,6 +264,31 @@ KeyDef list_key(std::string key, std::string unit, Range range, size_t max_count
   return k;
 }
 
+// A TOML date-time (RFC 3339, unquoted in a scene file or after --set) as ISO 8601 text. It must
+// carry its UTC offset: a local date-time, a date or a time alone names no instant.
+std::string toml_date_time_text(const toml::date_time& t, const std::string& key, const std::string& value,
+                                const std::string& origin) {
+  if (!t.offset)
+    throw InputError(key, value,
+                     "a date-time with its UTC offset: add Z for UTC or the zone's offset such as +02:00 (a bare "
+                     "local time is ambiguous)",
+                     origin);
+  DateTime d;
+  d.year = t.date.year;
+  d.month = t.date.month;
+  d.day = t.date.day;
+  d.hour = t.time.hour;
+  d.minute = t.time.minute;
+  d.second = t.time.second + t.time.nanosecond * 1e-9;
+  d.utc_offset_hours = t.offset->minutes / 60.0;
+  try {
+    validate(d, key);
+  } catch (const InputError& e) {
+    throw InputError(key, value, e.allowed(), origin);
+  }
+  return to_iso8601(d);
+}
+
 const std::vector<KeyDef>& registry() {
   static const std::vector<KeyDef> keys = [] {
     std::vector<KeyDef> r;
@@ -416,10 +441,16 @@ const std::vector<KeyDef>& registry() {
     {
       KeyDef k;
       k.key = "sun.date_time";
-      const std::string allowed = "\"\" or an ISO 8601 date-time with UTC offset, e.g. \"2026-06-21T20:30:00+02:00\"";
+      const std::string allowed =
+          "\"\" or an ISO 8601 date-time with UTC offset, e.g. \"2026-06-21T20:30:00+02:00\" (quoted, or unquoted as a "
+          "TOML date-time)";
       k.doc = "(" + allowed + ") when set, the sun's position and distance are computed for this time at "
               "location.latitude_deg / longitude_deg (NREL SPA)";
       k.set = [k, allowed](Scene& s, const toml::node& n, const std::string& origin) {
+        if (const auto* when = n.as_date_time()) {  // a TOML offset date-time, unquoted
+          s.sun.date_time = toml_date_time_text(when->get(), k.key, node_text(n), origin);
+          return;
+        }
         auto str = n.as_string();
         if (!str) throw InputError(k.key, node_text(n), allowed, origin);
         if (!str->get().empty()) {

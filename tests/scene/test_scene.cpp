@@ -166,6 +166,34 @@ BOOST_AUTO_TEST_CASE(panoramas_get_a_grey_ground_unless_one_is_set) {
   BOOST_TEST(again.finish().atmosphere.ground.albedo == kPanoramaGroundAlbedo);
 }
 
+// sun.date_time takes a TOML offset date-time as written in a file or after --set, unquoted, as
+// well as the quoted text; a local date-time (no offset) or a bare date is refused, saying why.
+BOOST_AUTO_TEST_CASE(date_times_unquoted_as_toml_writes_them) {
+  const auto sun_of = [](const Scene& s) { return std::to_string(s.sun.elevation_deg) + " " + std::to_string(s.sun.azimuth_deg); };
+  SceneLoader quoted;
+  quoted.apply_toml("[sun]\ndate_time = \"2026-06-21T12:00:00+02:00\"\n[location]\nlatitude_deg = 48\n", "a.toml");
+  SceneLoader bare;
+  bare.apply_toml("[sun]\ndate_time = 2026-06-21T12:00:00+02:00\n[location]\nlatitude_deg = 48\n", "b.toml");
+  SceneLoader flag;
+  flag.apply_override("location.latitude_deg", "48", "--set");
+  flag.apply_override("sun.date_time", "2026-06-21T10:00:00Z", "--set sun.date_time");
+  BOOST_TEST(bare.finish().sun.date_time == "2026-06-21T12:00:00+02:00");
+  BOOST_TEST(sun_of(bare.finish()) == sun_of(quoted.finish()));
+  BOOST_TEST(sun_of(flag.finish()) == sun_of(quoted.finish()));  // the same instant in UTC
+  const std::string local = error_of([] {
+    SceneLoader l;
+    l.apply_toml("[sun]\ndate_time = 2026-06-21T12:00:00\n", "c.toml");
+  });
+  BOOST_TEST(contains(local, "sun.date_time"));
+  BOOST_TEST(contains(local, "UTC offset"));
+  BOOST_TEST(contains(local, "c.toml:2"));
+  const std::string date_only = error_of([] {
+    SceneLoader l;
+    l.apply_override("sun.date_time", "2026-06-21", "--set sun.date_time");
+  });
+  BOOST_TEST(contains(date_only, "ISO 8601 date-time with UTC offset"));
+}
+
 BOOST_AUTO_TEST_CASE(blender_and_openexr_conventions_need_the_whole_sphere) {
   for (const char* convention : {"blender", "openexr"}) {
     const std::string e = error_of([convention] {
