@@ -100,6 +100,10 @@ class AtmosphereModel {
   double top_radius_m() const { return spec_.planet_radius_m + spec_.top_altitude_m; }
 
   const ScatteringSpecies& rayleigh() const { return rayleigh_; }
+  /// gamma of the Rayleigh phase function per wavelength (phase_function.hpp): from the King
+  /// factor of the derivation, so that the depolarisation in the cross-section is also in the
+  /// angular distribution; 0 (no depolarisation) for typed-in coefficients, which have none.
+  const SpectrumD& rayleigh_phase_gamma() const { return rayleigh_gamma_; }
   const ScatteringSpecies& mie() const { return mie_; }
   /// Ozone: absorption only (scattering_per_m is zero); relative density 1 at the layer's peak.
   const ScatteringSpecies& ozone() const { return ozone_; }
@@ -124,6 +128,7 @@ class AtmosphereModel {
   ScatteringSpecies rayleigh_, mie_, ozone_;
   double ozone_peak_per_m3_ = 0.0;
   SpectrumD mie_g_;
+  SpectrumD rayleigh_gamma_;
   SpectrumD ground_albedo_;
   double rayleigh_n0_per_m3_ = 0.0;
   std::string rayleigh_n0_origin_;

@@ -13,8 +13,26 @@ namespace skyspec {
 
 // Inline, so that loops over many directions (SingleScattering::combine_many) vectorise.
 
-/// Rayleigh: 3 / (16 pi) (1 + mu^2).
+/// Rayleigh without depolarisation: 3 / (16 pi) (1 + mu^2).
 inline double rayleigh_phase(double mu) { return 3.0 / (16.0 * kPi) * (1.0 + mu * mu); }
+
+/// Rayleigh scattering by anisotropic molecules (Chandrasekhar 1950, Radiative Transfer, ch. I
+/// section 18; written for air by Bucholtz 1995, Appl. Opt. 34(15), eq. 12):
+///   p(mu) = 3 / (16 pi (1 + 2 gamma)) ((1 + 3 gamma) + (1 - gamma) mu^2),  gamma = rho / (2 - rho),
+/// with rho the depolarisation ratio; gamma = 0 gives rayleigh_phase(mu). Its integral over the
+/// sphere is 1 for every gamma.
+inline double rayleigh_phase(double mu, double gamma) {
+  return 3.0 / (16.0 * kPi * (1.0 + 2.0 * gamma)) * ((1.0 + 3.0 * gamma) + (1.0 - gamma) * mu * mu);
+}
+/// The depolarisation ratio rho that a King factor F = (6 + 3 rho) / (6 - 7 rho) stands for:
+/// rho = 6 (F - 1) / (3 + 7 F) (Bucholtz 1995, eq. 13 inverted).
+inline double depolarisation_ratio_from_king_factor(double king_factor) {
+  return 6.0 * (king_factor - 1.0) / (3.0 + 7.0 * king_factor);
+}
+/// gamma = rho / (2 - rho), the phase function's anisotropy term (Bucholtz 1995, after eq. 12).
+inline double rayleigh_gamma_from_depolarisation(double depolarisation_ratio) {
+  return depolarisation_ratio / (2.0 - depolarisation_ratio);
+}
 /// Henyey & Greenstein 1941: (1 - g^2) / (4 pi (1 + g^2 - 2 g mu)^(3/2)).
 inline double henyey_greenstein_phase(double mu, double g) {
   const double denom = 1.0 + g * g - 2.0 * g * mu;

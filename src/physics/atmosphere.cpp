@@ -6,6 +6,7 @@
 
 #include "skyspec/error.hpp"
 #include "physics/ozone.hpp"
+#include "skyspec/phase_function.hpp"
 #include "skyspec/standard_atmosphere.hpp"
 #include "skyspec/units.hpp"
 
@@ -52,6 +53,7 @@ AtmosphereModel::AtmosphereModel(const AtmosphereSpec& spec, const WavelengthGri
   // --- Rayleigh ---------------------------------------------------------------------------
   rayleigh_.profile = make_profile(r.profile, r.scale_height_m, spec.top_altitude_m);
   rayleigh_.scattering_per_m.resize(n);
+  rayleigh_gamma_ = SpectrumD::Zero(n);  // typed-in coefficients carry no depolarisation
   if (r.source == RayleighSpec::Source::Derived) {
     // N(0): the standard atmosphere's sea-level state, or the ideal gas law at the given surface
     // pressure and temperature.
@@ -67,8 +69,11 @@ AtmosphereModel::AtmosphereModel(const AtmosphereSpec& spec, const WavelengthGri
       rayleigh_n0_origin_ = s.str();
     }
     derivation_ = derive_rayleigh(grid.nanometres(), r.derivation);
-    for (int i = 0; i < n; ++i)
-      rayleigh_.scattering_per_m[i] = derivation_[static_cast<size_t>(i)].cross_section_m2 * rayleigh_n0_per_m3_;
+    for (int i = 0; i < n; ++i) {
+      const RayleighDerivationStep& step = derivation_[static_cast<size_t>(i)];
+      rayleigh_.scattering_per_m[i] = step.cross_section_m2 * rayleigh_n0_per_m3_;
+      rayleigh_gamma_[i] = rayleigh_gamma_from_depolarisation(depolarisation_ratio_from_king_factor(step.king_factor));
+    }
   } else {
     if (r.fixed_wavelengths_nm.size() != r.fixed_beta_per_m.size())
       throw InputError("atmosphere.rayleigh.beta_per_m",

@@ -23,6 +23,11 @@ SingleScattering::SingleScattering(const AtmosphereModel& atm, const SunColumns&
       sca_rayleigh_(atm.rayleigh().scattering_per_m.cast<float>()),
       sca_mie_(atm.mie().scattering_per_m.cast<float>()),
       albedo_over_pi_((atm.ground_albedo() / kPi).cast<float>()) {
+  // The Rayleigh phase function per wavelength as A + B mu^2 (phase_function.hpp, Chandrasekhar).
+  const SpectrumD& gamma = atm.rayleigh_phase_gamma();
+  const SpectrumD scale = 3.0 / (16.0 * kPi * (1.0 + 2.0 * gamma));
+  rayleigh_phase_a_ = (scale * (1.0 + 3.0 * gamma)).cast<float>();
+  rayleigh_phase_b_ = (scale * (1.0 - gamma)).cast<float>();
   ext_[kRayleigh] = atm.rayleigh().extinction_per_m.cast<float>();
   ext_[kMie] = atm.mie().extinction_per_m.cast<float>();
   ext_[kOzone] = atm.ozone().extinction_per_m.cast<float>();
@@ -165,14 +170,16 @@ void SingleScattering::radiance(const Vec3& o, const Vec3& d, const Vec3& s, con
 namespace {
 // L = E_sun [p_R rayleigh + p_M mie + isotropic] for one direction's parts (n values each), with
 // the aerosol's phase per wavelength where pm_spectral is given.
-void combine_parts(Eigen::Index n, const float* rayleigh, const float* mie, const float* isotropic, float pr, float pm,
-                   const Spectrum* pm_spectral, const Spectrum& sun_irradiance, float* out) {
+// The Rayleigh phase per wavelength is pr_a + pr_b mu^2 (the constructor's A and B).
+void combine_parts(Eigen::Index n, const float* rayleigh, const float* mie, const float* isotropic, const Spectrum& pr_a,
+                   const Spectrum& pr_b, float mu2, float pm, const Spectrum* pm_spectral, const Spectrum& sun_irradiance,
+                   float* out) {
   using In = Eigen::Map<const Spectrum>;
   Eigen::Map<Spectrum> o(out, n);
   if (pm_spectral)
-    o = (In(rayleigh, n) * pr + In(mie, n) * *pm_spectral + In(isotropic, n)) * sun_irradiance;
+    o = (In(rayleigh, n) * (pr_a + pr_b * mu2) + In(mie, n) * *pm_spectral + In(isotropic, n)) * sun_irradiance;
   else
-    o = (In(rayleigh, n) * pr + In(mie, n) * pm + In(isotropic, n)) * sun_irradiance;
+    o = (In(rayleigh, n) * (pr_a + pr_b * mu2) + In(mie, n) * pm + In(isotropic, n)) * sun_irradiance;
 }
 
 // A spectral aerosol: the phase function's asymmetry differs per wavelength.
@@ -189,12 +196,12 @@ void SingleScattering::combine(const RadianceParts& parts, double mu, const Spec
                                ScatteringWorkspace& ws, Spectrum& out) const {
   const Eigen::Index n = parts.rayleigh.size();
   out.resize(n);
-  const float phase_r = static_cast<float>(rayleigh_phase(mu));
   const bool varies = atm_.mie_g_varies();
   if (varies) spectral_mie_phase(atm_, mu, ws.phase);
   const float phase_m = varies ? 0.0f : static_cast<float>(atm_.mie_phase()(mu));
-  combine_parts(n, parts.rayleigh.data(), parts.mie.data(), parts.isotropic.data(), phase_r, phase_m,
-                varies ? &ws.phase : nullptr, sun_irradiance, out.data());
+  combine_parts(n, parts.rayleigh.data(), parts.mie.data(), parts.isotropic.data(), rayleigh_phase_a_,
+                rayleigh_phase_b_, static_cast<float>(mu * mu), phase_m, varies ? &ws.phase : nullptr, sun_irradiance,
+                out.data());
 }
 
 void SingleScattering::combine_many(int count, const float* packed, const double* mu, const bool* use,
@@ -204,11 +211,10 @@ void SingleScattering::combine_many(int count, const float* packed, const double
   const AerosolPhase mie = atm_.mie_phase();
   const bool hg = mie.model == AerosolPhase::Model::HenyeyGreenstein;
   constexpr int kChunk = 64;
-  double pr[kChunk], pm[kChunk];
+  double pm[kChunk];
   for (int first = 0; first < count; first += kChunk) {
     const int m = std::min(kChunk, count - first);
     const double* u = mu + first;
-    for (int k = 0; k < m; ++k) pr[k] = rayleigh_phase(u[k]);  // these loops vectorise
     if (hg)
       for (int k = 0; k < m; ++k) pm[k] = henyey_greenstein_phase(u[k], mie.g);
     else
@@ -217,8 +223,8 @@ void SingleScattering::combine_many(int count, const float* packed, const double
       if (!use[first + k]) continue;
       if (varies) spectral_mie_phase(atm_, u[k], ws.phase);
       const float* p = packed + static_cast<size_t>(first + k) * 3 * static_cast<size_t>(n);
-      combine_parts(n, p, p + n, p + 2 * n, static_cast<float>(pr[k]), static_cast<float>(pm[k]),
-                    varies ? &ws.phase : nullptr, sun_irradiance, out[first + k]);
+      combine_parts(n, p, p + n, p + 2 * n, rayleigh_phase_a_, rayleigh_phase_b_, static_cast<float>(u[k] * u[k]),
+                    static_cast<float>(pm[k]), varies ? &ws.phase : nullptr, sun_irradiance, out[first + k]);
     }
   }
 }

@@ -158,6 +158,7 @@ class SingleScattering {
   IntegratorSettings settings_;
   Spectrum ext_[kSpeciesCount];
   Spectrum sca_rayleigh_, sca_mie_, albedo_over_pi_;
+  Spectrum rayleigh_phase_a_, rayleigh_phase_b_;  ///< the Rayleigh phase per wavelength: A + B mu^2
 
   // The quadrature along one ray (single_scattering.cpp): where the ray runs in the atmosphere,
   // its pieces (lit or in shadow), the nodes on them, and the integration over the nodes.
