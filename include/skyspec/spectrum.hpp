@@ -50,8 +50,9 @@ class WavelengthGrid {
   std::string describe() const;
   /// The width of the band each sample stands for, nm.
   double bandwidth_nm() const { return bandwidth_nm_; }
-  /// The same samples standing for bands of another width. Throws InputError
-  /// ("spectrum.bandwidth_nm", ...) unless 0 < width <= 1000 nm.
+  /// The same samples standing for bands of another width; 0: every tabulated input is taken at
+  /// the sample wavelength itself. Throws InputError ("spectrum.bandwidth_nm", ...) unless
+  /// 0 <= width <= 1000 nm.
   WavelengthGrid with_bandwidth(double width_nm) const;
 
  private:

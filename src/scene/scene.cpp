@@ -525,10 +525,10 @@ const std::vector<KeyDef>& registry() {
     r.push_back(integer_key("spectrum.count", 0, WavelengthGrid::kMaxWavelengths,
                             "number of evenly spread wavelengths over min..max (0: use step_nm)",
                             [](Scene& s) -> int& { return s.spectrum.count; }));
-    r.push_back(number_key("spectrum.bandwidth_nm", "nm", {0.0, 1000.0, true},
+    r.push_back(number_key("spectrum.bandwidth_nm", "nm", {0.0, 1000.0},
                            "each sample stands for this band around it: the solar spectrum and the ozone "
                            "cross-sections are averaged over lambda +- bandwidth/2 at every sample, whatever the "
-                           "other samples are",
+                           "other samples are (0: taken at the sample wavelength)",
                            [](Scene& s) -> double& { return s.spectrum.bandwidth_nm; }));
     r.push_back(list_key("spectrum.wavelengths_nm", "nm", {1.0, 1e5}, WavelengthGrid::kMaxWavelengths,
                          "explicit wavelengths (replaces min/max/step when not empty)",

@@ -108,7 +108,10 @@ BOOST_AUTO_TEST_CASE(bands_are_centred_on_their_samples) {
   const auto wide = TabulatedSpectrum::grid_bins(grid.with_bandwidth(30.0));
   BOOST_TEST(wide[2].lo_nm == 415.0);
   BOOST_TEST(wide[2].hi_nm == 445.0);
-  BOOST_CHECK_THROW(grid.with_bandwidth(0.0), InputError);
+  BOOST_CHECK_THROW(grid.with_bandwidth(-1.0), InputError);
+  // Width 0: the point value.
+  const TabulatedSpectrum z = zigzag();
+  BOOST_TEST(z.mean_on_grid(WavelengthGrid::from_list({420.0, 425.0}).with_bandwidth(0.0))[1] == z.value_at(425.0));
 }
 
 BOOST_AUTO_TEST_CASE(a_linear_table_gives_its_point_values) {
