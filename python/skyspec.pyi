@@ -19,8 +19,9 @@ Numbers = Union[float, Sequence[float], npt.NDArray[np.float64]]
 class RenderResult:
     """A sky rendered into memory, with what it shows (render() makes it).
 
-    Row 0 is the top of the image, as in the EXR; h x w pixels, n wavelengths. spectral, rgb,
-    directions and wavelengths_nm are views of the result: write_exr / write_png write them.
+    Row 0 is the top of the image, as in the EXR; h x w pixels, n wavelengths. spectral and rgb are
+    writable views of the result (write_exr / write_png write what they hold); directions and
+    wavelengths_nm are read-only views.
     """
 
     @property

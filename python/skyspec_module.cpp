@@ -267,10 +267,13 @@ struct RenderResult {
 };
 
 template <class T>
-py::array_t<T> view_of(const std::shared_ptr<SpectralImageBuffer>& image, std::vector<py::ssize_t> shape, T* data) {
+py::array_t<T> view_of(const std::shared_ptr<SpectralImageBuffer>& image, std::vector<py::ssize_t> shape, T* data,
+                       bool writeable = true) {
   auto* keep = new std::shared_ptr<SpectralImageBuffer>(image);
   py::capsule owner(keep, [](void* p) { delete static_cast<std::shared_ptr<SpectralImageBuffer>*>(p); });
-  return py::array_t<T>(std::move(shape), data, owner);
+  py::array_t<T> a(std::move(shape), data, owner);
+  if (!writeable) a.attr("flags").attr("writeable") = false;  // what the render is, not its values
+  return a;
 }
 
 // CIE XYZ of every pixel: from the spectrum (spectral path), or from linear Rec.709 (RGB-fast).
@@ -361,20 +364,22 @@ Arrays (row 0 is the top of the image, as in the EXR; h x w pixels, n wavelength
   directions      float64 (h, w, 3): unit view direction through each pixel's centre, east-north-up at the
                   scene's reference point (x east, y north, z up); (0, 0, 0) where the camera has none
   valid           bool (h, w): the pixel has a direction (False outside a fisheye's circle)
-spectral, rgb, directions and wavelengths_nm are views of the result: write_exr/write_png write them.)")
+spectral and rgb are writable views of the result (write_exr/write_png write what they hold); directions and
+wavelengths_nm are read-only views.)")
       .def_property_readonly("spectral", [](const RenderResult& r) {
         auto& i = *r.image;
         return view_of<float>(r.image, {i.height, i.width, static_cast<py::ssize_t>(i.wavelengths_nm.size())}, i.spectral.data());
       }, "float32 (h, w, n): spectral radiance, W m^-2 sr^-1 nm^-1")
       .def_property_readonly("wavelengths_nm", [](const RenderResult& r) {
-        return view_of<double>(r.image, {static_cast<py::ssize_t>(r.image->wavelengths_nm.size())}, r.image->wavelengths_nm.data());
+        return view_of<double>(r.image, {static_cast<py::ssize_t>(r.image->wavelengths_nm.size())},
+                               r.image->wavelengths_nm.data(), false);
       }, "float64 (n,): the wavelengths, nm")
       .def_readonly("xyz", &RenderResult::xyz, "float32 (h, w, 3): CIE 1931 XYZ, Y in cd m^-2")
       .def_property_readonly("rgb", [](const RenderResult& r) {
         return view_of<float>(r.image, {r.image->height, r.image->width, 3}, r.image->rgb.data());
       }, "float32 (h, w, 3): linear Rec.709 (D65), the EXR's R, G, B")
       .def_property_readonly("directions", [](const RenderResult& r) {
-        return view_of<double>(r.image, {r.image->height, r.image->width, 3}, r.image->directions.data());
+        return view_of<double>(r.image, {r.image->height, r.image->width, 3}, r.image->directions.data(), false);
       }, "float64 (h, w, 3): unit view direction of each pixel's centre, east-north-up; (0, 0, 0) where none")
       .def_property_readonly("valid", [](const RenderResult& r) {
         const auto& i = *r.image;

@@ -157,6 +157,8 @@ class RenderAgainstCli(unittest.TestCase):
                                         "sun.azimuth_deg": 150, "render.scattering_orders": 1, "spectrum.count": 4})
         d = img.directions
         self.assertEqual(d.shape, (36, 72, 3))
+        with self.assertRaises(ValueError):  # where the render looks is not for editing
+            d[0, 0, 0] = 1.0
         np.testing.assert_allclose(np.linalg.norm(d, axis=2), 1.0, rtol=1e-12)
         self.assertTrue(img.valid.all())
         row, column = img.pixel(azimuth_deg=92, elevation_deg=1)  # east: the centre, just above the horizon
