@@ -148,6 +148,8 @@ Command add_render_command(CLI::App& app) {
       "  skyspec render --quality draft                  # quick look (also: lean, default, high, reference)\n"
       "  skyspec render --scene my.toml --set atmosphere.mie.g=0.8\n"
       "  skyspec render --camera equirectangular --width 1024 --height 512\n"
+      "  skyspec render --camera equirectangular --width 4096 --height 2048 --panorama-convention blender \\\n"
+      "                 --exr-space \"Linear Rec.709\"     # an HDRI for Blender (docs/other-tools.md)\n"
       "  skyspec render --display \"Display P3\"            # the PNG for a Display P3 screen\n"
       "  skyspec render --display Rec.2100-PQ --view \"ACES 1.1 - HDR Video (1000 nits & Rec.2020 lim)\" --png-bits 16\n"
       "  skyspec render --shutter 1/250 --f-number 8 --iso 100   # physical camera exposure\n"
