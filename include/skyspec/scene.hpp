@@ -96,6 +96,8 @@ struct OutputSpec {
   bool png = true;
   /// Lossless compression of the spectral EXR: none, rle, zips, zip or piz.
   std::string exr_compression = "piz";
+  /// Pixel type of the spectral channels: "float" or "half" (R, G, B are always float).
+  std::string exr_spectral_type = "float";
   std::optional<double> exposure_ev;  ///< preview exposure; automatic when absent
 };
 

@@ -2,9 +2,9 @@
 #include "io/spectral_exr.hpp"
 
 #include <ImfChannelList.h>
+#include <half.h>
 #include <ImfChromaticities.h>
 #include <ImfDoubleAttribute.h>
-#include <ImfStandardAttributes.h>
 #include <ImfVecAttribute.h>
 #include <ImfFloatAttribute.h>
 #include <ImfFrameBuffer.h>
@@ -31,11 +31,13 @@
 #include <mutex>
 #include <sstream>
 #include <thread>
+#include <type_traits>
 #include <utility>
 
 #include <unistd.h>  // fdatasync
 
 #include "base/atomic_file.hpp"
+#include "base/text_format.hpp"
 #include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
 #include "io/spectral_exr_encode.hpp"
@@ -208,12 +210,12 @@ class DiscardingOStream : public Imf::OStream {
 /// A FLOAT slice over a pixel-major buffer that holds `rows` rows starting at row y0: channel
 /// `channel` of `n_channels` interleaved values per pixel. OpenEXR addresses a scan-line slice as
 /// base + x * xStride + y * yStride with the absolute y, so the origin (0, y0) is passed on.
-Imf::Slice interleaved_slice(const float* first_row, int channel, int n_channels, int width, int y0,
-                             int rows) {
-  const size_t x_stride = static_cast<size_t>(n_channels) * sizeof(float);
+template <class T>
+Imf::Slice interleaved_slice(const T* first_row, int channel, int n_channels, int width, int y0, int rows) {
+  const size_t x_stride = static_cast<size_t>(n_channels) * sizeof(T);
   const size_t y_stride = static_cast<size_t>(width) * x_stride;
-  return Imf::Slice::Make(Imf::FLOAT, first_row + channel, IMATH_NAMESPACE::V2i(0, y0), width, rows,
-                          x_stride, y_stride);
+  return Imf::Slice::Make(std::is_same_v<T, float> ? Imf::FLOAT : Imf::HALF, first_row + channel,
+                          IMATH_NAMESPACE::V2i(0, y0), width, rows, x_stride, y_stride);
 }
 
 constexpr const char* kRgbNames[3] = {"R", "G", "B"};
@@ -294,6 +296,8 @@ struct SpectralExrWriter::Impl {
   fs::path final_path;
   int width = 0, height = 0, rows_written = 0;
   std::vector<std::string> channel_names;  // spectral channels in the caller's order
+  bool half = false;                        // S0 channels stored as half
+  std::vector<IMATH_NAMESPACE::half> half_band;  // a band's S0 values converted, when half
   AtomicOutputFile file;
   std::unique_ptr<StdioOStream> stream;
   std::unique_ptr<Imf::OutputFile> exr;
@@ -307,6 +311,9 @@ struct SpectralExrWriter::Impl {
 };
 
 namespace {
+
+// The largest finite half float (Imath's HALF_MAX).
+constexpr float kHalfMax = 65504.0f;
 
 // The lossless compressions a spectral EXR may use (lossy ones would change the radiances).
 Imf::Compression compression_of(const std::string& name) {
@@ -323,7 +330,8 @@ Imf::Header spectral_header(int width, int height, const std::vector<std::string
   Imf::Header header(width, height);
   header.compression() = compression_of(meta.compression);
   header.lineOrder() = Imf::INCREASING_Y;
-  for (const std::string& name : channel_names) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+  const Imf::PixelType spectral_type = meta.half_spectral ? Imf::HALF : Imf::FLOAT;
+  for (const std::string& name : channel_names) header.channels().insert(name, Imf::Channel(spectral_type));
   for (const char* name : kRgbNames) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
 
   const Chromaticities c = rec709_chromaticities();
@@ -373,8 +381,9 @@ int pool_threads(const Imf::Header& header, const SpectralExrMetadata& meta) {
 
 // The frame buffer of a band of `rows` rows starting at row y0: the spectral channels (in
 // `names`' order) and R, G, B, interleaved per pixel.
+template <class T>
 Imf::FrameBuffer band_frame_buffer(const std::vector<std::string>& names, int width, int y0, int rows,
-                                   const float* spectral, const float* rgb) {
+                                   const T* spectral, const float* rgb) {
   const int n = static_cast<int>(names.size());
   Imf::FrameBuffer frame;
   for (int c = 0; c < n; ++c) frame.insert(names[static_cast<size_t>(c)], interleaved_slice(spectral, c, n, width, y0, rows));
@@ -406,7 +415,13 @@ uint64_t detail::encode_spectral_rows(int width, int rows, const std::vector<dou
   DiscardingOStream stream;
   {
     Imf::OutputFile exr(stream, header, pool_threads(header, meta));
-    exr.setFrameBuffer(band_frame_buffer(names, width, 0, rows, spectral, rgb));
+    std::vector<IMATH_NAMESPACE::half> half_values;  // the conversion is part of the work measured
+    if (meta.half_spectral) {
+      half_values.assign(spectral, spectral + static_cast<size_t>(width) * rows * names.size());
+      exr.setFrameBuffer(band_frame_buffer(names, width, 0, rows, half_values.data(), rgb));
+    } else {
+      exr.setFrameBuffer(band_frame_buffer(names, width, 0, rows, spectral, rgb));
+    }
     exr.writePixels(rows);
   }  // the destructor writes the line offsets
   return stream.length();
@@ -423,6 +438,7 @@ SpectralExrWriter::SpectralExrWriter(const fs::path& final_path, int width, int 
 
   impl_ = std::make_unique<Impl>(final_path, width, height);
   impl_->channel_names = std::move(names);
+  impl_->half = meta.half_spectral;
   try {
     const Imf::Header header = spectral_header(width, height, impl_->channel_names, meta);
     impl_->stream = std::make_unique<StdioOStream>(impl_->file.temporary_path());
@@ -453,6 +469,17 @@ void SpectralExrWriter::write_rows(int rows, const float* spectral, const float*
                   std::to_string(w.rows_written + pixel / w.width) + ", channel " +
                   w.channel_names[static_cast<size_t>(i % n)]);
   }
+  if (w.half) {  // OpenEXR would store a value beyond half's range as infinity
+    const float* end = spectral + pixels * static_cast<size_t>(n);
+    const float* big = std::find_if(spectral, end, [](float v) { return std::abs(v) > kHalfMax; });
+    if (big != end) {
+      const long i = big - spectral, pixel = i / n;
+      throw w.error("spectral value " + format_number(*big) + " at x = " + std::to_string(pixel % w.width) +
+                    ", y = " + std::to_string(w.rows_written + pixel / w.width) + ", channel " +
+                    w.channel_names[static_cast<size_t>(i % n)] + " is beyond a half float's 65504: write it with " +
+                    "output.exr_spectral_type = \"float\"");
+    }
+  }
   if (const long i = first_non_finite(rgb, pixels * 3); i >= 0) {
     const long pixel = i / 3;
     throw w.error("non-finite RGB value at x = " + std::to_string(pixel % w.width) +
@@ -460,7 +487,13 @@ void SpectralExrWriter::write_rows(int rows, const float* spectral, const float*
   }
 
   try {
-    w.exr->setFrameBuffer(band_frame_buffer(w.channel_names, w.width, w.rows_written, rows, spectral, rgb));
+    if (w.half) {
+      w.half_band.resize(pixels * static_cast<size_t>(n));
+      std::copy(spectral, spectral + pixels * static_cast<size_t>(n), w.half_band.begin());  // rounds to nearest
+      w.exr->setFrameBuffer(band_frame_buffer(w.channel_names, w.width, w.rows_written, rows, w.half_band.data(), rgb));
+    } else {
+      w.exr->setFrameBuffer(band_frame_buffer(w.channel_names, w.width, w.rows_written, rows, spectral, rgb));
+    }
     w.exr->writePixels(rows);
     w.stream->start_writeback();
   } catch (const std::exception& e) {

@@ -32,6 +32,9 @@ struct SpectralExrMetadata {
   /// OpenEXR's standard envmap attribute = latlong (ImfEnvmap.h): the image is a whole-sphere
   /// latitude-longitude panorama.
   bool latlong_envmap = false;
+  /// S0 channels as 16-bit half floats (R, G, B stay float): a value above half's largest, 65504,
+  /// is refused with IoError rather than written as infinity.
+  bool half_spectral = false;
   std::string compression = "piz";             ///< lossless: piz, zip, zips, rle or none
   /// Not stored in the file: how many cores compression may use (0: all; 1: the calling thread
   /// only, as for a render limited to one thread).

@@ -91,6 +91,7 @@ SpectralExrMetadata spectral_exr_metadata(const Scene& scene, const std::map<std
   meta.compression = scene.output.exr_compression;
   meta.threads = threads;
   meta.latlong_envmap = is_latlong_envmap(scene.camera);
+  meta.half_spectral = scene.output.exr_spectral_type == "half";
   meta.strings["skyspec:units"] =
       scene.render.path == RenderSpec::Path::RgbFast
           ? "RGB-fast path: S0 channels and R,G,B in the sun's units (spectral_irradiance x sr^-1); "

@@ -583,6 +583,12 @@ const std::vector<KeyDef>& registry() {
         "images), zip (16 rows per block), zips (1 row), rle, none",
         [](Scene& s, const std::string& v) { s.output.exr_compression = v; },
         [](const Scene& s) { return s.output.exr_compression; }));
+    r.push_back(choice_key(
+        "output.exr_spectral_type", {"float", "half"},
+        "pixel type of the spectral EXR's S0 channels: float (32 bits, exact) or half (16 bits: half the data, a "
+        "relative error of at most 2^-11 from 6.1e-5 up, values above 65504 refused; R, G, B stay float)",
+        [](Scene& s, const std::string& v) { s.output.exr_spectral_type = v; },
+        [](const Scene& s) { return s.output.exr_spectral_type; }));
     {
       KeyDef k;
       k.key = "output.exposure_ev";

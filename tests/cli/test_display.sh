@@ -120,6 +120,19 @@ else
   bad "panorama render failed"
 fi
 
+# Half spectral channels (opt-in): OpenImageIO reads S0 as half and R, G, B as float; convert reads
+# the file back.
+if "$skyspec" render -q --out "$work/half" "${small[@]}" --set output.exr_spectral_type=half --no-png; then
+  /usr/bin/python3 -c '
+import sys, OpenImageIO as oiio
+s = oiio.ImageInput.open(sys.argv[1]).spec()
+types = {n: str(s.channelformat(i)) for i, n in enumerate(s.channelnames)}
+assert types["S0.550,000000nm"] == "half" and types["R"] == "float", types' "$work/half/sky.exr" && ok || bad "half channel types"
+  "$skyspec" convert "$work/half/sky.exr" --out "$work/half" --name conv -q && [ -s "$work/half/conv.png" ] && ok || bad "convert of a half file"
+else
+  bad "half render failed"
+fi
+
 # The config named through $OCIO gives the same image as the built-in one.
 OCIO="$config" "$skyspec" render -q --out "$work/env" "${small[@]}" --no-exr && ok || bad "render with OCIO=config failed"
 "$skyspec" render -q --out "$work/builtin" "${small[@]}"

@@ -145,18 +145,59 @@ BOOST_AUTO_TEST_CASE(every_compression_is_lossless) {
   BOOST_TEST(!fs::exists(dir.path / "dwaa.exr"));
 }
 
+// Half spectral channels (opt-in): S0 stored as 16-bit half, R, G, B still float; every value read
+// back within half's rounding (2^-11 relative from 2^-14 up, 2^-25 absolute below), and a value
+// beyond half's 65504 refused, naming the setting, with no file left.
+BOOST_AUTO_TEST_CASE(half_spectral_channels_round_to_half) {
+  ScratchFolder dir("exr-half");
+  TestImage img;
+  for (float& v : img.spectral) v = std::min(std::abs(v), 65504.0f);  // radiances: >= 0, within range
+  SpectralExrMetadata meta = test_metadata();
+  meta.half_spectral = true;
+  const fs::path path = dir.path / "half.exr";
+  img.write(path, 4, meta);
+  {
+    Imf::InputFile in(path.c_str());
+    BOOST_TEST(in.header().channels().findChannel("S0.550,000000nm")->type == Imf::HALF);
+    BOOST_TEST(in.header().channels().findChannel("R")->type == Imf::FLOAT);
+  }
+  const SpectralImage back = read_spectral_exr(path);
+  BOOST_TEST(same_bits(back.rgb, img.rgb));
+  double worst_relative = 0.0, worst_absolute = 0.0;
+  for (size_t i = 0; i < img.spectral.size(); ++i) {
+    const double v = img.spectral[i], d = std::abs(back.spectral[i] - v);
+    if (v >= std::ldexp(1.0, -14)) worst_relative = std::max(worst_relative, d / v);
+    else worst_absolute = std::max(worst_absolute, d);
+  }
+  BOOST_TEST_MESSAGE("half: largest relative error " << worst_relative << ", absolute below 2^-14 " << worst_absolute);
+  BOOST_TEST(worst_relative <= std::ldexp(1.0, -11));
+  BOOST_TEST(worst_absolute <= std::ldexp(1.0, -25));
+  img.spectral[5] = 70000.0f;
+  try {
+    img.write(dir.path / "over.exr", 4, meta);
+    BOOST_FAIL("a value beyond 65504 was written as half");
+  } catch (const IoError& e) {
+    BOOST_TEST(std::string(e.what()).find("output.exr_spectral_type") != std::string::npos);
+  }
+  BOOST_TEST(!fs::exists(dir.path / "over.exr"));
+}
+
 // The render-time estimate encodes a sample band into memory (spectral_exr_encode.hpp): the same
 // bytes as the writer puts in a file, so the same work.
 BOOST_AUTO_TEST_CASE(encoding_into_memory_makes_the_file_s_bytes) {
   ScratchFolder dir("exr-encode");
   const TestImage img;
-  for (const char* compression : {"piz", "zip", "none"}) {
+  TestImage in_half_range = img;  // what a half file can hold
+  for (float& v : in_half_range.spectral) v = std::min(std::abs(v), 65504.0f);
+  for (const char* compression : {"piz", "zip", "none", "piz-half"}) {
     SpectralExrMetadata meta = test_metadata();
-    meta.compression = compression;
+    meta.half_spectral = std::string(compression) == "piz-half";
+    meta.compression = meta.half_spectral ? "piz" : compression;
+    const TestImage& data = meta.half_spectral ? in_half_range : img;
     const fs::path path = dir.path / (std::string(compression) + ".exr");
-    img.write(path, img.height, meta);
-    const std::uint64_t bytes = detail::encode_spectral_rows(img.width, img.height, img.wavelengths_nm, meta,
-                                                             img.spectral.data(), img.rgb.data());
+    data.write(path, data.height, meta);
+    const std::uint64_t bytes = detail::encode_spectral_rows(data.width, data.height, data.wavelengths_nm, meta,
+                                                             data.spectral.data(), data.rgb.data());
     BOOST_TEST_CONTEXT(compression) { BOOST_TEST(bytes == fs::file_size(path)); }
   }
 }
