@@ -335,6 +335,14 @@ std::pair<int, int> nearest_pixel(const SpectralImageBuffer& img, double azimuth
   return at;
 }
 
+// The keyword of write_png() that a display-pipeline error names by its command-line flag.
+std::string python_argument_of(const std::string& setting) {
+  for (const auto& [flag, keyword] : {std::pair<const char*, const char*>{"--display", "display"}, {"--view", "view"},
+                                      {"--look", "look"}, {"--png-bits", "bits"}, {"--ocio", "ocio"}})
+    if (setting == flag) return keyword;
+  return setting;
+}
+
 DisplaySettings display_settings(const std::optional<std::string>& display, const std::optional<std::string>& view,
                                  const std::optional<std::string>& look, int bits, const std::optional<double>& exposure_ev,
                                  const std::optional<std::string>& ocio) {
@@ -445,8 +453,12 @@ wavelengths_nm are read-only views.)")
              const std::optional<std::string>& view, const std::optional<std::string>& look, int bits,
              const std::optional<double>& exposure_ev, const std::optional<std::string>& ocio) {
             const DisplaySettings settings = display_settings(display, view, look, bits, exposure_ev, ocio);
-            py::gil_scoped_release release;
-            return write_display_png(*r.image, path, settings);
+            try {
+              py::gil_scoped_release release;
+              return write_display_png(*r.image, path, settings);
+            } catch (const InputError& e) {
+              throw InputError(python_argument_of(e.setting()), e.value(), e.allowed());
+            }
           },
           py::arg("path"), py::kw_only(), py::arg("display") = py::none(), py::arg("view") = py::none(),
           py::arg("look") = py::none(), py::arg("bits") = 8, py::arg("exposure_ev") = py::none(),

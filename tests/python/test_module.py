@@ -134,6 +134,7 @@ class RenderAgainstCli(unittest.TestCase):
             with self.assertRaises(ValueError) as e:
                 img.write_png(os.path.join(tmp, "x.png"), view="Filmic")
             self.assertIn("Un-tone-mapped", str(e.exception))
+            self.assertTrue(str(e.exception).startswith('view = "Filmic"'), str(e.exception))  # the keyword, not --view
             self.assertFalse(os.path.exists(os.path.join(tmp, "x.png")))
             # A NaN put into the arrays is refused, and nothing is written.
             img.rgb[0, 0, 0] = np.nan
