@@ -73,7 +73,7 @@ class PerspectiveCamera : public Camera {
 };
 
 /// How a latitude-longitude panorama lays the directions out across the image: which azimuth a
-/// column shows and where pixel centres sit (docs/other-tools.md#panoramas). All three put the
+/// column shows and where pixel centres sit (docs/other-tools.md#panoramas-hdris). All three put the
 /// zenith at the top and turn clockwise seen from above (north, east, south, west) from left to
 /// right, as seen from inside the sphere.
 enum class PanoramaConvention {

@@ -30,6 +30,8 @@ class WavelengthGrid {
   /// The band each sample stands for unless a scene says otherwise (spectrum.bandwidth_nm): the
   /// default grid's 10 nm step, and the resolution of the embedded ozone table.
   static constexpr double kDefaultBandwidth_nm = 10.0;
+  /// The widest band a sample may stand for.
+  static constexpr double kMaxBandwidth_nm = 1000.0;
 
   /// Evenly spaced samples from min_nm to max_nm inclusive, step_nm apart. max_nm - min_nm must be a
   /// whole number of steps (to 1e-6 nm). Throws InputError (setting "spectrum.step_nm" etc.).
@@ -52,7 +54,7 @@ class WavelengthGrid {
   double bandwidth_nm() const { return bandwidth_nm_; }
   /// The same samples standing for bands of another width; 0: every tabulated input is taken at
   /// the sample wavelength itself. Throws InputError ("spectrum.bandwidth_nm", ...) unless
-  /// 0 <= width <= 1000 nm.
+  /// 0 <= width <= kMaxBandwidth_nm.
   WavelengthGrid with_bandwidth(double width_nm) const;
 
  private:

@@ -86,8 +86,9 @@ int WavelengthGrid::index_of(double lambda_nm) const {
 }
 
 WavelengthGrid WavelengthGrid::with_bandwidth(double width_nm) const {
-  if (!(width_nm >= 0.0 && width_nm <= 1000.0))
-    throw InputError("spectrum.bandwidth_nm", format_number(width_nm), "a width from 0 (point values) to 1000 nm");
+  if (!(width_nm >= 0.0 && width_nm <= kMaxBandwidth_nm))
+    throw InputError("spectrum.bandwidth_nm", format_number(width_nm),
+                     "a width from 0 (point values) to " + format_number(kMaxBandwidth_nm) + " nm");
   WavelengthGrid g = *this;
   g.bandwidth_nm_ = width_nm;
   return g;

@@ -525,7 +525,7 @@ const std::vector<KeyDef>& registry() {
     r.push_back(integer_key("spectrum.count", 0, WavelengthGrid::kMaxWavelengths,
                             "number of evenly spread wavelengths over min..max (0: use step_nm)",
                             [](Scene& s) -> int& { return s.spectrum.count; }));
-    r.push_back(number_key("spectrum.bandwidth_nm", "nm", {0.0, 1000.0},
+    r.push_back(number_key("spectrum.bandwidth_nm", "nm", {0.0, WavelengthGrid::kMaxBandwidth_nm},
                            "each sample stands for this band around it: the solar spectrum and the ozone "
                            "cross-sections are averaged over lambda +- bandwidth/2 at every sample, whatever the "
                            "other samples are (0: taken at the sample wavelength)",

@@ -2,9 +2,8 @@
 // stands for its own band (WavelengthGrid::bandwidth_nm), so the solar spectrum and the ozone
 // cross-sections it gets are the same on any grid, as Rayleigh and Mie, evaluated at the
 // wavelength itself, always were. The physics issue's example: the default scene at a 5 degree
-// sun, a 64 x 32 panorama (here 32 x 16, for time); the mean radiance of the upper rows at 440 nm
-// was 7 % higher on the grid 400, 440, 550, 680 than on 440, 550, 680, and at 680 nm 1.3 % higher
-// with 600 nm added.
+// sun, a 64 x 32 panorama (here 32 x 16, for time), 440 nm with and without 400 nm in the grid,
+// 680 nm with and without 600 nm (what the cell averages before did: docs/physics.md).
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
