@@ -106,6 +106,19 @@ def render(
 ) -> RenderResult:
     """Render a scene into memory; no files are written until you ask (RenderResult.write_exr)."""
 
+def run_job(
+    job: str,
+    *,
+    out: Optional[str] = None,
+    scheduler: Optional[str] = None,
+    workers: Optional[int] = None,
+    threads: int = 1,
+    skyspec: Optional[str] = None,
+    quiet: bool = False,
+) -> Dict[str, Any]:
+    """Run a job file on Dask (a LocalCluster, or `scheduler`); returns the summary dict, raises
+    skyspec_jobs.JobFailed when tasks failed or did not run. docs/jobs.md."""
+
 def derive(
     wavelengths_nm: Optional[Numbers] = None,
     *,

@@ -486,7 +486,8 @@ PYBIND11_MODULE(skyspec, m) {
       "us_standard_atmosphere(z)   temperature, pressure, number density of the U.S. Standard Atmosphere 1976\n"
       "rayleigh_cross_section(...) sigma(lambda) in m^2\n"
       "render(...)                 a spectral sky image with its directions, sun, exposure and scene (RenderResult)\n"
-      "scene_toml(...), preset_names(), scene_keys()\n\n"
+      "scene_toml(...), preset_names(), scene_keys()\n"
+      "run_job(job, ...)           a job file (sites x times x parameters) on a Dask cluster\n\n"
       "Scenes: a preset ('default' or 'seed'), then an optional scene file or TOML text, then overrides, a dict\n"
       "of scene keys, e.g. {'camera.width': 64, 'sun.elevation_deg': 5} or {'sun': {'elevation_deg': 5}}\n"
       "(the keys of `skyspec render --help-keys`). Bad input raises ValueError naming the key.";
@@ -616,4 +617,22 @@ valid, pixel(), spectrum_at()), the sun (sun_direction, sun_azimuth_deg, sun_ele
 `skyspec render` would (write_exr(), write_png()). Example:
   img = skyspec.render(overrides={"camera.width": 64, "camera.height": 64, "sun.elevation_deg": 10})
   img.spectrum_at(azimuth_deg=0, elevation_deg=45); img.write_exr("sky.exr"))");
+
+  // Jobs run on Dask through the pure-Python driver beside this module (skyspec_jobs.py).
+  m.def(
+      "run_job",
+      [](const py::object& job, const py::object& out, const py::object& scheduler, const py::object& workers,
+         int threads, const py::object& skyspec, bool quiet) {
+        return py::module_::import("skyspec_jobs")
+            .attr("run_job")(job, py::arg("out") = out, py::arg("scheduler") = scheduler, py::arg("workers") = workers,
+                             py::arg("threads") = threads, py::arg("skyspec") = skyspec, py::arg("quiet") = quiet);
+      },
+      py::arg("job"), py::kw_only(), py::arg("out") = py::none(), py::arg("scheduler") = py::none(),
+      py::arg("workers") = py::none(), py::arg("threads") = 1, py::arg("skyspec") = py::none(),
+      py::arg("quiet") = false,
+      R"(Run a job file (docs/jobs.md) on Dask: a LocalCluster of `workers` processes by default, or the cluster
+of `scheduler` ("tcp://host:8786"). Each chunk of tasks runs `skyspec job run --tasks` in a child
+process (`skyspec`: the program, default $SKYSPEC_CLI, beside this module or on PATH) with `threads`
+render threads; finished tasks are kept, so running it again runs only what is missing. Returns a
+summary dict (tasks, ok, failed, missing, output); raises skyspec_jobs.JobFailed when tasks failed or did not run.)");
 }

@@ -23,6 +23,7 @@ CliApp::CliApp()
       add_timelapse_command(app),
       add_aerial_command(app),
       add_coefficients_command(app),
+      add_job_command(app),
   };
 }
 

@@ -1,0 +1,126 @@
+#include "job/job_collect.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <map>
+
+#include "base/atomic_file.hpp"
+#include "job/task_record.hpp"
+#include "skyspec/error.hpp"
+
+namespace skyspec {
+namespace {
+
+using nlohmann::json;
+
+constexpr std::size_t kFailuresListed = 5;
+
+std::string csv_number(double x) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.9g", x);
+  return buf;
+}
+
+std::string csv_text(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+std::string csv_value(const json& v) {
+  if (v.is_number()) return csv_number(v.get<double>());
+  if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
+  if (v.is_string()) return csv_text(v.get<std::string>());
+  return csv_text(v.dump());
+}
+
+void write_text_atomically(const std::filesystem::path& path, const std::string& text) {
+  AtomicOutputFile file(path);
+  {
+    std::ofstream f(file.temporary_path(), std::ios::binary);
+    f << text;
+    if (!f.flush()) throw IoError("cannot write " + path.string());
+  }
+  file.commit();
+}
+
+const char* const kBroadband[] = {"direct_normal_W_m2",   "direct_horizontal_W_m2", "diffuse_horizontal_W_m2",
+                                  "direct_normal_lux",    "direct_horizontal_lux",  "diffuse_horizontal_lux",
+                                  "global_horizontal_lux"};
+const char* const kSpectral[] = {"global_horizontal_W_m2_nm", "diffuse_horizontal_W_m2_nm", "direct_normal_W_m2_nm"};
+
+std::string table_header(const JobPlan& plan, const json& first) {
+  std::string h = "task,date_time,sun_elevation_deg,sun_azimuth_deg";
+  for (const auto& [key, value] : plan.combinations.front()) h += "," + key;
+  for (const char* b : kBroadband) h += std::string(",") + b;
+  const auto& wl = first.at("irradiance").at("wavelengths_nm");
+  for (const char* s : kSpectral)
+    for (const auto& w : wl) h += std::string(",") + s + "_" + csv_number(w.get<double>());
+  return h + "\n";
+}
+
+std::string table_row(const JobPlan& plan, const json& r) {
+  std::string row = r.at("id").get<std::string>() + "," + csv_text(r.value("date_time", std::string())) + "," +
+                    csv_number(r.at("sun_elevation_deg").get<double>()) + "," +
+                    csv_number(r.at("sun_azimuth_deg").get<double>());
+  for (const auto& [key, value] : plan.combinations.front()) row += "," + csv_value(r.at("parameters").at(key));
+  const auto& irr = r.at("irradiance");
+  for (const char* b : kBroadband) row += "," + csv_number(irr.at(b).get<double>());
+  for (const char* s : kSpectral)
+    for (const auto& v : irr.at(s)) row += "," + csv_number(v.get<double>());
+  return row + "\n";
+}
+
+}  // namespace
+
+std::string JobSummary::describe() const {
+  std::string s = std::to_string(ok) + " task(s) done";
+  if (failed) s += ", " + std::to_string(failed) + " failed";
+  if (missing) s += ", " + std::to_string(missing) + " not run";
+  for (const auto& f : failures) s += "\n  " + f;
+  if (failed > static_cast<int>(failures.size())) s += "\n  ... (every error is in manifest.jsonl)";
+  return s;
+}
+
+JobSummary collect_job(const JobPlan& plan) {
+  JobSummary summary;
+  std::string manifest;
+  std::map<std::string, std::string> tables;  // site -> CSV text
+  for (const auto& task : plan.tasks) {
+    json r = read_task_record(plan, task);
+    if (r.is_null()) {
+      ++summary.missing;
+      manifest += json{{"task", task.index}, {"id", task.id()}, {"site", plan.site_name(task)}, {"status", "missing"}}.dump() + "\n";
+      continue;
+    }
+    manifest += r.dump() + "\n";
+    if (r.value("status", "") != "ok") {
+      ++summary.failed;
+      if (summary.failures.size() < kFailuresListed)
+        summary.failures.push_back(task.id() + ": " + r.value("error", std::string("(no error recorded)")));
+      continue;
+    }
+    ++summary.ok;
+    if (!plan.job.irradiance || !r.contains("irradiance")) continue;
+    try {
+      auto& table = tables[plan.site_name(task)];
+      if (table.empty()) table = table_header(plan, r);
+      table += table_row(plan, r);
+    } catch (const json::exception& e) {
+      throw IoError("the record of task " + task.id() + " is damaged (" + e.what() + "): remove " +
+                    task_record_path(plan, task).string() + " and run the job again");
+    }
+  }
+  const auto& out = plan.job.output_directory;
+  std::filesystem::create_directories(out);
+  write_text_atomically(out / "manifest.jsonl", manifest);
+  for (const auto& [site, text] : tables) {
+    const auto path = out / ("irradiance_" + site + ".csv");
+    write_text_atomically(path, text);
+    summary.tables.push_back(path);
+  }
+  return summary;
+}
+
+}  // namespace skyspec

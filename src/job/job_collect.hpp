@@ -1,0 +1,29 @@
+// After a job's tasks: the manifest (one JSON line per task, in task order) and one irradiance
+// table per site, assembled from the tasks' records. Run by `skyspec job run` at its end and by
+// `skyspec job collect` (the step after the shards of a farm or a Slurm array).
+//
+//   <output>/manifest.jsonl         every task's record; tasks without one: {"status": "missing"}
+//   <output>/irradiance_<site>.csv  one row per task of the site that succeeded (job.produce has
+//                                   "irradiance"): time, sun, parameters, broadband values, then
+//                                   the spectral global horizontal, diffuse horizontal and direct
+//                                   normal irradiance per wavelength
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "job/job_plan.hpp"
+
+namespace skyspec {
+
+struct JobSummary {
+  int ok = 0, failed = 0, missing = 0;
+  std::vector<std::string> failures;  ///< "t000012: <error>" for the first few failed tasks
+  std::vector<std::filesystem::path> tables;  ///< the irradiance tables written
+  std::string describe() const;
+};
+
+/// Writes the manifest and the tables (atomically, replacing earlier ones) from the records found.
+JobSummary collect_job(const JobPlan& plan);
+
+}  // namespace skyspec
