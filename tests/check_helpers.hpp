@@ -22,4 +22,14 @@ inline std::string error_setting(const std::function<void()>& f) {
   return "(no error)";
 }
 
+/// The message of the InputError that f throws ("" if it throws none).
+inline std::string input_error_message(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
 }  // namespace skyspec::test

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "check_helpers.hpp"
+#include "scene_fixtures.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/scene.hpp"
 
@@ -13,17 +15,11 @@ BOOST_AUTO_TEST_SUITE(test_scene)
 using namespace skyspec;
 
 namespace {
-// The message of the InputError that `f` throws ("" if it throws none).
 template <class F>
 std::string error_of(F f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
+  return test::input_error_message(f);
 }
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+using test::contains;
 
 std::string load_error(const std::string& toml, const std::string& preset = "default") {
   return error_of([&] {

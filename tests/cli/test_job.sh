@@ -1,0 +1,170 @@
+#!/usr/bin/env bash
+# skyspec job (issue 22): shards cover every task once; a Dask run (LocalCluster, 2 workers) gives
+# the same bytes as the shards and as `skyspec render` of a task's scene; an interrupted job
+# resumes with only the missing tasks; a worker killed with SIGKILL on a real `dask scheduler` +
+# 2 `dask worker` cluster loses nothing; a task with bad input is recorded and the job goes on;
+# a job file with an error is refused before any task runs, naming the key.
+# Usage: test_job.sh path/to/skyspec   (the Dask parts need <dir of skyspec>/python/skyspec_jobs.py:
+# the sanitizer build has no Python and runs the rest)
+skyspec=$1
+source "$(dirname "$0")/lib.sh"
+python=${SKYSPEC_PYTHON:-/usr/bin/python3}
+have_dask=0
+[ -f "$(dirname "$skyspec")/python/skyspec_jobs.py" ] && have_dask=1
+
+cat >"$work/small.toml" <<'TOML'
+[job]
+name = "small"
+produce = ["exr", "png", "irradiance"]
+tasks_per_chunk = 2
+[scene]
+camera.width = 24
+camera.height = 24
+render.scattering_orders = 1
+[[time]]
+start = 2026-03-20T09:00:00+01:00
+end = 2026-03-20T15:00:00+01:00
+step_minutes = 180
+[[site]]
+name = "munich"
+latitude_deg = 48.14
+longitude_deg = 11.58
+altitude_m = 520
+[[site]]
+name = "nairobi"
+latitude_deg = -1.29
+longitude_deg = 36.82
+altitude_m = 1795
+[axes]
+"atmosphere.mie.scattering_per_m" = [1e-5, 3e-5]
+TOML
+total=12
+
+# digests DIR: "name sha256" of every task file and table, sorted (records hold timings: left out).
+digests() { (cd "$1" && sha256sum tasks/*.exr tasks/*.png irradiance_*.csv | sort -k2); }
+no_temporaries() { ! find "$1" -name '*.tmp-*' | grep -q .; }
+# wait_for_records DIR N: until DIR/tasks holds N task records (at most 30 s).
+wait_for_records() {
+  for _ in $(seq 600); do
+    [ "$(ls "$1/tasks/"*.json 2>/dev/null | wc -l)" -ge "$2" ] && return
+    sleep 0.05
+  done
+}
+
+# --- a job file with an error: refused before any task runs, naming the key ---------------------
+printf '[job]\nname = "bad"\n[axes]\n"atmosphere.mie.g" = [0.5, 1.2]\n' >"$work/bad.toml"
+run_expecting_error "axis value out of range" 2 'axes.atmosphere.mie.g' "$work/bad-out" \
+  "$skyspec" job run "$work/bad.toml" --out "$work/bad-out"
+[ ! -e "$work/bad-out" ] && ok || bad "a refused job created its output folder"
+printf '[job]\nname = "bad"\ntasks_per_chunck = 3\n' >"$work/bad2.toml"
+run_expecting_error "unknown job key" 2 'job.tasks_per_chunck' "$work/bad-out" "$skyspec" job plan "$work/bad2.toml"
+run_expecting_error "bad shard" 2 '--shard' "$work/bad-out" "$skyspec" job run "$work/small.toml" --out "$work/bad-out" --shard 4/3
+
+# --- plan ----------------------------------------------------------------------------------------
+"$skyspec" job plan "$work/small.toml" --out "$work/x" >"$work/plan.txt" 2>&1 || bad "job plan failed: $(cat "$work/plan.txt")"
+grep -q "$total task(s)" "$work/plan.txt" && grep -q "estimate: outputs up to" "$work/plan.txt" && ok ||
+  bad "job plan: $(cat "$work/plan.txt")"
+
+# --- shards: every task exactly once, then collect -----------------------------------------------
+ran=0
+for i in 1 2 3; do
+  out=$("$skyspec" job run "$work/small.toml" --out "$work/A" --shard $i/3 --threads 1) || bad "shard $i/3 failed"
+  ran=$((ran + $(sed -n 's/.*: ran \([0-9]*\),.*/\1/p' <<<"$out")))
+done
+[ "$ran" = "$total" ] && ok || bad "the three shards ran $ran tasks, not $total"
+[ "$(ls "$work/A/tasks/"*.json | wc -l)" = "$total" ] && ok || bad "shards: $(ls "$work/A/tasks" | wc -l) files"
+"$skyspec" job collect "$work/small.toml" --out "$work/A" --quiet || bad "collect after the shards failed"
+[ "$(grep -c '"status":"ok"' "$work/A/manifest.jsonl")" = "$total" ] && ok || bad "manifest: $(head -c 300 "$work/A/manifest.jsonl")"
+[ "$(wc -l <"$work/A/irradiance_nairobi.csv")" = 7 ] && ok || bad "irradiance_nairobi.csv has $(wc -l <"$work/A/irradiance_nairobi.csv") lines"
+# Run again: nothing left to do.
+out=$("$skyspec" job run "$work/small.toml" --out "$work/A" --shard 1/1 --threads 1)
+grep -q "ran 0, $total already done" <<<"$out" && ok || bad "a finished job ran again: $out"
+# A damaged output is found by its checksum and that task alone runs again.
+printf 'x' >>"$work/A/tasks/t000005.png"
+out=$("$skyspec" job run "$work/small.toml" --out "$work/A" --shard 1/1 --threads 1)
+grep -q "ran 1, $((total - 1)) already done" <<<"$out" && ok || bad "a damaged file: $out"
+digests "$work/A" >"$work/A.sha"
+
+# --- a task with bad input (a combination the job's own checks cannot see) is recorded -----------
+cat >"$work/mixed.toml" <<'TOML'
+[job]
+name = "mixed"
+produce = ["irradiance"]
+[scene]
+render.scattering_orders = 1
+[axes]
+"atmosphere.ozone.bottom_m" = [10000, 20000]
+"atmosphere.ozone.peak_m" = [15000, 30000]
+TOML
+"$skyspec" job run "$work/mixed.toml" --out "$work/M" --shard 1/1 >"$work/stdout" 2>"$work/stderr"
+rc=$?
+[ "$rc" = 4 ] && ok || bad "a job with a failed task: exit $rc, expected 4"
+grep -q "t000002 failed: .*atmosphere.ozone.peak_m" "$work/stderr" && grep -q "3 task(s) done, 1 failed" "$work/stdout" && ok ||
+  bad "failed task report: $(cat "$work/stdout" "$work/stderr")"
+grep '"id":"t000002"' "$work/M/manifest.jsonl" | grep '"status":"failed"' | grep -q 'bottom_m < peak_m' && ok ||
+  bad "the manifest lacks the failure: $(cat "$work/M/manifest.jsonl")"
+
+if [ "$have_dask" = 1 ]; then
+  # --- Dask, LocalCluster with 2 workers: the same bytes as the shards --------------------------
+  mv "$work/A" "$work/A-shards"
+  "$skyspec" job run "$work/small.toml" --out "$work/A" --workers 2 --quiet >"$work/stdout" 2>"$work/stderr" ||
+    bad "job run on a LocalCluster failed: $(tail -5 "$work/stderr")"
+  digests "$work/A" | diff - "$work/A.sha" >/dev/null && ok || bad "Dask and the shards wrote different files"
+  [ "$(grep -c '"status":"ok"' "$work/A/manifest.jsonl")" = "$total" ] && ok || bad "Dask manifest incomplete"
+  # ... and as `skyspec render` of the task's scene.
+  "$skyspec" job plan "$work/small.toml" --out "$work/A" --print-scene 7 >"$work/t7.toml"
+  mv "$work/A/tasks/t000007.exr" "$work/t7-job.exr"
+  "$skyspec" render --scene "$work/t7.toml" --quiet >/dev/null 2>&1 || bad "render of task 7's scene failed"
+  cmp -s "$work/A/tasks/t000007.exr" "$work/t7-job.exr" && ok || bad "render --scene of task 7 differs from the job's file"
+
+  # --- resume: SIGINT mid-job, then only the missing tasks run (from Python: skyspec.run_job) -----
+  sed -e 's/camera.width = 24/camera.width = 160/' -e 's/camera.height = 24/camera.height = 160/' \
+      -e 's/tasks_per_chunk = 2/tasks_per_chunk = 1/' -e 's/step_minutes = 180/step_minutes = 60/' \
+      "$work/small.toml" >"$work/resume.toml"  # 28 tasks
+  "$skyspec" job run "$work/resume.toml" --out "$work/R" --workers 2 --quiet >/dev/null 2>"$work/resume-stderr" &
+  pid=$!
+  wait_for_records "$work/R" 3
+  kill -INT $pid
+  wait $pid
+  rc=$?
+  done_before=$(ls "$work/R/tasks/"*.json 2>/dev/null | wc -l)
+  [ "$rc" = 130 ] && ok || bad "interrupted job: exit $rc, expected 130: $(tail -3 "$work/resume-stderr")"
+  [ "$done_before" -ge 3 ] && [ "$done_before" -lt 28 ] && ok || bad "interrupted after $done_before of 28 tasks"
+  sleep 0.5  # the children stop on SIGTERM when their worker ends
+  no_temporaries "$work/R" && ok || bad "the interrupted job left temporary files: $(find "$work/R" -name '*.tmp-*')"
+  (cd "$work/R/tasks" && stat -c '%n %i %Y' *.json >"$work/before.txt")
+  PYTHONPATH="$(dirname "$skyspec")/python" SKYSPEC_CLI="$skyspec" "$python" -c "
+import skyspec, sys
+s = skyspec.run_job(sys.argv[1], out=sys.argv[2], workers=2, quiet=True)
+assert s['ok'] == 28 and s['failed'] == 0 and s['missing'] == 0, s
+" "$work/resume.toml" "$work/R" 2>"$work/py-stderr" || bad "skyspec.run_job (resume) failed: $(tail -5 "$work/py-stderr")"
+  (cd "$work/R/tasks" && stat -c '%n %i %Y' $(cut -d' ' -f1 "$work/before.txt")) | diff - "$work/before.txt" >/dev/null &&
+    ok || bad "the resumed job rewrote tasks that were done"
+  [ "$(ls "$work/R/tasks/"*.json | wc -l)" = 28 ] && ok || bad "after resume: $(ls "$work/R/tasks/"*.json | wc -l) records"
+
+  # --- a real scheduler and two workers; one worker SIGKILLed mid-job -----------------------------
+  dask scheduler --scheduler-file "$work/sched.json" --port 0 --no-dashboard >"$work/sched.log" 2>&1 &
+  sched=$!
+  for _ in $(seq 200); do [ -s "$work/sched.json" ] && break; sleep 0.05; done
+  dask worker --scheduler-file "$work/sched.json" --nthreads 1 --no-dashboard >"$work/w1.log" 2>&1 &
+  w1=$!
+  dask worker --scheduler-file "$work/sched.json" --nthreads 1 --no-dashboard >"$work/w2.log" 2>&1 &
+  w2=$!
+  address=$("$python" -c "import json,sys; print(json.load(open(sys.argv[1]))['address'])" "$work/sched.json")
+  "$skyspec" job run "$work/resume.toml" --out "$work/K" --scheduler "$address" --quiet >/dev/null 2>"$work/kill-stderr" &
+  job=$!
+  wait_for_records "$work/K" 4
+  kill -KILL $w1
+  wait $w1 2>/dev/null
+  wait $job
+  rc=$?
+  [ "$rc" = 0 ] && ok || bad "job with a killed worker: exit $rc: $(tail -5 "$work/kill-stderr")"
+  [ "$(grep -c '"status":"ok"' "$work/K/manifest.jsonl" 2>/dev/null)" = 28 ] && ok || bad "killed worker: manifest incomplete"
+  sleep 0.5
+  no_temporaries "$work/K" && ok || bad "a killed worker left temporary files"
+  kill $w2 $sched 2>/dev/null
+  wait $w2 $sched 2>/dev/null
+else
+  echo "(Dask parts skipped: no $(dirname "$skyspec")/python/skyspec_jobs.py in this build)"
+fi
+finish cli_job
