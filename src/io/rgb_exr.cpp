@@ -23,29 +23,10 @@
 #include "base/atomic_file.hpp"
 #include "skyspec/error.hpp"
 #include "io/exr_open.hpp"
+#include "io/exr_streams.hpp"
 
 namespace skyspec {
 namespace {
-
-/// The file is encoded in memory first, then written with checked stdio calls, so that every
-/// write error is seen (OpenEXR's own file stream can lose errors at close).
-class MemoryOStream : public Imf::OStream {
- public:
-  MemoryOStream() : Imf::OStream("memory") {}
-  void write(const char c[], int n) override {
-    const size_t end = position_ + static_cast<size_t>(n);
-    if (bytes_.size() < end) bytes_.resize(end);
-    std::memcpy(bytes_.data() + position_, c, static_cast<size_t>(n));
-    position_ = end;
-  }
-  uint64_t tellp() override { return position_; }
-  void seekp(uint64_t position) override { position_ = static_cast<size_t>(position); }
-  const std::vector<char>& bytes() const { return bytes_; }
-
- private:
-  std::vector<char> bytes_;
-  size_t position_ = 0;
-};
 
 IMATH_NAMESPACE::V2f v2f(const double xy[2]) {
   return IMATH_NAMESPACE::V2f(static_cast<float>(xy[0]), static_cast<float>(xy[1]));

@@ -42,6 +42,7 @@
 #include "skyspec/error.hpp"
 #include "io/spectral_exr_encode.hpp"
 #include "io/exr_open.hpp"
+#include "io/exr_streams.hpp"
 
 namespace skyspec {
 namespace fs = std::filesystem;
@@ -110,112 +111,15 @@ bool ends_with(const std::string& s, const std::string& suffix) {
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
-// ---------------------------------------------------------------------------------------------
-// Output through stdio so that every write error (disk full, ...) is seen: OpenEXR's own file
-// stream can lose errors that happen when the file is closed.
-// ---------------------------------------------------------------------------------------------
-
-class StdioOStream : public Imf::OStream {
- public:
-  explicit StdioOStream(const fs::path& path) : Imf::OStream(path.c_str()), path_(path) {
-    file_ = std::fopen(path.c_str(), "wb");
-    if (!file_) fail("cannot open");
-    // OpenEXR writes a line block at a time, pieces of a few kB to MB: stdio's default 4 kB
-    // buffer turned a 6 MB file into about 1500 write() calls. One buffer of 1 MiB.
-    buffer_.reset(new char[kBufferBytes]);
-    if (std::setvbuf(file_, buffer_.get(), _IOFBF, kBufferBytes) != 0) buffer_.reset();
-  }
-  ~StdioOStream() override {
-    if (flushing_.valid()) flushing_.wait();  // its errors are another's to report, if any
-    if (file_) std::fclose(file_);
-  }
-  void write(const char c[], int n) override {
-    if (std::fwrite(c, 1, static_cast<size_t>(n), file_) != static_cast<size_t>(n)) fail("cannot write");
-  }
-  uint64_t tellp() override {
-    const off_t position = ::ftello(file_);
-    if (position < 0) fail("cannot tell position in");
-    return static_cast<uint64_t>(position);
-  }
-  void seekp(uint64_t position) override {
-    if (::fseeko(file_, static_cast<off_t>(position), SEEK_SET) != 0) fail("cannot seek in");
-  }
-  /// Hands what has been written so far to the kernel and has a helper thread flush it to the
-  /// disk (fdatasync) while the caller goes on with the next rows. The fsync when the file is
-  /// committed then finds little left to write; asynchronous writeback hints (sync_file_range)
-  /// alone do not achieve that, because a disk's cache flush waits for all the data since the
-  /// last flush (docs/performance.md has the measurement). The helper only waits for
-  /// the disk (no CPU time), so a one-thread render still computes on one core. While the
-  /// previous flush runs, none is started (small fast bands would otherwise wait for the disk):
-  /// the next one, or the commit's fsync, takes these rows. A flush error is reported by the next
-  /// call of this or close().
-  void start_writeback() {
-    if (std::fflush(file_) != 0) fail("cannot write");
-    if (flushing_.valid() && flushing_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
-    wait_for_flush();  // done: only its error, if any
-    const int fd = ::fileno(file_);
-    flushing_ = std::async(std::launch::async, [fd] { return ::fdatasync(fd) == 0 ? 0 : errno; });
-  }
-  /// Flush and close; throws IoError if this or any earlier write failed.
-  void close() {
-    wait_for_flush();
-    FILE* f = std::exchange(file_, nullptr);
-    const bool write_failed = failed_ || std::ferror(f) != 0;
-    const bool close_failed = std::fclose(f) != 0;
-    if (close_failed) fail("cannot close");
-    if (write_failed) {
-      failed_ = true;
-      throw IoError("cannot write '" + path_.string() + "'");
-    }
-  }
-
- private:
-  /// Waits for the flush started by start_writeback(), if any; throws IoError if it failed.
-  void wait_for_flush() {
-    if (!flushing_.valid()) return;
-    if (const int error_number = flushing_.get(); error_number != 0) {
-      errno = error_number;
-      fail("cannot flush");
-    }
-  }
-  [[noreturn]] void fail(const char* what) {
-    failed_ = true;
-    throw IoError(std::string(what) + " '" + path_.string() + "': " + std::strerror(errno));
-  }
-  static constexpr size_t kBufferBytes = size_t{1} << 20;
-  fs::path path_;
-  std::unique_ptr<char[]> buffer_;  // stdio's buffer, freed after the destructor's fclose
-  FILE* file_ = nullptr;
-  bool failed_ = false;
-  std::future<int> flushing_;  // start_writeback()'s fdatasync: 0 or its errno
-};
-
-/// A stream that keeps nothing but its position and length: OpenEXR encodes into it as into a
-/// file (render_budget.cpp times writing with it, without touching the disk).
-class DiscardingOStream : public Imf::OStream {
- public:
-  DiscardingOStream() : Imf::OStream("(discarded)") {}
-  void write(const char[], int n) override {
-    position_ += static_cast<uint64_t>(n);
-    length_ = std::max(length_, position_);
-  }
-  uint64_t tellp() override { return position_; }
-  void seekp(uint64_t position) override { position_ = position; }
-  uint64_t length() const { return length_; }
-
- private:
-  uint64_t position_ = 0, length_ = 0;
-};
-
 /// A FLOAT slice over a pixel-major buffer that holds `rows` rows starting at row y0: channel
 /// `channel` of `n_channels` interleaved values per pixel. OpenEXR addresses a scan-line slice as
 /// base + x * xStride + y * yStride with the absolute y, so the origin (0, y0) is passed on.
 template <class T>
-Imf::Slice interleaved_slice(const T* first_row, int channel, int n_channels, int width, int y0, int rows) {
+Imf::Slice interleaved_slice(const T* first_row, int channel, int n_channels, int x0, int width, int y0, int rows) {
   const size_t x_stride = static_cast<size_t>(n_channels) * sizeof(T);
   const size_t y_stride = static_cast<size_t>(width) * x_stride;
   return Imf::Slice::Make(std::is_same_v<T, float> ? Imf::FLOAT : Imf::HALF, first_row + channel,
-                          IMATH_NAMESPACE::V2i(0, y0), width, rows, x_stride, y_stride);
+                          IMATH_NAMESPACE::V2i(x0, y0), width, rows, x_stride, y_stride);
 }
 
 constexpr const char* kRgbNames[3] = {"R", "G", "B"};
@@ -294,7 +198,8 @@ struct SpectralExrWriter::Impl {
   // Declaration order matters: the OutputFile is destroyed first (it still writes through the
   // stream), then the stream closes, then the AtomicOutputFile removes an uncommitted file.
   fs::path final_path;
-  int width = 0, height = 0, rows_written = 0;
+  int width = 0, height = 0, rows_written = 0;  // of the data window
+  int x0 = 0, y0 = 0;                           // the data window's first pixel
   std::vector<std::string> channel_names;  // spectral channels in the caller's order
   bool half = false;                        // S0 channels stored as half
   std::vector<IMATH_NAMESPACE::half> half_band;  // a band's S0 values converted, when half
@@ -328,6 +233,14 @@ Imf::Compression compression_of(const std::string& name) {
 Imf::Header spectral_header(int width, int height, const std::vector<std::string>& channel_names,
                             const SpectralExrMetadata& meta) {
   Imf::Header header(width, height);
+  if (meta.data_window) {
+    const auto& [x0, x1, y0, y1] = *meta.data_window;
+    if (!(0 <= x0 && x0 < x1 && x1 <= width && 0 <= y0 && y0 < y1 && y1 <= height))
+      throw IoError("spectral EXR: data window x " + std::to_string(x0) + ".." + std::to_string(x1) + ", y " +
+                    std::to_string(y0) + ".." + std::to_string(y1) + " is not inside the " + std::to_string(width) +
+                    " x " + std::to_string(height) + " image");
+    header.dataWindow() = IMATH_NAMESPACE::Box2i(IMATH_NAMESPACE::V2i(x0, y0), IMATH_NAMESPACE::V2i(x1 - 1, y1 - 1));
+  }
   header.compression() = compression_of(meta.compression);
   header.lineOrder() = Imf::INCREASING_Y;
   const Imf::PixelType spectral_type = meta.half_spectral ? Imf::HALF : Imf::FLOAT;
@@ -379,15 +292,16 @@ int pool_threads(const Imf::Header& header, const SpectralExrMetadata& meta) {
   return threads;
 }
 
-// The frame buffer of a band of `rows` rows starting at row y0: the spectral channels (in
-// `names`' order) and R, G, B, interleaved per pixel.
+// The frame buffer of a band of `rows` rows of `width` pixels starting at pixel (x0, y0): the
+// spectral channels (in `names`' order) and R, G, B, interleaved per pixel.
 template <class T>
-Imf::FrameBuffer band_frame_buffer(const std::vector<std::string>& names, int width, int y0, int rows,
+Imf::FrameBuffer band_frame_buffer(const std::vector<std::string>& names, int x0, int width, int y0, int rows,
                                    const T* spectral, const float* rgb) {
   const int n = static_cast<int>(names.size());
   Imf::FrameBuffer frame;
-  for (int c = 0; c < n; ++c) frame.insert(names[static_cast<size_t>(c)], interleaved_slice(spectral, c, n, width, y0, rows));
-  for (int c = 0; c < 3; ++c) frame.insert(kRgbNames[c], interleaved_slice(rgb, c, 3, width, y0, rows));
+  for (int c = 0; c < n; ++c)
+    frame.insert(names[static_cast<size_t>(c)], interleaved_slice(spectral, c, n, x0, width, y0, rows));
+  for (int c = 0; c < 3; ++c) frame.insert(kRgbNames[c], interleaved_slice(rgb, c, 3, x0, width, y0, rows));
   return frame;
 }
 
@@ -418,9 +332,9 @@ uint64_t detail::encode_spectral_rows(int width, int rows, const std::vector<dou
     std::vector<IMATH_NAMESPACE::half> half_values;  // the conversion is part of the work measured
     if (meta.half_spectral) {
       half_values.assign(spectral, spectral + static_cast<size_t>(width) * rows * names.size());
-      exr.setFrameBuffer(band_frame_buffer(names, width, 0, rows, half_values.data(), rgb));
+      exr.setFrameBuffer(band_frame_buffer(names, 0, width, 0, rows, half_values.data(), rgb));
     } else {
-      exr.setFrameBuffer(band_frame_buffer(names, width, 0, rows, spectral, rgb));
+      exr.setFrameBuffer(band_frame_buffer(names, 0, width, 0, rows, spectral, rgb));
     }
     exr.writePixels(rows);
   }  // the destructor writes the line offsets
@@ -437,6 +351,12 @@ SpectralExrWriter::SpectralExrWriter(const fs::path& final_path, int width, int 
   std::vector<std::string> names = channel_names_of(wavelengths_nm, where);
 
   impl_ = std::make_unique<Impl>(final_path, width, height);
+  if (meta.data_window) {  // a tile: rows of the window (spectral_header checks it lies inside)
+    impl_->x0 = (*meta.data_window)[0];
+    impl_->y0 = (*meta.data_window)[2];
+    impl_->width = (*meta.data_window)[1] - impl_->x0;
+    impl_->height = (*meta.data_window)[3] - impl_->y0;
+  }
   impl_->channel_names = std::move(names);
   impl_->half = meta.half_spectral;
   try {
@@ -465,8 +385,8 @@ void SpectralExrWriter::write_rows(int rows, const float* spectral, const float*
   const size_t pixels = static_cast<size_t>(rows) * static_cast<size_t>(w.width);
   if (const long i = first_non_finite(spectral, pixels * static_cast<size_t>(n)); i >= 0) {
     const long pixel = i / n;
-    throw w.error("non-finite spectral value at x = " + std::to_string(pixel % w.width) + ", y = " +
-                  std::to_string(w.rows_written + pixel / w.width) + ", channel " +
+    throw w.error("non-finite spectral value at x = " + std::to_string(w.x0 + pixel % w.width) + ", y = " +
+                  std::to_string(w.y0 + w.rows_written + pixel / w.width) + ", channel " +
                   w.channel_names[static_cast<size_t>(i % n)]);
   }
   if (w.half) {  // OpenEXR would store a value beyond half's range as infinity
@@ -474,25 +394,26 @@ void SpectralExrWriter::write_rows(int rows, const float* spectral, const float*
     const float* big = std::find_if(spectral, end, [](float v) { return std::abs(v) > kHalfMax; });
     if (big != end) {
       const long i = big - spectral, pixel = i / n;
-      throw w.error("spectral value " + format_number(*big) + " at x = " + std::to_string(pixel % w.width) +
-                    ", y = " + std::to_string(w.rows_written + pixel / w.width) + ", channel " +
+      throw w.error("spectral value " + format_number(*big) + " at x = " + std::to_string(w.x0 + pixel % w.width) +
+                    ", y = " + std::to_string(w.y0 + w.rows_written + pixel / w.width) + ", channel " +
                     w.channel_names[static_cast<size_t>(i % n)] + " is beyond a half float's 65504: write it with " +
                     "output.exr_spectral_type = \"float\"");
     }
   }
   if (const long i = first_non_finite(rgb, pixels * 3); i >= 0) {
     const long pixel = i / 3;
-    throw w.error("non-finite RGB value at x = " + std::to_string(pixel % w.width) +
-                  ", y = " + std::to_string(w.rows_written + pixel / w.width));
+    throw w.error("non-finite RGB value at x = " + std::to_string(w.x0 + pixel % w.width) +
+                  ", y = " + std::to_string(w.y0 + w.rows_written + pixel / w.width));
   }
 
   try {
     if (w.half) {
       w.half_band.resize(pixels * static_cast<size_t>(n));
       std::copy(spectral, spectral + pixels * static_cast<size_t>(n), w.half_band.begin());  // rounds to nearest
-      w.exr->setFrameBuffer(band_frame_buffer(w.channel_names, w.width, w.rows_written, rows, w.half_band.data(), rgb));
+      w.exr->setFrameBuffer(
+          band_frame_buffer(w.channel_names, w.x0, w.width, w.y0 + w.rows_written, rows, w.half_band.data(), rgb));
     } else {
-      w.exr->setFrameBuffer(band_frame_buffer(w.channel_names, w.width, w.rows_written, rows, spectral, rgb));
+      w.exr->setFrameBuffer(band_frame_buffer(w.channel_names, w.x0, w.width, w.y0 + w.rows_written, rows, spectral, rgb));
     }
     w.exr->writePixels(rows);
     w.stream->start_writeback();

@@ -36,6 +36,10 @@ struct SpectralExrMetadata {
   /// is refused with IoError rather than written as infinity.
   bool half_spectral = false;
   std::string compression = "piz";             ///< lossless: piz, zip, zips, rle or none
+  /// A tile of the image: only pixels [x0, x1) x [y0, y1) of the width x height image are stored
+  /// (the file's dataWindow; its displayWindow stays the whole image). write_rows then takes rows
+  /// of x1 - x0 pixels, y1 - y0 of them. Tiles are assembled by merge_spectral_exr_tiles.
+  std::optional<std::array<int, 4>> data_window;
   /// Not stored in the file: how many cores compression may use (0: all; 1: the calling thread
   /// only, as for a render limited to one thread).
   int threads = 0;
@@ -50,7 +54,8 @@ class SpectralExrWriter {
   SpectralExrWriter(const SpectralExrWriter&) = delete;
   SpectralExrWriter& operator=(const SpectralExrWriter&) = delete;
 
-  /// Write the next `rows` rows (continuing from the last row written).
+  /// Write the next `rows` rows (continuing from the last row written), each of the data window's
+  /// width (the image's, unless meta.data_window says otherwise).
   /// spectral: rows * width * n_wavelengths floats, pixel-major ([row][x][lambda]);
   /// rgb: rows * width * 3 floats ([row][x][c]). Non-finite values are rejected with IoError.
   void write_rows(int rows, const float* spectral, const float* rgb);
