@@ -143,8 +143,12 @@ class SceneLoader {
 /// The quality levels, fastest first: draft, lean, default, high, reference.
 std::vector<std::string> quality_names();
 
-/// The effective scene as TOML (every key), for provenance and `--from` style reproduction.
-std::string scene_to_toml(const Scene& scene);
+/// What scene_to_toml writes: every key, or every key but where the outputs go (output.directory
+/// and output.name), which is what a file records of the scene it shows: the same render written
+/// into another folder or under another name is the same file, byte for byte.
+enum class SceneTomlKeys { All, WithoutOutputLocation };
+/// The effective scene as TOML, for provenance and `--from` style reproduction.
+std::string scene_to_toml(const Scene& scene, SceneTomlKeys keys = SceneTomlKeys::All);
 
 /// All scene keys with their documentation ("key  (unit, range)  help"), for --help-keys.
 std::vector<std::pair<std::string, std::string>> scene_key_help();

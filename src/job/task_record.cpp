@@ -84,7 +84,8 @@ std::filesystem::path task_record_path(const JobPlan& plan, const JobTask& task)
 std::string task_scene_digest(const Scene& scene) {
   Scene s = scene;
   s.render.threads = 0;  // changes no pixel (cli_determinism): any worker may run the task
-  return sha256_hex(scene_to_toml(s));
+  // Without the output folder, as the files record it: a job's folder moved elsewhere resumes.
+  return sha256_hex(scene_to_toml(s, SceneTomlKeys::WithoutOutputLocation));
 }
 
 json run_task(const JobPlan& plan, const JobTask& task) {

@@ -881,11 +881,12 @@ WavelengthGrid make_wavelength_grid(const Scene& s) {
 
 Vec3 sun_direction(const Scene& s) { return direction_from_angles(s.sun.azimuth_deg, s.sun.elevation_deg); }
 
-std::string scene_to_toml(const Scene& scene) {
+std::string scene_to_toml(const Scene& scene, SceneTomlKeys keys) {
   const Scene& s = scene;
   std::map<std::string, std::vector<std::pair<std::string, std::string>>> tables;
   std::vector<std::string> order;
   for (const auto& k : registry()) {
+    if (keys == SceneTomlKeys::WithoutOutputLocation && (k.key == "output.directory" || k.key == "output.name")) continue;
     const std::string value = k.get(s);
     if (value.empty()) continue;
     const auto dot = k.key.rfind('.');
