@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,9 @@ class SkyRenderer {
   /// preview RGB ([row][x][c]); uses all threads allowed by render.threads. Results do not depend
   /// on the number of threads. Throws Error if any value is not finite.
   void render_rows(int y0, int rows, float* spectral, float* rgb) const;
+  /// The same for the columns [x0, x1) of those rows only (a tile of the image): rows x (x1 - x0)
+  /// pixels, each the value render_rows gives it. Throws Error for a window outside the image.
+  void render_window(int x0, int x1, int y0, int rows, float* spectral, float* rgb) const;
 
   /// Spectral radiance of the sky (one value per grid wavelength, W m^-2 sr^-1 nm^-1), without
   /// the sun's disk, seen from the scene's camera position looking along the world-space direction
@@ -138,6 +142,17 @@ struct RenderOutputs {
   double output_seconds = 0.0;  ///< completing the files: the EXR's offset table, fsync and rename; PNG
 };
 
+/// A tile of the image, as pbrt's pixel bounds: columns [x0, x1) and rows [y0, y1) of the camera's
+/// image. Tiles rendered separately and merged (merge_spectral_exr_tiles) give the bytes of the
+/// whole render.
+struct PixelBounds {
+  int x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+};
+/// "x0,x1,y0,y1" (pbrt's order) -> PixelBounds; InputError naming `setting` for other text.
+PixelBounds parse_pixel_bounds(const std::string& text, const std::string& setting);
+/// Throws InputError naming `setting` unless 0 <= x0 < x1 <= width and 0 <= y0 < y1 <= height.
+void check_pixel_bounds(const PixelBounds& bounds, const CameraSpec& camera, const std::string& setting);
+
 /// Renders the scene and writes its outputs (spectral EXR streamed in bands, PNG preview), each
 /// atomically: on any error no output file is left behind.
 RenderOutputs render_scene_to_files(const Scene& scene, const ProgressFn& progress = {});
@@ -150,8 +165,12 @@ RenderOutputs render_scene_to_files(const Scene& scene, const ProgressFn& progre
 /// `prepared`, when given, is called with the renderer once it is built, before the exposure is
 /// metered and before any file is created: it may throw to refuse the render (render_budget.hpp).
 using PreparedFn = std::function<void(const SkyRenderer& renderer)>;
+/// With `tile`, only those pixels are rendered, into a spectral EXR whose data window is the tile
+/// and whose header is the whole render's (the same exposure, metered on the whole image); the
+/// scene must ask for the spectral EXR alone (InputError otherwise).
 RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& display,
-                                    const ProgressFn& progress = {}, const PreparedFn& prepared = {});
+                                    const ProgressFn& progress = {}, const PreparedFn& prepared = {},
+                                    const std::optional<PixelBounds>& tile = std::nullopt);
 /// The files render_scene_to_files writes for these settings: exr, png and working_exr set (empty
 /// where not asked for), nothing rendered. Unknown working spaces throw InputError.
 RenderOutputs render_output_paths(const Scene& scene, const DisplaySettings& display);

@@ -24,6 +24,7 @@ CliApp::CliApp()
       add_aerial_command(app),
       add_coefficients_command(app),
       add_job_command(app),
+      add_merge_command(app),
   };
 }
 

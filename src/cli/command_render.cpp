@@ -41,13 +41,24 @@ struct RenderOptions {
   bool no_exr = false, no_png = false, quiet = false, print_scene = false;
   std::string help_keys;  ///< "", "text" or "markdown"
   bool force = false, dry_run = false;
+  std::string pixel_bounds;  ///< --pixel-bounds x0,x1,y0,y1: a tile
 };
 
 Scene load_scene(const RenderOptions& o) {
   return cli::load_scene(o.scene, [&](SceneLoader& loader) {
     if (o.no_exr) loader.apply_override("output.exr", "false", "--no-exr");
     if (o.no_png) loader.apply_override("output.png", "false", "--no-png");
+    // A tile writes its spectral EXR alone: the PNG comes from the merged file (skyspec convert).
+    if (!o.pixel_bounds.empty()) loader.apply_override("output.png", "false", "--pixel-bounds");
   });
+}
+
+// --pixel-bounds, checked against the scene's image.
+std::optional<PixelBounds> tile_of(const RenderOptions& o, const Scene& scene) {
+  if (o.pixel_bounds.empty()) return std::nullopt;
+  const PixelBounds b = parse_pixel_bounds(o.pixel_bounds, "--pixel-bounds");
+  check_pixel_bounds(b, scene.camera, "--pixel-bounds");
+  return b;
 }
 
 bool exposure_flag_given(const RenderOptions& o) {
@@ -92,7 +103,9 @@ int run_render(RenderOptions& o) {
   }
   // Absurd requests are refused up front (render_budget.hpp): the sizes and the memory before the
   // renderer is built, the time once it is (measured on it, inside render_scene_to_files).
-  const RenderPlan plan = RenderPlan::for_scene(scene, !display.exr_space.empty(), display.png_bit_depth);
+  const std::optional<PixelBounds> tile = tile_of(o, scene);
+  RenderPlan plan = RenderPlan::for_scene(scene, !display.exr_space.empty(), display.png_bit_depth);
+  if (tile) plan.width = tile->x1 - tile->x0, plan.height = tile->y1 - tile->y0;
   if (!o.dry_run) ensure_writable_directory(scene.output.directory, "output.directory");  // its errors first
   RenderEstimate estimate = estimate_render(plan);
   if (!o.force) refuse_if_over_budget(estimate);
@@ -118,7 +131,7 @@ int run_render(RenderOptions& o) {
   };
   ProgressBar bar("rendering", o.quiet);
   const auto out = render_scene_to_files(scene, display, [&](int done, int total) { bar.update(done, total); },
-                                         prepared);
+                                         prepared, tile);
   bar.finish();
   if (!o.quiet) {
     if (!out.exr.empty()) std::cout << "wrote " << out.exr.string() << "\n";
@@ -127,8 +140,11 @@ int run_render(RenderOptions& o) {
     if (!out.png.empty()) std::cout << "display: " << out.display << "\n";
     std::cout << "exposure: " << out.exposure << "\n";
     std::cout << "estimate: " << estimate.describe() << "\n";
+    if (tile)
+      std::printf("tile: columns %d-%d, rows %d-%d of the %dx%d image (merge the tiles with skyspec merge)\n", tile->x0,
+                  tile->x1 - 1, tile->y0, tile->y1 - 1, scene.camera.width, scene.camera.height);
     std::printf("rendered %dx%d, %s, in %.2f s (tables %.3f s, image %.3f s, completing the files %.3f s)\n",
-                scene.camera.width, scene.camera.height, make_wavelength_grid(scene).describe().c_str(), out.seconds,
+                plan.width, plan.height, make_wavelength_grid(scene).describe().c_str(), out.seconds,
                 out.tables_seconds, out.image_seconds, out.output_seconds);
     if (!photometry.empty()) std::cout << photometry << "\n";
   }
@@ -170,6 +186,9 @@ Command add_render_command(CLI::App& app) {
   render->add_flag("--force", opts->force,
                    "render even if the outputs exceed the free disk, the memory needed exceeds what is available "
                    "or the estimated time exceeds 24 hours");
+  render->add_option("--pixel-bounds", opts->pixel_bounds,
+                     "x0,x1,y0,y1: render only columns x0..x1-1 and rows y0..y1-1 (pbrt's order) into a tile EXR "
+                     "(no PNG); skyspec merge assembles the tiles into the whole image's EXR, byte for byte");
   render->add_flag("--dry-run", opts->dry_run,
                    "estimate the outputs' size, the memory and the time (refusing as a render would), print the "
                    "estimate and exit");
@@ -180,6 +199,7 @@ Command add_render_command(CLI::App& app) {
             if (!opts->help_keys.empty()) return;
             const Scene scene = load_scene(*opts);
             if (opts->print_scene) return void(scene_to_toml(scene));
+            tile_of(*opts, scene);
             const DisplaySettings display = display_settings(opts->display, exposure_flag_given(*opts));
             if (scene.output.png || !display.exr_space.empty()) DisplayPipeline{display};
           }};

@@ -290,8 +290,16 @@ void SkyRenderer::aerial_rows(int y0, int rows, const float* distance_m, float* 
 }
 
 void SkyRenderer::render_rows(int y0, int rows, float* spectral, float* rgb) const {
+  render_window(0, width(), y0, rows, spectral, rgb);
+}
+
+void SkyRenderer::render_window(int x0, int x1, int y0, int rows, float* spectral, float* rgb) const {
   const auto& m = *impl_;
-  const int w = m.camera->width(), n = m.grid.size();
+  if (!(0 <= x0 && x0 < x1 && x1 <= width() && 0 <= y0 && rows > 0 && y0 + rows <= height()))
+    throw Error("render_window: columns " + std::to_string(x0) + ".." + std::to_string(x1) + ", rows " +
+                std::to_string(y0) + ".." + std::to_string(y0 + rows) + " are not inside the " +
+                std::to_string(width()) + " x " + std::to_string(height()) + " image");
+  const int w = x1 - x0, n = m.grid.size();  // w: the window's width; idx counts its pixels
   // Pixels go through in chunks: a chunk's directions are looked up in the sky-view table
   // together (SkyViewTable::lookup_many computes their angles in one vectorised loop); what the
   // table does not cover is marched, as sky_radiance() does for one direction.
@@ -318,7 +326,7 @@ void SkyRenderer::render_rows(int y0, int rows, float* spectral, float* rgb) con
         const int c1 = std::min(r.end(), c0 + kChunk);
         int count = 0;
         for (int idx = c0; idx < c1; ++idx) {
-          const int row = idx / w, x = idx % w;
+          const int row = idx / w, x = x0 + idx % w;
           if (m.camera->direction(x + 0.5, y0 + row + 0.5, sc.dirs[count]))
             sc.pixel[count++] = idx;
           else
@@ -340,7 +348,7 @@ void SkyRenderer::render_rows(int y0, int rows, float* spectral, float* rgb) con
             m.integrator.radiance(m.camera->origin_m(), dir, m.sun_dir, m.sun_irradiance, m.sources, sc.ws, sc.radiance);
             std::copy(sc.radiance.data(), sc.radiance.data() + n, px);
           }
-          if (m.scene.sun.disk) m.add_sun_disk(idx % w, y0 + idx / w, dir, px, sc.disk, sc.trans);
+          if (m.scene.sun.disk) m.add_sun_disk(x0 + idx % w, y0 + idx / w, dir, px, sc.disk, sc.trans);
         }
         for (int idx = c0; idx < c1; ++idx) {
           const float* px = spectral + static_cast<size_t>(idx) * n;

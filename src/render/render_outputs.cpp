@@ -101,6 +101,10 @@ SpectralExrMetadata spectral_exr_metadata(const Scene& scene, const std::map<std
   return meta;
 }
 
+std::string describe(const PixelBounds& b) {
+  return std::to_string(b.x0) + "," + std::to_string(b.x1) + "," + std::to_string(b.y0) + "," + std::to_string(b.y1);
+}
+
 // Renders the image in bands of rows, each rendered while the one before is compressed and
 // written (OpenEXR compresses a band's line blocks in parallel on its own threads), so that
 // rendering and compression overlap. With render.threads = 1 nothing overlaps: each band is
@@ -108,8 +112,10 @@ SpectralExrMetadata spectral_exr_metadata(const Scene& scene, const std::map<std
 // the disk runs on a helper thread that only waits: spectral_exr.cpp). 64 rows are two PIZ or
 // four ZIP line blocks; wide images take fewer rows so that a band stays near 64 MB. The whole
 // image's linear RGB is kept in `rgb` when it is not empty (for the PNG and the working-space EXR).
-void render_bands(const SkyRenderer& r, SpectralExrWriter* exr, std::vector<float>& rgb, const ProgressFn& progress) {
-  const int w = r.width(), h = r.height(), n = r.grid().size();
+void render_bands(const SkyRenderer& r, SpectralExrWriter* exr, std::vector<float>& rgb, const ProgressFn& progress,
+                  const PixelBounds& window) {
+  const int x0 = window.x0, w = window.x1 - window.x0, y_first = window.y0, y_end = window.y1, n = r.grid().size();
+  const int h = y_end - y_first;
   const size_t band_row_bytes = static_cast<size_t>(w) * static_cast<size_t>(n + 3) * sizeof(float);
   const int band = static_cast<int>(std::clamp<size_t>((size_t{64} << 20) / band_row_bytes, 8, 64));
   // Left uninitialised: render_rows writes every value, and its threads touch the pages first.
@@ -123,10 +129,10 @@ void render_bands(const SkyRenderer& r, SpectralExrWriter* exr, std::vector<floa
   }
   std::future<void> writing;  // the previous band on its way to the file
   const bool overlap = r.threads() > 1;
-  for (int y = 0, k = 0; y < h; y += band, k ^= 1) {
+  for (int y = 0, k = 0; y < h; y += band, k ^= 1) {  // y: rows of the window done
     const int rows = std::min(band, h - y);
     Band& b = bands[k];
-    r.render_rows(y, rows, b.spectral.get(), b.rgb.get());
+    r.render_window(x0, x0 + w, y_first + y, rows, b.spectral.get(), b.rgb.get());
     if (writing.valid()) writing.get();  // rethrows a write error
     if (exr && overlap)
       writing = std::async(std::launch::async, [exr, &b, rows] { exr->write_rows(rows, b.spectral.get(), b.rgb.get()); });
@@ -277,7 +283,7 @@ RenderOutputs render_scene_to_files(const Scene& scene, const ProgressFn& progre
 }
 
 RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& display, const ProgressFn& progress,
-                                    const PreparedFn& prepared) {
+                                    const PreparedFn& prepared, const std::optional<PixelBounds>& tile) {
   using Clock = std::chrono::steady_clock;
   const auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   const auto t_start = Clock::now();
@@ -289,6 +295,14 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
   const bool working_exr = !display.exr_space.empty();
   if (!scene.output.exr && !scene.output.png && !working_exr)
     throw InputError("output.exr and output.png", "false", "at least one output to be true");
+  const PixelBounds window = tile.value_or(PixelBounds{0, scene.camera.width, 0, scene.camera.height});
+  if (tile) {
+    check_pixel_bounds(*tile, scene.camera, "pixel bounds");
+    if (scene.output.png || working_exr || !scene.output.exr)
+      throw InputError("pixel bounds", describe(*tile),
+                       "a tile that writes only its spectral EXR (output.exr = true, output.png = false, no working-space "
+                       "EXR): merge the tiles (skyspec merge), then make the PNG with skyspec convert");
+  }
   std::optional<DisplayPipeline> pipeline;
   if (scene.output.png || working_exr) pipeline.emplace(display);
 
@@ -305,13 +319,15 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
 
   // 3. The image, streamed into the spectral EXR band by band.
   std::unique_ptr<SpectralExrWriter> exr;
-  if (scene.output.exr)
-    exr = std::make_unique<SpectralExrWriter>(out.exr = paths.exr, r.width(), r.height(), r.grid().nanometres(),
-                                              spectral_exr_metadata(scene, provenance, exposure.resolved.scale,
-                                                                    r.spectrum_to_rgb(r.sun_irradiance()), r.threads()));
+  if (scene.output.exr) {
+    SpectralExrMetadata meta = spectral_exr_metadata(scene, provenance, exposure.resolved.scale,
+                                                     r.spectrum_to_rgb(r.sun_irradiance()), r.threads());
+    if (tile) meta.data_window = std::array<int, 4>{tile->x0, tile->x1, tile->y0, tile->y1};
+    exr = std::make_unique<SpectralExrWriter>(out.exr = paths.exr, r.width(), r.height(), r.grid().nanometres(), meta);
+  }
   std::vector<float> rgb;
   if (pipeline) rgb.resize(static_cast<size_t>(r.width()) * r.height() * 3);
-  render_bands(r, exr.get(), rgb, progress);
+  render_bands(r, exr.get(), rgb, progress, window);
   out.image_seconds = since(t_image);
 
   // 4. The files completed, all or nothing. Completing the EXR (its offset table, fsync, rename)
