@@ -4,7 +4,8 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 # Debian bookworm packages: compiler and build tools, the libraries the build finds with
-# find_package, and the tools the tests use to open our outputs (exrheader, oiiotool, ociocheck).
+# find_package, and the tools the tests use to open our outputs (exrheader, oiiotool, ociocheck),
+# to run jobs (Dask) and to run the documented Slurm script on a single-node Slurm.
 SKYSPEC_PACKAGES=(
   build-essential cmake pkg-config
   libeigen3-dev libopenexr-dev libimath-dev libopencolorio-dev libtbb-dev libpng-dev
@@ -13,7 +14,7 @@ SKYSPEC_PACKAGES=(
   nlohmann-json3-dev
   pybind11-dev python3-dev python3-numpy python3-matplotlib python3-openimageio
   jupyter-nbconvert python3-ipykernel
-  python3-distributed python3-dask
+  python3-distributed python3-dask slurm-wlm munge
   clang-14 libclang-rt-14-dev
 )
 

@@ -15,6 +15,14 @@ inline std::string format_number(double v) {
   return s.str();
 }
 
+/// A number with every digit it needs to read back as the same double ("%.17g"): values that
+/// travel as text (job parameters, TOML written for the scene loader).
+inline std::string format_exact(double v) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
+}
+
 /// A number with a fixed number of decimals ("%.*f").
 inline std::string format_fixed(double v, int decimals) {
   char text[64];

@@ -5,18 +5,13 @@
 #include <cstdlib>
 
 #include "physics/solar_position.hpp"
+#include "base/text_format.hpp"
 #include "skyspec/error.hpp"
 
 namespace skyspec {
 namespace {
 
 constexpr long long kMaxTasks = 2000000;
-
-std::string number_text(double x) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  return buf;
-}
 
 // SplitMix64 (Steele, Lea & Flood 2014): a sample's random numbers depend only on the seed, the
 // sample and the axis, never on the order in which they are drawn or on the C++ library.
@@ -35,9 +30,9 @@ double uniform01(std::uint64_t seed, std::uint64_t sample, std::uint64_t axis) {
 std::string random_value(const JobRandomAxis& a, double u) {
   if (a.integer) {
     const double span = a.max - a.min + 1.0;
-    return number_text(std::min(a.max, a.min + std::floor(u * span)));
+    return format_exact(std::min(a.max, a.min + std::floor(u * span)));
   }
-  return number_text(a.min + u * (a.max - a.min));
+  return format_exact(a.min + u * (a.max - a.min));
 }
 
 std::vector<JobParameters> combinations_of(const JobSpec& job) {
@@ -87,12 +82,12 @@ std::string origin_in(const JobSpec& job, const std::string& key) {
 }
 
 std::string vec_text(const Vec3& v) {
-  return "[" + number_text(v.x()) + ", " + number_text(v.y()) + ", " + number_text(v.z()) + "]";
+  return "[" + format_exact(v.x()) + ", " + format_exact(v.y()) + ", " + format_exact(v.z()) + "]";
 }
 
 void apply_site(SceneLoader& l, const Scene& base, const JobSite& site, const std::string& origin) {
-  l.apply_override("location.latitude_deg", number_text(site.latitude_deg), origin + ".latitude_deg");
-  l.apply_override("location.longitude_deg", number_text(site.longitude_deg), origin + ".longitude_deg");
+  l.apply_override("location.latitude_deg", format_exact(site.latitude_deg), origin + ".latitude_deg");
+  l.apply_override("location.longitude_deg", format_exact(site.longitude_deg), origin + ".longitude_deg");
   if (site.altitude_m != 0.0) {
     Vec3 p = base.camera.position_m;
     p.z() += site.altitude_m;
@@ -151,7 +146,7 @@ JobPlan plan_job(const JobSpec& job) {
   for (const auto& axis : job.random_axes)
     for (double x : {axis.min, axis.max}) {
       SceneLoader l = base;
-      l.apply_override(axis.key, number_text(x), origin_in(job, "random.axes." + axis.key));
+      l.apply_override(axis.key, format_exact(x), origin_in(job, "random.axes." + axis.key));
       l.finish();
     }
   plan.combinations = combinations_of(job);
@@ -179,7 +174,7 @@ JobPlan plan_job(const JobSpec& job) {
       const double span = seconds_between(range.start, range.end);
       const long long n = static_cast<long long>(std::floor(span / (range.step_minutes * 60.0) + 1e-9)) + 1;
       if (n * static_cast<long long>(plan.combinations.size()) * site_count > kMaxTasks)
-        throw InputError("time[" + std::to_string(r) + "].step_minutes", number_text(range.step_minutes),
+        throw InputError("time[" + std::to_string(r) + "].step_minutes", format_exact(range.step_minutes),
                          "a step giving at most " + std::to_string(kMaxTasks) + " tasks in all (this gives " +
                              std::to_string(n * static_cast<long long>(plan.combinations.size()) * site_count) + ")",
                          job.file.string());
@@ -203,7 +198,7 @@ JobPlan plan_job(const JobSpec& job) {
         plan.tasks.push_back(t);
       }
   if (plan.tasks.empty())
-    throw InputError("job.min_sun_elevation_deg", number_text(job.min_sun_elevation_deg.value_or(0.0)),
+    throw InputError("job.min_sun_elevation_deg", format_exact(job.min_sun_elevation_deg.value_or(0.0)),
                      "a limit some frame reaches (no frame of the job has the sun this high)", job.file.string());
   return plan;
 }

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "scene/toml_limits.hpp"
+#include "base/text_format.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/scene.hpp"
 
@@ -25,12 +26,6 @@ std::string where(const toml::node& n, const std::string& origin) {
   return origin + ":" + std::to_string(s.begin.line) + ":" + std::to_string(s.begin.column);
 }
 
-std::string number_text(double x) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  return buf;
-}
-
 std::string quoted(const std::string& s) {
   std::ostringstream o;
   o << toml::value<std::string>(s);
@@ -44,7 +39,7 @@ std::string value_text(const toml::node& n) {
   if (auto f = n.as_floating_point()) {
     const double x = f->get();
     if (!std::isfinite(x)) return x != x ? "nan" : (x > 0 ? "inf" : "-inf");
-    std::string t = number_text(x);
+    std::string t = format_exact(x);
     if (t.find_first_of(".eE") == std::string::npos) t += ".0";
     return t;
   }
@@ -79,8 +74,8 @@ class Reader {
     double x;
     if (auto i = n.as_integer()) x = static_cast<double>(i->get());
     else if (auto f = n.as_floating_point()) x = f->get();
-    else fail(key, n, "a number from " + number_text(lo) + " to " + number_text(hi));
-    if (!(x >= lo && x <= hi)) fail(key, n, "a number from " + number_text(lo) + " to " + number_text(hi));
+    else fail(key, n, "a number from " + format_exact(lo) + " to " + format_exact(hi));
+    if (!(x >= lo && x <= hi)) fail(key, n, "a number from " + format_exact(lo) + " to " + format_exact(hi));
     return x;
   }
   long long integer(const toml::node& n, const std::string& key, long long lo, long long hi) const {
@@ -263,7 +258,7 @@ void read_axes(const Reader& r, const toml::table& t, JobSpec& job) {
       const double a1 = r.number(*range->get("stop"), name + ".stop", -1e300, 1e300);
       const long long count = r.integer(*range->get("count"), name + ".count", 1, kMaxAxisValues);
       for (long long k = 0; k < count; ++k)
-        axis.values.push_back(number_text(count == 1 ? a0 : a0 + (a1 - a0) * static_cast<double>(k) / static_cast<double>(count - 1)));
+        axis.values.push_back(format_exact(count == 1 ? a0 : a0 + (a1 - a0) * static_cast<double>(k) / static_cast<double>(count - 1)));
     } else {
       r.fail(name, *n, "a list of values, or { start, stop, count }");
     }
@@ -344,7 +339,7 @@ JobSpec parse_job(const std::string& text, const std::string& origin, const std:
       if (a.key == b.key)
         throw InputError("random.axes." + b.key, "(also in [axes])", "a key swept by [axes] or by [random], not both", origin);
   if (job.min_sun_elevation_deg && job.times.empty())
-    throw InputError("job.min_sun_elevation_deg", number_text(*job.min_sun_elevation_deg),
+    throw InputError("job.min_sun_elevation_deg", format_exact(*job.min_sun_elevation_deg),
                      "a filter on [[time]] frames: give a [[time]] range", origin);
   if (job.output_directory.empty()) job.output_directory = job.name;
   job.output_directory = std::filesystem::absolute(job.output_directory).lexically_normal();

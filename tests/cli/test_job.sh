@@ -10,34 +10,10 @@ skyspec=$1
 source "$(dirname "$0")/lib.sh"
 python=${SKYSPEC_PYTHON:-/usr/bin/python3}
 have_dask=0
+jobs=$(dirname "$0")/../data/jobs  # small.toml: 12 tasks; mixed.toml: one task with bad input
+cp "$jobs/small.toml" "$jobs/mixed.toml" "$work/"
 [ -f "$(dirname "$skyspec")/python/skyspec_jobs.py" ] && have_dask=1
 
-cat >"$work/small.toml" <<'TOML'
-[job]
-name = "small"
-produce = ["exr", "png", "irradiance"]
-tasks_per_chunk = 2
-[scene]
-camera.width = 24
-camera.height = 24
-render.scattering_orders = 1
-[[time]]
-start = 2026-03-20T09:00:00+01:00
-end = 2026-03-20T15:00:00+01:00
-step_minutes = 180
-[[site]]
-name = "munich"
-latitude_deg = 48.14
-longitude_deg = 11.58
-altitude_m = 520
-[[site]]
-name = "nairobi"
-latitude_deg = -1.29
-longitude_deg = 36.82
-altitude_m = 1795
-[axes]
-"atmosphere.mie.scattering_per_m" = [1e-5, 3e-5]
-TOML
 total=12
 
 # digests DIR: "name sha256" of every task file and table, sorted (records hold timings: left out).
@@ -86,16 +62,6 @@ grep -q "ran 1, $((total - 1)) already done" <<<"$out" && ok || bad "a damaged f
 digests "$work/A" >"$work/A.sha"
 
 # --- a task with bad input (a combination the job's own checks cannot see) is recorded -----------
-cat >"$work/mixed.toml" <<'TOML'
-[job]
-name = "mixed"
-produce = ["irradiance"]
-[scene]
-render.scattering_orders = 1
-[axes]
-"atmosphere.ozone.bottom_m" = [10000, 20000]
-"atmosphere.ozone.peak_m" = [15000, 30000]
-TOML
 "$skyspec" job run "$work/mixed.toml" --out "$work/M" --shard 1/1 >"$work/stdout" 2>"$work/stderr"
 rc=$?
 [ "$rc" = 4 ] && ok || bad "a job with a failed task: exit $rc, expected 4"
