@@ -88,6 +88,9 @@ int run_plan(const JobOptions& o) {
   std::cout << (job.sites.empty() ? 1 : job.sites.size()) << " site(s) x " << plan.combinations.size()
             << " parameter set(s) x frames";
   if (job.min_sun_elevation_deg) std::cout << " with the sun at or above " << *job.min_sun_elevation_deg << " deg";
+  if (job.tile_rows > 0)
+    std::cout << " x strips: " << plan.frame_tasks.size() << " frame(s) in strips of up to " << job.tile_rows
+              << " rows, merged into " << (job.output_directory / "frames").string();
   std::cout << "\n";
   if (!job.sites.empty()) {
     std::vector<int> per_site(job.sites.size(), 0);
@@ -99,7 +102,12 @@ int run_plan(const JobOptions& o) {
             << "produces: " << produce_list(job) << " per task, in " << plan.task_directory().string() << "\n";
   // The budget of render --dry-run for the first task's scene, times the tasks.
   const Scene first = task_scene(plan, plan.tasks.front());
-  const RenderPlan rp = RenderPlan::for_scene(first, false, 8, static_cast<int>(plan.tasks.size()));
+  RenderPlan rp = RenderPlan::for_scene(first, false, 8, static_cast<int>(plan.tasks.size()));
+  if (const auto& tile = plan.tasks.front().tile) {  // strips, and the merged frames besides them
+    rp.height = tile->y1 - tile->y0;
+    rp.extra_output_bytes = spectral_exr_bytes(first.camera.width, first.camera.height, rp.wavelengths) *
+                            plan.frame_tasks.size() / plan.tasks.size();
+  }
   RenderEstimate estimate = estimate_render(rp);
   if (job.exr || job.png) {
     const SkyRenderer light(scene_for_estimate(first));

@@ -5,6 +5,8 @@
 #include <map>
 
 #include "base/atomic_file.hpp"
+#include "base/sha256.hpp"
+#include "io/exr_merge.hpp"
 #include "job/task_record.hpp"
 #include "skyspec/error.hpp"
 
@@ -72,12 +74,53 @@ std::string table_row(const JobPlan& plan, const json& r) {
   return row + "\n";
 }
 
+// The frame's strips merged into frames/<frame id>.exr, unless its record says that file was made
+// from exactly these strips and it still has its checksum. Returns the frame's record.
+json merge_frame(const JobPlan& plan, int frame, const std::vector<json>& records, JobSummary& summary) {
+  const auto dir = plan.job.output_directory / "frames";
+  const auto exr = dir / (JobPlan::frame_id(frame) + ".exr"), record_path = dir / (JobPlan::frame_id(frame) + ".json");
+  const TaskRange range = plan.frame_tasks[frame];
+  json inputs = json::array();
+  std::vector<std::filesystem::path> tiles;
+  for (int k = range.first; k < range.last; ++k) {
+    const json& f = records[k].at("files").at(0);
+    inputs.push_back({{"task", plan.tasks[k].id()}, {"sha256", f.at("sha256")}});
+    tiles.push_back(plan.job.output_directory / f.at("path").get<std::string>());
+  }
+  std::ifstream old(record_path);
+  if (old) {
+    const json previous = json::parse(old, nullptr, false);
+    std::error_code ec;
+    if (!previous.is_discarded() && previous.value("inputs", json()) == inputs &&
+        std::filesystem::file_size(exr, ec) == previous.at("file").value("bytes", std::uintmax_t{0}) && !ec &&
+        sha256_file_hex(exr) == previous.at("file").value("sha256", std::string())) {
+      ++summary.frames_kept;
+      return previous;
+    }
+  }
+  std::filesystem::create_directories(dir);
+  merge_spectral_exr_tiles(tiles, exr);
+  const json record = {{"frame", frame},
+                       {"id", JobPlan::frame_id(frame)},
+                       {"inputs", inputs},
+                       {"file",
+                        {{"path", std::filesystem::relative(exr, plan.job.output_directory).generic_string()},
+                         {"bytes", std::filesystem::file_size(exr)},
+                         {"sha256", sha256_file_hex(exr)}}}};
+  write_text_atomically(record_path, record.dump() + "\n");
+  ++summary.frames_merged;
+  return record;
+}
+
 }  // namespace
 
 std::string JobSummary::describe() const {
   std::string s = std::to_string(ok) + " task(s) done";
   if (failed) s += ", " + std::to_string(failed) + " failed";
   if (missing) s += ", " + std::to_string(missing) + " not run";
+  if (frames_merged || frames_kept || frames_incomplete)
+    s += "; frames: " + std::to_string(frames_merged) + " merged, " + std::to_string(frames_kept) + " already merged, " +
+         std::to_string(frames_incomplete) + " waiting for strips";
   for (const auto& f : failures) s += "\n  " + f;
   if (failed > static_cast<int>(failures.size())) s += "\n  ... (every error is in manifest.jsonl)";
   return s;
@@ -87,8 +130,10 @@ JobSummary collect_job(const JobPlan& plan) {
   JobSummary summary;
   std::string manifest;
   std::map<std::string, std::string> tables;  // site -> CSV text
+  std::vector<json> records(plan.tasks.size());
   for (const auto& task : plan.tasks) {
     json r = read_task_record(plan, task);
+    records[task.index] = r;
     if (r.is_null()) {
       ++summary.missing;
       manifest += json{{"task", task.index}, {"id", task.id()}, {"site", plan.site_name(task)}, {"status", "missing"}}.dump() + "\n";
@@ -115,6 +160,25 @@ JobSummary collect_job(const JobPlan& plan) {
   const auto& out = plan.job.output_directory;
   std::filesystem::create_directories(out);
   write_text_atomically(out / "manifest.jsonl", manifest);
+  if (plan.job.tile_rows > 0) {
+    std::string frames;
+    for (int f = 0; f < static_cast<int>(plan.frame_tasks.size()); ++f) {
+      bool complete = true;
+      for (int k = plan.frame_tasks[f].first; k < plan.frame_tasks[f].last; ++k)
+        complete &= !records[k].is_null() && records[k].value("status", "") == "ok";
+      if (!complete) {
+        ++summary.frames_incomplete;
+        frames += json{{"frame", f}, {"id", JobPlan::frame_id(f)}, {"status", "incomplete"}}.dump() + "\n";
+        continue;
+      }
+      try {
+        frames += merge_frame(plan, f, records, summary).dump() + "\n";
+      } catch (const json::exception& e) {
+        throw IoError("the records of frame " + JobPlan::frame_id(f) + " are damaged (" + e.what() + ")");
+      }
+    }
+    write_text_atomically(out / "frames.jsonl", frames);
+  }
   for (const auto& [site, text] : tables) {
     const auto path = out / ("irradiance_" + site + ".csv");
     write_text_atomically(path, text);

@@ -7,6 +7,9 @@
 //                                   "irradiance"): time, sun, parameters, broadband values, then
 //                                   the spectral global horizontal, diffuse horizontal and direct
 //                                   normal irradiance per wavelength
+//   <output>/frames/f000003.exr     with job.tile_rows: a frame's strips merged (io/exr_merge.hpp)
+//                                   once all of them succeeded, with its record f000003.json (the
+//                                   strips' checksums and its own); frames.jsonl lists them
 #pragma once
 
 #include <string>
@@ -18,6 +21,7 @@ namespace skyspec {
 
 struct JobSummary {
   int ok = 0, failed = 0, missing = 0;
+  int frames_merged = 0, frames_kept = 0, frames_incomplete = 0;  ///< job.tile_rows
   std::vector<std::string> failures;  ///< "t000012: <error>" for the first few failed tasks
   std::vector<std::filesystem::path> tables;  ///< the irradiance tables written
   std::string describe() const;

@@ -120,6 +120,12 @@ TaskRange JobPlan::shard(int i, int n) const {
 
 std::filesystem::path JobPlan::task_directory() const { return job.output_directory / "tasks"; }
 
+std::string JobPlan::frame_id(int frame) {
+  char buf[24];
+  std::snprintf(buf, sizeof buf, "f%06d", frame);
+  return buf;
+}
+
 std::string JobPlan::site_name(const JobTask& task) const {
   return task.site < 0 ? std::string("scene") : job.sites[task.site].name;
 }
@@ -187,16 +193,35 @@ JobPlan plan_job(const JobSpec& job) {
     }
   }
   for (int s = 0; s < site_count; ++s)
-    for (int c = 0; c < static_cast<int>(plan.combinations.size()); ++c)
-      for (const auto& f : frames[s]) {
-        JobTask t;
-        t.index = static_cast<int>(plan.tasks.size());
-        t.site = job.sites.empty() ? -1 : s;
-        t.time = f.time;
-        t.combination = c;
-        t.sun_elevation_deg = f.elevation;
-        plan.tasks.push_back(t);
+    for (int c = 0; c < static_cast<int>(plan.combinations.size()); ++c) {
+      // With job.tile_rows, the strips of each frame: the image's size as this parameter set has it.
+      std::vector<std::optional<PixelBounds>> strips{std::nullopt};
+      if (job.tile_rows > 0) {
+        SceneLoader l = base;
+        for (const auto& [key, value] : plan.combinations[c]) l.apply_override(key, value, origin_in(job, "axes." + key));
+        const Scene sized = l.finish();
+        strips.clear();
+        for (int y = 0; y < sized.camera.height; y += job.tile_rows)
+          strips.push_back(PixelBounds{0, sized.camera.width, y, std::min(sized.camera.height, y + job.tile_rows)});
       }
+      for (const auto& f : frames[s]) {
+        const int first = static_cast<int>(plan.tasks.size());
+        for (const auto& strip : strips) {
+          if (static_cast<long long>(plan.tasks.size()) >= kMaxTasks)
+            throw InputError("job.tile_rows", std::to_string(job.tile_rows), "strips giving at most " + std::to_string(kMaxTasks) + " tasks in all", job.file.string());
+          JobTask t;
+          t.index = static_cast<int>(plan.tasks.size());
+          t.site = job.sites.empty() ? -1 : s;
+          t.time = f.time;
+          t.combination = c;
+          t.sun_elevation_deg = f.elevation;
+          t.frame = static_cast<int>(plan.frame_tasks.size());
+          t.tile = strip;
+          plan.tasks.push_back(t);
+        }
+        plan.frame_tasks.push_back({first, static_cast<int>(plan.tasks.size())});
+      }
+    }
   if (plan.tasks.empty())
     throw InputError("job.min_sun_elevation_deg", format_exact(job.min_sun_elevation_deg.value_or(0.0)),
                      "a limit some frame reaches (no frame of the job has the sun this high)", job.file.string());

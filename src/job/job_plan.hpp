@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "job/job_spec.hpp"
+#include "skyspec/render.hpp"
 #include "skyspec/scene.hpp"
 
 namespace skyspec {
@@ -23,6 +24,8 @@ struct JobTask {
   std::optional<DateTime> time;  ///< none: the scene's own sun
   int combination = 0;           ///< into JobPlan::combinations
   double sun_elevation_deg = 0.0;  ///< apparent (refracted), at the site and time; the scene's without a time
+  int frame = 0;                   ///< the image it renders (or a strip of): its index among the job's frames
+  std::optional<PixelBounds> tile;  ///< with job.tile_rows: the strip of the frame it renders
   /// "t000012": names the task's files.
   std::string id() const;
 };
@@ -37,6 +40,8 @@ struct JobPlan {
   JobSpec job;
   std::vector<JobParameters> combinations;  ///< [axes] x [random] samples; one empty set without either
   std::vector<JobTask> tasks;
+  /// The tasks of each frame (one each, or its strips with job.tile_rows): frame_tasks[f].
+  std::vector<TaskRange> frame_tasks;
 
   /// Chunks of job.tasks_per_chunk consecutive tasks: the unit a cluster runs in one process.
   int chunk_count() const;
@@ -47,6 +52,8 @@ struct JobPlan {
   std::filesystem::path task_directory() const;
   /// The site's name, or "scene" for the scene's own location.
   std::string site_name(const JobTask& task) const;
+  /// "f000003": names a merged frame's files (job.tile_rows), <output>/frames/f000003.exr.
+  static std::string frame_id(int frame);
 };
 
 /// Expands the job into tasks and checks every scene key and value it uses (the base scene, each

@@ -148,7 +148,8 @@ void flatten(const toml::table& t, const std::string& prefix, bool leaf_tables,
 }
 
 void read_job_table(const Reader& r, const toml::table& t, const std::filesystem::path& base, JobSpec& job) {
-  r.only_keys(t, "job.", {"name", "scene", "quality", "produce", "output", "tasks_per_chunk", "min_sun_elevation_deg"});
+  r.only_keys(t, "job.",
+              {"name", "scene", "quality", "produce", "output", "tasks_per_chunk", "min_sun_elevation_deg", "tile_rows"});
   if (auto n = t.get("name")) job.name = r.name(*n, "job.name");
   if (auto n = t.get("scene")) {
     const std::string s = r.text(*n, "job.scene", "a preset name or the path of a scene TOML file");
@@ -192,6 +193,14 @@ void read_job_table(const Reader& r, const toml::table& t, const std::filesystem
   }
   if (auto n = t.get("tasks_per_chunk")) job.tasks_per_chunk = static_cast<int>(r.integer(*n, "job.tasks_per_chunk", 1, 100000));
   if (auto n = t.get("min_sun_elevation_deg")) job.min_sun_elevation_deg = r.number(*n, "job.min_sun_elevation_deg", -90, 90);
+  if (auto n = t.get("tile_rows")) {
+    job.tile_rows = static_cast<int>(r.integer(*n, "job.tile_rows", 1, 65536));
+    if (!t.get("produce")) job.png = job.irradiance = false, job.exr = true;  // a tiled job's default
+    if (job.png || job.irradiance || !job.exr)
+      r.fail("job.tile_rows", *n,
+             "a job that produces [\"exr\"] alone (its strips are merged into each frame's EXR; skyspec convert "
+             "makes a PNG of a merged frame)");
+  }
 }
 
 void read_sites(const Reader& r, const toml::node& node, JobSpec& job) {

@@ -3,7 +3,7 @@
 // turns a JobSpec into tasks.
 //
 //   [job]    name, scene (a preset or a scene file), quality, produce, output, tasks_per_chunk,
-//            min_sun_elevation_deg
+//            min_sun_elevation_deg, tile_rows (giant images: each frame in strips, merged)
 //   [scene]  scene keys for every task (any key of docs/scene-keys.md but the ones the job sets)
 //   [[site]] name, latitude_deg, longitude_deg, altitude_m
 //   [[time]] start, end (ISO 8601 with UTC offset, or TOML offset date-times), step_minutes
@@ -61,6 +61,9 @@ struct JobSpec {
   std::vector<JobRandomAxis> random_axes;
   bool exr = true, png = true, irradiance = false;  ///< job.produce
   int tasks_per_chunk = 24;
+  /// When > 0, each frame is rendered in strips of at most this many rows (one task each, with
+  /// pixel bounds) and `job collect` merges them into <output>/frames/f<frame>.exr.
+  int tile_rows = 0;
   std::filesystem::path output_directory;  ///< job.output (absolute; relative to the working folder)
 };
 

@@ -98,6 +98,10 @@ json run_task(const JobPlan& plan, const JobTask& task) {
                  {"skyspec_version", version_string()},
                  {"host", host_name()}};
   for (const auto& [key, value] : plan.combinations.at(task.combination)) record["parameters"][key] = parameter_json(value);
+  if (task.tile) {
+    record["frame"] = task.frame;
+    record["tile"] = {task.tile->x0, task.tile->x1, task.tile->y0, task.tile->y1};
+  }
   std::vector<std::filesystem::path> written;
   try {
     const Scene scene = task_scene(plan, task);
@@ -107,9 +111,12 @@ json run_task(const JobPlan& plan, const JobTask& task) {
     std::filesystem::create_directories(plan.task_directory());
     std::optional<IrradianceReport> irradiance;
     if (plan.job.exr || plan.job.png) {
-      const RenderOutputs out = render_scene_to_files(scene, DisplaySettings{}, {}, [&](const SkyRenderer& r) {
-        if (plan.job.irradiance) irradiance = irradiance_at_camera(r);
-      });
+      const RenderOutputs out = render_scene_to_files(
+          scene, DisplaySettings{}, {},
+          [&](const SkyRenderer& r) {
+            if (plan.job.irradiance) irradiance = irradiance_at_camera(r);
+          },
+          task.tile);
       for (const auto& p : {out.exr, out.png})
         if (!p.empty()) written.push_back(p);
       record["exposure_ev"] = out.preview_ev;

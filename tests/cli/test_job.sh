@@ -70,6 +70,18 @@ grep -q "t000002 failed: .*atmosphere.ozone.peak_m" "$work/stderr" && grep -q "3
 grep '"id":"t000002"' "$work/M/manifest.jsonl" | grep '"status":"failed"' | grep -q 'bottom_m < peak_m' && ok ||
   bad "the manifest lacks the failure: $(cat "$work/M/manifest.jsonl")"
 
+# --- a tiled job: each frame in strips, merged by collect into the bytes of the frame's render ---
+cp "$jobs/tiled.toml" "$work/"
+"$skyspec" job run "$work/tiled.toml" --out "$work/T" --shard 1/2 --quiet && "$skyspec" job run "$work/tiled.toml" --out "$work/T" --shard 2/2 --quiet ||
+  bad "tiled job shards failed"
+out=$("$skyspec" job collect "$work/tiled.toml" --out "$work/T")
+grep -q "frames: 2 merged" <<<"$out" && ok || bad "tiled job collect: $out"
+"$skyspec" job plan "$work/tiled.toml" --out "$work/T" --print-scene 3 >"$work/tiled3.toml"
+"$skyspec" render --scene "$work/tiled3.toml" --no-png --quiet --out "$work/T-render" --name whole
+cmp -s "$work/T-render/whole.exr" "$work/T/frames/f000001.exr" && ok || bad "a merged frame differs from its render"
+out=$("$skyspec" job collect "$work/tiled.toml" --out "$work/T")
+grep -q "frames: 0 merged, 2 already merged" <<<"$out" && ok || bad "collect merged again: $out"
+
 if [ "$have_dask" = 1 ]; then
   # --- Dask, LocalCluster with 2 workers: the same bytes as the shards --------------------------
   mv "$work/A" "$work/A-shards"

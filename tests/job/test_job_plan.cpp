@@ -231,6 +231,29 @@ BOOST_AUTO_TEST_CASE(errors_name_the_key_where_it_is_and_what_is_allowed) {
   BOOST_TEST(contains(err("[job\n"), "valid TOML"));
 }
 
+BOOST_AUTO_TEST_CASE(tiled_frames_are_strips_that_cover_the_image_once) {
+  const JobPlan plan = plan_job(parse("[job]\ntile_rows = 300\n[scene]\ncamera.width = 128\ncamera.height = 1000\n"
+                                      "[axes]\n\"camera.height\" = [1000, 600]\n"));
+  BOOST_TEST(plan.job.exr);
+  BOOST_TEST(!plan.job.png);  // a tiled job produces the EXR alone unless it says otherwise
+  BOOST_TEST(plan.frame_tasks.size() == 2u);
+  BOOST_TEST(plan.frame_tasks[0].size() == 4);  // 300 + 300 + 300 + 100 rows
+  BOOST_TEST(plan.frame_tasks[1].size() == 2);  // the second parameter set's image is 600 rows
+  for (const auto& range : plan.frame_tasks) {
+    int next = 0;
+    for (int k = range.first; k < range.last; ++k) {
+      const JobTask& t = plan.tasks[k];
+      BOOST_REQUIRE(t.tile.has_value());
+      BOOST_TEST(t.frame == static_cast<int>(&range - &plan.frame_tasks[0]));
+      BOOST_TEST(t.tile->y0 == next);
+      BOOST_TEST((t.tile->x0 == 0 && t.tile->x1 == 128));
+      next = t.tile->y1;
+    }
+    BOOST_TEST(next == (range.first == 0 ? 1000 : 600));
+  }
+  BOOST_TEST(contains(error_of([] { parse("[job]\ntile_rows = 300\nproduce = [\"exr\", \"png\"]\n"); }), "job.tile_rows"));
+}
+
 BOOST_AUTO_TEST_CASE(a_job_without_sweeps_is_one_task_of_the_scene) {
   const JobPlan plan = plan_job(parse("[job]\nname = \"one\"\n"));
   BOOST_TEST(plan.tasks.size() == 1u);
