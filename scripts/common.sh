@@ -9,12 +9,12 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 SKYSPEC_PACKAGES=(
   build-essential cmake pkg-config
   libeigen3-dev libopenexr-dev libimath-dev libopencolorio-dev libtbb-dev libpng-dev
-  libtomlplusplus-dev libcli11-dev libboost-test-dev libhowardhinnant-date-dev liblcms2-dev libssl-dev
+  libtomlplusplus-dev libcli11-dev libboost-test-dev libhowardhinnant-date-dev liblcms2-dev libssl-dev libnetcdf-dev
   openexr openimageio-tools opencolorio-tools
   nlohmann-json3-dev
   pybind11-dev python3-dev python3-numpy python3-matplotlib python3-openimageio
   jupyter-nbconvert python3-ipykernel
-  python3-distributed python3-dask slurm-wlm munge
+  python3-distributed python3-dask python3-netcdf4 slurm-wlm munge
   clang-14 libclang-rt-14-dev
 )
 

@@ -7,6 +7,7 @@
 #include "base/atomic_file.hpp"
 #include "base/sha256.hpp"
 #include "io/exr_merge.hpp"
+#include "job/irradiance_netcdf.hpp"
 #include "job/task_record.hpp"
 #include "skyspec/error.hpp"
 
@@ -130,10 +131,11 @@ JobSummary collect_job(const JobPlan& plan) {
   JobSummary summary;
   std::string manifest;
   std::map<std::string, std::string> tables;  // site -> CSV text
+  std::map<std::string, std::pair<int, std::vector<const json*>>> series;  // site -> (its index, its rows)
   std::vector<json> records(plan.tasks.size());
   for (const auto& task : plan.tasks) {
     json r = read_task_record(plan, task);
-    records[task.index] = r;
+    records[task.index] = r;  // read once; the tables below point into `records`
     if (r.is_null()) {
       ++summary.missing;
       manifest += json{{"task", task.index}, {"id", task.id()}, {"site", plan.site_name(task)}, {"status", "missing"}}.dump() + "\n";
@@ -152,6 +154,9 @@ JobSummary collect_job(const JobPlan& plan) {
       auto& table = tables[plan.site_name(task)];
       if (table.empty()) table = table_header(plan, r);
       table += table_row(plan, r);
+      auto& rows = series[plan.site_name(task)];
+      rows.first = task.site;
+      rows.second.push_back(&records[task.index]);
     } catch (const json::exception& e) {
       throw IoError("the record of task " + task.id() + " is damaged (" + e.what() + "): remove " +
                     task_record_path(plan, task).string() + " and run the job again");
@@ -183,6 +188,13 @@ JobSummary collect_job(const JobPlan& plan) {
     const auto path = out / ("irradiance_" + site + ".csv");
     write_text_atomically(path, text);
     summary.tables.push_back(path);
+    const auto nc = out / ("irradiance_" + site + ".nc");
+    try {
+      write_irradiance_netcdf(nc, plan, series[site].first, series[site].second);
+    } catch (const json::exception& e) {
+      throw IoError("a record of site " + site + " is damaged (" + e.what() + ")");
+    }
+    summary.tables.push_back(nc);
   }
   return summary;
 }

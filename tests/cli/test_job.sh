@@ -17,7 +17,7 @@ cp "$jobs/small.toml" "$jobs/mixed.toml" "$work/"
 total=12
 
 # digests DIR: "name sha256" of every task file and table, sorted (records hold timings: left out).
-digests() { (cd "$1" && sha256sum tasks/*.exr tasks/*.png irradiance_*.csv | sort -k2); }
+digests() { (cd "$1" && sha256sum tasks/*.exr tasks/*.png irradiance_*.csv irradiance_*.nc | sort -k2); }
 no_temporaries() { ! find "$1" -name '*.tmp-*' | grep -q .; }
 # wait_for_records DIR N: until DIR/tasks holds N task records (at most 30 s).
 wait_for_records() {
@@ -52,6 +52,23 @@ done
 "$skyspec" job collect "$work/small.toml" --out "$work/A" --quiet || bad "collect after the shards failed"
 [ "$(grep -c '"status":"ok"' "$work/A/manifest.jsonl")" = "$total" ] && ok || bad "manifest: $(head -c 300 "$work/A/manifest.jsonl")"
 [ "$(wc -l <"$work/A/irradiance_nairobi.csv")" = 7 ] && ok || bad "irradiance_nairobi.csv has $(wc -l <"$work/A/irradiance_nairobi.csv") lines"
+# The NetCDF table: CF attributes, the CSV's values, UTC times (netCDF4, as xarray reads it).
+"$python" - "$work/A" <<'PY' && ok || bad "irradiance_nairobi.nc does not match its CSV"
+import csv, sys, netCDF4
+ds = netCDF4.Dataset(sys.argv[1] + "/irradiance_nairobi.nc")
+rows = list(csv.DictReader(open(sys.argv[1] + "/irradiance_nairobi.csv")))
+assert ds.Conventions == "CF-1.8" and ds.featureType == "timeSeries"
+assert ds["time"].units == "seconds since 1970-01-01 00:00:00 UTC"
+t = netCDF4.num2date(ds["time"][:], ds["time"].units)
+assert str(t[0]) == "2026-03-20 08:00:00", t[0]  # 09:00+01:00
+assert len(rows) == 6 and ds.dimensions["sample"].size == 6 and ds.dimensions["wavelength"].size == 41
+for k, r in enumerate(rows):
+    assert abs(ds["diffuse_horizontal_irradiance"][k] - float(r["diffuse_horizontal_W_m2"])) <= 1e-7 * float(r["diffuse_horizontal_W_m2"])
+    assert abs(ds["spectral_global_horizontal_irradiance"][k, 17] - float(r["global_horizontal_W_m2_nm_550"])) <= 1e-7 * float(r["global_horizontal_W_m2_nm_550"])
+    assert ds["atmosphere.mie.scattering_per_m"][k] == float(r["atmosphere.mie.scattering_per_m"])
+assert abs(ds["lat"][...] + 1.29) < 1e-12 and abs(ds["altitude"][...] - 1796) < 1e-9
+assert netCDF4.chartostring(ds["station_name"][:]) == "nairobi"
+PY
 # Run again: nothing left to do.
 out=$("$skyspec" job run "$work/small.toml" --out "$work/A" --shard 1/1 --threads 1)
 grep -q "ran 0, $total already done" <<<"$out" && ok || bad "a finished job ran again: $out"

@@ -1,0 +1,198 @@
+#include "job/irradiance_netcdf.hpp"
+
+#include <netcdf.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "base/atomic_file.hpp"
+#include "physics/date_time.hpp"
+#include "skyspec/error.hpp"
+#include "skyspec/version.hpp"
+
+namespace skyspec {
+namespace {
+
+using nlohmann::json;
+
+class NcFile {
+ public:
+  explicit NcFile(const std::filesystem::path& path) : path_(path) {
+    check(nc_create(path.c_str(), NC_CLOBBER | NC_64BIT_OFFSET, &id_), "create");
+  }
+  ~NcFile() {
+    if (id_ >= 0) nc_close(id_);
+  }
+  NcFile(const NcFile&) = delete;
+  NcFile& operator=(const NcFile&) = delete;
+  int id() const { return id_; }
+  void check(int status, const char* what) const {
+    if (status != NC_NOERR)
+      throw IoError("NetCDF '" + path_.string() + "': cannot " + what + ": " + nc_strerror(status));
+  }
+  int dim(const std::string& name, size_t length) {
+    int d = -1;
+    check(nc_def_dim(id_, name.c_str(), length, &d), "define a dimension");
+    return d;
+  }
+  int var(const std::string& name, nc_type type, std::vector<int> dims) {
+    int v = -1;
+    check(nc_def_var(id_, name.c_str(), type, static_cast<int>(dims.size()), dims.data(), &v), "define a variable");
+    return v;
+  }
+  void text(int var, const char* name, const std::string& value) {
+    check(nc_put_att_text(id_, var, name, value.size(), value.c_str()), "write an attribute");
+  }
+  void put(int var, const std::vector<double>& values) { check(nc_put_var_double(id_, var, values.data()), "write a variable"); }
+  void close() {
+    check(nc_close(std::exchange(id_, -1)), "close");
+  }
+
+ private:
+  std::filesystem::path path_;
+  int id_ = -1;
+};
+
+double unix_seconds(const std::string& iso) {
+  DateTime epoch;
+  epoch.year = 1970;
+  return seconds_between(epoch, parse_iso8601(iso, "date_time"));
+}
+
+}  // namespace
+
+void write_irradiance_netcdf(const std::filesystem::path& path, const JobPlan& plan, int site,
+                             const std::vector<const json*>& rows) {
+  if (rows.empty()) return;
+  AtomicOutputFile file(path);
+  {
+    NcFile nc(file.temporary_path());
+    const JobParameters& params = plan.combinations.front();
+    const bool timed = !plan.job.times.empty();
+    const std::string sample = params.empty() && timed ? "time" : "sample";
+    const auto& wl = rows.front()->at("irradiance").at("wavelengths_nm");
+    const int d_sample = nc.dim(sample, rows.size());
+    const int d_wl = nc.dim("wavelength", wl.size());
+    const std::string station = site < 0 ? std::string("scene") : plan.job.sites[site].name;
+    const int d_name = nc.dim("name_strlen", station.size());
+    const std::string coords = std::string(timed && sample != "time" ? "time " : "") + "lat lon altitude station_name";
+
+    const int g = NC_GLOBAL;
+    nc.text(g, "Conventions", "CF-1.8");
+    nc.text(g, "featureType", "timeSeries");
+    nc.text(g, "title", "skyspec irradiance at " + station + " (job " + plan.job.name + ")");
+    nc.text(g, "source", std::string("skyspec ") + version_string() + ": spectral single and multiple scattering");
+    nc.text(g, "references", "docs/jobs.md; docs/physics.md (irradiance at the camera)");
+    if (!params.empty()) {
+      std::string keys;
+      for (const auto& [key, value] : params) keys += (keys.empty() ? "" : " ") + key;
+      nc.text(g, "skyspec_swept_parameters", keys);
+    }
+
+    int v_time = -1;
+    if (timed) {
+      v_time = nc.var("time", NC_DOUBLE, {d_sample});
+      nc.text(v_time, "standard_name", "time");
+      nc.text(v_time, "units", "seconds since 1970-01-01 00:00:00 UTC");
+      nc.text(v_time, "calendar", "standard");
+    }
+    const int v_wl = nc.var("wavelength", NC_DOUBLE, {d_wl});
+    nc.text(v_wl, "standard_name", "radiation_wavelength");
+    nc.text(v_wl, "units", "nm");
+    const int v_lat = nc.var("lat", NC_DOUBLE, {}), v_lon = nc.var("lon", NC_DOUBLE, {}), v_alt = nc.var("altitude", NC_DOUBLE, {});
+    nc.text(v_lat, "standard_name", "latitude");
+    nc.text(v_lat, "units", "degrees_north");
+    nc.text(v_lon, "standard_name", "longitude");
+    nc.text(v_lon, "units", "degrees_east");
+    nc.text(v_alt, "standard_name", "altitude");
+    nc.text(v_alt, "units", "m");
+    nc.text(v_alt, "long_name", "height of the measuring point above sea level");
+    const int v_name = nc.var("station_name", NC_CHAR, {d_name});
+    nc.text(v_name, "cf_role", "timeseries_id");
+    nc.text(v_name, "long_name", "site");
+
+    struct Series {
+      int var;
+      std::vector<double> values;
+    };
+    // Standard names only where the CF table has one for exactly this quantity; units in UDUNITS.
+    const auto series = [&](const std::string& name, const char* standard_name, const std::string& long_name,
+                            const char* units, bool spectral) {
+      Series s{nc.var(name, NC_DOUBLE, spectral ? std::vector<int>{d_sample, d_wl} : std::vector<int>{d_sample}), {}};
+      if (standard_name) nc.text(s.var, "standard_name", standard_name);
+      nc.text(s.var, "long_name", long_name);
+      if (units) nc.text(s.var, "units", units);
+      nc.text(s.var, "coordinates", coords);
+      return s;
+    };
+    Series elevation = series("solar_elevation_angle", "solar_elevation_angle", "apparent solar elevation (refracted)", "degree", false);
+    Series azimuth = series("solar_azimuth_angle", "solar_azimuth_angle", "solar azimuth, clockwise from north", "degree", false);
+    std::vector<Series> swept;
+    for (const auto& [key, value] : params)  // in the key's unit (docs/scene-keys.md); strings as NaN
+      swept.push_back(series(key, nullptr, "scene key " + key + " (swept; its unit: docs/scene-keys.md)", nullptr, false));
+    struct Field {
+      const char* key;
+      const char* name;
+      const char* standard_name;
+      const char* long_name;
+      const char* units;
+      bool spectral;
+    };
+    const Field fields[] = {
+        {"direct_normal_W_m2", "direct_normal_irradiance", nullptr, "direct normal irradiance", "W m-2", false},
+        {"direct_horizontal_W_m2", "direct_horizontal_irradiance", "surface_direct_downwelling_shortwave_flux_in_air",
+         "direct irradiance on a horizontal surface", "W m-2", false},
+        {"diffuse_horizontal_W_m2", "diffuse_horizontal_irradiance", "surface_diffuse_downwelling_shortwave_flux_in_air",
+         "diffuse irradiance on a horizontal surface", "W m-2", false},
+        {"direct_normal_lux", "direct_normal_illuminance", nullptr, "direct normal illuminance", "lx", false},
+        {"direct_horizontal_lux", "direct_horizontal_illuminance", nullptr, "direct illuminance on a horizontal surface", "lx", false},
+        {"diffuse_horizontal_lux", "diffuse_horizontal_illuminance", nullptr, "diffuse illuminance on a horizontal surface", "lx", false},
+        {"global_horizontal_lux", "global_horizontal_illuminance", nullptr, "global illuminance on a horizontal surface", "lx", false},
+        {"global_horizontal_W_m2_nm", "spectral_global_horizontal_irradiance", nullptr,
+         "spectral global irradiance on a horizontal surface", "W m-2 nm-1", true},
+        {"diffuse_horizontal_W_m2_nm", "spectral_diffuse_horizontal_irradiance", nullptr,
+         "spectral diffuse irradiance on a horizontal surface", "W m-2 nm-1", true},
+        {"direct_normal_W_m2_nm", "spectral_direct_normal_irradiance", nullptr, "spectral direct normal irradiance",
+         "W m-2 nm-1", true},
+    };
+    std::vector<Series> data;
+    for (const auto& f : fields) data.push_back(series(f.name, f.standard_name, f.long_name, f.units, f.spectral));
+    nc.check(nc_enddef(nc.id()), "end the definitions");
+
+    std::vector<double> times;
+    for (const json* r : rows) {
+      if (timed) times.push_back(unix_seconds(r->at("date_time").get<std::string>()));
+      elevation.values.push_back(r->at("sun_elevation_deg").get<double>());
+      azimuth.values.push_back(r->at("sun_azimuth_deg").get<double>());
+      for (std::size_t p = 0; p < params.size(); ++p) {
+        const json& v = r->at("parameters").at(params[p].first);
+        swept[p].values.push_back(v.is_number() ? v.get<double>() : v.is_boolean() ? (v.get<bool>() ? 1.0 : 0.0)
+                                                                                : std::numeric_limits<double>::quiet_NaN());
+      }
+      const json& irr = r->at("irradiance");
+      for (std::size_t k = 0; k < data.size(); ++k) {
+        if (fields[k].spectral)
+          for (const auto& v : irr.at(fields[k].key)) data[k].values.push_back(v.get<double>());
+        else
+          data[k].values.push_back(irr.at(fields[k].key).get<double>());
+      }
+    }
+    if (timed) nc.put(v_time, times);
+    nc.put(v_wl, wl.get<std::vector<double>>());
+    // Where the irradiance is: the first row's scene (the site, or the scene's own location).
+    const Scene where = task_scene(plan, plan.tasks.at(rows.front()->at("task").get<std::size_t>()));
+    nc.put(v_lat, {where.location.latitude_deg});
+    nc.put(v_lon, {where.location.longitude_deg});
+    nc.put(v_alt, {where.camera.position_m.z()});
+    nc.check(nc_put_var_text(nc.id(), v_name, station.c_str()), "write a variable");
+    nc.put(elevation.var, elevation.values);
+    nc.put(azimuth.var, azimuth.values);
+    for (const auto& s : swept) nc.put(s.var, s.values);
+    for (const auto& s : data) nc.put(s.var, s.values);
+    nc.close();
+  }
+  file.commit();
+}
+
+}  // namespace skyspec
