@@ -35,8 +35,6 @@
 namespace skyspec::cli {
 namespace {
 
-constexpr int kExitTasksFailed = 4;
-
 struct JobOptions {
   std::string job_file, out;
   // plan

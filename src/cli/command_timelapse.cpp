@@ -25,6 +25,7 @@
 #include "skyspec/render.hpp"
 #include "render/render_budget.hpp"
 #include "physics/solar_position.hpp"
+#include "job/job_plan.hpp"
 
 namespace skyspec::cli {
 namespace {
@@ -48,6 +49,7 @@ struct TimelapseOptions {
   SceneOptions scene{"default", {}, {}, timelapse_flags()};
   std::string start, end;
   double step_minutes = 0.0;
+  std::string frames;  ///< --frames A-B: only these frames (a farm's share of the sequence)
   bool resume = false, quiet = false, force = false;
 };
 
@@ -115,6 +117,8 @@ int run(TimelapseOptions& o) {
                      "a step giving at most " + std::to_string(kMaxFrames) + " frames (this gives " +
                          std::to_string(static_cast<long>(frames_d)) + ")");
   const int frames = static_cast<int>(frames_d);
+  // --frames: this process renders only those; the exposure is still the whole sequence's.
+  const TaskRange mine = o.frames.empty() ? TaskRange{0, frames} : parse_task_range(o.frames, frames, "--frames");
 
   auto frame_scene = [&](int k, const std::string& extra_key = {}, const std::string& extra_value = {}) {
     const std::string when = to_iso8601(add_seconds(start, k * o.step_minutes * 60.0));
@@ -126,7 +130,7 @@ int run(TimelapseOptions& o) {
   Scene first = frame_scene(0);
   // Absurd requests are refused up front (render_budget.hpp): all frames' files and one frame's
   // memory now, the time of all frames once the first frame's renderer is built.
-  const RenderPlan plan = RenderPlan::for_scene(first, false, 8, frames);
+  const RenderPlan plan = RenderPlan::for_scene(first, false, 8, mine.size());
   ensure_writable_directory(first.output.directory, "output.directory");  // its errors first
   RenderEstimate estimate = estimate_render(plan);
   if (!o.force) refuse_if_over_budget(estimate);
@@ -167,7 +171,7 @@ int run(TimelapseOptions& o) {
   }
   ProgressBar bar("time-lapse", o.quiet);
   int written = 0, skipped = 0, replaced = 0;
-  for (int k = 0; k < frames; ++k) {
+  for (int k = mine.first; k < mine.last; ++k) {
     Scene s = frame_scene(k, "output.name", "\"" + frame_name(first.output.name, k) + "\"");
     if (!ev_text.empty()) s.output.exposure_ev = std::stod(ev_text);
     std::string why;
@@ -181,14 +185,14 @@ int run(TimelapseOptions& o) {
       render_scene_to_files(s, DisplaySettings{}, {}, [&](const SkyRenderer& r) {
         if (measured) return;
         RenderPlan rest = plan;
-        rest.frames = frames - k;
+        rest.frames = mine.last - k;
         estimate.seconds = measure_render_seconds(r, rest);
         refuse_if_over_budget(estimate);
         measured = true;
       });
       ++written;
     }
-    bar.update(k + 1, frames);
+    bar.update(k - mine.first + 1, mine.size());
   }
   bar.finish();
   if (!o.quiet)
@@ -214,6 +218,9 @@ Command add_timelapse_command(CLI::App& app) {
   cmd->add_option("--start", o->start, "first frame, ISO 8601 with UTC offset (e.g. 2026-06-21T19:00:00+02:00)");
   cmd->add_option("--end", o->end, "last frame at or before this time");
   cmd->add_option("--step-minutes", o->step_minutes, "time between frames, minutes");
+  cmd->add_option("--frames", o->frames,
+                  "render only frames A-B (inclusive, 0-based) of the sequence, e.g. one machine's share; the "
+                  "exposure is still metered on the whole sequence, so the shares match");
   cmd->add_flag("--resume", o->resume,
                 "keep the frames an interrupted run finished: those whose files decode completely and record this "
                 "frame's scene (others are rendered again)");

@@ -14,6 +14,8 @@ constexpr int kExitOk = 0;
 constexpr int kExitInternal = 1;
 constexpr int kExitBadInput = 2;
 constexpr int kExitIo = 3;
+/// `skyspec job`: the job ran, but tasks failed or did not run (the summary and manifest say which).
+constexpr int kExitTasksFailed = 4;
 
 struct Command {
   CLI::App* app;             ///< the subcommand, to ask whether it was parsed

@@ -256,7 +256,7 @@ std::pair<int, int> parse_shard(const std::string& text, const std::string& sett
 }
 
 TaskRange parse_task_range(const std::string& text, int count, const std::string& setting) {
-  const std::string allowed = "a task index or A-B (inclusive) from 0 to " + std::to_string(count - 1);
+  const std::string allowed = "an index or A-B (inclusive), from 0 to " + std::to_string(count - 1);
   const auto dash = text.find('-');
   const std::string a = text.substr(0, dash), b = dash == std::string::npos ? a : text.substr(dash + 1);
   char* end = nullptr;

@@ -68,7 +68,7 @@ Scene task_scene(const JobPlan& plan, const JobTask& task);
 
 /// Parses "I/N" (1 <= I <= N); InputError naming `setting` otherwise.
 std::pair<int, int> parse_shard(const std::string& text, const std::string& setting);
-/// Parses "A-B" or "A" (task indices, inclusive) within [0, count); InputError naming `setting`.
+/// Parses "A-B" or "A" (indices of tasks or frames, inclusive) within [0, count); InputError naming `setting`.
 TaskRange parse_task_range(const std::string& text, int count, const std::string& setting);
 
 }  // namespace skyspec

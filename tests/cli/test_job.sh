@@ -87,6 +87,14 @@ grep -q "t000002 failed: .*atmosphere.ozone.peak_m" "$work/stderr" && grep -q "3
 grep '"id":"t000002"' "$work/M/manifest.jsonl" | grep '"status":"failed"' | grep -q 'bottom_m < peak_m' && ok ||
   bad "the manifest lacks the failure: $(cat "$work/M/manifest.jsonl")"
 
+# --- a time-lapse in frame ranges (a farm's shares): the same files as in one run -----------------
+tl=(--latitude 48 --longitude 11 --start 2026-06-21T05:00:00+02:00 --end 2026-06-21T08:00:00+02:00 --step-minutes 60
+    --width 24 --height 24 --quality draft --quiet)
+"$skyspec" timelapse "${tl[@]}" --out "$work/TL" && "$skyspec" timelapse "${tl[@]}" --out "$work/TL-parts" --frames 0-1 &&
+  "$skyspec" timelapse "${tl[@]}" --out "$work/TL-parts" --frames 2-3 || bad "time-lapse frame ranges failed"
+diff -r "$work/TL" "$work/TL-parts" >/dev/null && [ "$(ls "$work/TL-parts" | wc -l)" = 8 ] && ok || bad "time-lapse shares differ from one run"
+run_expecting_error "frames beyond the sequence" 2 "--frames" "$work/TL-none" "$skyspec" timelapse "${tl[@]}" --out "$work/TL-none" --frames 3-4
+
 # --- a tiled job: each frame in strips, merged by collect into the bytes of the frame's render ---
 cp "$jobs/tiled.toml" "$work/"
 "$skyspec" job run "$work/tiled.toml" --out "$work/T" --shard 1/2 --quiet && "$skyspec" job run "$work/tiled.toml" --out "$work/T" --shard 2/2 --quiet ||
