@@ -55,47 +55,56 @@ longitude_deg = 0
 TOML
 }
 job throughput 64 10 100
+for n in 8 24; do for chunk in 1 24; do job "o${n}_${chunk}" 660 "$chunk" $((n / 2)); done; done
 "$skyspec" render --quality lean --width 8 --height 8 --quiet --no-png --out "$out/warm"  # tables into the cache
-t0=$(now); "$skyspec" job run "$out/throughput.toml" --out "$out/one-process" --shard 1/1 --threads 1 --quiet; t1=$(now)
-one=$(seconds "$t0" "$t1")
-t0=$(now)
-"$skyspec" job run "$out/throughput.toml" --out "$out/two-processes" --shard 1/2 --threads 1 --quiet --no-collect &
-"$skyspec" job run "$out/throughput.toml" --out "$out/two-processes" --shard 2/2 --threads 1 --quiet --no-collect &
-wait; t1=$(now)
-two=$(seconds "$t0" "$t1")
-t0=$(now); "$skyspec" job run "$out/throughput.toml" --out "$out/dask1" --workers 1 --quiet; t1=$(now)
-dask1=$(seconds "$t0" "$t1")
-t0=$(now); "$skyspec" job run "$out/throughput.toml" --out "$out/dask2" --workers 2 --quiet; t1=$(now)
-dask2=$(seconds "$t0" "$t1")
-/usr/bin/python3 - "$one" "$two" "$dask1" "$dask2" <<'PY'
-import sys
-one, two, d1, d2 = map(float, sys.argv[1:])
-ceiling, dask = one / two, d1 / d2
-print("## Throughput: 200 tasks (64 x 64, lean, EXR), chunks of 10")
-print(f"one process, one thread:               {one:7.2f} s")
-print(f"two one-thread processes at once:      {two:7.2f} s   ceiling {ceiling:.2f}x")
-print(f"Dask LocalCluster, 1 worker:           {d1:7.2f} s")
-print(f"Dask LocalCluster, 2 workers:          {d2:7.2f} s   {dask:.2f}x = {100 * dask / ceiling:.0f} % of the ceiling (aim >= 90 %)")
-PY
-
-# Overhead per task of about a second: Dask (1 worker, a chunk per task: the worst case, and
-# chunks of 8) against the same tasks in one process.
-job second 360 1 12
-t0=$(now); "$skyspec" job run "$out/second.toml" --out "$out/second-here" --shard 1/1 --threads 1 --quiet; t1=$(now)
-here_s=$(seconds "$t0" "$t1")
-t0=$(now); "$skyspec" job run "$out/second.toml" --out "$out/second-dask" --workers 1 --quiet; t1=$(now)
-dask_s=$(seconds "$t0" "$t1")
-sed -i 's/tasks_per_chunk = 1$/tasks_per_chunk = 8/' "$out/second.toml"
-t0=$(now); "$skyspec" job run "$out/second.toml" --out "$out/second-dask8" --workers 1 --quiet; t1=$(now)
-dask8_s=$(seconds "$t0" "$t1")
-/usr/bin/python3 - "$here_s" "$dask_s" "$dask8_s" <<'PY'
-import sys
-here, dask, dask8 = map(float, sys.argv[1:])
-n = 24
-print(f"\n## Engine overhead: {n} tasks of {here / n:.2f} s each (360 x 360, lean, one thread)")
-print(f"one process:                           {here:7.2f} s")
-print(f"Dask, 1 worker, a chunk per task:      {dask:7.2f} s   overhead {(dask - here) / n:.3f} s a task = {100 * (dask - here) / here:.1f} % (aim < 3 %)")
-print(f"Dask, 1 worker, chunks of 8:           {dask8:7.2f} s   overhead {(dask8 - here) / n:.3f} s a task = {100 * (dask8 - here) / here:.1f} %")
+# timed NAME COMMAND...: runs it into a fresh folder and appends "NAME seconds" to $out/times.
+timed() {
+  local name=$1; shift
+  rm -rf "$out/run"
+  local t0; t0=$(now); "$@"; local t1; t1=$(now)
+  echo "$name $(seconds "$t0" "$t1")" >>"$out/times"
+}
+# Each case runs $RUNS times (default 3), the cases interleaved, so that this VM's drift between
+# minutes touches them alike; the report takes the medians.
+for _ in $(seq "${RUNS:-3}"); do
+  j=$out/throughput.toml
+  timed one "$skyspec" job run "$j" --out "$out/run" --shard 1/1 --threads 1 --quiet
+  timed two bash -c "'$skyspec' job run '$j' --out '$out/run' --shard 1/2 --threads 1 --quiet --no-collect &
+                     '$skyspec' job run '$j' --out '$out/run' --shard 2/2 --threads 1 --quiet --no-collect & wait"
+  timed dask1 "$skyspec" job run "$j" --out "$out/run" --workers 1 --quiet
+  timed dask2 "$skyspec" job run "$j" --out "$out/run" --workers 2 --quiet
+  # The engine's overhead for tasks of about a second (660 x 660, lean, one thread): jobs of 8 and
+  # 24 tasks in one process and on a 1-worker LocalCluster, with chunks of 1 task and of 24.
+  for n in 8 24; do
+    timed "here_$n" "$skyspec" job run "$out/o${n}_1.toml" --out "$out/run" --shard 1/1 --threads 1 --quiet
+    for chunk in 1 24; do
+      timed "dask_${n}_${chunk}" "$skyspec" job run "$out/o${n}_${chunk}.toml" --out "$out/run" --workers 1 --quiet
+    done
+  done
+done
+/usr/bin/python3 - "$out/times" <<'PY'
+import statistics, sys, collections
+runs = collections.defaultdict(list)
+for line in open(sys.argv[1]):
+    name, t = line.split()
+    runs[name].append(float(t))
+m = {k: statistics.median(v) for k, v in runs.items()}
+r = lambda k: f"{m[k]:6.2f} s (runs {', '.join(f'{x:.2f}' for x in runs[k])})"
+ceiling, dask = m["one"] / m["two"], m["dask1"] / m["dask2"]
+print(f"## Throughput: 200 tasks (64 x 64, lean, EXR), chunks of 10; medians of {len(runs['one'])} interleaved runs")
+print(f"one process, one thread:           {r('one')}")
+print(f"two one-thread processes at once:  {r('two')}   ceiling {ceiling:.2f}x")
+print(f"Dask LocalCluster, 1 worker:       {r('dask1')}")
+print(f"Dask LocalCluster, 2 workers:      {r('dask2')}   {dask:.2f}x = {100 * dask / ceiling:.0f} % of the ceiling (aim >= 90 %)")
+task = (m["here_24"] - m["here_8"]) / 16
+print(f"\n## Engine overhead for tasks of {task:.2f} s (660 x 660, lean, one thread; Dask: 1 worker)")
+print(f"in one process: 8 tasks {r('here_8')}, 24 tasks {r('here_24')}")
+for chunk, name in ((1, "a chunk per task"), (24, "chunks of 24")):
+    d8, d24 = m[f"dask_8_{chunk}"], m[f"dask_24_{chunk}"]
+    per = ((d24 - d8) - (m["here_24"] - m["here_8"])) / 16
+    fixed = d8 - m["here_8"] - 8 * per
+    print(f"Dask, {name}: 8 tasks {d8:.2f} s, 24 tasks {d24:.2f} s: per task {per:+.3f} s = {100 * per / task:+.1f} % "
+          f"(aim < 3 %); fixed {fixed:.2f} s a job")
 PY
 
 if [[ "$merge" != none ]]; then

@@ -16,16 +16,21 @@ or from Python: ``skyspec.run_job("JOB.toml")`` (the same function as ``skyspec_
 
 import argparse
 import json
+import logging
 import os
 import shutil
 import subprocess
 import sys
 import time
 
-__all__ = ["run_job", "find_skyspec", "JobFailed"]
+__all__ = ["run_job", "find_skyspec", "JobFailed", "DaskMissing"]
 
 #: Exit code of ``skyspec job`` when tasks failed or did not run (src/cli/command_job.cpp).
 EXIT_TASKS_FAILED = 4
+
+
+class DaskMissing(RuntimeError):
+    """Dask distributed is not installed where the driver runs."""
 
 
 class JobFailed(RuntimeError):
@@ -77,7 +82,13 @@ def run_chunk(skyspec, job, out, task_directory, first, last, threads):
     cmd = [skyspec, "job", "run", job, "--out", out, "--tasks", "%d-%d" % (first, last - 1),
            "--threads", str(threads), "--quiet", "--stop-with-parent"]
     started = time.monotonic()
-    p = subprocess.run(cmd, capture_output=True, text=True)
+    # Dask's nanny gives its workers MALLOC_TRIM_THRESHOLD_ (distributed.nanny.pre-spawn-environ):
+    # inherited, it makes glibc hand a render's large buffers back to the kernel after every use and
+    # fault them in again (docs/jobs.md has the cost). The render process runs with the machine's
+    # own malloc settings.
+    env = dict(os.environ)
+    env.pop("MALLOC_TRIM_THRESHOLD_", None)
+    p = subprocess.run(cmd, capture_output=True, text=True, env=env)
     if p.returncode < 0 or p.returncode not in (0, EXIT_TASKS_FAILED):
         why = ("killed by signal %d" % -p.returncode) if p.returncode < 0 else ("exit code %d" % p.returncode)
         tail = p.stderr.strip().splitlines()[-3:]
@@ -127,12 +138,16 @@ def run_job(job, *, out=None, scheduler=None, workers=None, threads=1, skyspec=N
     """Runs the job file `job` on Dask and collects its manifest and tables.
 
     scheduler: a Dask scheduler address ("tcp://host:8786"); None starts a LocalCluster of
-    `workers` processes (default: the cores) with one thread each. threads: render threads per
+    `workers` workers (default: the cores), threads of this process, one task at a time each. threads: render threads per
     task. Returns the summary (tasks, ok, failed, output folder); raises JobFailed when tasks failed
     or did not run, ValueError for a job file with an error (before any task runs).
     """
-    from dask.distributed import Client, LocalCluster, as_completed
-    import cloudpickle
+    try:
+        from dask.distributed import Client, LocalCluster, as_completed
+        import cloudpickle
+    except ImportError as e:
+        raise DaskMissing("skyspec job run needs Dask distributed (Debian: apt-get install python3-distributed), "
+                          "or runs without it in shards: skyspec job run JOB --shard 1/1 (%s)" % e) from e
 
     skyspec = find_skyspec(skyspec)
     job = os.path.abspath(job)
@@ -143,10 +158,16 @@ def run_job(job, *, out=None, scheduler=None, workers=None, threads=1, skyspec=N
     cloudpickle.register_pickle_by_value(sys.modules[__name__])
     cluster = None
     if scheduler:
-        client = Client(scheduler)
+        try:
+            client = Client(scheduler, timeout="20s")
+        except (OSError, TimeoutError) as e:
+            raise ValueError("skyspec: error: --scheduler = %s: no Dask scheduler answers there (%s); start one "
+                             "with `dask scheduler` (docs/jobs.md)" % (scheduler, e)) from e
     else:
-        cluster = LocalCluster(n_workers=workers or os.cpu_count(), threads_per_worker=1, processes=True,
-                               dashboard_address=None)
+        # The workers are threads of this process: each only waits for its child process, which
+        # does the work, so worker processes would add start-up and heartbeats and no isolation.
+        cluster = LocalCluster(n_workers=workers or os.cpu_count(), threads_per_worker=1, processes=False,
+                               dashboard_address=None, silence_logs=logging.ERROR)
         client = Client(cluster)
     progress = _Progress(plan["tasks"], quiet)
     failures = []
@@ -207,6 +228,9 @@ def main(argv=None):
     except ValueError as e:
         print(str(e), file=sys.stderr)
         return 2
+    except DaskMissing as e:
+        print("skyspec: error: %s" % e, file=sys.stderr)
+        return 1
     except KeyboardInterrupt:
         print("skyspec: interrupted: finished tasks are kept; run the job again to finish it", file=sys.stderr)
         return 130

@@ -143,10 +143,11 @@ class SceneLoader {
 /// The quality levels, fastest first: draft, lean, default, high, reference.
 std::vector<std::string> quality_names();
 
-/// What scene_to_toml writes: every key, or every key but where the outputs go (output.directory
-/// and output.name), which is what a file records of the scene it shows: the same render written
-/// into another folder or under another name is the same file, byte for byte.
-enum class SceneTomlKeys { All, WithoutOutputLocation };
+/// What scene_to_toml writes: every key, or what a file records of the scene it shows (Recorded):
+/// every key but where the outputs go (output.directory, output.name) and how many threads made
+/// them (render.threads), none of which changes a pixel. The same render written into another
+/// folder, under another name or with other threads is the same file, byte for byte.
+enum class SceneTomlKeys { All, Recorded };
 /// The effective scene as TOML, for provenance and `--from` style reproduction.
 std::string scene_to_toml(const Scene& scene, SceneTomlKeys keys = SceneTomlKeys::All);
 

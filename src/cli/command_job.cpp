@@ -3,7 +3,6 @@
 // which runs chunks of tasks with `skyspec job run --tasks A-B` in child processes.
 
 #include <sys/prctl.h>
-#include <tbb/global_control.h>
 #include <unistd.h>
 
 #include <csignal>
@@ -121,10 +120,6 @@ int run_plan(const JobOptions& o) {
 int run_here(const JobOptions& o, const JobPlan& plan, TaskRange range, bool collect) {
   ensure_writable_directory(plan.job.output_directory, "job.output");
   std::filesystem::create_directories(plan.task_directory());
-  std::unique_ptr<tbb::global_control> limit;
-  if (o.threads > 0)
-    limit = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
-                                                  static_cast<std::size_t>(o.threads));
   ProgressBar bar("job " + plan.job.name, o.quiet);
   int ran = 0, skipped = 0, failed = 0;
   for (int k = range.first; k < range.last; ++k) {
@@ -134,7 +129,7 @@ int run_here(const JobOptions& o, const JobPlan& plan, TaskRange range, bool col
     if (task_done(plan, task, why)) {
       ++skipped;
     } else {
-      const auto record = run_task(plan, task);
+      const auto record = run_task(plan, task, o.threads);
       ++ran;
       if (record.value("status", "") != "ok") {
         ++failed;
@@ -190,6 +185,8 @@ std::string self_path() {
 }
 
 int run_job(const JobOptions& o) {
+  if (o.threads < 0 || o.threads > 1024) throw InputError("--threads", std::to_string(o.threads), "0 (the scene's render.threads) to 1024");
+  if (o.workers < 0 || o.workers > 4096) throw InputError("--workers", std::to_string(o.workers), "0 (one per core) to 4096");
   if (!o.shard.empty() && !o.tasks.empty())
     throw InputError("--tasks", "\"" + o.tasks + "\"", "either --shard or --tasks, not both");
   if (o.shard.empty() && o.tasks.empty()) {

@@ -66,11 +66,8 @@ std::string frame_name(const std::string& base, int k) {
 // what was wrong otherwise.
 bool frame_intact(const Scene& s, std::string& why) {
   const std::filesystem::path dir(s.output.directory);
-  // render.threads changes no pixel (cli_determinism): a resumed run may use other threads.
-  const auto normalised = [](Scene scene) {
-    scene.render.threads = 0;
-    return scene_to_toml(scene, SceneTomlKeys::WithoutOutputLocation);  // as the files record it
-  };
+  // As the files record it (no output location, no threads: a resumed run may use other threads).
+  const auto normalised = [](const Scene& scene) { return scene_to_toml(scene, SceneTomlKeys::Recorded); };
   const std::string expected = normalised(s);
   const auto same_scene = [&](const std::string& recorded) {
     try {

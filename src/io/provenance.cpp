@@ -37,7 +37,7 @@ std::string data_tables_text(const Scene& scene, bool builtin_display_config) {
 
 std::map<std::string, std::string> provenance_attributes(const Scene& scene, bool builtin_display_config) {
   return {{kVersionAttribute, version_string()},
-          {kSceneAttribute, scene_to_toml(scene, SceneTomlKeys::WithoutOutputLocation)},
+          {kSceneAttribute, scene_to_toml(scene, SceneTomlKeys::Recorded)},
           {kDataAttribute, data_tables_text(scene, builtin_display_config)}};
 }
 

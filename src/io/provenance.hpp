@@ -3,9 +3,10 @@
 // Each EXR header and PNG text of a render carries three attributes:
 //   skyspec:version  the library version ("MAJOR.MINOR.PATCH");
 //   skyspec:scene    the effective scene as TOML (scene_to_toml), every key but where the file
-//                    was written (output.directory, output.name): loading it gives the same
-//                    image, so `skyspec render --from FILE.exr` renders the same pixels, and one
-//                    render written into two folders gives two identical files;
+//                    was written (output.directory, output.name) and render.threads: loading it
+//                    gives the same image, so `skyspec render --from FILE.exr` renders the same
+//                    pixels, and one render written into two folders, or with other threads,
+//                    gives two identical files;
 //   skyspec:data     one line per embedded data table the render read: path below data/, FNV-1a
 //                    64 hash and size of the compiled-in bytes, and the table's source and version.
 #pragma once

@@ -82,13 +82,12 @@ std::filesystem::path task_record_path(const JobPlan& plan, const JobTask& task)
 }
 
 std::string task_scene_digest(const Scene& scene) {
-  Scene s = scene;
-  s.render.threads = 0;  // changes no pixel (cli_determinism): any worker may run the task
-  // Without the output folder, as the files record it: a job's folder moved elsewhere resumes.
-  return sha256_hex(scene_to_toml(s, SceneTomlKeys::WithoutOutputLocation));
+  // As the files record it: without the output folder (a job's folder moved elsewhere resumes)
+  // and the threads (any worker may run the task).
+  return sha256_hex(scene_to_toml(scene, SceneTomlKeys::Recorded));
 }
 
-json run_task(const JobPlan& plan, const JobTask& task) {
+json run_task(const JobPlan& plan, const JobTask& task, int threads) {
   const auto t0 = std::chrono::steady_clock::now();
   json record = {{"task", task.index},
                  {"id", task.id()},
@@ -104,7 +103,8 @@ json run_task(const JobPlan& plan, const JobTask& task) {
   }
   std::vector<std::filesystem::path> written;
   try {
-    const Scene scene = task_scene(plan, task);
+    Scene scene = task_scene(plan, task);
+    if (threads > 0) scene.render.threads = threads;  // not recorded in the files (SceneTomlKeys::Recorded)
     record["sun_elevation_deg"] = scene.sun.elevation_deg;
     record["sun_azimuth_deg"] = scene.sun.azimuth_deg;
     record["scene_sha256"] = task_scene_digest(scene);

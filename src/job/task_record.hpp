@@ -20,8 +20,9 @@ std::filesystem::path task_record_path(const JobPlan& plan, const JobTask& task)
 /// Renders the task's outputs (job.produce) and writes its record. A task that fails (bad input
 /// its scene only shows now, a render or write error) gets a record with "status": "failed" and
 /// the error, and no output files; the record is returned either way. Throws only when even the
-/// record cannot be written (IoError) or when the run is cancelled (skyspec::Cancelled).
-nlohmann::json run_task(const JobPlan& plan, const JobTask& task);
+/// record cannot be written (IoError) or when the run is cancelled (skyspec::Cancelled). `threads`
+/// > 0 renders on that many threads (render and EXR compression) instead of the scene's.
+nlohmann::json run_task(const JobPlan& plan, const JobTask& task, int threads = 0);
 
 /// Whether the task is done (see above); `why` says what is missing or wrong otherwise.
 bool task_done(const JobPlan& plan, const JobTask& task, std::string& why);

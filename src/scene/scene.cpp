@@ -886,7 +886,9 @@ std::string scene_to_toml(const Scene& scene, SceneTomlKeys keys) {
   std::map<std::string, std::vector<std::pair<std::string, std::string>>> tables;
   std::vector<std::string> order;
   for (const auto& k : registry()) {
-    if (keys == SceneTomlKeys::WithoutOutputLocation && (k.key == "output.directory" || k.key == "output.name")) continue;
+    if (keys == SceneTomlKeys::Recorded &&
+        (k.key == "output.directory" || k.key == "output.name" || k.key == "render.threads"))
+      continue;
     const std::string value = k.get(s);
     if (value.empty()) continue;
     const auto dot = k.key.rfind('.');
