@@ -64,8 +64,8 @@ build_sanitized() {
 
 # The fuzz targets (tests/fuzz/) with clang's libFuzzer, ASan and UBSan in build-fuzz/: only the
 # library, the CLI's internal library and the three fuzzers are built, not the test suites.
-# SKYSPEC_FUZZ_SECONDS (default 12) is how long each CTest fuzz_* test fuzzes (three targets on
-# two cores: about 30 s). -O1 with line
+# SKYSPEC_FUZZ_SECONDS is how long each CTest fuzz_* test fuzzes (scripts/fuzz.sh: 60 s by
+# default). -O1 with line
 # tables only: symbolised reports at a lower compile cost than -O2 -g.
 build_fuzz() {
   if [ ! -f build-fuzz/CMakeCache.txt ] || [ "${CI:-}" = true ] || [ -n "${SKYSPEC_FUZZ_SECONDS:-}" ]; then

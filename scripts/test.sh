@@ -2,8 +2,9 @@
 # Installs what is missing, builds, and runs every test through CTest; then builds again with
 # AddressSanitizer + UndefinedBehaviorSanitizer (build-asan/) and runs the Boost.Test suites and
 # the command-line tests there (no Python or notebooks: that build has no Python module). Any
-# sanitizer report aborts the process under test and fails its test. Last, it fuzzes the scene
-# loader, the command line and the EXR readers with libFuzzer for a bounded time (build-fuzz/, tests/fuzz/).
+# sanitizer report aborts the process under test and fails its test. Both builds replay every
+# input of the fuzz corpora and regressions (fuzz_replay_*); live fuzzing with libFuzzer is
+# scripts/fuzz.sh (clang, build-fuzz/), outside this command for time.
 # Each stage's wall time is printed to stderr ("skyspec test: <stage> <seconds> s").
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 # Tests keep their multiple-scattering table cache inside the build folder, not in ~/.cache.
@@ -31,8 +32,3 @@ UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan --output-on-failure -j"$(nproc)" \
     -E '^(python_.*|notebook_.*|install_consumer|slurm_job|cli_determinism|cli_reproduce|test_multiple_scattering|test_grid_independence)$'
 stage "sanitizer tests"
-# Fuzz the scene loader, the command line and the EXR readers for a bounded time each (tests/fuzz/), with clang.
-build_fuzz
-stage "fuzz build"
-ctest --test-dir build-fuzz --output-on-failure -j"$(nproc)" -R '^fuzz_'
-stage "fuzzing"
