@@ -22,6 +22,7 @@ import shutil
 import subprocess
 import sys
 import time
+import uuid
 
 __all__ = ["run_job", "find_skyspec", "JobFailed", "DaskMissing"]
 
@@ -138,8 +139,8 @@ def run_job(job, *, out=None, scheduler=None, workers=None, threads=1, skyspec=N
     """Runs the job file `job` on Dask and collects its manifest and tables.
 
     scheduler: a Dask scheduler address ("tcp://host:8786"); None starts a LocalCluster of
-    `workers` workers (default: the cores), threads of this process, one task at a time each. threads: render threads per
-    task. Returns the summary (tasks, ok, failed, output folder); raises JobFailed when tasks failed
+    `workers` workers (default: the cores), threads of this process, one task at a time each.
+    threads: render threads per task. Returns the summary (tasks, ok, failed, output folder); raises JobFailed when tasks failed
     or did not run, ValueError for a job file with an error (before any task runs).
     """
     try:
@@ -172,8 +173,9 @@ def run_job(job, *, out=None, scheduler=None, workers=None, threads=1, skyspec=N
     progress = _Progress(plan["tasks"], quiet)
     failures = []
     try:
+        run = uuid.uuid4().hex[:12]  # keys of this run only: another run on a shared cluster never shares them
         futures = [client.submit(run_chunk, skyspec, job, out, plan["task_directory"], a, b, threads,
-                                 key="skyspec-%s-%d-%d" % (plan["name"], a, b), pure=False)
+                                 key="skyspec-%s-%s-%d-%d" % (plan["name"], run, a, b), pure=False)
                    for a, b in plan["chunks"]]
         for future in as_completed(futures):
             try:
@@ -202,8 +204,9 @@ def run_job(job, *, out=None, scheduler=None, workers=None, threads=1, skyspec=N
     if p.returncode not in (0, EXIT_TASKS_FAILED):
         raise RuntimeError("skyspec job collect failed: " + p.stderr.strip())
     if summary["failed"] or summary["missing"]:
-        raise JobFailed("%d of %d task(s) failed and %d did not run (manifest: %s)" % (
-            summary["failed"], summary["tasks"], summary["missing"], os.path.join(out, "manifest.jsonl")), summary)
+        raise JobFailed("%d of %d task(s) failed and %d did not run (manifest: %s)%s" % (
+            summary["failed"], summary["tasks"], summary["missing"], os.path.join(out, "manifest.jsonl"),
+            "; Dask: " + "; ".join(failures[:3]) if failures else ""), summary)
     return summary
 
 

@@ -108,6 +108,12 @@ MergeSummary merge_spectral_exr_tiles(const std::vector<fs::path>& paths, const 
     throw IoError(std::string("merge: ") + e.what());
   }
   const Box display = header->displayWindow();
+  // A band holds the image's width: a header declaring more than any skyspec image is refused
+  // before anything is allocated for it.
+  if (display.max.x - display.min.x + 1 > 65536 || display.max.y - display.min.y + 1 > 65536 ||
+      display.max.x < display.min.x || display.max.y < display.min.y)
+    throw InputError("TILES", "\"" + paths.front().string() + "\"",
+                     "tiles of an image of at most 65536 x 65536 pixels (its display window is " + box_text(display) + ")");
   long long covered = 0;
   for (std::size_t i = 0; i < tiles.size(); ++i) {
     const Box& a = tiles[i].window;
