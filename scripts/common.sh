@@ -5,12 +5,13 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 # Debian bookworm packages: compiler and build tools, the libraries the build finds with
 # find_package, and the tools the tests use to open our outputs (exrheader, oiiotool, ociocheck),
-# to run jobs (Dask) and to run the documented Slurm script on a single-node Slurm.
+# to run jobs (Dask) and to run the documented Slurm script on a single-node Slurm; GNU time for
+# the merge's memory check (cli_tiles).
 SKYSPEC_PACKAGES=(
   build-essential cmake pkg-config
   libeigen3-dev libopenexr-dev libimath-dev libopencolorio-dev libtbb-dev libpng-dev
   libtomlplusplus-dev libcli11-dev libboost-test-dev libhowardhinnant-date-dev liblcms2-dev libssl-dev libnetcdf-dev
-  openexr openimageio-tools opencolorio-tools
+  openexr openimageio-tools opencolorio-tools time
   nlohmann-json3-dev
   pybind11-dev python3-dev python3-numpy python3-matplotlib python3-openimageio
   jupyter-nbconvert python3-ipykernel

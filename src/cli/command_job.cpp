@@ -195,6 +195,8 @@ int run_job(const JobOptions& o) {
     exec_driver(o);
   }
   if (!o.scheduler.empty()) throw InputError("--scheduler", o.scheduler, "no --shard or --tasks (they run here, without Dask)");
+  if (o.workers > 0)
+    throw InputError("--workers", std::to_string(o.workers), "no --shard or --tasks (they run here, in this process)");
   if (o.stop_with_parent) {  // a driver's child: SIGTERM (a clean stop) when the worker that started it dies
     const pid_t parent = getppid();
     prctl(PR_SET_PDEATHSIG, SIGTERM);

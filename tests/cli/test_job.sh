@@ -34,6 +34,7 @@ run_expecting_error "axis value out of range" 2 'axes.atmosphere.mie.g' "$work/b
 [ ! -e "$work/bad-out" ] && ok || bad "a refused job created its output folder"
 printf '[job]\nname = "bad"\ntasks_per_chunck = 3\n' >"$work/bad2.toml"
 run_expecting_error "unknown job key" 2 'job.tasks_per_chunck' "$work/bad-out" "$skyspec" job plan "$work/bad2.toml"
+run_expecting_error "--workers with a shard" 2 '--workers' "$work/bad-out" "$skyspec" job run "$work/small.toml" --out "$work/bad-out" --shard 1/3 --workers 2
 run_expecting_error "bad shard" 2 '--shard' "$work/bad-out" "$skyspec" job run "$work/small.toml" --out "$work/bad-out" --shard 4/3
 
 # --- plan ----------------------------------------------------------------------------------------

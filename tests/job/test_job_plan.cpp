@@ -97,7 +97,7 @@ BOOST_AUTO_TEST_CASE(task_scene_has_the_site_time_and_parameters) {
 }
 
 BOOST_AUTO_TEST_CASE(sun_filter_keeps_exactly_the_frames_with_the_sun_high_enough) {
-  JobSpec spec = parse(std::string(kTwoSites) + "");
+  JobSpec spec = parse(kTwoSites);
   spec.min_sun_elevation_deg = 10.0;
   const JobPlan plan = plan_job(spec);
   std::set<std::string> kept;
