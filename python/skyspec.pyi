@@ -106,6 +106,22 @@ def render(
 ) -> RenderResult:
     """Render a scene into memory; no files are written until you ask (RenderResult.write_exr)."""
 
+def monte_carlo(
+    preset: str = "default",
+    *,
+    scene_file: Optional[str] = None,
+    scene_toml: Optional[str] = None,
+    overrides: Optional[Dict[str, Any]] = None,
+    probes: Optional[Sequence[Sequence[float]]] = None,
+    paths: int = 100000,
+    seed: int = 1,
+    orders: int = 0,
+    irradiance: bool = False,
+) -> Dict[str, Any]:
+    """The Monte Carlo reference (all scattering orders) at (azimuth_deg, elevation_deg) probes:
+    radiance and standard_error arrays (probes x wavelengths), optionally the diffuse horizontal
+    irradiance. docs/validation.md."""
+
 def run_job(
     job: str,
     *,

@@ -21,6 +21,7 @@
 #include "skyspec/coefficient_report.hpp"
 #include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
+#include "skyspec/monte_carlo.hpp"
 #include "skyspec/rayleigh.hpp"
 #include "skyspec/refractive_index.hpp"
 #include "skyspec/render.hpp"
@@ -311,6 +312,63 @@ RenderResult render(const std::string& preset, const std::optional<std::string>&
     *image = render_to_memory(scene);
   }
   return {image, xyz_of(*image)};
+}
+
+// The Monte Carlo reference at probes given as (azimuth, elevation) pairs (default: the standard ones).
+py::dict monte_carlo(const std::string& preset, const std::optional<std::string>& scene_file,
+                     const std::optional<std::string>& scene_toml, const std::optional<py::dict>& overrides,
+                     const py::object& probes, long long paths, unsigned long long seed, int orders, bool irradiance) {
+  const Scene scene = load_scene(preset, scene_file, scene_toml, overrides);
+  std::vector<ReferenceProbe> list;
+  if (probes.is_none()) {
+    list = standard_reference_probes(scene);
+  } else {
+    for (const auto& item : py::iter(probes)) {
+      const auto pair = numbers_arg(py::reinterpret_borrow<py::object>(item), "probes");
+      if (pair.size() != 2 || !std::isfinite(pair[0]) || !(pair[1] >= -90.0 && pair[1] <= 90.0))
+        throw InputError("probes", py::repr(item).cast<std::string>(),
+                         "(azimuth_deg, elevation_deg) pairs, elevation -90 to 90");
+      list.push_back({format_number(pair[0]) + "," + format_number(pair[1]), pair[0], pair[1]});
+    }
+  }
+  ReferenceSettings settings;
+  settings.paths = paths;
+  settings.seed = seed;
+  settings.max_orders = orders;
+  settings.diffuse_irradiance = irradiance;
+  ReferenceResult r;
+  {
+    py::gil_scoped_release release;
+    r = monte_carlo_reference(scene, list, settings);
+  }
+  const auto k = static_cast<py::ssize_t>(r.probes.size()), n = static_cast<py::ssize_t>(r.wavelengths_nm.size());
+  py::array_t<double> radiance({k, n}), error({k, n}), az(k), el(k);
+  for (py::ssize_t a = 0; a < k; ++a) {
+    az.mutable_at(a) = r.probes[static_cast<size_t>(a)].azimuth_deg;
+    el.mutable_at(a) = r.probes[static_cast<size_t>(a)].elevation_deg;
+    for (py::ssize_t i = 0; i < n; ++i) {
+      radiance.mutable_at(a, i) = r.radiance[static_cast<size_t>(a)][static_cast<size_t>(i)];
+      error.mutable_at(a, i) = r.radiance_standard_error[static_cast<size_t>(a)][static_cast<size_t>(i)];
+    }
+  }
+  py::list labels;
+  for (const auto& p : r.probes) labels.append(p.label);
+  py::dict out;
+  out["wavelength_nm"] = array1(r.wavelengths_nm);
+  out["labels"] = labels;
+  out["azimuth_deg"] = az;
+  out["elevation_deg"] = el;
+  out["radiance"] = radiance;
+  out["standard_error"] = error;
+  if (irradiance) {
+    out["diffuse_horizontal"] = array1(r.diffuse_horizontal);
+    out["diffuse_horizontal_standard_error"] = array1(r.diffuse_horizontal_standard_error);
+  }
+  out["paths"] = paths;
+  out["seed"] = seed;
+  out["orders"] = orders;
+  out["seconds"] = r.seconds;
+  return out;
 }
 
 // The pixel whose view direction is nearest (azimuth, elevation): (row, column).
@@ -617,6 +675,20 @@ valid, pixel(), spectrum_at()), the sun (sun_direction, sun_azimuth_deg, sun_ele
 `skyspec render` would (write_exr(), write_png()). Example:
   img = skyspec.render(overrides={"camera.width": 64, "camera.height": 64, "sun.elevation_deg": 10})
   img.spectrum_at(azimuth_deg=0, elevation_deg=45); img.write_exr("sky.exr"))");
+
+  m.def("monte_carlo", &monte_carlo, py::arg("preset") = "default", py::kw_only(), py::arg("scene_file") = py::none(),
+        py::arg("scene_toml") = py::none(), py::arg("overrides") = py::none(), py::arg("probes") = py::none(),
+        py::arg("paths") = 100000, py::arg("seed") = 1, py::arg("orders") = 0, py::arg("irradiance") = false,
+        R"(The Monte Carlo reference of a scene (`skyspec reference`): sky radiance with every scattering order
+at the camera's position, by backward path tracing independent of the renderer (docs/validation.md).
+
+probes: (azimuth_deg, elevation_deg) pairs (default: zenith, 45 deg up towards the sun, 1 deg above the
+horizon towards, across and away from it); paths per probe and wavelength; seed; orders: 0 for all,
+1 for single scattering; irradiance: also the diffuse horizontal irradiance.
+Returns a dict: wavelength_nm (n), labels, azimuth_deg, elevation_deg (k), radiance and standard_error
+((k, n), W m^-2 sr^-1 nm^-1), with irradiance diffuse_horizontal and its standard error (n,
+W m^-2 nm^-1), and paths, seed, orders, seconds. The same seed gives the same values on any machine
+and number of threads.)");
 
   // Jobs run on Dask through the pure-Python driver beside this module (skyspec_jobs.py).
   m.def(

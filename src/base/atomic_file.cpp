@@ -10,6 +10,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <random>
 #include <sstream>
 #include <string>
@@ -92,6 +93,17 @@ void AtomicOutputFile::commit() {
 void AtomicOutputFile::discard() noexcept {
   if (committed_ || tmp_.empty()) return;
   ::unlink(tmp_.c_str());  // nothing useful to do if it is already gone
+}
+
+void write_file_atomically(const fs::path& path, const std::string& bytes) {
+  AtomicOutputFile file(path);
+  {
+    std::ofstream stream(file.temporary_path(), std::ios::binary);
+    stream << bytes;
+    stream.flush();
+    if (!stream) throw IoError("cannot write " + file.temporary_path().string());
+  }
+  file.commit();
 }
 
 void ensure_writable_directory(const fs::path& dir, const std::string& setting) {

@@ -31,6 +31,10 @@ class AtomicOutputFile {
   bool committed_ = false;
 };
 
+/// Writes `bytes` to `path` through an AtomicOutputFile: the file appears complete or not at all.
+/// Throws IoError naming the file.
+void write_file_atomically(const std::filesystem::path& path, const std::string& bytes);
+
 /// Check up front that a folder exists (or can be created) and is writable; throws InputError
 /// naming `setting` (e.g. "--out" or "output.directory") otherwise.
 void ensure_writable_directory(const std::filesystem::path& dir, const std::string& setting);

@@ -25,6 +25,7 @@ CliApp::CliApp()
       add_coefficients_command(app),
       add_job_command(app),
       add_merge_command(app),
+      add_reference_command(app),
   };
 }
 

@@ -153,14 +153,7 @@ int run_coefficients(const CoefficientOptions& o) {
     std::cout << text;
     return kExitOk;
   }
-  AtomicOutputFile file(out_path);
-  {
-    std::ofstream stream(file.temporary_path(), std::ios::binary);
-    stream << text;
-    stream.flush();
-    if (!stream) throw IoError("cannot write " + file.temporary_path().string());
-  }
-  file.commit();
+  write_file_atomically(out_path, text);
   return kExitOk;
 }
 

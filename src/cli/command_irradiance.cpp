@@ -2,7 +2,6 @@
 // the camera, for the scene's sun or a list of sun elevations.
 
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -10,6 +9,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "text_output.hpp"
 #include "scene_options.hpp"
 #include "base/atomic_file.hpp"
 #include "skyspec/error.hpp"
@@ -81,17 +81,7 @@ int run(IrradianceOptions& o) {
   if (o.format == "md")
     text << "\nBroadband W/m2 over " << make_wavelength_grid(base).min_nm() << "-" << make_wavelength_grid(base).max_nm()
          << " nm; lux = 683 lm/W x y-bar-weighted integral.\n";
-  if (o.out.empty()) {
-    std::cout << text.str();
-    return kExitOk;
-  }
-  AtomicOutputFile file(o.out);
-  {
-    std::ofstream f(file.temporary_path());
-    f << text.str();
-    if (!f.flush()) throw IoError("cannot write " + o.out);
-  }
-  file.commit();
+  print_or_write(text.str(), o.out);
   return kExitOk;
 }
 

@@ -35,5 +35,6 @@ Command add_aerial_command(CLI::App& app);
 Command add_coefficients_command(CLI::App& app);
 Command add_job_command(CLI::App& app);
 Command add_merge_command(CLI::App& app);
+Command add_reference_command(CLI::App& app);
 
 }  // namespace skyspec::cli

@@ -24,7 +24,7 @@
 #include "render/scene_tables.hpp"
 #include "transport/single_scattering.hpp"
 #include "transport/sky_view_table.hpp"
-#include "physics/solar_spectrum.hpp"
+#include "render/sun_irradiance.hpp"
 #include "physics/sun_disk.hpp"
 #include "skyspec/units.hpp"
 
@@ -51,14 +51,6 @@ bool is_latlong_envmap(const CameraSpec& camera) {
 }
 
 namespace {
-// The sun's spectral irradiance at the top of the atmosphere on the grid, W m^-2 nm^-1.
-Spectrum make_sun_irradiance(const Scene& s, const WavelengthGrid& grid) {
-  if (s.sun.spectrum == SunSpec::Spectrum::Flat)
-    return Spectrum::Constant(grid.size(), static_cast<float>(s.sun.spectral_irradiance_W_m2_nm));
-  const double scale = 1.0 / (s.sun.distance_au * s.sun.distance_au);  // inverse-square law
-  return (solar_irradiance_on_grid(grid, "spectrum") * scale).cast<float>();
-}
-
 // render.threads, or all cores for 0.
 int thread_count(const Scene& s) {
   return s.render.threads > 0 ? s.render.threads : tbb::this_task_arena::max_concurrency();
@@ -173,7 +165,7 @@ struct SkyRenderer::Impl {
         sources{true, orders.get()},
         camera(make_camera(s)),
         sun_dir(skyspec::sun_direction(s)),
-        sun_irradiance(make_sun_irradiance(s, grid)),
+        sun_irradiance(scene_sun_irradiance(s, grid)),
         sun_radius_rad(skyspec::sun_angular_radius_rad(s.sun.distance_au)),
         rgb_fast(s.render.path == RenderSpec::Path::RgbFast),
         threads(thread_count(s)) {

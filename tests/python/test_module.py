@@ -196,6 +196,30 @@ class RenderAgainstCli(unittest.TestCase):
         self.assertIn("unknown key", str(e.exception))
 
 
+class MonteCarloAgainstCli(unittest.TestCase):
+    def test_reference_equals_the_cli_json(self):
+        overrides = {"spectrum.wavelengths_nm": [450, 650], "sun.elevation_deg": 15}
+        r = skyspec.monte_carlo(overrides=overrides, probes=[(0, 90), (90, 1)], paths=2000, seed=3, irradiance=True)
+        self.assertEqual(r["radiance"].shape, (2, 2))
+        self.assertEqual(r["standard_error"].shape, (2, 2))
+        self.assertEqual(r["diffuse_horizontal"].shape, (2,))
+        self.assertTrue((r["standard_error"] > 0).all() and (r["standard_error"] < 0.2 * r["radiance"]).all())
+        j = json.loads(cli("reference", "--wavelengths", "450,650", "--sun-elevation", "15", "--probe", "0,90",
+                           "--probe", "90,1", "--paths", "2000", "--seed", "3", "--irradiance", "--format", "json", "-q"))
+        for k, probe in enumerate(j["probes"]):
+            np.testing.assert_allclose(r["radiance"][k], probe["radiance"], rtol=1e-12, atol=0)
+            np.testing.assert_allclose(r["standard_error"][k], probe["standard_error"], rtol=1e-12, atol=0)
+        np.testing.assert_allclose(r["diffuse_horizontal"], j["diffuse_horizontal"]["irradiance"], rtol=1e-12, atol=0)
+
+    def test_bad_probe_names_the_argument(self):
+        with self.assertRaises(ValueError) as e:
+            skyspec.monte_carlo(probes=[(0, 91)], paths=10)
+        self.assertIn("probes", str(e.exception))
+        with self.assertRaises(ValueError) as e:
+            skyspec.monte_carlo(paths=1)
+        self.assertIn("paths", str(e.exception))
+
+
 class PublishedValues(unittest.TestCase):
     def test_standard_atmosphere_definition(self):
         # U.S. Standard Atmosphere 1976: 288.15 K and 101325 Pa at sea level, 216.65 K from 11 to 20 km

@@ -1,0 +1,62 @@
+// The Monte Carlo reference of a scene: the sky's radiance in chosen directions and the diffuse
+// horizontal irradiance at the camera, with every scattering order, each with its standard error.
+//
+// It shares with the renderer only the physical inputs (the atmosphere on the grid, the sun's
+// spectrum and direction, the camera's position); the light transport is its own (backward path
+// tracing with delta and ratio tracking, no tables; src/transport/monte_carlo.hpp), so that it can
+// check the renderer's multiple scattering. Refraction is ignored, as in the renderer; the sun is a
+// point, and its disk and direct beam are not part of the sky radiance or the diffuse irradiance.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "skyspec/render.hpp"
+#include "skyspec/scene.hpp"
+
+namespace skyspec {
+
+/// A direction of the sky seen from the scene's camera position (the sun's angle conventions:
+/// azimuth clockwise from north, elevation above the horizon).
+struct ReferenceProbe {
+  std::string label;
+  double azimuth_deg = 0.0;
+  double elevation_deg = 90.0;
+};
+
+struct ReferenceSettings {
+  std::int64_t paths = 100000;  ///< per probe and wavelength
+  std::uint64_t seed = 1;
+  int max_orders = 0;           ///< 0: all orders; 1: single scattering (air and ground); k: up to k events
+  bool diffuse_irradiance = false;  ///< also the diffuse horizontal irradiance at the camera
+};
+
+struct ReferenceResult {
+  std::vector<double> wavelengths_nm;
+  std::vector<ReferenceProbe> probes;
+  /// [probe][wavelength]: W m^-2 sr^-1 nm^-1 (or the flat sun's units per sr), and its standard error.
+  std::vector<std::vector<double>> radiance, radiance_standard_error;
+  /// [wavelength]: W m^-2 nm^-1 on a horizontal surface at the camera, the sun's direct beam
+  /// excluded (empty unless asked for).
+  std::vector<double> diffuse_horizontal, diffuse_horizontal_standard_error;
+  ReferenceSettings settings;
+  double seconds = 0.0;
+};
+
+/// The probes of the validation table (docs/validation.md): the zenith, 45 degrees up towards the
+/// sun, and 1 degree above the horizon towards, across (90 degrees to the right of) and away from it.
+std::vector<ReferenceProbe> standard_reference_probes(const Scene& scene);
+
+/// "label=azimuth,elevation" or "azimuth,elevation" (degrees) -> a probe; InputError naming
+/// `setting` otherwise (elevation -90..90, azimuth any finite number).
+ReferenceProbe parse_reference_probe(const std::string& text, const std::string& setting);
+
+/// Runs the reference on all threads render.threads allows. Each estimate depends only on the
+/// seed, the number of paths, the probe's direction and the wavelength: not on the other probes,
+/// the threads or the machine. `progress` gets (estimates done, estimates in total).
+/// Throws InputError for paths < 2 or max_orders < 0.
+ReferenceResult monte_carlo_reference(const Scene& scene, const std::vector<ReferenceProbe>& probes,
+                                      const ReferenceSettings& settings, const ProgressFn& progress = {});
+
+}  // namespace skyspec

@@ -1,0 +1,214 @@
+// `skyspec reference`: the Monte Carlo reference radiance (all scattering orders, with standard
+// errors) in a few sky directions, optionally beside the renderer's own values.
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "text_output.hpp"
+#include "progress.hpp"
+#include "scene_options.hpp"
+#include "base/atomic_file.hpp"
+#include "render/irradiance.hpp"
+#include "skyspec/camera.hpp"
+#include "skyspec/error.hpp"
+#include "skyspec/monte_carlo.hpp"
+#include "skyspec/render.hpp"
+#include "skyspec/version.hpp"
+
+namespace skyspec::cli {
+namespace {
+
+struct ReferenceOptions {
+  SceneOptions scene;
+  std::vector<std::string> probes;
+  long long paths = 100000;
+  unsigned long long seed = 1;
+  int orders = 0;
+  bool irradiance = false, compare = false, quiet = false;
+  std::string format = "md";
+  std::string out;
+};
+
+struct Checked {
+  Scene scene;
+  std::vector<ReferenceProbe> probes;
+  ReferenceSettings settings;
+};
+
+Checked check(const ReferenceOptions& o) {
+  if (o.format != "md" && o.format != "csv" && o.format != "json")
+    throw InputError("--format", "\"" + o.format + "\"", "one of: md, csv, json");
+  if (o.paths < 2 || o.paths > 1000000000000LL)
+    throw InputError("--paths", std::to_string(o.paths), "2 to 1e12 paths per probe and wavelength");
+  if (o.orders < 0 || o.orders > 100000)
+    throw InputError("--orders", std::to_string(o.orders), "0 (all orders) or 1 to 100000");
+  Checked c;
+  // Only the camera position matters; a 1x1 image keeps the renderer's set-up (--compare) cheap.
+  c.scene = load_scene(o.scene, [](SceneLoader& l) {
+    l.apply_override("camera.width", "1", "reference");
+    l.apply_override("camera.height", "1", "reference");
+  });
+  for (const auto& p : o.probes) c.probes.push_back(parse_reference_probe(p, "--probe"));
+  if (c.probes.empty()) c.probes = standard_reference_probes(c.scene);
+  if (o.compare && o.orders > 1)
+    throw InputError("--orders", std::to_string(o.orders),
+                     "0 or 1 with --compare (the renderer computes single scattering or all the orders it is set to)");
+  c.settings.paths = o.paths;
+  c.settings.seed = o.seed;
+  c.settings.max_orders = o.orders;
+  c.settings.diffuse_irradiance = o.irradiance;
+  return c;
+}
+
+// What the renderer says at the same probes (its sky radiance and diffuse horizontal irradiance).
+struct Deterministic {
+  std::vector<Spectrum> radiance;
+  SpectrumD diffuse;
+};
+
+Deterministic render_probes(Scene scene, const Checked& c, int orders) {
+  if (orders == 1) scene.render.scattering_orders = 1;
+  const SkyRenderer renderer(scene);
+  Deterministic d;
+  for (const auto& p : c.probes) d.radiance.push_back(renderer.radiance(direction_from_angles(p.azimuth_deg, p.elevation_deg)));
+  if (c.settings.diffuse_irradiance) d.diffuse = irradiance_at_camera(renderer).diffuse_horizontal;
+  return d;
+}
+
+std::string format_table(const ReferenceResult& r, const Deterministic* det, const std::string& format,
+                         const Scene& scene) {
+  std::ostringstream t;
+  char line[512];
+  const size_t n = r.wavelengths_nm.size();
+  auto row = [&](const std::string& label, double az, double el, size_t i, double mc, double se, double renderer) {
+    const double diff = 100.0 * (renderer / mc - 1.0), sigma = (renderer - mc) / se;
+    if (format == "md") {
+      std::snprintf(line, sizeof line, "| %s | %.2f | %.2f | %g | %.6g | %.3f |", label.c_str(), az, el, r.wavelengths_nm[i],
+                    mc, 100.0 * se / std::abs(mc));
+      t << line;
+      if (det) {
+        std::snprintf(line, sizeof line, " %.6g | %+.2f | %+.1f |", renderer, diff, sigma);
+        t << line;
+      }
+    } else {
+      std::snprintf(line, sizeof line, "\"%s\",%.6g,%.6g,%g,%.9g,%.9g", label.c_str(), az, el, r.wavelengths_nm[i], mc, se);
+      t << line;
+      if (det) {
+        std::snprintf(line, sizeof line, ",%.9g,%.6g,%.6g", renderer, diff, sigma);
+        t << line;
+      }
+    }
+    t << "\n";
+  };
+  if (format == "md") {
+    t << "| probe | azimuth (deg) | elevation (deg) | wavelength (nm) | Monte Carlo | standard error (%) |"
+      << (det ? " renderer | renderer - MC (%) | (renderer - MC) / sigma |" : "") << "\n"
+      << "| --- | ---: | ---: | ---: | ---: | ---: |" << (det ? " ---: | ---: | ---: |" : "") << "\n";
+  } else {
+    t << "probe,azimuth_deg,elevation_deg,wavelength_nm,monte_carlo,standard_error"
+      << (det ? ",renderer,renderer_minus_mc_percent,renderer_minus_mc_sigma" : "") << "\n";
+  }
+  for (size_t k = 0; k < r.probes.size(); ++k)
+    for (size_t i = 0; i < n; ++i)
+      row(r.probes[k].label, r.probes[k].azimuth_deg, r.probes[k].elevation_deg, i, r.radiance[k][i],
+          r.radiance_standard_error[k][i], det ? static_cast<double>(det->radiance[k][static_cast<long>(i)]) : 0.0);
+  for (size_t i = 0; i < r.diffuse_horizontal.size(); ++i)
+    row("diffuse horizontal irradiance", 0.0, 90.0, i, r.diffuse_horizontal[i], r.diffuse_horizontal_standard_error[i],
+        det ? det->diffuse[static_cast<long>(i)] : 0.0);
+  if (format == "md") {
+    t << "\nRadiance in W m^-2 sr^-1 nm^-1 (irradiance in W m^-2 nm^-1), sun at elevation " << scene.sun.elevation_deg
+      << " deg, azimuth " << scene.sun.azimuth_deg << " deg; " << r.settings.paths << " paths per value, seed "
+      << r.settings.seed << ", " << (r.settings.max_orders == 0 ? std::string("all orders") : std::to_string(r.settings.max_orders) + " order(s)")
+      << "; " << r.seconds << " s.\n";
+  }
+  return t.str();
+}
+
+std::string format_json(const ReferenceResult& r, const Deterministic* det, const Scene& scene) {
+  nlohmann::json j;
+  j["skyspec_version"] = version_string();
+  j["paths"] = r.settings.paths;
+  j["seed"] = r.settings.seed;
+  j["max_orders"] = r.settings.max_orders;
+  j["seconds"] = r.seconds;
+  j["wavelengths_nm"] = r.wavelengths_nm;
+  j["sun_elevation_deg"] = scene.sun.elevation_deg;
+  j["sun_azimuth_deg"] = scene.sun.azimuth_deg;
+  j["scene"] = scene_to_toml(scene, SceneTomlKeys::Recorded);
+  j["probes"] = nlohmann::json::array();
+  for (size_t k = 0; k < r.probes.size(); ++k) {
+    nlohmann::json p{{"label", r.probes[k].label},
+                     {"azimuth_deg", r.probes[k].azimuth_deg},
+                     {"elevation_deg", r.probes[k].elevation_deg},
+                     {"radiance", r.radiance[k]},
+                     {"standard_error", r.radiance_standard_error[k]}};
+    if (det) p["renderer"] = std::vector<double>(det->radiance[k].data(), det->radiance[k].data() + det->radiance[k].size());
+    j["probes"].push_back(p);
+  }
+  if (!r.diffuse_horizontal.empty()) {
+    j["diffuse_horizontal"] = {{"irradiance", r.diffuse_horizontal},
+                               {"standard_error", r.diffuse_horizontal_standard_error}};
+    if (det) j["diffuse_horizontal"]["renderer"] = std::vector<double>(det->diffuse.data(), det->diffuse.data() + det->diffuse.size());
+  }
+  return j.dump(1) + "\n";
+}
+
+int run(const ReferenceOptions& o) {
+  const Checked c = check(o);
+  ReferenceResult result;
+  {
+    ProgressBar bar("monte carlo", o.quiet);
+    result = monte_carlo_reference(c.scene, c.probes, c.settings, [&bar](int done, int total) { bar.update(done, total); });
+    bar.finish();
+  }
+  std::unique_ptr<Deterministic> det;
+  if (o.compare) det = std::make_unique<Deterministic>(render_probes(c.scene, c, o.orders));
+  const std::string text =
+      o.format == "json" ? format_json(result, det.get(), c.scene) : format_table(result, det.get(), o.format, c.scene);
+  print_or_write(text, o.out);
+  return kExitOk;
+}
+
+}  // namespace
+
+Command add_reference_command(CLI::App& app) {
+  auto o = std::make_shared<ReferenceOptions>();
+  auto* cmd = app.add_subcommand(
+      "reference", "Monte Carlo reference radiance (all scattering orders, with standard errors) in sky directions");
+  cmd->footer(
+      "Examples:\n"
+      "  skyspec reference --sun-elevation 10 --compare\n"
+      "  skyspec reference --probe zenith=0,90 --probe 180,1 --paths 1000000 --format json\n"
+      "Backward path tracing in the scene's spherical shell (src/transport/monte_carlo.hpp), written\n"
+      "independently of the renderer: no tables, every order, the scene's Rayleigh (with the King\n"
+      "factor's depolarisation), aerosol phase function, ozone and Lambertian ground. One estimate per\n"
+      "probe and wavelength, each depending only on the seed, --paths, the direction and the wavelength.\n"
+      "Without --probe: the zenith, 45 deg up towards the sun, and 1 deg above the horizon towards,\n"
+      "across and away from it. --compare adds the renderer's radiance (and irradiance) and their\n"
+      "difference in percent and in standard errors (docs/validation.md).");
+  o->scene.flags = spectrum_flags();
+  append_flags(o->scene.flags, sun_flags());
+  o->scene.flags.push_back({"--position", "camera.position_m", "observer east,north,height in m", {}, true});
+  add_scene_options(*cmd, o->scene);
+  add_quality_option(*cmd, o->scene);
+  cmd->add_option("--probe", o->probes, "a direction: azimuth,elevation or label=azimuth,elevation (deg); repeatable");
+  cmd->add_option("--paths", o->paths, "paths per probe and wavelength")->capture_default_str();
+  cmd->add_option("--seed", o->seed, "random seed")->capture_default_str();
+  cmd->add_option("--orders", o->orders, "0: all scattering orders; 1: single scattering only")->capture_default_str();
+  cmd->add_flag("--irradiance", o->irradiance, "also the diffuse horizontal irradiance at the observer");
+  cmd->add_flag("--compare", o->compare, "also the renderer's values at the same probes, and the differences");
+  cmd->add_option("--format", o->format, "md (Markdown table), csv or json")->capture_default_str();
+  cmd->add_option("--out", o->out, "write to this file instead of standard output");
+  cmd->add_flag("-q,--quiet", o->quiet, "no progress bar");
+  return {cmd, [o] { return run(*o); }, [o] { check(*o); }};
+}
+
+}  // namespace skyspec::cli

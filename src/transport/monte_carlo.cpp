@@ -1,0 +1,418 @@
+#include "transport/monte_carlo.hpp"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "base/cancellation.hpp"
+#include "skyspec/error.hpp"
+#include "skyspec/phase_function.hpp"
+#include "skyspec/units.hpp"
+
+namespace skyspec {
+
+namespace {
+constexpr std::int64_t kBatchPaths = 4096;  // paths per independently seeded batch
+constexpr double kRouletteWeight = 0.1;     // Russian roulette below this path weight
+constexpr int kMaxEvents = 100000;          // a path's events, a guard against endless loops
+constexpr int kMaxComponents = 8;
+
+// SplitMix64 (Steele, Lea & Flood 2014): turns (seed, stream, batch) into well-mixed 64-bit states.
+std::uint64_t splitmix64(std::uint64_t& x) {
+  std::uint64_t z = (x += 0x9E3779B97F4A7C15ull);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+// Russian roulette on a transmittance estimate: below kRouletteTransmittance it survives with
+// probability T / kRouletteTransmittance and is raised to that value, else it becomes 0 (unbiased;
+// it stops tracking a ray whose remaining contribution is small).
+constexpr double kRouletteTransmittance = 0.05;
+
+// An orthonormal basis (u, v, d) around a unit vector d (Duff et al. 2017, "Building an
+// orthonormal basis, revisited").
+void basis_around(const Vec3& d, Vec3& u, Vec3& v) {
+  const double sign = std::copysign(1.0, d.z());
+  const double a = -1.0 / (sign + d.z());
+  const double b = d.x() * d.y() * a;
+  u = Vec3(1.0 + sign * d.x() * d.x() * a, sign * b, -sign * d.x());
+  v = Vec3(b, sign + d.y() * d.y() * a, -d.y());
+}
+
+// The direction at cosine mu to d, at azimuth phi about it.
+Vec3 rotate_about(const Vec3& d, double mu, double phi) {
+  Vec3 u, v;
+  basis_around(d, u, v);
+  const double s = std::sqrt(std::max(0.0, 1.0 - mu * mu));
+  return (s * std::cos(phi) * u + s * std::sin(phi) * v + mu * d).normalized();
+}
+}  // namespace
+
+// PCG32 (O'Neill 2014, "PCG: A family of simple fast space-efficient statistically good
+// algorithms for random number generation", pcg32 XSH-RR), one stream per batch of paths.
+struct MonteCarloIntegrator::Rng {
+  std::uint64_t state = 0, inc = 1;
+  Rng(std::uint64_t seed, std::uint64_t stream, std::uint64_t batch) {
+    std::uint64_t x = seed ^ (stream * 0xD1B54A32D192ED03ull) ^ (batch * 0x8CB92BA72F3D8DD7ull);
+    const std::uint64_t init = splitmix64(x);
+    inc = (splitmix64(x) << 1u) | 1u;
+    next();
+    state += init;
+    next();
+  }
+  std::uint32_t next() {
+    const std::uint64_t old = state;
+    state = old * 6364136223846793005ull + inc;
+    const auto xorshifted = static_cast<std::uint32_t>(((old >> 18u) ^ old) >> 27u);
+    const auto rot = static_cast<std::uint32_t>(old >> 59u);
+    return (xorshifted >> rot) | (xorshifted << ((32u - rot) & 31u));
+  }
+  /// Uniform in [0, 1) with 53 random bits.
+  double uniform() {
+    const std::uint64_t hi = next(), lo = next();
+    return static_cast<double>(((hi << 32) | lo) >> 11) * 0x1.0p-53;
+  }
+  /// An exponential free path with unit mean: -ln(1 - xi), xi in [0, 1) so the log is finite.
+  double exponential() { return -std::log1p(-uniform()); }
+};
+
+double MonteCarloIntegrator::roulette(double T, Rng& rng) {
+  if (T >= kRouletteTransmittance) return T;
+  return rng.uniform() * kRouletteTransmittance < T ? kRouletteTransmittance : 0.0;
+}
+
+MonteCarloMedium MonteCarloMedium::from_atmosphere(const AtmosphereModel& atm, int i) {
+  MonteCarloMedium m;
+  m.geometry = Geometry::SphericalShell;
+  m.planet_radius_m = atm.planet_radius_m();
+  m.top_altitude_m = atm.spec().top_altitude_m;
+  auto component = [i](const ScatteringSpecies& species, MonteCarloComponent::Phase phase, double parameter) {
+    MonteCarloComponent c;
+    c.profile = species.profile;
+    c.scattering_per_m = species.scattering_per_m[i];
+    c.extinction_per_m = species.extinction_per_m[i];
+    c.phase = phase;
+    c.phase_parameter = parameter;
+    return c;
+  };
+  m.components.push_back(
+      component(atm.rayleigh(), MonteCarloComponent::Phase::Rayleigh, atm.rayleigh_phase_gamma()[i]));
+  if (atm.mie().enabled())
+    m.components.push_back(component(atm.mie(),
+                                     atm.mie_phase().model == AerosolPhase::Model::HenyeyGreenstein
+                                         ? MonteCarloComponent::Phase::HenyeyGreenstein
+                                         : MonteCarloComponent::Phase::CornetteShanks,
+                                     atm.mie_g()[i]));
+  if (atm.ozone().enabled()) m.components.push_back(component(atm.ozone(), MonteCarloComponent::Phase::None, 0.0));
+  m.ground_albedo = atm.ground_albedo()[i];
+  m.sun_irradiance = 1.0;
+  return m;
+}
+
+MonteCarloIntegrator::MonteCarloIntegrator(MonteCarloMedium medium, const Vec3& sun_dir)
+    : medium_(std::move(medium)), sun_(sun_dir.normalized()) {
+  if (medium_.components.size() > static_cast<size_t>(kMaxComponents))
+    throw Error("the Monte Carlo integrator takes at most 8 components");
+  if (!(medium_.top_altitude_m > 0.0)) throw Error("the Monte Carlo medium needs a positive thickness");
+  // sigma_bar = sum over species of beta_ext max_z rho(z). The profiles are monotone or
+  // piecewise linear between nodes at most 10 m apart (the U.S. 1976 table's step) except at the
+  // tent's corners, which are included, so the maximum over nodes is the maximum.
+  for (const auto& c : medium_.components) {
+    if (!(c.extinction_per_m >= c.scattering_per_m && c.scattering_per_m >= 0.0))
+      throw Error("a Monte Carlo component needs 0 <= scattering <= extinction");
+    double rho_max = 0.0;
+    const int n = static_cast<int>(std::ceil(medium_.top_altitude_m / 10.0));
+    for (int k = 0; k <= n; ++k) rho_max = std::max(rho_max, c.profile.relative(std::min(k * 10.0, medium_.top_altitude_m)));
+    if (c.profile.kind() == DensityProfile::Kind::Tent) rho_max = std::max(rho_max, 1.0);
+    majorant_ += c.extinction_per_m * rho_max;
+  }
+  majorant_ *= 1.0 + 1e-9;
+}
+
+double MonteCarloIntegrator::altitude(const Vec3& p) const {
+  return medium_.geometry == MonteCarloMedium::Geometry::PlaneParallel ? p.z() : p.norm() - medium_.planet_radius_m;
+}
+
+Vec3 MonteCarloIntegrator::up(const Vec3& p) const {
+  return medium_.geometry == MonteCarloMedium::Geometry::PlaneParallel ? Vec3(0, 0, 1) : p.normalized();
+}
+
+double MonteCarloIntegrator::distance_to_boundary(const Vec3& p, const Vec3& d, bool& ground) const {
+  ground = false;
+  if (medium_.geometry == MonteCarloMedium::Geometry::PlaneParallel) {
+    if (d.z() > 0.0) return std::max(0.0, (medium_.top_altitude_m - p.z()) / d.z());
+    if (d.z() < 0.0) {
+      ground = true;
+      return std::max(0.0, p.z() / -d.z());
+    }
+    return std::numeric_limits<double>::infinity();
+  }
+  const SphereHit top = intersect_sphere(p, d, medium_.planet_radius_m + medium_.top_altitude_m);
+  double t = top.hit ? std::max(0.0, top.t_far_m) : 0.0;
+  if (p.dot(d) < 0.0) {
+    const SphereHit g = intersect_sphere(p, d, medium_.planet_radius_m);
+    if (g.hit && g.t_near_m >= 0.0 && g.t_near_m < t) {
+      t = g.t_near_m;
+      ground = true;
+    }
+  }
+  return t;
+}
+
+double MonteCarloIntegrator::extinction_at(double z) const {
+  double sigma = 0.0;
+  for (const auto& c : medium_.components) sigma += c.extinction_per_m * c.profile.relative(z);
+  return sigma;
+}
+
+double MonteCarloIntegrator::scattering_at(double z, double* per_component) const {
+  double sigma = 0.0;
+  for (size_t k = 0; k < medium_.components.size(); ++k) {
+    const auto& c = medium_.components[k];
+    per_component[k] = c.scattering_per_m > 0.0 ? c.scattering_per_m * c.profile.relative(z) : 0.0;
+    sigma += per_component[k];
+  }
+  return sigma;
+}
+
+// Ratio tracking: T = prod over tentative collisions before the edge of (1 - sigma_t / sigma_bar).
+double MonteCarloIntegrator::transmittance_to_sun(const Vec3& p, Rng& rng) const {
+  bool ground = false;
+  const double t_max = distance_to_boundary(p, sun_, ground);
+  if (ground || !std::isfinite(t_max)) return 0.0;  // in the planet's shadow (or a horizontal slab ray)
+  double T = 1.0, t = 0.0;
+  if (majorant_ <= 0.0) return 1.0;
+  while (true) {
+    t += rng.exponential() / majorant_;
+    if (t >= t_max) return T;
+    T = roulette(T * (1.0 - extinction_at(altitude(p + t * sun_)) / majorant_), rng);
+    if (T == 0.0) return 0.0;
+  }
+}
+
+double MonteCarloIntegrator::phase_to_sun(const double* scattering, double total, double mu) const {
+  double p = 0.0;
+  for (size_t k = 0; k < medium_.components.size(); ++k) {
+    if (scattering[k] <= 0.0) continue;
+    const auto& c = medium_.components[k];
+    double pk = 0.0;
+    switch (c.phase) {
+      case MonteCarloComponent::Phase::Rayleigh: pk = rayleigh_phase(mu, c.phase_parameter); break;
+      case MonteCarloComponent::Phase::HenyeyGreenstein: pk = henyey_greenstein_phase(mu, c.phase_parameter); break;
+      case MonteCarloComponent::Phase::CornetteShanks: pk = cornette_shanks_phase(mu, c.phase_parameter); break;
+      case MonteCarloComponent::Phase::None: break;
+    }
+    p += scattering[k] * pk;
+  }
+  return p / total;
+}
+
+Vec3 MonteCarloIntegrator::sample_scattering(const double* scattering, double total, const Vec3& d, Rng& rng) const {
+  // The species, in proportion to its scattering coefficient.
+  size_t k = 0;
+  double x = rng.uniform() * total;
+  for (; k + 1 < medium_.components.size(); ++k) {
+    if (x < scattering[k]) break;
+    x -= scattering[k];
+  }
+  while (scattering[k] <= 0.0 && k > 0) --k;  // rounding at the end of the list
+  const auto& c = medium_.components[k];
+  const double a = c.phase_parameter;
+  auto henyey_greenstein = [&rng](double g) {
+    if (std::abs(g) < 1e-6) return 2.0 * rng.uniform() - 1.0;
+    const double q = (1.0 - g * g) / (1.0 - g + 2.0 * g * rng.uniform());
+    return std::clamp((1.0 + g * g - q * q) / (2.0 * g), -1.0, 1.0);
+  };
+  double mu = 0.0;
+  switch (c.phase) {
+    case MonteCarloComponent::Phase::Rayleigh: {
+      // p(mu) proportional to (1 + 3 gamma) + (1 - gamma) mu^2: uniform proposals, accepted in
+      // proportion (at least half of them).
+      const double A = 1.0 + 3.0 * a, B = 1.0 - a;
+      do mu = 2.0 * rng.uniform() - 1.0;
+      while (rng.uniform() * (A + B) > A + B * mu * mu);
+      break;
+    }
+    case MonteCarloComponent::Phase::HenyeyGreenstein: mu = henyey_greenstein(a); break;
+    case MonteCarloComponent::Phase::CornetteShanks:
+      // Cornette-Shanks = Henyey-Greenstein x 3 (1 + mu^2) / (2 (2 + g^2)): HG proposals accepted
+      // with probability (1 + mu^2) / 2.
+      do mu = henyey_greenstein(a);
+      while (rng.uniform() * 2.0 > 1.0 + mu * mu);
+      break;
+    case MonteCarloComponent::Phase::None: mu = 1.0; break;
+  }
+  return rotate_about(d, mu, 2.0 * kPi * rng.uniform());
+}
+
+// One path from p along d: its estimate of the radiance arriving at p from -d.
+//
+// Each straight segment of the path (from p along d to the ground or space) is crossed by a
+// Poisson process of tentative collisions of rate sigma_seg = max(sigma_bar, K / length), K = 8
+// (any rate >= sigma_t is valid; a thin segment still gets about K points). Two estimators use
+// these points:
+//   - the light the segment scatters towards p after coming from the sun (this order's share):
+//     sum over points of T_j sigma_s(x_j) / sigma_seg p(mu) E T_sun(x_j), with T_j = prod over the
+//     earlier points of (1 - sigma_t / sigma_seg), the ratio-tracking estimate of the
+//     transmittance to x_j (the ratio-tracking form of the in-scattering integral; Novak et al.
+//     2014, section 4), and the same T at the segment's end for the sun reflected by the ground;
+//   - the continuation (the higher orders): the first point accepted with probability
+//     sigma_t / sigma_seg is the real collision (delta tracking); the weight takes sigma_s / sigma_t
+//     and the phase function gives the next direction. Without one the path goes on from the
+//     ground (weight x albedo, a cosine-distributed direction) or ends in space.
+// So every segment scores, even where most paths leave the medium without a collision.
+double MonteCarloIntegrator::path(Vec3 p, Vec3 d, int max_orders, Rng& rng) const {
+  constexpr double kPointsPerSegment = 8.0;
+  double L = 0.0, w = 1.0;
+  const double E = medium_.sun_irradiance;
+  double scattering[kMaxComponents] = {};
+  for (int order = 1; order <= kMaxEvents; ++order) {
+    bool ground = false;
+    const double t_max = distance_to_boundary(p, d, ground);
+    const double rate = std::isfinite(t_max) ? std::max(majorant_, kPointsPerSegment / std::max(t_max, 1e-300)) : majorant_;
+    double T = 1.0, t = 0.0;
+    double t_real = -1.0, albedo_real = 0.0;
+    Vec3 d_real = d;
+    if (rate > 0.0 && t_max > 0.0) {
+      const double mu_sun = d.dot(sun_);
+      while (true) {
+        t += rng.exponential() / rate;
+        if (t >= t_max) break;
+        const Vec3 x = p + t * d;
+        const double z = altitude(x);
+        const double sigma_t = extinction_at(z);
+        const double sigma_s = scattering_at(z, scattering);
+        if (T > 0.0 && sigma_s > 0.0)
+          L += w * T * sigma_s / rate * E * phase_to_sun(scattering, sigma_s, mu_sun) * transmittance_to_sun(x, rng);
+        if (t_real < 0.0 && rng.uniform() * rate < sigma_t) {
+          t_real = t;
+          albedo_real = sigma_s / sigma_t;
+          if (order != max_orders && sigma_s > 0.0) d_real = sample_scattering(scattering, sigma_s, d, rng);
+        }
+        if (T > 0.0) T = roulette(T * (1.0 - sigma_t / rate), rng);
+        if (T == 0.0 && (t_real >= 0.0 || order == max_orders)) break;  // nothing more to score or to find
+      }
+    }
+    if (ground) {
+      const Vec3 g = p + t_max * d;
+      const Vec3 n = up(g);
+      const double cos_sun = n.dot(sun_);
+      if (cos_sun > 0.0 && medium_.ground_albedo > 0.0)
+        L += w * T * medium_.ground_albedo / kPi * E * cos_sun * transmittance_to_sun(snap_to_ground(g), rng);
+    }
+    if (order == max_orders) return L;
+    if (t_real >= 0.0) {
+      p += t_real * d;
+      w *= albedo_real;
+      d = d_real;
+    } else if (ground) {
+      p = snap_to_ground(p + t_max * d);
+      w *= medium_.ground_albedo;
+      // Cosine-distributed: mu = sqrt(xi) (Malley's method).
+      double mu = 0.0;
+      do mu = std::sqrt(rng.uniform());
+      while (mu <= 1e-9);
+      d = rotate_about(up(p), mu, 2.0 * kPi * rng.uniform());
+    } else {
+      return L;  // into space: the sun is a point, never hit
+    }
+    if (w <= 0.0) return L;
+    if (w < kRouletteWeight) {
+      if (rng.uniform() * kRouletteWeight >= w) return L;
+      w = kRouletteWeight;
+    }
+  }
+  return L;
+}
+
+Vec3 MonteCarloIntegrator::snap_to_ground(Vec3 p) const {
+  if (medium_.geometry == MonteCarloMedium::Geometry::PlaneParallel)
+    p.z() = 0.0;
+  else
+    p *= medium_.planet_radius_m / p.norm();
+  return p;
+}
+
+MonteCarloValue MonteCarloIntegrator::estimate(ProbeKind kind, const Vec3& origin_m, const Vec3& dir,
+                                               const MonteCarloSettings& s, std::uint64_t stream) const {
+  if (s.paths < 2) throw Error("the Monte Carlo estimate needs at least 2 paths");
+  const std::int64_t batches = (s.paths + kBatchPaths - 1) / kBatchPaths;
+  std::vector<double> sum(static_cast<size_t>(batches)), sum_sq(static_cast<size_t>(batches));
+  // An observer outside the medium starts where its line of sight enters it.
+  Vec3 origin = origin_m;
+  bool outside = false;
+  if (kind == ProbeKind::Radiance && altitude(origin) > medium_.top_altitude_m) {
+    outside = true;
+    if (medium_.geometry == MonteCarloMedium::Geometry::SphericalShell) {
+      const SphereHit h = intersect_sphere(origin, dir, medium_.planet_radius_m + medium_.top_altitude_m);
+      if (h.hit && h.t_near_m >= 0.0) {
+        origin += h.t_near_m * dir;
+        outside = false;
+      }
+    } else if (dir.z() < 0.0) {
+      origin += (origin.z() - medium_.top_altitude_m) / -dir.z() * dir;
+      origin.z() = medium_.top_altitude_m;
+      outside = false;
+    }
+  }
+  const int threads = s.threads > 0 ? s.threads : tbb::this_task_arena::max_concurrency();
+  tbb::task_arena arena(threads);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::int64_t>(0, batches, 1), [&](const tbb::blocked_range<std::int64_t>& r) {
+      for (std::int64_t b = r.begin(); b != r.end(); ++b) {
+        throw_if_cancelled();
+        Rng rng(s.seed, stream, static_cast<std::uint64_t>(b));
+        const std::int64_t n = std::min(kBatchPaths, s.paths - b * kBatchPaths);
+        double acc = 0.0, acc_sq = 0.0;
+        for (std::int64_t k = 0; k < n; ++k) {
+          double x = 0.0;
+          if (kind == ProbeKind::Radiance) {
+            if (!outside) x = path(origin, dir, s.max_orders, rng);
+          } else {
+            // E = integral of L cos over the hemisphere = pi x mean of L over cosine-distributed
+            // directions; the observer looks along -(arrival direction), i.e. into the hemisphere.
+            double mu = 0.0;
+            do mu = std::sqrt(rng.uniform());
+            while (mu <= 1e-9);
+            const Vec3 look = rotate_about(dir, mu, 2.0 * kPi * rng.uniform());
+            x = kPi * path(origin, look, s.max_orders, rng);
+          }
+          acc += x;
+          acc_sq += x * x;
+        }
+        sum[static_cast<size_t>(b)] = acc;
+        sum_sq[static_cast<size_t>(b)] = acc_sq;
+      }
+    });
+  });
+  // Batches in order: the same sums whatever the threads did.
+  double total = 0.0, total_sq = 0.0;
+  for (std::int64_t b = 0; b < batches; ++b) {
+    total += sum[static_cast<size_t>(b)];
+    total_sq += sum_sq[static_cast<size_t>(b)];
+  }
+  const double n = static_cast<double>(s.paths);
+  MonteCarloValue v;
+  v.paths = s.paths;
+  v.mean = total / n;
+  const double var = std::max(0.0, (total_sq - total * total / n) / (n - 1.0));
+  v.standard_error = std::sqrt(var / n);
+  return v;
+}
+
+MonteCarloValue MonteCarloIntegrator::radiance(const Vec3& origin_m, const Vec3& look, const MonteCarloSettings& s,
+                                               std::uint64_t stream) const {
+  return estimate(ProbeKind::Radiance, origin_m, look.normalized(), s, stream);
+}
+
+MonteCarloValue MonteCarloIntegrator::irradiance(const Vec3& origin_m, const Vec3& normal, const MonteCarloSettings& s,
+                                                 std::uint64_t stream) const {
+  return estimate(ProbeKind::Irradiance, origin_m, normal.normalized(), s, stream);
+}
+
+}  // namespace skyspec

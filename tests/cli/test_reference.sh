@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# `skyspec reference`: the Monte Carlo reference from the command line: output formats, determinism
+# (same seed, any threads), single scattering against the renderer, bad input.
+set -u
+skyspec=${1:?usage: test_reference.sh SKYSPEC}
+source "$(dirname "$0")/lib.sh"
+py=/usr/bin/python3
+
+# JSON with two probes at two wavelengths; the same seed gives the same numbers with 1 and 2 threads.
+"$skyspec" reference --wavelengths 450,650 --probe up=0,90 --probe 180,1 --paths 3000 --format json -q \
+  --set render.threads=1 >"$work/a.json" && ok || bad "reference json"
+"$skyspec" reference --wavelengths 450,650 --probe up=0,90 --probe 180,1 --paths 3000 --format json -q \
+  --set render.threads=2 >"$work/b.json" && ok || bad "reference json, 2 threads"
+$py - "$work/a.json" "$work/b.json" <<'PY' && ok || bad "json content / thread independence"
+import json, math, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+assert a["wavelengths_nm"] == [450, 650], a["wavelengths_nm"]
+assert [p["label"] for p in a["probes"]] == ["up", "180,1"]
+for p, q in zip(a["probes"], b["probes"]):
+    assert p["radiance"] == q["radiance"] and p["standard_error"] == q["standard_error"], (p, q)
+    for v, e in zip(p["radiance"], p["standard_error"]):
+        assert v > 0 and 0 < e < 0.2 * v and math.isfinite(v), (v, e)
+PY
+# A probe's value does not depend on the other probes or wavelengths asked for.
+"$skyspec" reference --wavelengths 550,650 --probe 180,1 --paths 3000 --format csv -q >"$work/one.csv" && ok || bad "csv"
+$py - "$work/a.json" "$work/one.csv" <<'PY' && ok || bad "a probe alone gives the same value"
+import csv, json, sys
+a = json.load(open(sys.argv[1]))
+rows = list(csv.DictReader(open(sys.argv[2])))
+assert len(rows) == 2
+assert abs(float(rows[1]["monte_carlo"]) / a["probes"][1]["radiance"][1] - 1) < 1e-8, (rows, a["probes"][1])
+PY
+
+# Single scattering: the reference and the renderer agree within their errors (order 1 only).
+"$skyspec" reference --wavelengths 450,650 --sun-elevation 20 --orders 1 --compare --paths 20000 --format csv -q \
+  --set render.sky_view_table=false >"$work/single.csv" && ok || bad "--orders 1 --compare"
+$py - "$work/single.csv" <<'PY' && ok || bad "single scattering: reference vs renderer"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+assert len(rows) == 10, rows
+for r in rows:
+    mc, se, det = float(r["monte_carlo"]), float(r["standard_error"]), float(r["renderer"])
+    assert abs(det - mc) <= 4 * se + 0.003 * mc, r
+PY
+
+# --out writes the file atomically; Markdown names the settings.
+"$skyspec" reference --wavelengths 550,650 --probe 0,90 --paths 500 --irradiance --out "$work/t.md" -q && ok || bad "--out"
+grep -q "diffuse horizontal irradiance" "$work/t.md" && grep -q "500 paths per value, seed 1" "$work/t.md" && ok \
+  || bad "markdown content"
+
+mkdir -p "$work/empty"
+run_expecting_error "bad probe" 2 "--probe" "$work/empty" "$skyspec" reference --probe 0,95 --paths 10
+run_expecting_error "bad probe text" 2 "azimuth,elevation" "$work/empty" "$skyspec" reference --probe north
+run_expecting_error "too few paths" 2 "--paths" "$work/empty" "$skyspec" reference --paths 1
+run_expecting_error "bad format" 2 "--format" "$work/empty" "$skyspec" reference --format xml
+run_expecting_error "orders with compare" 2 "--orders" "$work/empty" "$skyspec" reference --orders 2 --compare
+run_expecting_error "bad scene key" 2 "sun.elevation_deg" "$work/empty" "$skyspec" reference --set sun.elevation_deg=200
+
+finish cli_reference
