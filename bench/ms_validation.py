@@ -8,7 +8,7 @@ horizontal irradiance. A value passes when |renderer - MC| <= 1 % of MC + 3 stan
 issue's "within 1 % beyond its own 3-sigma").
 
     /usr/bin/python3 bench/ms_validation.py [--skyspec build/skyspec] [--paths 200000] [--quick]
-        [--markdown docs/FILE.md]
+        [--presets default,hazy] [--suns 30,2] [--set KEY=VALUE ...] [--markdown docs/FILE.md]
 
 --quick: the default preset only, suns 30 and 2, 40000 paths (about a minute on 2 cores).
 Prints a summary per case and the worst differences; exits 0 whatever the result (it measures).
@@ -24,9 +24,11 @@ SUNS = [60, 30, 10, 2, -4]
 WAVELENGTHS = "400,450,550,650,750"
 
 
-def run_case(skyspec, preset, sun, paths, seed):
+def run_case(skyspec, preset, sun, paths, seed, sets):
     cmd = [skyspec, "reference", "--preset", preset, "--sun-elevation", str(sun), "--wavelengths", WAVELENGTHS,
            "--paths", str(paths), "--seed", str(seed), "--irradiance", "--compare", "--format", "json", "-q"]
+    for s in sets:
+        cmd += ["--set", s]
     t = time.time()
     out = subprocess.run(cmd, check=True, capture_output=True, text=True).stdout
     return json.loads(out), time.time() - t
@@ -48,16 +50,23 @@ def main():
     ap.add_argument("--paths", type=int, default=200000)
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--quick", action="store_true")
+    ap.add_argument("--presets", help="comma-separated presets (default: all three)")
+    ap.add_argument("--suns", help="comma-separated sun elevations (default: 60,30,10,2,-4)")
+    ap.add_argument("--set", action="append", default=[], help="a scene key for the renderer, e.g. render.ms_angular_degree=0")
     ap.add_argument("--markdown", help="also write every row as a Markdown table to this file")
     a = ap.parse_args()
     presets, suns, paths = (["default"], [30, 2], 40000) if a.quick else (PRESETS, SUNS, a.paths)
+    if a.presets:
+        presets = a.presets.split(",")
+    if a.suns:
+        suns = [float(x) for x in a.suns.split(",")]
     all_rows = []
     print(f"| preset | sun (deg) | values | pass | worst (renderer - MC) / MC | at | MC std. error there | seconds |")
     print("| --- | ---: | ---: | ---: | ---: | --- | ---: | ---: |")
     total = passed = 0
     for preset in presets:
         for sun in suns:
-            result, seconds = run_case(a.skyspec, preset, sun, paths, a.seed)
+            result, seconds = run_case(a.skyspec, preset, sun, paths, a.seed, a.set)
             n = ok = 0
             worst = None
             for label, lam, mc, se, det in rows_of(result):
@@ -72,9 +81,10 @@ def main():
                     worst = (diff, f"{label}, {lam:g} nm", se / mc)
             total += n
             passed += ok
-            print(f"| {preset} | {sun} | {n} | {ok} | {100 * worst[0]:+.2f} % | {worst[1]} | {100 * worst[2]:.2f} % "
+            print(f"| {preset} | {sun:g} | {n} | {ok} | {100 * worst[0]:+.2f} % | {worst[1]} | {100 * worst[2]:.2f} % "
                   f"| {seconds:.0f} |", flush=True)
-    print(f"\n{passed} of {total} values within 1 % + 3 sigma; {paths} paths per value, seed {a.seed}.")
+    print(f"\n{passed} of {total} values within 1 % + 3 sigma; {paths} paths per value, seed {a.seed}"
+          + (f"; renderer with {' '.join(a.set)}" if a.set else "") + ".")
     if a.markdown:
         with open(a.markdown, "w") as f:
             f.write("| preset | sun (deg) | probe | nm | Monte Carlo | std. error (%) | renderer | renderer - MC (%) | pass |\n")

@@ -86,27 +86,28 @@ Deterministic render_probes(Scene scene, const Checked& c, int orders) {
 std::string format_table(const ReferenceResult& r, const Deterministic* det, const std::string& format,
                          const Scene& scene) {
   std::ostringstream t;
-  char line[512];
   const size_t n = r.wavelengths_nm.size();
+  // Relative figures only where the reference has light (no sky in the planet's shadow gives 0 / 0):
+  // empty cells then, never a NaN.
+  const bool md = format == "md";
+  auto num = [](const char* fmt, double v) {
+    char b[64];
+    std::snprintf(b, sizeof b, fmt, v);
+    return std::string(b);
+  };
   auto row = [&](const std::string& label, double az, double el, size_t i, double mc, double se, double renderer) {
-    const double diff = 100.0 * (renderer / mc - 1.0), sigma = (renderer - mc) / se;
-    if (format == "md") {
-      std::snprintf(line, sizeof line, "| %s | %.2f | %.2f | %g | %.6g | %.3f |", label.c_str(), az, el, r.wavelengths_nm[i],
-                    mc, 100.0 * se / std::abs(mc));
-      t << line;
-      if (det) {
-        std::snprintf(line, sizeof line, " %.6g | %+.2f | %+.1f |", renderer, diff, sigma);
-        t << line;
-      }
-    } else {
-      std::snprintf(line, sizeof line, "\"%s\",%.6g,%.6g,%g,%.9g,%.9g", label.c_str(), az, el, r.wavelengths_nm[i], mc, se);
-      t << line;
-      if (det) {
-        std::snprintf(line, sizeof line, ",%.9g,%.6g,%.6g", renderer, diff, sigma);
-        t << line;
-      }
+    const bool relative = mc > 0.0 && se > 0.0;
+    std::vector<std::string> cells = {md ? label : "\"" + label + "\"", num(md ? "%.2f" : "%.6g", az),
+                                      num(md ? "%.2f" : "%.6g", el), num("%g", r.wavelengths_nm[i]),
+                                      num(md ? "%.6g" : "%.9g", mc),
+                                      md ? (relative ? num("%.3f", 100.0 * se / mc) : "") : num("%.9g", se)};
+    if (det) {
+      cells.push_back(num(md ? "%.6g" : "%.9g", renderer));
+      cells.push_back(relative ? num(md ? "%+.2f" : "%.6g", 100.0 * (renderer / mc - 1.0)) : "");
+      cells.push_back(relative ? num(md ? "%+.1f" : "%.6g", (renderer - mc) / se) : "");
     }
-    t << "\n";
+    for (size_t c = 0; c < cells.size(); ++c) t << (md ? (c ? " | " : "| ") : (c ? "," : "")) << cells[c];
+    t << (md ? " |\n" : "\n");
   };
   if (format == "md") {
     t << "| probe | azimuth (deg) | elevation (deg) | wavelength (nm) | Monte Carlo | standard error (%) |"

@@ -90,6 +90,8 @@ RenderPlan RenderPlan::for_scene(const Scene& scene, bool working_exr, int png_b
   p.working_exr = working_exr;
   p.png_bit_depth = png_bit_depth;
   p.directory = scene.output.directory;
+  if (scene.render.scattering_orders >= 2)
+    p.table_bytes = ScatteringOrders::table_bytes(multiple_scattering_settings(scene), p.wavelengths);
   return p;
 }
 
@@ -109,7 +111,7 @@ std::uint64_t RenderPlan::peak_memory_bytes() const {
   const std::uint64_t row_bytes = static_cast<std::uint64_t>(std::max(width, 1)) * (n + 3) * 4;
   const std::uint64_t band_rows = std::clamp<std::uint64_t>((std::uint64_t{64} << 20) / row_bytes, 8, 64);
   const std::uint64_t band = std::min<std::uint64_t>(band_rows, static_cast<std::uint64_t>(std::max(height, 0))) * row_bytes;
-  std::uint64_t bytes = 2 * band;
+  std::uint64_t bytes = 2 * band + table_bytes;
   if (spectral_exr) bytes += 2 * band;
   // The whole-image RGB buffer, and at the end the copy the display pipeline encodes plus the
   // PNG's samples, or the working-space conversion of it.

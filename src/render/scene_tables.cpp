@@ -11,6 +11,7 @@ MultipleScatteringSettings multiple_scattering_settings(const Scene& s) {
   ms.orders = s.render.scattering_orders;
   ms.altitude_samples = s.render.ms_altitude_samples;
   ms.sun_samples = s.render.ms_sun_samples;
+  ms.angular_degree = s.render.ms_angular_degree;
   return ms;
 }
 

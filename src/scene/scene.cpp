@@ -556,6 +556,10 @@ const std::vector<KeyDef>& registry() {
                             [](Scene& s) -> int& { return s.render.ms_altitude_samples; }));
     r.push_back(integer_key("render.ms_sun_samples", 4, 1024, "multiple-scattering tables: sun zenith cosines",
                             [](Scene& s) -> int& { return s.render.ms_sun_samples; }));
+    r.push_back(integer_key("render.ms_angular_degree", 0, 12,
+                            "multiple-scattering tables: spherical-harmonic degree of the scattered light "
+                            "(0: isotropic; 2: Rayleigh exact; more: the aerosol's forward scattering)",
+                            [](Scene& s) -> int& { return s.render.ms_angular_degree; }));
     r.push_back(bool_key("render.cache_tables",
                          "keep multiple-scattering tables on disk ($SKYSPEC_CACHE_DIR, $XDG_CACHE_HOME/skyspec or "
                          "~/.cache/skyspec) and reuse them for the same atmosphere",

@@ -15,6 +15,8 @@
 #include "base/atomic_file.hpp"
 #include "base/embedded_data.hpp"
 #include "skyspec/units.hpp"
+#include "skyspec/phase_function.hpp"
+#include "transport/spherical_harmonics.hpp"
 
 namespace skyspec {
 
@@ -47,6 +49,7 @@ void gauss_legendre(int n, double a, double b, std::vector<double>& nodes, std::
 // --- SourceTable --------------------------------------------------------------------------------
 
 namespace {
+constexpr int kMaxHarmonics = 91;  // degree 12
 // mu_s = u / 2 + u |u| / 2 for u in [-1, 1]: samples twice as dense at the horizon as uniform.
 double mu_from_u(double u) { return 0.5 * u + 0.5 * u * std::abs(u); }
 double u_from_mu(double mu) {
@@ -54,14 +57,39 @@ double u_from_mu(double mu) {
 }
 }  // namespace
 
-SourceTable::SourceTable(double planet_radius_m, double top_radius_m, int n_altitude, int n_sun, int n_wavelengths)
+std::shared_ptr<const PhaseMoments> PhaseMoments::of(const AtmosphereModel& atm, int degree) {
+  auto m = std::make_shared<PhaseMoments>();
+  const int n = atm.grid().size();
+  m->degree = degree;
+  m->wavelengths = n;
+  m->rayleigh.assign(static_cast<size_t>(degree + 1) * n, 0.0f);
+  m->mie = m->rayleigh;
+  for (int i = 0; i < n; ++i) {
+    const double gamma = atm.rayleigh_phase_gamma()[i];
+    const std::vector<double> r = legendre_moments([gamma](double mu) { return rayleigh_phase(mu, gamma); }, degree);
+    AerosolPhase aerosol = atm.mie_phase();
+    aerosol.g = atm.mie_g()[i];
+    const std::vector<double> a = legendre_moments([&aerosol](double mu) { return aerosol(mu); }, degree);
+    for (int l = 0; l <= degree; ++l) {
+      m->rayleigh[static_cast<size_t>(l) * n + i] = static_cast<float>(r[static_cast<size_t>(l)]);
+      m->mie[static_cast<size_t>(l) * n + i] = static_cast<float>(a[static_cast<size_t>(l)]);
+    }
+  }
+  return m;
+}
+
+SourceTable::SourceTable(double planet_radius_m, double top_radius_m, int n_altitude, int n_sun,
+                         std::shared_ptr<const PhaseMoments> moments, int degree)
     : R_(planet_radius_m),
       Rt_(top_radius_m),
       n_h_(n_altitude),
       n_mu_(n_sun),
-      n_l_(n_wavelengths),
-      j_(static_cast<size_t>(n_altitude) * n_sun * n_wavelengths, 0.0f),
-      g_(static_cast<size_t>(n_sun) * n_wavelengths, 0.0f) {}
+      degree_(degree < 0 ? moments->degree : std::min(degree, moments->degree)),
+      n_c_(skyspec::harmonic_count(degree_)),
+      n_l_(moments->wavelengths),
+      moments_(std::move(moments)),
+      j_(static_cast<size_t>(n_altitude) * n_sun * n_c_ * n_l_),
+      g_(static_cast<size_t>(n_sun) * n_l_, 0.0f) {}
 
 double SourceTable::altitude_m(int ih) const {
   const double x = static_cast<double>(ih) / (n_h_ - 1);
@@ -70,18 +98,44 @@ double SourceTable::altitude_m(int ih) const {
 
 double SourceTable::mu_sun(int imu) const { return mu_from_u(-1.0 + 2.0 * imu / (n_mu_ - 1)); }
 
-void SourceTable::source(double r_m, double mu, float* out) const {
+void SourceTable::source(double r_m, double mu, double mu_view, double nu, float* rayleigh, float* mie) const {
   const double h = std::clamp(r_m - R_, 0.0, Rt_ - R_);
   const double fh = std::sqrt(h / (Rt_ - R_)) * (n_h_ - 1);
-  const double fm = (u_from_mu(std::clamp(mu, -1.0, 1.0)) + 1.0) * 0.5 * (n_mu_ - 1);
+  const double mu_s = std::clamp(mu, -1.0, 1.0);
+  const double fm = (u_from_mu(mu_s) + 1.0) * 0.5 * (n_mu_ - 1);
   const int ih = std::min(static_cast<int>(fh), n_h_ - 2), im = std::min(static_cast<int>(fm), n_mu_ - 2);
   const float ah = static_cast<float>(fh - ih), am = static_cast<float>(fm - im);
+  const float wa = (1 - ah) * (1 - am), wb = (1 - ah) * am, wc = ah * (1 - am), wd = ah * am;
   const float* a = &j_[index(ih, im)];
   const float* b = &j_[index(ih, im + 1)];
   const float* c = &j_[index(ih + 1, im)];
   const float* d = &j_[index(ih + 1, im + 1)];
-  for (int l = 0; l < n_l_; ++l)
-    out[l] = (1 - ah) * ((1 - am) * a[l] + am * b[l]) + ah * ((1 - am) * c[l] + am * d[l]);
+  // The view direction's azimuth from the sun's vertical plane at this point.
+  const double mv = std::clamp(mu_view, -1.0, 1.0);
+  const double sin_product = std::sqrt(std::max(0.0, (1.0 - mv * mv) * (1.0 - mu_s * mu_s)));
+  const double cos_phi = sin_product > 1e-12 ? (nu - mv * mu_s) / sin_product : 1.0;
+  double basis[kMaxHarmonics];
+  symmetric_harmonics(degree_, mv, cos_phi, basis);
+  // Per harmonic: the bilinear blend of the four entries, weighted by Y_lm(view) and each species'
+  // chi_l, summed over the harmonics (Eigen arrays over the wavelengths, vectorised).
+  using Map = Eigen::Map<const Eigen::ArrayXf>;
+  thread_local Eigen::ArrayXf v;
+  Eigen::Map<Eigen::ArrayXf> out_r(rayleigh, n_l_), out_m(mie, n_l_);
+  out_r.setZero();
+  out_m.setZero();
+  for (int l = 0; l <= degree_; ++l) {
+    const Map chi_r(&moments_->rayleigh[static_cast<size_t>(l) * n_l_], n_l_);
+    const Map chi_m(&moments_->mie[static_cast<size_t>(l) * n_l_], n_l_);
+    for (int m = 0; m <= l; ++m) {
+      const int k = harmonic_index(l, m);
+      const size_t o = static_cast<size_t>(k) * n_l_;
+      const float y = static_cast<float>(basis[k]);
+      v = (y * wa) * Map(a + o, n_l_) + (y * wb) * Map(b + o, n_l_) + (y * wc) * Map(c + o, n_l_) +
+          (y * wd) * Map(d + o, n_l_);
+      out_r += chi_r * v;
+      out_m += chi_m * v;
+    }
+  }
 }
 
 void SourceTable::ground_irradiance(double mu, float* out) const {
@@ -94,26 +148,43 @@ void SourceTable::ground_irradiance(double mu, float* out) const {
 }
 
 void SourceTable::add(const SourceTable& o) {
-  for (size_t i = 0; i < j_.size(); ++i) j_[i] += o.j_[i];
+  const size_t block = static_cast<size_t>(o.n_c_) * n_l_;  // the other's harmonics, a prefix of ours
+  for (size_t e = 0; e < static_cast<size_t>(n_h_) * n_mu_; ++e)
+    for (size_t i = 0; i < block; ++i) j_[e * n_c_ * n_l_ + i] += o.j_[e * block + i];
   for (size_t i = 0; i < g_.size(); ++i) g_[i] += o.g_[i];
 }
 
+void SourceTable::add_geometric_tail(const SourceTable& last, const SourceTable& before) {
+  auto factor = [](float a, float b) {
+    const float r = b > 0.0f ? std::clamp(a / b, 0.0f, 0.9f) : 0.0f;
+    return r / (1.0f - r);
+  };
+  const size_t n_last = static_cast<size_t>(last.n_c_), n_before = static_cast<size_t>(before.n_c_);
+  for (size_t e = 0; e < static_cast<size_t>(n_h_) * n_mu_; ++e)
+    for (size_t i = 0; i < static_cast<size_t>(n_l_); ++i) {
+      const float f = factor(last.j_[e * n_last * n_l_ + i], before.j_[e * n_before * n_l_ + i]);
+      for (size_t c = 0; c < n_last; ++c) j_[(e * n_c_ + c) * n_l_ + i] += f * last.j_[(e * n_last + c) * n_l_ + i];
+    }
+  for (size_t i = 0; i < g_.size(); ++i) g_[i] += factor(last.g_[i], before.g_[i]) * last.g_[i];
+}
+
 void SourceTable::write(std::ostream& out) const {
-  const int32_t shape[3] = {n_h_, n_mu_, n_l_};
+  const int32_t shape[4] = {n_h_, n_mu_, n_c_, n_l_};
   out.write(reinterpret_cast<const char*>(shape), sizeof shape);
   out.write(reinterpret_cast<const char*>(j_.data()), static_cast<std::streamsize>(j_.size() * sizeof(float)));
   out.write(reinterpret_cast<const char*>(g_.data()), static_cast<std::streamsize>(g_.size() * sizeof(float)));
 }
 
 bool SourceTable::read(std::istream& in) {
-  int32_t shape[3];
+  int32_t shape[4];
   if (!in.read(reinterpret_cast<char*>(shape), sizeof shape)) return false;
-  if (shape[0] != n_h_ || shape[1] != n_mu_ || shape[2] != n_l_) return false;
-  std::vector<float> j(j_.size()), g(g_.size());
+  if (shape[0] != n_h_ || shape[1] != n_mu_ || shape[2] != n_c_ || shape[3] != n_l_) return false;
+  ZeroedFloats j(j_.size());
+  std::vector<float> g(g_.size());
   if (!in.read(reinterpret_cast<char*>(j.data()), static_cast<std::streamsize>(j.size() * sizeof(float)))) return false;
   if (!in.read(reinterpret_cast<char*>(g.data()), static_cast<std::streamsize>(g.size() * sizeof(float)))) return false;
-  for (float v : j)
-    if (!std::isfinite(v)) return false;
+  for (size_t i = 0; i < j.size(); ++i)
+    if (!std::isfinite(j[i])) return false;
   for (float v : g)
     if (!std::isfinite(v)) return false;
   j_.swap(j);
@@ -122,9 +193,12 @@ bool SourceTable::read(std::istream& in) {
 }
 
 double SourceTable::mean_source() const {
+  // The isotropic part: a_00 Y_00 = a_00 / sqrt(4 pi), the mean radiance.
   double s = 0.0;
-  for (float v : j_) s += v;
-  return s / static_cast<double>(j_.size());
+  const size_t entries = static_cast<size_t>(n_h_) * n_mu_;
+  for (size_t e = 0; e < entries; ++e)
+    for (int i = 0; i < n_l_; ++i) s += j_[e * n_c_ * n_l_ + static_cast<size_t>(i)];
+  return s / std::sqrt(4.0 * kPi) / static_cast<double>(entries * n_l_);
 }
 
 // --- ScatteringOrders ---------------------------------------------------------------------------
@@ -143,12 +217,15 @@ void integrate_order(const SingleScattering& integrator, const ScatteringSources
   for (int j = 0; j < st.azimuth_nodes; ++j) az[static_cast<size_t>(j)] = (j + 0.5) * kPi / st.azimuth_nodes;
   const double w_az = 2.0 * kPi / st.azimuth_nodes;  // both halves of the symmetric field
 
+  const int n_c = table.harmonic_count(), degree = table.degree();
   struct Scratch {
     ScatteringWorkspace ws;
-    Spectrum radiance, j, g;
-    explicit Scratch(int m) : ws(m), radiance(m), j(m), g(m) {}
+    Spectrum radiance, g;
+    Eigen::ArrayXXf a;  // [wavelength, harmonic]
+    std::vector<double> basis;
+    Scratch(int m, int c) : ws(m), radiance(m), g(m), a(m, c), basis(static_cast<size_t>(c)) {}
   };
-  tbb::enumerable_thread_specific<Scratch> scratch([n] { return Scratch(n); });
+  tbb::enumerable_thread_specific<Scratch> scratch([n, n_c] { return Scratch(n, n_c); });
   const int entries = table.altitude_count() * table.sun_count();
   tbb::parallel_for(0, (entries + stride - 1) / stride, [&](int sample) {
     const int e = sample * stride;
@@ -164,7 +241,7 @@ void integrate_order(const SingleScattering& integrator, const ScatteringSources
     gauss_legendre(st.sky_zenith_nodes, mu_horizon, 1.0, nodes, weights);
     gauss_legendre(st.ground_zenith_nodes, -1.0, mu_horizon, gn, gw);
     const bool at_ground = ih == 0;
-    sc.j.setZero();
+    sc.a.setZero();
     sc.g.setZero();
     auto integrate = [&](const std::vector<double>& mus, const std::vector<double>& ws_mu, bool sky) {
       for (size_t i = 0; i < mus.size(); ++i) {
@@ -172,16 +249,17 @@ void integrate_order(const SingleScattering& integrator, const ScatteringSources
         for (double phi : az) {
           const Vec3 w(sin_t * std::cos(phi), sin_t * std::sin(phi), mu);
           integrator.radiance(x, w, s, unit, sources, sc.ws, sc.radiance);
-          const float weight = static_cast<float>(ws_mu[i] * w_az);
-          sc.j += weight * sc.radiance;
-          if (sky && at_ground) sc.g += static_cast<float>(mu) * weight * sc.radiance;
+          const double weight = ws_mu[i] * w_az;
+          symmetric_harmonics(degree, mu, std::cos(phi), sc.basis.data());
+          for (int c = 0; c < n_c; ++c) sc.a.col(c) += static_cast<float>(weight * sc.basis[static_cast<size_t>(c)]) * sc.radiance;
+          if (sky && at_ground) sc.g += static_cast<float>(mu * weight) * sc.radiance;
         }
       }
     };
     integrate(nodes, weights, true);
     integrate(gn, gw, false);
-    sc.j *= static_cast<float>(1.0 / (4.0 * kPi));
-    std::copy(sc.j.data(), sc.j.data() + n, table.j_at(ih, imu));
+    float* out = table.j_at(ih, imu);
+    for (int c = 0; c < n_c; ++c) std::copy(sc.a.col(c).data(), sc.a.col(c).data() + n, out + static_cast<size_t>(c) * n);
     if (at_ground) std::copy(sc.g.data(), sc.g.data() + n, table.g_at(imu));
   });
 }
@@ -192,15 +270,20 @@ ScatteringOrders::ScatteringOrders(const SingleScattering& integrator, const Mul
     : settings_(settings) {
   const auto t0 = std::chrono::steady_clock::now();
   const AtmosphereModel& atm = integrator.atmosphere();
+  const auto moments = PhaseMoments::of(atm, settings_.angular_degree);
   auto make_table = [&] {
     return std::make_unique<SourceTable>(atm.planet_radius_m(), atm.top_radius_m(), settings_.altitude_samples,
-                                         settings_.sun_samples, atm.grid().size());
+                                         settings_.sun_samples, moments);
   };
   // The tables are built with their own, coarser ray quadrature.
   const SingleScattering builder(atm, integrator.sun_columns(), IntegratorSettings{settings_.view_segments});
+  throw_if_cancelled();  // each table may be large: a request stops before the next is allocated
   sum_ = make_table();
   for (int k = 2; k <= settings_.orders; ++k) {
-    auto table = make_table();
+    throw_if_cancelled();
+    auto table = std::make_unique<SourceTable>(atm.planet_radius_m(), atm.top_radius_m(), settings_.altitude_samples,
+                                               settings_.sun_samples, moments,
+                                               degree_of_order(settings_.angular_degree, k));
     ScatteringSources previous;
     previous.single = k == 2;
     previous.higher = k == 2 ? nullptr : orders_.back().get();
@@ -208,7 +291,20 @@ ScatteringOrders::ScatteringOrders(const SingleScattering& integrator, const Mul
     sum_->add(*table);
     orders_.push_back(std::move(table));
   }
+  if (orders_.size() >= 2) sum_->add_geometric_tail(*orders_.back(), *orders_[orders_.size() - 2]);
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::uint64_t ScatteringOrders::table_bytes(const MultipleScatteringSettings& st, int wavelengths) {
+  const std::uint64_t entry = static_cast<std::uint64_t>(st.altitude_samples) * st.sun_samples * wavelengths * sizeof(float);
+  std::uint64_t harmonics = static_cast<std::uint64_t>(skyspec::harmonic_count(st.angular_degree));  // the sum
+  for (int k = 2; k <= st.orders; ++k) harmonics += skyspec::harmonic_count(degree_of_order(st.angular_degree, k));
+  return entry * harmonics;
+}
+
+int ScatteringOrders::degree_of_order(int angular_degree, int k) {
+  if (angular_degree < 2) return angular_degree;
+  return std::max(2, angular_degree - 2 * (k - 2));
 }
 
 double ScatteringOrders::estimate_build_seconds(const SingleScattering& integrator,
@@ -222,25 +318,43 @@ double ScatteringOrders::estimate_build_seconds(const SingleScattering& integrat
   const int n_alt = std::min(settings.altitude_samples, 64), n_sun = std::min(settings.sun_samples, 64);
   const int entries = n_alt * n_sun, stride = std::max(1, entries / 48);
   const int sampled = (entries + stride - 1) / stride;
-  SourceTable table(atm.planet_radius_m(), atm.top_radius_m(), n_alt, n_sun, atm.grid().size());
-  const SourceTable previous(atm.planet_radius_m(), atm.top_radius_m(), 4, 4, atm.grid().size());  // zeros
+  const auto moments = PhaseMoments::of(atm, settings.angular_degree);
+  SourceTable table(atm.planet_radius_m(), atm.top_radius_m(), n_alt, n_sun, moments);
   const auto seconds_per_entry = [&](const ScatteringSources& sources) {
     const auto t0 = std::chrono::steady_clock::now();
     integrate_order(builder, sources, settings, table, stride);
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / sampled;
   };
-  // Order 2 integrates single scattering along its rays; orders 3 and up look the previous order up.
+  // Order 2 integrates single scattering along its rays; order k > 2 looks order k - 1's table up,
+  // at a cost that grows with that table's harmonics: timed at the largest and the smallest degree
+  // used (zero tables of those degrees), interpolated in the number of harmonics between them.
   const double second = seconds_per_entry(ScatteringSources{true, nullptr});
-  const double higher = settings.orders > 2 ? seconds_per_entry(ScatteringSources{false, &previous}) : 0.0;
+  double higher = 0.0;
+  if (settings.orders > 2) {
+    const int d_max = degree_of_order(settings.angular_degree, 2);
+    const int d_min = degree_of_order(settings.angular_degree, settings.orders - 1);
+    const SourceTable big(atm.planet_radius_m(), atm.top_radius_m(), 4, 4, moments, d_max);
+    const double t_max = seconds_per_entry(ScatteringSources{false, &big});
+    double t_min = t_max;
+    if (d_min != d_max) {
+      const SourceTable small(atm.planet_radius_m(), atm.top_radius_m(), 4, 4, moments, d_min);
+      t_min = seconds_per_entry(ScatteringSources{false, &small});
+    }
+    const double c_max = harmonic_count(d_max), c_min = harmonic_count(d_min);
+    for (int k = 3; k <= settings.orders; ++k) {
+      const double c = harmonic_count(degree_of_order(settings.angular_degree, k - 1));
+      higher += c_max == c_min ? t_max : t_min + (t_max - t_min) * (c - c_min) / (c_max - c_min);
+    }
+  }
   const double all_entries = static_cast<double>(settings.altitude_samples) * settings.sun_samples;
-  return all_entries * (second + higher * (settings.orders - 2));
+  return all_entries * (second + higher);
 }
 
 namespace {
 // The cache file: magic, key size and key (the inputs the tables depend on), table count, the
 // tables, and last an FNV-1a 64 checksum of everything before it, so that a file that was
 // truncated, damaged or edited is rebuilt rather than trusted.
-constexpr char kCacheMagic[] = "skyspec scattering orders v2\n";
+constexpr char kCacheMagic[] = "skyspec scattering orders v3\n";
 }  // namespace
 
 bool ScatteringOrders::save(const std::string& path, const std::string& key) const {
@@ -296,12 +410,14 @@ std::unique_ptr<ScatteringOrders> ScatteringOrders::load(const std::string& path
   int32_t count = 0;
   if (!in.read(reinterpret_cast<char*>(&count), sizeof count) || count != settings.orders - 1) return nullptr;
   std::unique_ptr<ScatteringOrders> o(new ScatteringOrders(settings));
+  const auto moments = PhaseMoments::of(atm, settings.angular_degree);
   auto make_table = [&] {
     return std::make_unique<SourceTable>(atm.planet_radius_m(), atm.top_radius_m(), settings.altitude_samples,
-                                         settings.sun_samples, atm.grid().size());
+                                         settings.sun_samples, moments);
   };
   for (int k = 0; k < count; ++k) {
-    auto t = make_table();
+    auto t = std::make_unique<SourceTable>(atm.planet_radius_m(), atm.top_radius_m(), settings.altitude_samples,
+                                           settings.sun_samples, moments, degree_of_order(settings.angular_degree, k + 2));
     if (!t->read(in)) return nullptr;
     o->orders_.push_back(std::move(t));
   }

@@ -1,28 +1,35 @@
 // Light scattered more than once: scattering orders accumulated into precomputed tables.
 //
 // Method (in the spirit of Bruneton & Neyret 2008, with the 2-D source tables of Hillaire 2020):
-// for every order k >= 2 the in-scattering source J_k at a point is tabulated over altitude and
-// sun zenith cosine (the sky is symmetric about the axis through the planet's centre along the
-// sun direction, so those two numbers fix it), per wavelength, per unit solar irradiance:
+// for every order k >= 2 the radiance field L_{k-1} of the previous order is tabulated over
+// altitude and sun zenith cosine (the sky is symmetric about the axis through the planet's centre
+// along the sun direction, so those two numbers fix it), per wavelength, per unit solar
+// irradiance, by its spherical-harmonic coefficients up to `angular_degree` in the local frame
+// (spherical_harmonics.hpp):
 //
-//   J_k(r, mu_s) = 1 / (4 pi) integral over the sphere of L_{k-1}(x, omega) d omega,
-//   G_k(mu_s)    = integral over the sky hemisphere of L_{k-1}(ground, omega) cos(theta) d omega,
+//   a_lm,k(r, mu_s) = integral over the sphere of L_{k-1}(x, w) Y_lm(w) dw,
+//   G_k(mu_s)       = integral over the sky hemisphere of L_{k-1}(ground, w) cos(theta) dw,
 //
 // where L_1 is single scattering plus the direct sun reflected by the ground, and L_{k-1} for
-// k > 2 is the radiance produced by J_{k-1} along each ray (plus the ground's reflection of
-// G_{k-1}). The single approximation: light scattered a second or later time is scattered
-// isotropically (J is the mean radiance, not weighted by the phase function). Everything else,
-// extinction, shadow, ground, curvature, is as for single scattering. The directional integrals
-// use Gauss-Legendre quadrature in the zenith cosine, split at the horizon, and the midpoint rule
-// in azimuth over the half space (the field is symmetric about the sun's vertical plane).
+// k > 2 is the radiance produced by the previous order's source along each ray (plus the ground's
+// reflection of G_{k-1}). The in-scattering source of species s towards a view direction w is
+// then J_s(w) = sum_l chi_s,l sum_m a_lm Y_lm(w), with chi_s,l the Legendre moments of its phase
+// function: exact for Rayleigh (degree 2) from angular_degree 2 on, the aerosol's forward peak
+// resolved up to the degree. angular_degree 0 is the isotropic approximation (J = the mean
+// radiance for every species and direction). Everything else, extinction, shadow, ground,
+// curvature, is as for single scattering. The directional integrals use Gauss-Legendre
+// quadrature in the zenith cosine, split at the horizon, and the midpoint rule in azimuth over the
+// half space (the field is symmetric about the sun's vertical plane).
 // The tables depend on the atmosphere and the grid only, not on the sun's spectrum.
 #pragma once
 
+#include <cstdint>
 #include <iosfwd>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "base/zeroed_floats.hpp"
 #include "transport/single_scattering.hpp"
 
 namespace skyspec {
@@ -35,13 +42,25 @@ struct MultipleScatteringSettings {
   int ground_zenith_nodes = 6; ///< Gauss-Legendre nodes below the horizon
   int azimuth_nodes = 8;       ///< midpoint nodes over [0, pi]
   int view_segments = 24;      ///< quadrature segments of each ray while building the tables
+  int angular_degree = 0;      ///< spherical-harmonic degree of the tabulated fields (0: isotropic)
 };
 
-/// One scattering order (or a sum of orders): J over (r, mu_s) and G over mu_s, per wavelength.
+/// The Legendre moments chi_l (l <= degree) of the Rayleigh and aerosol phase functions per
+/// wavelength (spherical_harmonics.hpp), as the source tables weight the harmonics.
+struct PhaseMoments {
+  int degree = 0, wavelengths = 0;
+  std::vector<float> rayleigh, mie;  ///< [l][wavelength]
+  static std::shared_ptr<const PhaseMoments> of(const AtmosphereModel& atm, int degree);
+};
+
+/// One scattering order (or a sum of orders): the harmonics of its radiance field over (r, mu_s)
+/// and G over mu_s, per wavelength.
 class SourceTable : public InScatteringSource {
  public:
-  SourceTable(double planet_radius_m, double top_radius_m, int n_altitude, int n_sun, int n_wavelengths);
-  void source(double r_m, double mu_sun, float* out) const override;
+  /// degree <= moments->degree (default: the moments' degree).
+  SourceTable(double planet_radius_m, double top_radius_m, int n_altitude, int n_sun,
+              std::shared_ptr<const PhaseMoments> moments, int degree = -1);
+  void source(double r_m, double mu_sun, double mu_view, double nu, float* rayleigh, float* mie) const override;
   void ground_irradiance(double mu_sun, float* out) const override;
 
   /// Geometry of the table's samples.
@@ -49,36 +68,56 @@ class SourceTable : public InScatteringSource {
   double mu_sun(int i_sun) const;
   int altitude_count() const { return n_h_; }
   int sun_count() const { return n_mu_; }
+  int harmonic_count() const { return n_c_; }
+  int degree() const { return degree_; }
+  /// The coefficients of an entry: [harmonic][wavelength].
   float* j_at(int i_altitude, int i_sun) { return &j_[index(i_altitude, i_sun)]; }
   const float* j_at(int i_altitude, int i_sun) const { return &j_[index(i_altitude, i_sun)]; }
   float* g_at(int i_sun) { return &g_[static_cast<size_t>(i_sun) * n_l_]; }
   const float* g_at(int i_sun) const { return &g_[static_cast<size_t>(i_sun) * n_l_]; }
-  /// this += other (same shape).
+  /// this += the orders after `last` estimated as a geometric series: sum over j >= 1 of
+  /// r^j last = last r / (1 - r), with r = last / before per entry and wavelength (the ratio of the
+  /// isotropic parts, and of G for G; 0 to 0.9). Successive orders tend to a constant ratio (the
+  /// largest eigenvalue of the scattering operator), so the series stands for the orders not
+  /// computed (docs/physics.md measures it).
+  void add_geometric_tail(const SourceTable& last, const SourceTable& before);
+  /// this += other (same altitudes, sun angles and wavelengths; other's degree at most this one's).
   void add(const SourceTable& other);
   /// Exact binary form (for the disk cache): shape, then J and G as raw floats.
   void write(std::ostream& out) const;
   /// Reads what write() wrote; false (and the table untouched) if the stream is short or the shape
   /// differs from this table's.
   bool read(std::istream& in);
-  /// Mean of J over the table and the wavelengths (for diagnostics and tests).
+  /// Mean of the isotropic part of J (the mean radiance) over the table and the wavelengths (for
+  /// diagnostics and tests).
   double mean_source() const;
 
  private:
-  size_t index(int ih, int imu) const { return (static_cast<size_t>(ih) * n_mu_ + imu) * n_l_; }
+  size_t index(int ih, int imu) const { return ((static_cast<size_t>(ih) * n_mu_ + imu) * n_c_) * n_l_; }
   double R_, Rt_;
-  int n_h_, n_mu_, n_l_;
-  std::vector<float> j_, g_;
+  int n_h_, n_mu_, degree_, n_c_, n_l_;
+  std::shared_ptr<const PhaseMoments> moments_;
+  ZeroedFloats j_;  // large at high degrees and fine tables: zeroed pages on first use
+  std::vector<float> g_;
 };
 
-/// Orders 2..K computed one from the other; source() and ground_irradiance() return their sum.
+/// Orders 2..K computed one from the other; source() and ground_irradiance() return their sum and,
+/// for K >= 3, the orders after K as a geometric series (SourceTable::add_geometric_tail).
+/// Order k's table holds the harmonics of L_{k-1} up to degree_of_order(k): each order's field is
+/// smoother than the one before (every scattering blurs it), so later orders need fewer.
 class ScatteringOrders : public InScatteringSource {
  public:
   /// The integrator provides the atmosphere, the sun columns and the single-scattering term.
   ScatteringOrders(const SingleScattering& integrator, const MultipleScatteringSettings& settings);
-  void source(double r_m, double mu_sun, float* out) const override { sum_->source(r_m, mu_sun, out); }
+  void source(double r_m, double mu_sun, double mu_view, double nu, float* rayleigh, float* mie) const override {
+    sum_->source(r_m, mu_sun, mu_view, nu, rayleigh, mie);
+  }
   void ground_irradiance(double mu_sun, float* out) const override { sum_->ground_irradiance(mu_sun, out); }
 
   int highest_order() const { return settings_.orders; }
+  /// The degree of order k's table: angular_degree for order 2, two less per order after it, but
+  /// never below 2 (Rayleigh's degree) unless angular_degree is below 2.
+  static int degree_of_order(int angular_degree, int k);
   /// The table of order k, 2 <= k <= highest_order().
   const SourceTable& order(int k) const { return *orders_.at(static_cast<size_t>(k - 2)); }
   const SourceTable& sum() const { return *sum_; }
@@ -89,6 +128,8 @@ class ScatteringOrders : public InScatteringSource {
   /// scaled by the entries (altitudes x sun angles) and the orders. Orders after the second cost
   /// about what the second does (a table look-up replaces the single-scattering sum at each step).
   static double estimate_build_seconds(const SingleScattering& integrator, const MultipleScatteringSettings& settings);
+  /// Bytes of the tables these settings build (every order's and the sum) for n wavelengths.
+  static std::uint64_t table_bytes(const MultipleScatteringSettings& settings, int wavelengths);
 
   /// Saves the tables to `path` atomically, tagged with `key` (the scene keys they depend on).
   /// Returns false (and leaves no file) if it cannot.

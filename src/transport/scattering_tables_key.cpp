@@ -48,7 +48,7 @@ ScatteringTablesKey scattering_tables_key(const AtmosphereModel& atm, const SunC
   out << "orders " << ms.orders << "\naltitude_samples " << ms.altitude_samples << "\nsun_samples "
       << ms.sun_samples << "\nsky_zenith_nodes " << ms.sky_zenith_nodes << "\nground_zenith_nodes "
       << ms.ground_zenith_nodes << "\nazimuth_nodes " << ms.azimuth_nodes << "\nview_segments " << ms.view_segments
-      << '\n';
+      << "\nangular_degree " << ms.angular_degree << '\n';
   ScatteringTablesKey key;
   key.inputs = out.str();
   key.hash = fnv1a64(key.inputs);

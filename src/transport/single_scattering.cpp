@@ -407,10 +407,11 @@ struct SingleScattering::PieceScratch {
   bool ozone = false;
   PieceSegments seg;
   Eigen::ArrayXXf columns, view_columns;
-  NodeArray tau, trans, source;
+  NodeArray tau, trans, source, view_tau;
   std::vector<double> node_r, node_mu_sun;  // the sun columns' arguments at a piece's nodes
   std::vector<Columns> sun;
-  Eigen::ArrayXXf source_t;  // [wavelength, node], as the source tables write it
+  Eigen::ArrayXXf source_t, source_mie_t;  // [wavelength, node], as the source tables write them
+  Spectrum unused[4];                       // the other species' sums of a higher-order pass
 };
 
 // tau = sum_s beta_ext,s(l) columns[k, s] (the optical depth), as [node k, wavelength l] or [l, k].
@@ -453,29 +454,40 @@ void SingleScattering::single_scattering_piece(const Node* nodes, int m, double 
   accumulate(sc, sums);
 }
 
-// Higher orders on one piece: the integrand of species s is beta_sca,s rho_s exp(-tau_view) J, J
-// the higher-order source. It is integrated by the same log-mean rule as single scattering, with
-// tau' = tau_view - ln J in the place of the optical depth and T' = exp(-tau_view) J in the place
-// of the transmittance (ln of the integrand is ln rho_s - tau' + const). J is floored at a tiny
-// positive value so that its logarithm is finite where the tables hold no light.
-void SingleScattering::higher_orders_piece(const Node* nodes, int m, double os, double ds,
+// Higher orders on one piece: the integrand of species s is beta_sca,s rho_s exp(-tau_view) J_s,
+// J_s the higher-order source of that species in the ray's direction. It is integrated by the same
+// log-mean rule as single scattering, with tau' = tau_view - ln J_s in the place of the optical
+// depth and T' = exp(-tau_view) J_s in the place of the transmittance (ln of the integrand is
+// ln rho_s - tau' + const), once per species. J is floored at a tiny positive value so that its
+// logarithm is finite where the tables hold no light.
+void SingleScattering::higher_orders_piece(const Node* nodes, int m, double os, double ds, double od,
                                            const InScatteringSource& higher, PieceScratch& sc, Spectrum* sums[4]) const {
   const int species = sc.ozone ? 3 : 2;
   const Eigen::Index n = sca_rayleigh_.size();
   sc.view_columns.resize(m, species);
   sc.source_t.resize(n, m);
+  sc.source_mie_t.resize(n, m);
   for (int k = 0; k < m; ++k) {
     for (int sp = 0; sp < species; ++sp) sc.view_columns(k, sp) = static_cast<float>(nodes[k].col[sp]);
-    higher.source(nodes[k].r, (os + nodes[k].t * ds) / nodes[k].r, sc.source_t.col(k).data());
+    const double r = nodes[k].r;
+    higher.source(r, (os + nodes[k].t * ds) / r, (od + nodes[k].t) / r, ds, sc.source_t.col(k).data(),
+                  sc.source_mie_t.col(k).data());
   }
-  if (sc.by_node)
-    sc.source = sc.source_t.transpose().max(1e-30f);
-  else
-    sc.source = sc.source_t.max(1e-30f);
-  optical_depths(sc.view_columns, sc, sc.tau);
-  sc.trans = (-sc.tau).exp() * sc.source;
-  sc.tau -= sc.source.log();
-  accumulate(sc, sums);
+  optical_depths(sc.view_columns, sc, sc.view_tau);
+  // Rayleigh's sums with J_R, the aerosol's with J_M (each pass computes both; one is kept).
+  Spectrum* rayleigh_sums[4] = {sums[0], &sc.unused[0], sums[2], &sc.unused[1]};
+  Spectrum* mie_sums[4] = {&sc.unused[2], sums[1], &sc.unused[3], sums[3]};
+  for (int pass = 0; pass < 2; ++pass) {
+    const Eigen::ArrayXXf& source_t = pass == 0 ? sc.source_t : sc.source_mie_t;
+    if (sc.by_node)
+      sc.source = source_t.transpose().max(1e-30f);
+    else
+      sc.source = source_t.max(1e-30f);
+    sc.trans = (-sc.view_tau).exp() * sc.source;
+    sc.tau = sc.view_tau - sc.source.log();
+    for (auto& u : sc.unused) u.setZero(n);
+    accumulate(sc, pass == 0 ? rayleigh_sums : mie_sums);
+  }
 }
 
 // The fine and coarse log-mean sums of the piece in `sc` (tau, trans, seg), added to `sums`.
@@ -523,7 +535,7 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
   parts.mie.setZero();
   parts.isotropic.setZero();
   const bool higher = sources.higher != nullptr;
-  const double os = o.dot(s), ds = d.dot(s);
+  const double os = o.dot(s), ds = d.dot(s), od = o.dot(d);
   for (Spectrum* sum : {&ws.sum_rayleigh, &ws.sum_mie, &ws.coarse_rayleigh, &ws.coarse_mie, &ws.sum_ms_rayleigh,
                         &ws.sum_ms_mie, &ws.coarse_ms_rayleigh, &ws.coarse_ms_mie})
     sum->setZero();
@@ -540,7 +552,7 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
     const Node* nodes = ray.nodes.data() + pc.first_node;
     fill_piece_segments(nodes, pc.segments, sc.seg);
     if (single_here) single_scattering_piece(nodes, pc.segments + 1, os, ds, sc, single_sums);
-    if (higher) higher_orders_piece(nodes, pc.segments + 1, os, ds, *sources.higher, sc, higher_sums);
+    if (higher) higher_orders_piece(nodes, pc.segments + 1, os, ds, od, *sources.higher, sc, higher_sums);
   }
 
   if (sources.single) {

@@ -83,15 +83,18 @@ class TableSunColumns : public SunColumns {
   const SunColumnTable& table_;
 };
 
-/// An isotropic in-scattering source field J(r, mu_s) (radiance per unit scattering coefficient
-/// and per unit solar irradiance, sr^-1) and the irradiance G(mu_s) it puts on the ground (per unit
-/// solar irradiance). Implemented by the scattering-order tables. Both are called in the middle
-/// of an integration and must not themselves call SingleScattering's radiance functions on the
-/// same thread (the integrator keeps a ray's nodes per thread).
+/// The in-scattering source of the higher orders: J_s(r, mu_s, view) = integral over the sphere of
+/// p_s(view . w) L(r, mu_s, w) dw for species s (Rayleigh, aerosol), radiance per unit scattering
+/// coefficient and per unit solar irradiance (sr^-1), at altitude r, sun zenith cosine mu_s, for a
+/// view direction with zenith cosine mu_view at cosine nu to the sun; and the irradiance G(mu_s)
+/// it puts on the ground (per unit solar irradiance). Implemented by the scattering-order tables.
+/// Both are called in the middle of an integration and must not themselves call
+/// SingleScattering's radiance functions on the same thread (the integrator keeps a ray's nodes
+/// per thread).
 class InScatteringSource {
  public:
   virtual ~InScatteringSource() = default;
-  virtual void source(double r_m, double mu_sun, float* out) const = 0;
+  virtual void source(double r_m, double mu_sun, double mu_view, double nu, float* rayleigh, float* mie) const = 0;
   virtual void ground_irradiance(double mu_sun, float* out) const = 0;
 };
 
@@ -173,7 +176,7 @@ class SingleScattering {
   struct PieceScratch;
   void optical_depths(const Eigen::ArrayXXf& columns, PieceScratch& sc, Eigen::ArrayXXf& tau) const;
   void single_scattering_piece(const Node* nodes, int m, double os, double ds, PieceScratch& sc, Spectrum* sums[4]) const;
-  void higher_orders_piece(const Node* nodes, int m, double os, double ds, const InScatteringSource& higher,
+  void higher_orders_piece(const Node* nodes, int m, double os, double ds, double od, const InScatteringSource& higher,
                            PieceScratch& sc, Spectrum* sums[4]) const;
   void accumulate(PieceScratch& sc, Spectrum* sums[4]) const;
   void ground_reflection(const Node& ground, double mu_sun, const ScatteringSources& sources, ScatteringWorkspace& ws,

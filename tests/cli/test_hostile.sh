@@ -45,10 +45,11 @@ else
     || { bad "dry run failed"; cat "$work/stderr"; }
   grep -qE "tables about [0-9.]+ (h|days)" "$work/stdout" && ok || bad "dry run gives no table estimate: $(cat "$work/stdout")"
   [ -z "$(ls -A "$SKYSPEC_CACHE_DIR" 2>/dev/null)" ] && ok || bad "dry run cached tables: $(ls -A "$SKYSPEC_CACHE_DIR")"
-  # Tables estimated beyond a day are refused before they are built: 471 wavelengths (the figure
-  # is in docs/reliability.md; the time-out only stops a machine fast enough to start them, and
-  # that fails the check too).
-  run_expecting_error tables_refused 2 "building its tables" "$work/refused" \
+  # Tables estimated beyond a day, or beyond the memory there is, are refused before they are
+  # built: 471 wavelengths (the figures are in docs/reliability.md; the time-out only stops a
+  # machine fast enough to start them, and that fails the check too). These angular tables
+  # (harmonics up to degree 6) need more memory than this machine has, which is checked first.
+  run_expecting_error tables_refused 2 "GB of memory" "$work/refused" \
     timeout 60 "$skyspec" render -q --out "$work/refused" "${huge[@]:0:12}" --lambda-min 360 --lambda-max 830 --lambda-step 1
 fi
 # A cache folder that is a file: a warning, and the render still works.

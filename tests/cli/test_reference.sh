@@ -43,6 +43,12 @@ for r in rows:
     assert abs(det - mc) <= 4 * se + 0.003 * mc, r
 PY
 
+# In the planet's shadow (sun below the horizon, order 1 only, looking away from it) the sky is
+# dark: relative columns are empty, never NaN.
+"$skyspec" reference --wavelengths 450,650 --sun-elevation -4 --orders 1 --probe 180,1 --compare --paths 200 --format csv -q \
+  >"$work/shadow.csv" && ok || bad "reference in the planet's shadow"
+grep -qi "nan\|inf" "$work/shadow.csv" && bad "NaN or Inf in the shadow's CSV: $(cat "$work/shadow.csv")" || ok
+
 # --out writes the file atomically; Markdown names the settings.
 "$skyspec" reference --wavelengths 550,650 --probe 0,90 --paths 500 --irradiance --out "$work/t.md" -q && ok || bad "--out"
 grep -q "diffuse horizontal irradiance" "$work/t.md" && grep -q "500 paths per value, seed 1" "$work/t.md" && ok \

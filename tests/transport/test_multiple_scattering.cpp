@@ -10,7 +10,9 @@
 #include "atmosphere_fixtures.hpp"
 #include "scratch_folder.hpp"
 #include "skyspec/camera.hpp"
+#include "skyspec/phase_function.hpp"
 #include "transport/multiple_scattering.hpp"
+#include "transport/spherical_harmonics.hpp"
 #include "skyspec/units.hpp"
 
 BOOST_AUTO_TEST_SUITE(test_multiple_scattering)
@@ -140,11 +142,12 @@ BOOST_AUTO_TEST_CASE(tables_round_trip_through_the_cache) {
   BOOST_REQUIRE(built.save(path, "key A"));
   const auto loaded = ScatteringOrders::load(path, "key A", atm, ms);
   BOOST_REQUIRE(loaded);
-  float a[3], b[3];
+  float a[3], b[3], a2[3], b2[3];
   for (double mu : {-0.3, 0.0, 0.4, 1.0}) {
-    built.source(6360e3 + 1234, mu, a);
-    loaded->source(6360e3 + 1234, mu, b);
+    built.source(6360e3 + 1234, mu, 0.3, 0.5, a, a2);
+    loaded->source(6360e3 + 1234, mu, 0.3, 0.5, b, b2);
     for (int i = 0; i < 3; ++i) BOOST_TEST(a[i] == b[i]);
+    for (int i = 0; i < 3; ++i) BOOST_TEST(a2[i] == b2[i]);
     built.ground_irradiance(mu, a);
     loaded->ground_irradiance(mu, b);
     for (int i = 0; i < 3; ++i) BOOST_TEST(a[i] == b[i]);
@@ -177,4 +180,81 @@ BOOST_AUTO_TEST_CASE(tables_round_trip_through_the_cache) {
   BOOST_TEST(!rewrite(bytes));  // the intact file still loads
 }
 
-BOOST_AUTO_TEST_SUITE_END()  // test_multiple_scattering
+// A field of degree 2 in the local frame (x towards the sun's azimuth, z up), put into a table by
+// its harmonics: each species' source towards any view direction is the integral of its phase
+// function times the field, computed here by brute-force quadrature (exact truncation: the field
+// has no harmonics above degree 2, whatever the phase function's).
+BOOST_AUTO_TEST_CASE(angular_source_is_the_phase_weighted_field) {
+  const AtmosphereModel atm(test::simple_atmosphere(ProfileKind::Exponential, 60e3, kNm, kBetaR, 21e-6),
+                            WavelengthGrid::from_list(kNm));
+  const auto moments = PhaseMoments::of(atm, 4);
+  SourceTable table(atm.planet_radius_m(), atm.top_radius_m(), 4, 4, moments);
+  auto field = [](const Vec3& w, int i) {
+    return (1.0 + i) * (1.0 + 0.5 * w.z() + 0.3 * w.z() * w.z() + 0.2 * w.x() + 0.1 * w.x() * w.z());
+  };
+  // The harmonics of the field (Gauss-Legendre x midpoint: exact for these integrands).
+  const int n_c = table.harmonic_count();
+  std::vector<double> mu, wt, y(static_cast<size_t>(n_c));
+  gauss_legendre(16, -1.0, 1.0, mu, wt);
+  std::vector<double> a(static_cast<size_t>(n_c * 3), 0.0);
+  for (size_t i = 0; i < mu.size(); ++i)
+    for (int j = 0; j < 32; ++j) {
+      const double phi = (j + 0.5) * 2 * kPi / 32, st = std::sqrt(1 - mu[i] * mu[i]);
+      const Vec3 w(st * std::cos(phi), st * std::sin(phi), mu[i]);
+      symmetric_harmonics(table.degree(), mu[i], std::cos(phi), y.data());
+      for (int c = 0; c < n_c; ++c)
+        for (int l = 0; l < 3; ++l)
+          a[static_cast<size_t>(c * 3 + l)] += wt[i] * 2 * kPi / 32 * y[static_cast<size_t>(c)] * field(w, l);
+    }
+  for (int ih = 0; ih < 4; ++ih)
+    for (int im = 0; im < 4; ++im)
+      for (int c = 0; c < n_c; ++c)
+        for (int l = 0; l < 3; ++l) table.j_at(ih, im)[c * 3 + l] = static_cast<float>(a[static_cast<size_t>(c * 3 + l)]);
+  // Views at several zenith angles and azimuths, the sun at mu_s = 0.4.
+  const double mu_s = 0.4, ss = std::sqrt(1 - mu_s * mu_s);
+  std::vector<double> fmu, fw;
+  gauss_legendre(200, -1.0, 1.0, fmu, fw);
+  for (double mu_v : {-0.5, 0.05, 0.7}) {
+    for (double phi_v : {0.0, 1.2, 2.8}) {
+      const double sv = std::sqrt(1 - mu_v * mu_v);
+      const Vec3 v(sv * std::cos(phi_v), sv * std::sin(phi_v), mu_v);
+      const double nu = mu_v * mu_s + sv * ss * std::cos(phi_v);
+      float jr[3], jm[3];
+      table.source(atm.planet_radius_m() + 1000.0, mu_s, mu_v, nu, jr, jm);
+      for (int l = 0; l < 3; ++l) {
+        double er = 0.0, em = 0.0;
+        for (size_t i = 0; i < fmu.size(); ++i)
+          for (int j = 0; j < 400; ++j) {
+            const double phi = (j + 0.5) * 2 * kPi / 400, st = std::sqrt(1 - fmu[i] * fmu[i]);
+            const Vec3 w(st * std::cos(phi), st * std::sin(phi), fmu[i]);
+            const double dw = fw[i] * 2 * kPi / 400, c = v.dot(w);
+            er += dw * rayleigh_phase(c, atm.rayleigh_phase_gamma()[l]) * field(w, l);
+            em += dw * atm.mie_phase()(c) * field(w, l);
+          }
+        BOOST_TEST(jr[l] == er, boost::test_tools::tolerance(2e-5));
+        BOOST_TEST(jm[l] == em, boost::test_tools::tolerance(1e-3));
+      }
+    }
+  }
+}
+
+// Degree 0 is the isotropic approximation: every species' source is the field's mean.
+BOOST_AUTO_TEST_CASE(degree_zero_is_the_mean_radiance) {
+  const AtmosphereModel atm(test::simple_atmosphere(ProfileKind::Exponential, 60e3, kNm, kBetaR, 21e-6),
+                            WavelengthGrid::from_list(kNm));
+  SourceTable table(atm.planet_radius_m(), atm.top_radius_m(), 4, 4, PhaseMoments::of(atm, 0));
+  BOOST_TEST(table.harmonic_count() == 1);
+  for (int ih = 0; ih < 4; ++ih)
+    for (int im = 0; im < 4; ++im)
+      for (int l = 0; l < 3; ++l) table.j_at(ih, im)[l] = static_cast<float>(std::sqrt(4 * kPi) * 0.25 * (l + 1));
+  float jr[3], jm[3];
+  for (double nu : {-1.0, 0.0, 0.9}) {
+    table.source(atm.planet_radius_m() + 500.0, 0.3, 0.2, nu, jr, jm);
+    for (int l = 0; l < 3; ++l) {
+      BOOST_TEST(jr[l] == 0.25 * (l + 1), boost::test_tools::tolerance(1e-6));
+      BOOST_TEST(jm[l] == 0.25 * (l + 1), boost::test_tools::tolerance(1e-6));
+    }
+  }
+}
+
+BOOST_AUTO_TEST_SUITE_END()

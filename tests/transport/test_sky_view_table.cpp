@@ -18,9 +18,11 @@ constexpr double R = 6360e3;
 
 // An isotropic higher-order source that varies with altitude and sun angle, and lights the ground.
 struct SmoothSource : InScatteringSource {
-  void source(double r_m, double mu_sun, float* out) const override {
-    for (int i = 0; i < 3; ++i)
-      out[i] = static_cast<float>(0.02 * (1 + i) * std::exp(-(r_m - R) / 9000.0) * (1.2 + mu_sun));
+  void source(double r_m, double mu_sun, double mu_view, double nu, float* rayleigh, float* mie) const override {
+    for (int i = 0; i < 3; ++i) {
+      rayleigh[i] = static_cast<float>(0.02 * (1 + i) * std::exp(-(r_m - R) / 9000.0) * (1.2 + mu_sun) * (1.1 + 0.1 * nu));
+      mie[i] = static_cast<float>(0.03 * (1 + i) * std::exp(-(r_m - R) / 9000.0) * (1.2 + mu_sun) * (1.5 + 0.3 * mu_view));
+    }
   }
   void ground_irradiance(double mu_sun, float* out) const override {
     for (int i = 0; i < 3; ++i) out[i] = static_cast<float>(0.1 * (1.0 + mu_sun));

@@ -1,0 +1,90 @@
+#include "transport/spherical_harmonics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include "skyspec/units.hpp"
+#include "transport/multiple_scattering.hpp"
+
+namespace skyspec {
+
+namespace {
+constexpr int kMaxDegree = 16;
+// K_lm (x sqrt 2 for m > 0) for l, m <= kMaxDegree, at harmonic_index(l, m), computed once.
+const std::vector<double>& normalisation() {
+  static const std::vector<double> k = [] {
+    std::vector<double> v(static_cast<size_t>(harmonic_count(kMaxDegree)));
+    for (int l = 0; l <= kMaxDegree; ++l)
+      for (int m = 0; m <= l; ++m) {
+        double ratio = 1.0;  // (l - m)! / (l + m)!
+        for (int j = l - m + 1; j <= l + m; ++j) ratio /= j;
+        v[static_cast<size_t>(harmonic_index(l, m))] =
+            std::sqrt((2.0 * l + 1.0) / (4.0 * kPi) * ratio) * (m > 0 ? std::sqrt(2.0) : 1.0);
+      }
+    return v;
+  }();
+  return k;
+}
+}  // namespace
+
+void symmetric_harmonics(int degree, double mu, double cos_phi, double* out) {
+  const std::vector<double>& k = normalisation();
+  const double x = std::clamp(mu, -1.0, 1.0), s = std::sqrt(std::max(0.0, 1.0 - x * x));
+  const double c = std::clamp(cos_phi, -1.0, 1.0);
+  double cos_m_prev = 1.0, cos_m = 1.0;  // cos((m - 1) phi), cos(m phi) by Chebyshev's recurrence
+  double pmm = 1.0;                      // P_m^m = (2m - 1)!! s^m
+  for (int m = 0; m <= degree; ++m) {
+    if (m == 1) {
+      cos_m = c;
+    } else if (m > 1) {
+      const double next = 2.0 * c * cos_m - cos_m_prev;
+      cos_m_prev = cos_m;
+      cos_m = next;
+    }
+    if (m > 0) pmm *= (2.0 * m - 1.0) * s;
+    // P_l^m for l = m .. degree by the three-term recurrence in l.
+    double p_prev = 0.0, p = pmm;
+    for (int l = m; l <= degree; ++l) {
+      if (l > m) {
+        const double next = l == m + 1 ? x * (2.0 * m + 1.0) * p : ((2.0 * l - 1.0) * x * p - (l + m - 1.0) * p_prev) / (l - m);
+        p_prev = p;
+        p = next;
+      }
+      const int i = harmonic_index(l, m);
+      out[i] = k[static_cast<size_t>(i)] * p * cos_m;
+    }
+  }
+}
+
+std::vector<double> legendre_moments(const std::function<double(double)>& phase, int degree, int nodes) {
+  // The nodes of the usual count once (every wavelength of every table asks for them).
+  static const std::pair<std::vector<double>, std::vector<double>> usual = [] {
+    std::pair<std::vector<double>, std::vector<double>> p;
+    gauss_legendre(512, -1.0, 1.0, p.first, p.second);
+    return p;
+  }();
+  std::vector<double> x, w, chi(static_cast<size_t>(degree) + 1, 0.0);
+  if (nodes == 512) {
+    x = usual.first;
+    w = usual.second;
+  } else {
+    gauss_legendre(nodes, -1.0, 1.0, x, w);
+  }
+  for (size_t i = 0; i < x.size(); ++i) {
+    const double f = 2.0 * kPi * w[i] * phase(x[i]);
+    chi[0] += f;
+    if (degree >= 1) chi[1] += f * x[i];
+    double p0 = 1.0, p1 = x[i];  // P_{l-2}, P_{l-1}
+    for (int l = 2; l <= degree; ++l) {
+      const double pl = ((2.0 * l - 1.0) * x[i] * p1 - (l - 1.0) * p0) / l;
+      chi[static_cast<size_t>(l)] += f * pl;
+      p0 = p1;
+      p1 = pl;
+    }
+  }
+  return chi;
+}
+
+}  // namespace skyspec

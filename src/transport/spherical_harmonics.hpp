@@ -1,0 +1,37 @@
+// Real spherical harmonics of fields symmetric about a plane, and Legendre moments of phase
+// functions: what the angular source of the higher scattering orders is made of.
+//
+// A radiance field at a point of the atmosphere, in the local frame (z up, x towards the sun's
+// azimuth), is symmetric under phi -> -phi, so only the cosine harmonics appear:
+//
+//   Y_lm(mu, phi) = K_lm P_l^m(mu) cos(m phi) (x sqrt 2 for m > 0),
+//   K_lm = sqrt((2 l + 1) / (4 pi) (l - m)! / (l + m)!),   0 <= m <= l <= degree,
+//
+// orthonormal over the sphere (P_l^m without the Condon-Shortley sign). For a phase function
+// p(cos theta) = sum_l (2 l + 1) / (4 pi) chi_l P_l(cos theta) (chi_0 = 1) and a field
+// L = sum a_lm Y_lm, the addition theorem gives the in-scattered source in direction w:
+//
+//   J(w) = integral p(w . w') L(w') dw' = sum_l chi_l sum_m a_lm Y_lm(w)
+//
+// (Chandrasekhar 1950, ch. I sections 15-17; the expansion DISORT and the spherical-harmonics
+// methods of radiative transfer rest on).
+#pragma once
+
+#include <functional>
+#include <vector>
+
+namespace skyspec {
+
+/// Number of harmonics up to `degree`: (degree + 1)(degree + 2) / 2.
+inline int harmonic_count(int degree) { return (degree + 1) * (degree + 2) / 2; }
+/// Index of (l, m): l (l + 1) / 2 + m.
+inline int harmonic_index(int l, int m) { return l * (l + 1) / 2 + m; }
+
+/// Y_lm(mu, phi) for all 0 <= m <= l <= degree (at most 16), at harmonic_index(l, m); cos_phi is cos(phi).
+void symmetric_harmonics(int degree, double mu, double cos_phi, double* out);
+
+/// chi_l = 2 pi integral_{-1}^{1} p(mu) P_l(mu) dmu for l = 0..degree, by Gauss-Legendre quadrature
+/// with `nodes` nodes (p normalised to 1 over the sphere, so chi_0 = 1).
+std::vector<double> legendre_moments(const std::function<double(double)>& phase, int degree, int nodes = 512);
+
+}  // namespace skyspec

@@ -1,0 +1,86 @@
+// The harmonics the multiple-scattering tables are made of: orthonormal, the addition theorem,
+// and the Legendre moments of the phase functions against their closed forms.
+
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+#include <vector>
+
+#include "skyspec/phase_function.hpp"
+#include "skyspec/units.hpp"
+#include "transport/multiple_scattering.hpp"
+#include "transport/spherical_harmonics.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_spherical_harmonics)
+
+using namespace skyspec;
+
+namespace {
+double legendre(int l, double x) {
+  double p0 = 1.0, p1 = x;
+  if (l == 0) return p0;
+  for (int k = 2; k <= l; ++k) {
+    const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
+    p0 = p1;
+    p1 = p2;
+  }
+  return p1;
+}
+}  // namespace
+
+// integral over the sphere of Y_a Y_b = delta_ab (Gauss-Legendre in mu, midpoint rule in phi:
+// exact for these polynomials).
+BOOST_AUTO_TEST_CASE(harmonics_are_orthonormal) {
+  const int degree = 8, n = harmonic_count(degree), n_phi = 64;
+  std::vector<double> mu, w, y(static_cast<size_t>(n));
+  gauss_legendre(24, -1.0, 1.0, mu, w);
+  std::vector<double> gram(static_cast<size_t>(n * n), 0.0);
+  for (size_t i = 0; i < mu.size(); ++i)
+    for (int j = 0; j < n_phi; ++j) {
+      const double phi = (j + 0.5) * 2.0 * kPi / n_phi;
+      symmetric_harmonics(degree, mu[i], std::cos(phi), y.data());
+      for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b)
+          gram[static_cast<size_t>(a * n + b)] += w[i] * 2.0 * kPi / n_phi * y[static_cast<size_t>(a)] * y[static_cast<size_t>(b)];
+    }
+  for (int a = 0; a < n; ++a)
+    for (int b = 0; b < n; ++b)
+      BOOST_TEST(gram[static_cast<size_t>(a * n + b)] == (a == b ? 1.0 : 0.0), boost::test_tools::tolerance(1e-10));
+}
+
+// For w' in the x-z plane (phi' = 0) the sine harmonics vanish there, so the cosine ones alone
+// satisfy the addition theorem: sum_m Y_lm(w) Y_lm(w') = (2 l + 1) / (4 pi) P_l(w . w').
+BOOST_AUTO_TEST_CASE(addition_theorem) {
+  const int degree = 10;
+  std::vector<double> a(static_cast<size_t>(harmonic_count(degree))), b(a.size());
+  for (double mu1 : {-0.9, -0.2, 0.3, 0.99})
+    for (double mu2 : {-0.7, 0.0, 0.5})
+      for (double phi : {0.0, 0.7, 2.0, 3.1}) {
+        symmetric_harmonics(degree, mu1, std::cos(phi), a.data());
+        symmetric_harmonics(degree, mu2, 1.0, b.data());
+        const double cos_angle = mu1 * mu2 + std::sqrt((1 - mu1 * mu1) * (1 - mu2 * mu2)) * std::cos(phi);
+        for (int l = 0; l <= degree; ++l) {
+          double sum = 0.0;
+          for (int m = 0; m <= l; ++m) sum += a[static_cast<size_t>(harmonic_index(l, m))] * b[static_cast<size_t>(harmonic_index(l, m))];
+          BOOST_TEST(sum == (2.0 * l + 1.0) / (4.0 * kPi) * legendre(l, cos_angle), boost::test_tools::tolerance(1e-9));
+        }
+      }
+}
+
+// Henyey-Greenstein: chi_l = g^l; Rayleigh with depolarisation: chi_0 = 1,
+// chi_2 = (1 - gamma) / (10 (1 + 2 gamma)), every other moment 0; Cornette-Shanks: chi_0 = 1.
+BOOST_AUTO_TEST_CASE(legendre_moments_of_the_phase_functions) {
+  const std::vector<double> hg = legendre_moments([](double mu) { return henyey_greenstein_phase(mu, 0.7); }, 12);
+  for (int l = 0; l <= 12; ++l) BOOST_TEST(hg[static_cast<size_t>(l)] == std::pow(0.7, l), boost::test_tools::tolerance(1e-9));
+  for (double gamma : {0.0, 0.0142, 0.1}) {
+    const std::vector<double> r = legendre_moments([gamma](double mu) { return rayleigh_phase(mu, gamma); }, 6);
+    BOOST_TEST(r[0] == 1.0, boost::test_tools::tolerance(1e-12));
+    BOOST_TEST(r[2] == (1.0 - gamma) / (10.0 * (1.0 + 2.0 * gamma)), boost::test_tools::tolerance(1e-12));
+    for (int l : {1, 3, 4, 5, 6}) BOOST_TEST(std::abs(r[static_cast<size_t>(l)]) < 1e-13);
+  }
+  const std::vector<double> cs = legendre_moments([](double mu) { return cornette_shanks_phase(mu, 0.76); }, 4);
+  BOOST_TEST(cs[0] == 1.0, boost::test_tools::tolerance(1e-9));
+  BOOST_TEST(cs[1] > 0.6);  // forward scattering
+}
+
+BOOST_AUTO_TEST_SUITE_END()
