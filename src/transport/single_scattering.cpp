@@ -168,18 +168,18 @@ void SingleScattering::radiance(const Vec3& o, const Vec3& d, const Vec3& s, con
 }
 
 namespace {
-// L = E_sun [p_R rayleigh + p_M mie + isotropic] for one direction's parts (n values each), with
+// L = E_sun [p_R rayleigh + p_M mie + phase_free] for one direction's parts (n values each), with
 // the aerosol's phase per wavelength where pm_spectral is given.
 // The Rayleigh phase per wavelength is pr_a + pr_b mu^2 (the constructor's A and B).
-void combine_parts(Eigen::Index n, const float* rayleigh, const float* mie, const float* isotropic, const Spectrum& pr_a,
+void combine_parts(Eigen::Index n, const float* rayleigh, const float* mie, const float* phase_free, const Spectrum& pr_a,
                    const Spectrum& pr_b, float mu2, float pm, const Spectrum* pm_spectral, const Spectrum& sun_irradiance,
                    float* out) {
   using In = Eigen::Map<const Spectrum>;
   Eigen::Map<Spectrum> o(out, n);
   if (pm_spectral)
-    o = (In(rayleigh, n) * (pr_a + pr_b * mu2) + In(mie, n) * *pm_spectral + In(isotropic, n)) * sun_irradiance;
+    o = (In(rayleigh, n) * (pr_a + pr_b * mu2) + In(mie, n) * *pm_spectral + In(phase_free, n)) * sun_irradiance;
   else
-    o = (In(rayleigh, n) * (pr_a + pr_b * mu2) + In(mie, n) * pm + In(isotropic, n)) * sun_irradiance;
+    o = (In(rayleigh, n) * (pr_a + pr_b * mu2) + In(mie, n) * pm + In(phase_free, n)) * sun_irradiance;
 }
 
 // A spectral aerosol: the phase function's asymmetry differs per wavelength.
@@ -199,7 +199,7 @@ void SingleScattering::combine(const RadianceParts& parts, double mu, const Spec
   const bool varies = atm_.mie_g_varies();
   if (varies) spectral_mie_phase(atm_, mu, ws.phase);
   const float phase_m = varies ? 0.0f : static_cast<float>(atm_.mie_phase()(mu));
-  combine_parts(n, parts.rayleigh.data(), parts.mie.data(), parts.isotropic.data(), rayleigh_phase_a_,
+  combine_parts(n, parts.rayleigh.data(), parts.mie.data(), parts.phase_free.data(), rayleigh_phase_a_,
                 rayleigh_phase_b_, static_cast<float>(mu * mu), phase_m, varies ? &ws.phase : nullptr, sun_irradiance,
                 out.data());
 }
@@ -499,7 +499,7 @@ void SingleScattering::accumulate(PieceScratch& sc, Spectrum* sums[4]) const {
 }
 
 // The ground at the ray's end: Lambertian reflection of the direct sun (order 1) and of the sky
-// (higher orders), seen through the whole view ray; added to the isotropic part.
+// (higher orders), seen through the whole view ray; added to the phase-free part.
 void SingleScattering::ground_reflection(const Node& ground, double mu_sun, const ScatteringSources& sources,
                                          ScatteringWorkspace& ws, RadianceParts& parts) const {
   const double R = atm_.planet_radius_m();
@@ -517,7 +517,7 @@ void SingleScattering::ground_reflection(const Node& ground, double mu_sun, cons
     sources.higher->ground_irradiance(mu_sun, ws.ground_sky.data());
     ws.source += ws.ground_sky;
   }
-  parts.isotropic += ws.view_trans * albedo_over_pi_ * ws.source;
+  parts.phase_free += ws.view_trans * albedo_over_pi_ * ws.source;
 }
 
 // The optical depth of the view ray from the camera to a node.
@@ -533,7 +533,7 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
                                  const ScatteringSources& sources, ScatteringWorkspace& ws, RadianceParts& parts) const {
   parts.rayleigh.setZero();
   parts.mie.setZero();
-  parts.isotropic.setZero();
+  parts.phase_free.setZero();
   const bool higher = sources.higher != nullptr;
   const double os = o.dot(s), ds = d.dot(s), od = o.dot(d);
   for (Spectrum* sum : {&ws.sum_rayleigh, &ws.sum_mie, &ws.coarse_rayleigh, &ws.coarse_mie, &ws.sum_ms_rayleigh,
@@ -560,7 +560,7 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
     parts.mie = sca_mie_ * richardson(ws.sum_mie, ws.coarse_mie);
   }
   if (higher)
-    parts.isotropic = sca_rayleigh_ * richardson(ws.sum_ms_rayleigh, ws.coarse_ms_rayleigh) +
+    parts.phase_free = sca_rayleigh_ * richardson(ws.sum_ms_rayleigh, ws.coarse_ms_rayleigh) +
                       sca_mie_ * richardson(ws.sum_ms_mie, ws.coarse_ms_mie);
 
   const Node& last = ray.nodes.back();
@@ -576,7 +576,7 @@ void SingleScattering::radiance_parts(const Vec3& o, const Vec3& d, const Vec3& 
                                       ScatteringWorkspace& ws, RadianceParts& parts) const {
   parts.rayleigh.setZero();
   parts.mie.setZero();
-  parts.isotropic.setZero();
+  parts.phase_free.setZero();
   if (sources.transmittance) sources.transmittance->setOnes();
   if (o.norm() < atm_.planet_radius_m()) {  // inside the planet
     if (sources.transmittance) sources.transmittance->setZero();
@@ -602,7 +602,7 @@ void SingleScattering::radiance_parts_same_zenith(const Vec3& o, const Vec3* dir
     if (!trace(o, d, s, sources, own)) {
       parts[i].rayleigh.setZero();
       parts[i].mie.setZero();
-      parts[i].isotropic.setZero();
+      parts[i].phase_free.setZero();
       continue;
     }
     bool lit_throughout = !own.hits_ground;

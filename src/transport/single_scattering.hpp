@@ -3,20 +3,21 @@
 // and light reflected by a Lambertian ground:
 //
 //   L(lambda) = E_sun sum_s beta_sca,s p_s(mu) int rho_s(t) exp(-tau_view(0,t) - tau_sun(t)) dt  (order 1)
-//             + E_sun int exp(-tau_view(0,t)) sum_s beta_sca,s rho_s(t) J(r(t), mu_s(t)) dt      (orders >= 2)
+//             + E_sun int exp(-tau_view(0,t)) sum_s beta_sca,s rho_s(t) J_s(r(t), mu_s(t), d) dt  (orders >= 2)
 //             + exp(-tau_view(0,T)) a / pi [E_sun T_sun(g) max(0, mu_s(g)) + E_sun G(mu_s(g))]  (ground at g)
 //
-// tau = sum_s beta_ext,s C_s over Rayleigh, Mie and ozone. J is the isotropic in-scattering source
-// of the higher orders per unit solar irradiance, G the ground irradiance they give (see
-// multiple_scattering.hpp). All wavelengths are carried together as one vector.
+// tau = sum_s beta_ext,s C_s over Rayleigh, Mie and ozone. J_s is species s's in-scattering source
+// of the higher orders towards the view direction d per unit solar irradiance, G the ground
+// irradiance they give (see multiple_scattering.hpp). All wavelengths are carried together as one
+// vector.
 //
 // Quadrature: the ray is cut at the shadow boundaries (closed form) and at its lowest point, and
 // each piece into segments. For the single-scattering term, ln of the integrand rho_s exp(-tau)
 // is taken as linear on a segment, which integrates exactly where the density is exponential and
 // the optical depth linear (the log-mean rule); it is second order, and pairs of segments give a
 // coarse estimate of the same integral so that Richardson extrapolation, (4 fine - coarse) / 3,
-// removes the leading error term at the cost of one extra log-mean per pair. The smooth
-// higher-order term uses the trapezoid rule with the same extrapolation (Simpson's rule).
+// removes the leading error term at the cost of one extra log-mean per pair. The higher-order
+// term uses the same log-mean rule with J_s folded into the exponent, per species.
 // View-ray columns are accumulated along the way; columns towards the sun come from the
 // SunColumnTable.
 #pragma once
@@ -37,17 +38,17 @@ struct IntegratorSettings {
 /// infinity the angle between view and sun is the same at every point, so the phase functions
 /// factor out of the single-scattering integrals, and the radiance is
 ///
-///   L(lambda) = E_sun(lambda) [p_R(mu) rayleigh(lambda) + p_M(mu, lambda) mie(lambda) + isotropic(lambda)]
+///   L(lambda) = E_sun(lambda) [p_R(mu) rayleigh(lambda) + p_M(mu, lambda) mie(lambda) + phase_free(lambda)]
 ///
 /// with mu the cosine of the scattering angle. `rayleigh` and `mie` are beta_sca,s times the
-/// order-1 integral of species s; `isotropic` holds the higher orders and the ground (per unit
-/// solar irradiance). All three are smooth functions of the view direction, which is what makes
+/// order-1 integral of species s; `phase_free` holds the higher orders (their phase functions are
+/// inside the tables' sources) and the ground (per unit solar irradiance). All three are smooth functions of the view direction, which is what makes
 /// them worth tabulating (sky_view_table.hpp); the phase functions, peaked near the sun, are
 /// evaluated exactly afterwards.
 struct RadianceParts {
   explicit RadianceParts(int n_wavelengths = 0)
-      : rayleigh(Spectrum::Zero(n_wavelengths)), mie(Spectrum::Zero(n_wavelengths)), isotropic(Spectrum::Zero(n_wavelengths)) {}
-  Spectrum rayleigh, mie, isotropic;
+      : rayleigh(Spectrum::Zero(n_wavelengths)), mie(Spectrum::Zero(n_wavelengths)), phase_free(Spectrum::Zero(n_wavelengths)) {}
+  Spectrum rayleigh, mie, phase_free;
 };
 
 /// Per-thread scratch memory (spectral arrays are allocated once and reused).
@@ -137,11 +138,11 @@ class SingleScattering {
   /// The results are radiance_parts's, to rounding. sources.transmittance must be null.
   void radiance_parts_same_zenith(const Vec3& origin_m, const Vec3* dirs, int count, const Vec3& sun_dir,
                                   const ScatteringSources& sources, ScatteringWorkspace& ws, RadianceParts* parts) const;
-  /// L = E_sun [p_R(mu) rayleigh + p_M(mu) mie + isotropic] for mu = cos(scattering angle).
+  /// L = E_sun [p_R(mu) rayleigh + p_M(mu) mie + phase_free] for mu = cos(scattering angle).
   void combine(const RadianceParts& parts, double mu, const Spectrum& sun_irradiance, ScatteringWorkspace& ws,
                Spectrum& out) const;
   /// combine() for `count` directions whose parts are packed as SkyViewTable::lookup_many gives
-  /// them (3 n floats each: Rayleigh, Mie, isotropic; n wavelengths): direction k, at cosine
+  /// them (3 n floats each: Rayleigh, Mie, phase-free; n wavelengths): direction k, at cosine
   /// mu[k] to the sun, goes to out[k] (n floats) where use[k]. The phase functions of all of them
   /// are evaluated in one loop that vectorises. The same values as combine().
   void combine_many(int count, const float* packed, const double* mu, const bool* use, const Spectrum& sun_irradiance,

@@ -220,7 +220,7 @@ SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringS
                          static_cast<size_t>(column) * kParts * static_cast<size_t>(n);
           std::copy(p.rayleigh.data(), p.rayleigh.data() + n, entry);
           std::copy(p.mie.data(), p.mie.data() + n, entry + n);
-          std::copy(p.isotropic.data(), p.isotropic.data() + n, entry + 2 * n);
+          std::copy(p.phase_free.data(), p.phase_free.data() + n, entry + 2 * n);
         }
       }
     });
@@ -255,8 +255,8 @@ bool SkyViewTable::lookup(const Vec3& dir, RadianceParts& out) const {
   const int n = n_;
   out.rayleigh.resize(n);  // no-ops when the caller's parts have the grid's size already
   out.mie.resize(n);
-  out.isotropic.resize(n);
-  return interpolate(theta, phi, out.rayleigh.data(), out.mie.data(), out.isotropic.data());
+  out.phase_free.resize(n);
+  return interpolate(theta, phi, out.rayleigh.data(), out.mie.data(), out.phase_free.data());
 }
 
 void SkyViewTable::lookup_many(int count, const Vec3* dirs, float* out, bool* found) const {
@@ -273,7 +273,7 @@ void SkyViewTable::lookup_many(int count, const Vec3* dirs, float* out, bool* fo
   }
 }
 
-bool SkyViewTable::interpolate(double theta, double phi, float* rayleigh, float* mie, float* isotropic) const {
+bool SkyViewTable::interpolate(double theta, double phi, float* rayleigh, float* mie, float* phase_free) const {
   const bool sky_side = theta < horizon_zenith_rad_;
   if (!sky_side && !res_.ground_side) return false;
 
@@ -322,7 +322,7 @@ bool SkyViewTable::interpolate(double theta, double phi, float* rayleigh, float*
   const float* rows_at = (sky_side ? sky_ : ground_).data() +
                          static_cast<size_t>(first_row) * static_cast<size_t>(m) * kParts * static_cast<size_t>(n_) +
                          static_cast<size_t>(c0) * kParts * static_cast<size_t>(n_);
-  float* const parts[kParts] = {rayleigh, mie, isotropic};
+  float* const parts[kParts] = {rayleigh, mie, phase_free};
   if (n_ == 3)  // the RGB-fast path's three wavelengths: loops of known length, unrolled
     mix_entries<3>(rows_at, m, row_w, n_rows, w0, w1, n_, parts);
   else

@@ -48,7 +48,7 @@ class SkyViewTable {
   /// False (and `out` untouched) for a direction below the horizon when that side was not built.
   bool lookup(const Vec3& dir, RadianceParts& out) const;
   /// lookup() for count unit directions at once, their angles computed together (a loop that
-  /// vectorises): direction k's parts go to out + 3 n k (Rayleigh, Mie, isotropic, n floats
+  /// vectorises): direction k's parts go to out + 3 n k (Rayleigh, Mie, phase-free, n floats
   /// each, n the wavelengths), found[k] is lookup()'s answer. The same values as lookup().
   void lookup_many(int count, const Vec3* dirs, float* out, bool* found) const;
   /// The zenith angle of the horizon seen from the table's point (> pi/2 above the ground).
@@ -73,7 +73,7 @@ class SkyViewTable {
   // table's interpolation at (theta, phi) (false where it has no side for theta).
   void angles_of(const Vec3& dir, double& theta, double& phi) const;
   double refined_zenith(const Vec3& dir, double theta) const;
-  bool interpolate(double theta, double phi, float* rayleigh, float* mie, float* isotropic) const;
+  bool interpolate(double theta, double phi, float* rayleigh, float* mie, float* phase_free) const;
 
   SkyViewResolution res_;
   int n_ = 0;  // wavelengths
@@ -82,7 +82,7 @@ class SkyViewTable {
   double r_m_ = 0.0, R_m_ = 0.0, rho_m_ = 0.0;  // camera and planet radii, distance to the horizon
   std::vector<double> sky_theta_, ground_theta_, sky_key_, ground_key_;  // per row: zenith angle, key
   std::vector<double> sky_inv_den_, ground_inv_den_;  // per row pair: its rows' Lagrange denominators (4 each)
-  // [side][row][column][part][lambda], part = rayleigh, mie, isotropic.
+  // [side][row][column][part][lambda], part = rayleigh, mie, phase_free.
   std::vector<float> sky_, ground_;
 };
 

@@ -120,8 +120,9 @@ Vec3 direction(const Vec3& up, double e, double a) {
 //   L <= E p_max integral beta_ext(t) exp(-tau(t)) dt = E p_max (1 - exp(-tau(S))) <= E p_max.
 // This is checked (with a 1e-3 margin for the quadrature) on the single-scattering cases. For
 // K >= 2 orders only finiteness and L >= 0 are asserted; the ratio to the heuristic bound
-// E (p_max + (K - 1) / (4 pi)) (each isotropic order adding at most the sphere-mean of the previous
-// one, <= E / (4 pi)) is reported, not asserted: the tables' quadrature is not exact for it.
+// E (p_max + (K - 1) / (4 pi)) (which would hold if each order added at most the sphere-mean of the
+// previous one, <= E / (4 pi), as isotropic tables do) is reported, not asserted: the tables'
+// quadrature is not exact for it, and angular tables weight the previous order by the phase function.
 BOOST_AUTO_TEST_CASE(radiance_is_finite_non_negative_and_bounded) {
   std::mt19937_64 rng(20261122);
   const auto start = std::chrono::steady_clock::now();

@@ -208,7 +208,7 @@ BOOST_AUTO_TEST_CASE(rays_of_one_zenith_angle_share_nodes_exactly) {
             const auto close = [](float a, float b) { return std::abs(a - b) <= 1e-5f * std::max(std::abs(b), 1e-30f); };
             BOOST_TEST(close(shared.rayleigh[i], alone.rayleigh[i]));
             BOOST_TEST(close(shared.mie[i], alone.mie[i]));
-            BOOST_TEST(close(shared.isotropic[i], alone.isotropic[i]));
+            BOOST_TEST(close(shared.phase_free[i], alone.phase_free[i]));
           }
           compared += alone.rayleigh.maxCoeff() > 0.0f;
         }
