@@ -79,6 +79,11 @@ ReferenceResult monte_carlo_reference(const Scene& scene, const std::vector<Refe
   const Vec3& p = scene.camera.position_m;
   const Vec3 origin(p.x(), p.y(), atmosphere.planet_radius_m() + p.z());
   const Vec3 up(0, 0, 1);
+  // The irradiance estimate starts its paths at the observer: it must be in the air.
+  if (settings.diffuse_irradiance && origin.norm() >= atmosphere.top_radius_m())
+    throw InputError("camera.position_m",
+                     "[" + format_number(p.x()) + ", " + format_number(p.y()) + ", " + format_number(p.z()) + "]",
+                     "an observer below the top of the atmosphere (atmosphere.top_altitude_m) for the diffuse irradiance");
 
   ReferenceResult out;
   out.wavelengths_nm = grid.nanometres();

@@ -60,6 +60,8 @@ run_expecting_error "bad probe text" 2 "azimuth,elevation" "$work/empty" "$skysp
 run_expecting_error "too few paths" 2 "--paths" "$work/empty" "$skyspec" reference --paths 1
 run_expecting_error "bad format" 2 "--format" "$work/empty" "$skyspec" reference --format xml
 run_expecting_error "orders with compare" 2 "--orders" "$work/empty" "$skyspec" reference --orders 2 --compare
+run_expecting_error "irradiance from space" 2 "below the top of the atmosphere" "$work/empty" "$skyspec" reference \
+  --position 0,0,100000 --irradiance --paths 10
 run_expecting_error "bad scene key" 2 "sun.elevation_deg" "$work/empty" "$skyspec" reference --set sun.elevation_deg=200
 
 finish cli_reference

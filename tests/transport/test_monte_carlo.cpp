@@ -69,7 +69,7 @@ BOOST_AUTO_TEST_CASE(plane_parallel_rayleigh_matches_disort_test_problem_2) {
   const Vec3 sun(-s0, 0.0, mu0);  // towards the sun: the beam travels along (s0, 0, -mu0), azimuth 0
   const double mus[3] = {0.018014, 0.538263, 0.981986};
   MonteCarloSettings settings;
-  settings.paths = 200000;
+  settings.paths = 100000;
   settings.seed = 7;
   std::uint64_t stream = 0;
   for (const auto& c : cases) {
@@ -153,7 +153,7 @@ BOOST_AUTO_TEST_CASE(single_scattering_matches_the_deterministic_integrator) {
   ScatteringWorkspace ws(n);
   Spectrum det(n);
   MonteCarloSettings settings;
-  settings.paths = 40000;
+  settings.paths = 20000;
   settings.seed = 5;
   settings.max_orders = 1;
   const Vec3 origin(0, 0, chain.atm.planet_radius_m() + 1.0);
