@@ -89,7 +89,9 @@ SourceTable::SourceTable(double planet_radius_m, double top_radius_m, int n_alti
       n_l_(moments->wavelengths),
       moments_(std::move(moments)),
       j_(static_cast<size_t>(n_altitude) * n_sun * n_c_ * n_l_),
-      g_(static_cast<size_t>(n_sun) * n_l_, 0.0f) {}
+      g_(static_cast<size_t>(n_sun) * n_l_, 0.0f) {
+  if (n_c_ > kMaxHarmonics) throw Error("the scattering-order tables take harmonics up to degree 12");
+}
 
 double SourceTable::altitude_m(int ih) const {
   const double x = static_cast<double>(ih) / (n_h_ - 1);
