@@ -10,6 +10,7 @@
 #include "skyspec/error.hpp"
 #include "skyspec/geometry.hpp"
 #include "skyspec/king_factor.hpp"
+#include "skyspec/monte_carlo.hpp"
 #include "skyspec/phase_function.hpp"
 #include "skyspec/rayleigh.hpp"
 #include "skyspec/refractive_index.hpp"

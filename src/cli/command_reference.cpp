@@ -15,6 +15,8 @@
 #include "text_output.hpp"
 #include "progress.hpp"
 #include "scene_options.hpp"
+#include <filesystem>
+
 #include "base/atomic_file.hpp"
 #include "render/irradiance.hpp"
 #include "skyspec/camera.hpp"
@@ -83,6 +85,18 @@ Deterministic render_probes(Scene scene, const Checked& c, int orders) {
   return d;
 }
 
+// A user's probe label inside a CSV field (quotes doubled, RFC 4180) or a Markdown cell (| escaped).
+std::string csv_quoted(const std::string& s) {
+  std::string out = "\"";
+  for (char ch : s) out += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  return out + "\"";
+}
+std::string markdown_cell(const std::string& s) {
+  std::string out;
+  for (char ch : s) out += ch == '|' ? std::string("\\|") : std::string(1, ch);
+  return out;
+}
+
 std::string format_table(const ReferenceResult& r, const Deterministic* det, const std::string& format,
                          const Scene& scene) {
   std::ostringstream t;
@@ -97,7 +111,7 @@ std::string format_table(const ReferenceResult& r, const Deterministic* det, con
   };
   auto row = [&](const std::string& label, double az, double el, size_t i, double mc, double se, double renderer) {
     const bool relative = mc > 0.0 && se > 0.0;
-    std::vector<std::string> cells = {md ? label : "\"" + label + "\"", num(md ? "%.2f" : "%.6g", az),
+    std::vector<std::string> cells = {md ? markdown_cell(label) : csv_quoted(label), num(md ? "%.2f" : "%.6g", az),
                                       num(md ? "%.2f" : "%.6g", el), num("%g", r.wavelengths_nm[i]),
                                       num(md ? "%.6g" : "%.9g", mc),
                                       md ? (relative ? num("%.3f", 100.0 * se / mc) : "") : num("%.9g", se)};
@@ -164,6 +178,10 @@ std::string format_json(const ReferenceResult& r, const Deterministic* det, cons
 
 int run(const ReferenceOptions& o) {
   const Checked c = check(o);
+  if (!o.out.empty()) {  // before minutes of paths, not after (not in check(): it may create the folder)
+    const std::filesystem::path out(o.out);
+    ensure_writable_directory(out.has_parent_path() ? out.parent_path() : std::filesystem::path("."), "--out");
+  }
   ReferenceResult result;
   {
     ProgressBar bar("monte carlo", o.quiet);
@@ -203,7 +221,9 @@ Command add_reference_command(CLI::App& app) {
   cmd->add_option("--probe", o->probes, "a direction: azimuth,elevation or label=azimuth,elevation (deg); repeatable");
   cmd->add_option("--paths", o->paths, "paths per probe and wavelength")->capture_default_str();
   cmd->add_option("--seed", o->seed, "random seed")->capture_default_str();
-  cmd->add_option("--orders", o->orders, "0: all scattering orders; 1: single scattering only")->capture_default_str();
+  cmd->add_option("--orders", o->orders,
+                  "0: all scattering orders; k: up to k scattering or ground events (1: single scattering)")
+      ->capture_default_str();
   cmd->add_flag("--irradiance", o->irradiance, "also the diffuse horizontal irradiance at the observer");
   cmd->add_flag("--compare", o->compare, "also the renderer's values at the same probes, and the differences");
   cmd->add_option("--format", o->format, "md (Markdown table), csv or json")->capture_default_str();

@@ -67,7 +67,8 @@ ReferenceProbe parse_reference_probe(const std::string& text, const std::string&
 
 ReferenceResult monte_carlo_reference(const Scene& scene, const std::vector<ReferenceProbe>& probes,
                                       const ReferenceSettings& settings, const ProgressFn& progress) {
-  if (settings.paths < 2) throw InputError("paths", std::to_string(settings.paths), "at least 2 paths per estimate");
+  if (settings.paths < 2 || settings.paths > 1000000000000LL)
+    throw InputError("paths", std::to_string(settings.paths), "2 to 1e12 paths per estimate");
   if (settings.max_orders < 0)
     throw InputError("orders", std::to_string(settings.max_orders), "0 (all orders) or a positive number of orders");
   const auto start = std::chrono::steady_clock::now();

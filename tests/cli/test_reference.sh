@@ -60,6 +60,13 @@ run_expecting_error "bad probe text" 2 "azimuth,elevation" "$work/empty" "$skysp
 run_expecting_error "too few paths" 2 "--paths" "$work/empty" "$skyspec" reference --paths 1
 run_expecting_error "bad format" 2 "--format" "$work/empty" "$skyspec" reference --format xml
 run_expecting_error "orders with compare" 2 "--orders" "$work/empty" "$skyspec" reference --orders 2 --compare
+: >"$work/a-file"
+run_expecting_error "out under a file" 2 "--out" "$work/empty" "$skyspec" reference --paths 10 \
+  --out "$work/a-file/t.md"
+# A label with a quote and a comma stays one CSV field.
+"$skyspec" reference --wavelengths 550,650 --probe 'a "b", c=0,90' --paths 200 --format csv -q >"$work/label.csv" \
+  && $py -c 'import csv,sys; r=list(csv.DictReader(open(sys.argv[1]))); assert r[0]["probe"]=="a \"b\", c", r' "$work/label.csv" \
+  && ok || bad "a probe label with quotes and commas in CSV"
 run_expecting_error "irradiance from space" 2 "below the top of the atmosphere" "$work/empty" "$skyspec" reference \
   --position 0,0,100000 --irradiance --paths 10
 run_expecting_error "bad scene key" 2 "sun.elevation_deg" "$work/empty" "$skyspec" reference --set sun.elevation_deg=200
