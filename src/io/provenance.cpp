@@ -7,6 +7,7 @@
 #include <exception>
 
 #include "base/embedded_data.hpp"
+#include "physics/ozone.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/scene.hpp"
 #include "skyspec/version.hpp"
@@ -19,7 +20,8 @@ std::vector<std::string> data_tables_used(const Scene& scene, bool builtin_displ
   if (scene.render.path == RenderSpec::Path::Spectral) paths.emplace_back("cie/cie1931_2deg_5nm.csv");
   if (scene.sun.spectrum == SunSpec::Spectrum::Solar) paths.emplace_back("solar/astm_g173_etr.csv");
   const OzoneSpec& ozone = scene.atmosphere.ozone;
-  if (ozone.enabled && ozone.cross_section_m2.empty()) paths.emplace_back("ozone/serdyuchenko2014_233K_10nm.csv");
+  if (ozone.enabled && ozone.cross_section_m2.empty())
+    for (std::string_view file : ozone_cross_section_files()) paths.emplace_back(file);
   if (!scene.sun.date_time.empty()) {
     paths.emplace_back("solar_position/spa_earth_periodic_terms.csv");
     paths.emplace_back("solar_position/spa_nutation_terms.csv");

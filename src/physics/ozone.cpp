@@ -1,8 +1,10 @@
 // Ozone: absorption cross-section table, Dobson units, tent profile; see ozone.hpp.
 #include "physics/ozone.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string_view>
+#include <vector>
 
 #include "base/csv_table.hpp"
 #include "base/embedded_data.hpp"
@@ -13,26 +15,40 @@
 namespace skyspec {
 namespace {
 
-constexpr std::string_view kOzoneFile = "ozone/serdyuchenko2014_233K_10nm.csv";
 constexpr double kMaxColumn_DU = 1000.0;
 constexpr double kMaxAltitude_m = 100e3;
 
+struct OzoneBin {
+  double lower_nm, upper_nm, cross_section_m2;
+  std::string_view file;
+  int line_number;
+};
+
+void append_bins(std::string_view file, std::vector<OzoneBin>& bins) {
+  for (const CsvRow& row : parse_csv(file, embedded_file(file), {"lower_nm", "upper_nm", "cross_section_m2"}))
+    bins.push_back({csv_number(file, row, 0), csv_number(file, row, 1), csv_number(file, row, 2), file, row.line_number});
+}
+
+// The files' bins in wavelength order, one table: Bogumil's ultraviolet, Serdyuchenko's 360-840 nm,
+// Bogumil's near infrared.
 TabulatedSpectrum load_ozone_table() {
-  const std::vector<CsvRow> rows =
-      parse_csv(kOzoneFile, embedded_file(kOzoneFile), {"lower_nm", "upper_nm", "cross_section_m2"});
-  std::vector<double> edges_nm, cross_section_m2;
-  for (const CsvRow& row : rows) {
-    const double lower_nm = csv_number(kOzoneFile, row, 0);
+  std::vector<OzoneBin> bins;
+  for (std::string_view file : ozone_cross_section_files()) append_bins(file, bins);
+  std::stable_sort(bins.begin(), bins.end(), [](const OzoneBin& a, const OzoneBin& b) { return a.lower_nm < b.lower_nm; });
+  std::vector<double> edges_nm{bins.front().lower_nm}, cross_section_m2;
+  for (const OzoneBin& bin : bins) {
     // Bins must be contiguous: each lower edge is the previous upper edge.
-    if (!edges_nm.empty() && lower_nm != edges_nm.back())
-      throw Error(std::string(kOzoneFile) + ":" + std::to_string(row.line_number) +
-                  ": bins must be contiguous (lower_nm must equal the previous upper_nm)");
-    if (edges_nm.empty()) edges_nm.push_back(lower_nm);
-    edges_nm.push_back(csv_number(kOzoneFile, row, 1));
-    cross_section_m2.push_back(csv_number(kOzoneFile, row, 2));
+    if (bin.lower_nm != edges_nm.back())
+      throw Error(std::string(bin.file) + ":" + std::to_string(bin.line_number) +
+                  ": bins must be contiguous (lower_nm must equal the previous upper_nm, " +
+                  format_number(edges_nm.back()) + ")");
+    edges_nm.push_back(bin.upper_nm);
+    cross_section_m2.push_back(bin.cross_section_m2);
   }
-  return TabulatedSpectrum::bin_averages("the ozone cross-section table (Serdyuchenko et al. 2014, 233 K)",
-                                         std::move(edges_nm), std::move(cross_section_m2));
+  return TabulatedSpectrum::bin_averages(
+      "the ozone cross-section table (233 K: Bogumil et al. 2003 below 360 nm and above 840 nm, "
+      "Serdyuchenko et al. 2014 between)",
+      std::move(edges_nm), std::move(cross_section_m2));
 }
 
 void check_column(double column_DU, const std::string& setting) {
@@ -42,6 +58,12 @@ void check_column(double column_DU, const std::string& setting) {
 }
 
 }  // namespace
+
+const std::vector<std::string_view>& ozone_cross_section_files() {
+  static const std::vector<std::string_view> files{"ozone/bogumil2003_233K.csv",
+                                                   "ozone/serdyuchenko2014_233K_10nm.csv"};
+  return files;
+}
 
 const TabulatedSpectrum& ozone_cross_section_table() {
   static const TabulatedSpectrum table = load_ozone_table();

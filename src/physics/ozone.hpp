@@ -7,10 +7,13 @@
 // band (about 450-750 nm, peak near 600 nm): weak per molecule (~5e-25 m^2) but it is what makes
 // the twilight zenith blue rather than grey-yellow once the sunlight's path is long.
 //
-// Cross-section table: Serdyuchenko et al. (2014) / Gorshelev et al. (2014), IUP Bremen laboratory
-// data at 233 K (a typical stratospheric temperature), as 10 nm bin means over 360-840 nm in
-// m^2 per molecule (data/ozone/, provenance in data/README.md). The bins are read as piecewise
-// constant, so their integrals are exactly the published means times 10 nm.
+// Cross-section table, 233 K (a typical stratospheric temperature), bin means in m^2 per molecule
+// read as piecewise constant (data/ozone/, provenance in data/README.md): 360-840 nm in 10 nm bins
+// from Serdyuchenko et al. (2014) / Gorshelev et al. (2014), IUP Bremen (their integrals are
+// exactly the published means times 10 nm); 230-360 nm in 1 nm bins (the Hartley and Huggins
+// bands) and 840-1060 nm in 10 nm bins from Bogumil, Orphal & Burrows (2003, SCIAMACHY, the mean
+// of their 223 K and 243 K spectra). Where the two overlap, Bogumil's values are about 3 % above
+// Serdyuchenko's in the Chappuis band (data/README.md).
 //
 // Column: in Dobson units, 1 DU = 2.6867e20 molecules m^-2 (a 10 um layer of pure ozone at 0 degC
 // and 1 atm; constants::kDobsonUnit_per_m2). A typical mid-latitude column is ~300 DU.
@@ -24,18 +27,23 @@
 #pragma once
 
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "skyspec/spectrum.hpp"
 #include "base/tabulated_spectrum.hpp"
 
 namespace skyspec {
 
-/// The 233 K cross-section table, m^2 per molecule, 360-840 nm in 10 nm bins.
+/// The 233 K cross-section table, m^2 per molecule, 230-1060 nm (see the file comment).
 const TabulatedSpectrum& ozone_cross_section_table();
+
+/// The embedded data files the table is made of (data/ozone/), for provenance records.
+const std::vector<std::string_view>& ozone_cross_section_files();
 
 /// The table's mean cross-section over each grid sample's band, lambda +- bandwidth/2
 /// (tabulated_spectrum.hpp), m^2: the same at a wavelength whatever the grid's other samples.
-/// Throws InputError(setting, ...) if a grid wavelength lies outside 360-840 nm.
+/// Throws InputError(setting, ...) if a grid wavelength lies outside 230-1060 nm.
 SpectrumD ozone_cross_section_on_grid(const WavelengthGrid& grid, const std::string& setting = "spectrum");
 
 /// Column in molecules m^-2 from Dobson units, and back. dobson_units_to_per_m2 throws

@@ -1,7 +1,8 @@
 #include <boost/test/unit_test.hpp>
 
-// Ozone: the Chappuis band of the 233 K cross-section table (Serdyuchenko et al. 2014, 10 nm bin
-// means), Dobson units, the tent profile and the resulting vertical optical depth.
+// Ozone: the 233 K cross-section table (Bogumil et al. 2003 in the ultraviolet and near infrared,
+// Serdyuchenko et al. 2014 10 nm bin means between), its Hartley and Chappuis bands, Dobson units,
+// the tent profile and the resulting vertical optical depth.
 
 #include <algorithm>
 #include <cmath>
@@ -21,24 +22,48 @@ using test::error_setting;
 
 BOOST_AUTO_TEST_SUITE(cross_section)
 
-BOOST_AUTO_TEST_CASE(table_covers_the_visible_in_square_metres) {
+BOOST_AUTO_TEST_CASE(table_covers_230_to_1060_nm_in_square_metres) {
   const TabulatedSpectrum& t = ozone_cross_section_table();
   BOOST_TEST((t.kind() == TabulatedSpectrum::Kind::BinAverages));
-  BOOST_TEST(t.min_nm() == 360.0);
-  BOOST_TEST(t.max_nm() == 840.0);
-  BOOST_TEST(t.values().size() == 48u);
-  // In m^2 the visible cross-sections are 1e-28-1e-24; a table left in cm^2 would be 1e4 larger.
+  BOOST_TEST(t.min_nm() == 230.0);
+  BOOST_TEST(t.max_nm() == 1060.0);
+  // 130 bins of 1 nm (230-360, Bogumil), 48 of 10 nm (Serdyuchenko), 22 of 10 nm (Bogumil).
+  BOOST_TEST(t.values().size() == 200u);
+  // In m^2 the cross-sections are 1e-29-2e-21 (the Hartley band's peak); a table left in cm^2 would
+  // be 1e4 larger. Every bin mean is positive (single noisy points of the data are not).
   for (double sigma_m2 : t.values()) {
     BOOST_TEST(sigma_m2 > 1e-29);
-    BOOST_TEST(sigma_m2 < 1e-24);
+    BOOST_TEST(sigma_m2 < 2e-21);
   }
+  // Serdyuchenko's bins are read unchanged between 360 and 840 nm.
+  BOOST_TEST(t.value_at(605.0) == 5.019e-25);
+  BOOST_TEST(t.value_at(365.0) == 1.18e-27);
+  BOOST_TEST(t.value_at(835.0) == 7.105e-27);
+}
+
+BOOST_AUTO_TEST_CASE(hartley_band_peaks_near_255_nm) {
+  // The Hartley band's maximum is about 1.1e-17 cm^2 = 1.1e-21 m^2 near 255 nm (the laboratory
+  // literature: Bass & Paur, Molina & Molina, Malicet et al.); the 1 nm bins peak at 255-256 nm.
+  const TabulatedSpectrum& t = ozone_cross_section_table();
+  double peak = 0.0, peak_nm = 0.0;
+  for (double nm = 230.5; nm < 360.0; nm += 1.0)
+    if (t.value_at(nm) > peak) peak = t.value_at(nm), peak_nm = nm;
+  BOOST_TEST(peak_nm == 255.5);
+  BOOST_TEST(peak > 1.10e-21);
+  BOOST_TEST(peak < 1.20e-21);
+  // The Huggins bands: three orders of magnitude down from 300 to 330 nm, the cut-off of the
+  // ultraviolet that reaches the ground.
+  BOOST_TEST(t.value_at(300.5) / t.value_at(330.5) > 30.0);
+  BOOST_TEST(t.value_at(255.5) / t.value_at(340.5) > 5e3);
 }
 
 BOOST_AUTO_TEST_CASE(chappuis_band_peaks_near_600_nm) {
   // The Chappuis band's maximum, about 5e-21 cm^2 = 5e-25 m^2 just above 600 nm: the table's
   // largest bin mean is 600-610 nm, 5.019e-25 m^2.
   const TabulatedSpectrum& t = ozone_cross_section_table();
-  const auto peak = std::max_element(t.values().begin(), t.values().end());
+  // The visible part of the table: the bins from 360 to 840 nm.
+  const auto first = std::find(t.nanometres().begin(), t.nanometres().end(), 360.0) - t.nanometres().begin();
+  const auto peak = std::max_element(t.values().begin() + first, t.values().begin() + first + 48);
   const size_t bin = static_cast<size_t>(peak - t.values().begin());
   BOOST_TEST(t.nanometres()[bin] == 600.0);
   BOOST_TEST(*peak == 5.019e-25);
@@ -54,11 +79,11 @@ BOOST_AUTO_TEST_CASE(chappuis_band_peaks_near_600_nm) {
 }
 
 BOOST_AUTO_TEST_CASE(grid_outside_the_table_is_an_input_error) {
-  BOOST_TEST(error_setting([] { ozone_cross_section_on_grid(WavelengthGrid::uniform(350.0, 800.0, 10.0)); }) ==
+  BOOST_TEST(error_setting([] { ozone_cross_section_on_grid(WavelengthGrid::uniform(220.0, 800.0, 10.0)); }) ==
              "spectrum");
-  BOOST_TEST(error_setting([] { ozone_cross_section_on_grid(WavelengthGrid::uniform(400.0, 900.0, 10.0)); }) ==
+  BOOST_TEST(error_setting([] { ozone_cross_section_on_grid(WavelengthGrid::uniform(400.0, 1100.0, 10.0)); }) ==
              "spectrum");
-  BOOST_CHECK_NO_THROW(ozone_cross_section_on_grid(WavelengthGrid::uniform(360.0, 830.0, 10.0)));
+  BOOST_CHECK_NO_THROW(ozone_cross_section_on_grid(WavelengthGrid::uniform(230.0, 1060.0, 10.0)));
 }
 
 BOOST_AUTO_TEST_SUITE_END()
