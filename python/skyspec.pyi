@@ -181,7 +181,7 @@ def us_standard_atmosphere(altitude_m: Numbers) -> Dict[str, npt.NDArray[np.floa
 def rayleigh_cross_section(
     wavelengths_nm: Numbers, refractive_index: str = "peck-reeder", co2_ppm: Optional[float] = None
 ) -> npt.NDArray[np.float64]:
-    """Rayleigh cross-section of dry air per molecule, m^2 (Bodhaine et al. 1999 eq. 2), 360-830 nm;
+    """Rayleigh cross-section of dry air per molecule, m^2 (Bodhaine et al. 1999 eq. 2), 230-1690 nm (the refractive index formula's range);
     co2_ppm defaults to the scenes' 420 ppm."""
 
 def scene_toml(

@@ -26,7 +26,8 @@ class SpectrumToXyz {
  public:
   /// scale multiplies the integral: with scale = 683 lm/W and spectral radiance in
   /// W m^-2 sr^-1 nm^-1, Y is luminance in cd m^-2. Throws InputError("spectrum", ...) when the grid
-  /// has fewer than 2 samples or lies outside the CMF table's range.
+  /// has fewer than 2 samples. Outside the CMF table (360-830 nm) the CMFs count as zero: a grid
+  /// reaching into the ultraviolet or infrared gets the colour of its overlap with the table.
   explicit SpectrumToXyz(const WavelengthGrid& grid, double scale = 1.0);
   /// W (3 x n): XYZ = W * spectrum.
   const Eigen::Matrix<double, 3, Eigen::Dynamic>& weights() const { return w_; }

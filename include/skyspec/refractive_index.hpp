@@ -38,6 +38,16 @@ double refractivity_with_co2(RefractiveIndexFormula f, double lambda_nm, double 
 /// (the last numerator as corrected by Kitzmann et al. 2017; it contributes ~1e-10 in the visible).
 double refractivity_co2(double lambda_nm);
 
+/// The wavelengths over which a formula is used, nm, and why there: Peck & Reeder measured
+/// 230-1690 nm ("Dispersion of air", J. Opt. Soc. Am. 62, 958, 1972); Ciddor's equations cover the
+/// same range (230-1690 nm as catalogued by refractiveindex.info); Edlen 1966 is accepted over the
+/// same range. refractivity_standard_air() throws InputError("wavelength_nm", ...) outside it.
+struct RefractiveIndexValidity {
+  double min_nm = 0.0, max_nm = 0.0;
+  std::string reason;  ///< e.g. "the range of Peck & Reeder's measurements (1972)"
+};
+RefractiveIndexValidity validity(RefractiveIndexFormula f);
+
 /// A one-line statement of the formula with its source, for reports.
 std::string describe(RefractiveIndexFormula f);
 

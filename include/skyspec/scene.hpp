@@ -118,6 +118,10 @@ struct Scene {
 /// Names of the built-in presets ("default", "seed").
 std::vector<std::string> preset_names();
 
+/// What a scene is loaded for: a render (every table it uses must cover its wavelengths) or only
+/// its atmosphere's coefficients (skyspec coefficients: the refractive index's range).
+enum class SceneUse { Render, Atmosphere };
+
 /// Builds a Scene from a preset, scene files and overrides, validating as it goes.
 class SceneLoader {
  public:
@@ -136,8 +140,10 @@ class SceneLoader {
   /// the flag that supplied it, e.g. "--width".
   void apply_override(const std::string& key, const std::string& toml_value, const std::string& origin);
   /// Checks relations between keys (top above ground, camera above ground, grid vs fixed
-  /// coefficients, ...) and returns the scene.
-  Scene finish() const;
+  /// coefficients, ...) and returns the scene. SceneUse::Atmosphere (the coefficient report) checks
+  /// the wavelengths against the refractive index of air only (230-1690 nm), not the render's
+  /// tables (check_spectral_range).
+  Scene finish(SceneUse use = SceneUse::Render) const;
 
  private:
   Scene scene_;
@@ -167,6 +173,12 @@ Scene default_scene();
 
 /// The wavelength grid a scene asks for (validated).
 WavelengthGrid make_wavelength_grid(const Scene& scene);
+
+/// Throws InputError("spectrum", ...) unless the grid has at least 2 wavelengths, all where every
+/// built-in table the scene uses is defined (the refractive index of air 230-1690 nm, the solar
+/// spectrum from 280 nm, the ozone cross-sections to 1060 nm); the message names the limiting
+/// table on each side. Colour comes from the grid's overlap with the colour-matching functions.
+void check_spectral_range(const Scene& scene, const WavelengthGrid& grid);
 /// The sun direction (unit, east-north-up) of a scene.
 Vec3 sun_direction(const Scene& scene);
 

@@ -19,6 +19,7 @@
 #include "skyspec/error.hpp"
 #include "io/exr_channels.hpp"
 #include "io/provenance.hpp"
+#include "physics/unmodelled_absorption.hpp"
 #include "skyspec/render.hpp"
 #include "render/render_budget.hpp"
 #include "io/spectral_exr.hpp"
@@ -180,6 +181,7 @@ void write_outputs(const Scene& scene, const SkyRenderer& r, const AerialInputs&
   const std::filesystem::path dir(scene.output.directory);
   SpectralExrMetadata meta;
   meta.strings = provenance_attributes(scene, false);  // version, scene, data tables
+  meta.strings["skyspec:notModelled"] = unmodelled_absorption_note(r.grid());
   meta.latlong_envmap = is_latlong_envmap(scene.camera);  // the depth of a whole-sphere panorama
   auto write_spectral = [&](const std::string& suffix, const std::vector<float>& spectral,
                             const std::vector<float>& rgb, const std::string& what) {

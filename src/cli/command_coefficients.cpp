@@ -131,7 +131,7 @@ int run_coefficients(const CoefficientOptions& o) {
                      "--pressure and --temperature together (e.g. --pressure 250hPa --temperature 220K)");
   if (!std::isfinite(o.latitude_deg) || o.latitude_deg < -90.0 || o.latitude_deg > 90.0)
     throw InputError("--latitude", std::to_string(o.latitude_deg), "-90 to 90 degrees");
-  const Scene scene = load_scene(o.scene);
+  const Scene scene = load_scene(o.scene, {}, SceneUse::Atmosphere);
 
   CoefficientReportRequest req;
   req.atmosphere = scene.atmosphere;
@@ -187,7 +187,7 @@ Command add_coefficients_command(CLI::App& app) {
   return {cmd, [opts] { return run_coefficients(*opts); },
           [opts] {  // run_coefficients' checks, without computing the report (Command::validate)
             choose_format(*opts);
-            const Scene scene = load_scene(opts->scene);
+            const Scene scene = load_scene(opts->scene, {}, SceneUse::Atmosphere);
             parse_altitudes_m(opts->altitudes, scene.atmosphere.top_altitude_m);
             if (opts->pressure) parse_pressure_Pa(*opts->pressure);
             if (opts->temperature) parse_temperature_K(*opts->temperature);

@@ -113,7 +113,7 @@ std::vector<NamedInput> scene_input_files(const SceneOptions& o) {
   return files;
 }
 
-Scene load_scene(const SceneOptions& o, const std::function<void(SceneLoader&)>& before_sets) {
+Scene load_scene(const SceneOptions& o, const std::function<void(SceneLoader&)>& before_sets, SceneUse use) {
   SceneLoader loader(o.preset);
   if (!o.from_file.empty()) {
     if (!o.from_scene) o.from_scene = recorded_scene(o.from_file);
@@ -138,7 +138,7 @@ Scene load_scene(const SceneOptions& o, const std::function<void(SceneLoader&)>&
     while (!key.empty() && key.back() == ' ') key.pop_back();
     loader.apply_override(key, value, "--set " + key);
   }
-  return loader.finish();
+  return loader.finish(use);
 }
 
 }  // namespace skyspec::cli

@@ -59,7 +59,8 @@ void add_from_option(CLI::App& app, SceneOptions& o);
 
 /// Loads the scene: preset, scene file (or --from), flags, then `before_sets` (e.g. --no-exr),
 /// then --set.
-Scene load_scene(const SceneOptions& o, const std::function<void(SceneLoader&)>& before_sets = {});
+Scene load_scene(const SceneOptions& o, const std::function<void(SceneLoader&)>& before_sets = {},
+                 SceneUse use = SceneUse::Render);
 
 /// --quality draft|lean|default|high|reference, for the commands that render a sky: the sample counts
 /// of that level, applied after the preset (and --from) and before the scene file, flags and --set,

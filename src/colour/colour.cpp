@@ -84,14 +84,9 @@ SpectrumToXyz::SpectrumToXyz(const WavelengthGrid& grid, double scale) {
   if (grid.size() < 2)
     throw InputError("spectrum", grid.describe(),
                      "at least 2 wavelengths to integrate against the CIE colour-matching functions");
-  constexpr double kTolerance_nm = 1e-9;
-  if (grid.min_nm() < cmf.nm.front() - kTolerance_nm || grid.max_nm() > cmf.nm.back() + kTolerance_nm) {
-    std::ostringstream allowed;
-    allowed << "wavelengths within the CIE 1931 table, " << cmf.nm.front() << "-" << cmf.nm.back()
-            << " nm, to compute colour";
-    throw InputError("spectrum", grid.describe(), allowed.str());
-  }
-
+  // Wavelengths outside the table (360-830 nm) see colour-matching functions of zero (cmf_at):
+  // the colour of a spectrum reaching into the ultraviolet or infrared is that of its overlap with
+  // the table, and a grid entirely outside it has no colour (X = Y = Z = 0).
   const int n = grid.size();
   w_ = Eigen::Matrix<double, 3, Eigen::Dynamic>::Zero(3, n);
   for (int k = 0; k + 1 < n; ++k) {

@@ -22,9 +22,10 @@ namespace {
 /// The formulas give the refractivity in units of 1e-8: (n - 1) * 1e8.
 constexpr double kRefractivityUnit = 1.0e-8;
 
-/// Shortest wavelength accepted, nm. Below it every formula nears its pole (s^2 = C2, at
-/// 160-170 nm) and none was fitted to data there (Peck & Reeder measured 230-1690 nm).
-constexpr double kMinimumWavelength_nm = 200.0;
+/// The measured range of Peck & Reeder 1972 ("Dispersion of air": 0.23-1.69 um), nm. Below it
+/// every formula nears its pole (s^2 = C2, at 160-170 nm); above it none was fitted to data.
+constexpr double kMeasuredMin_nm = 230.0;
+constexpr double kMeasuredMax_nm = 1690.0;
 
 /// Coefficients of (n - 1) * 1e8 = A + B1 / (C1 - s^2) + B2 / (C2 - s^2), s in um^-1.
 struct DispersionCoefficients {
@@ -60,11 +61,12 @@ const DispersionCoefficients& coefficients(RefractiveIndexFormula f) {
   return kPeckReeder1972;  // unreachable: every enumerator is handled above
 }
 
-void check_wavelength(double lambda_nm) {
-  if (!std::isfinite(lambda_nm) || lambda_nm < kMinimumWavelength_nm)
+void check_wavelength(RefractiveIndexFormula f, double lambda_nm) {
+  const RefractiveIndexValidity v = validity(f);
+  if (!std::isfinite(lambda_nm) || lambda_nm < v.min_nm || lambda_nm > v.max_nm)
     throw InputError("wavelength_nm", format_number(lambda_nm),
-                     "a wavelength of at least 200 nm (the dispersion formulas of air are not "
-                     "defined below)");
+                     "a wavelength from " + format_number(v.min_nm) + " to " + format_number(v.max_nm) + " nm, " +
+                         v.reason);
 }
 
 /// Squared vacuum wavenumber s^2 = 1 / lambda_um^2, um^-2.
@@ -102,8 +104,23 @@ double reference_co2_ppv(RefractiveIndexFormula f) {
 
 // (n - 1) of the formula's standard air (15 degC, 101325 Pa, dry, its own CO2):
 //   (n - 1) = 1e-8 [A + B1 / (C1 - s^2) + B2 / (C2 - s^2)],  s = 1 / lambda_um.
+RefractiveIndexValidity validity(RefractiveIndexFormula f) {
+  switch (f) {
+    case RefractiveIndexFormula::PeckReeder1972:
+      return {kMeasuredMin_nm, kMeasuredMax_nm,
+              "the range of Peck & Reeder's measurements (J. Opt. Soc. Am. 62, 958, 1972) that the formula fits"};
+    case RefractiveIndexFormula::Ciddor1996:
+      return {kMeasuredMin_nm, kMeasuredMax_nm,
+              "the range of Ciddor's equations for the visible and near infrared (Appl. Opt. 35, 1566, 1996)"};
+    case RefractiveIndexFormula::Edlen1966:
+      return {kMeasuredMin_nm, kMeasuredMax_nm,
+              "the range of the measurements the formulas of air are checked against here (Peck & Reeder 1972)"};
+  }
+  return {};  // unreachable
+}
+
 double refractivity_standard_air(RefractiveIndexFormula f, double lambda_nm) {
-  check_wavelength(lambda_nm);
+  check_wavelength(f, lambda_nm);
   const DispersionCoefficients& c = coefficients(f);
   const double s2_per_um2 = wavenumber_squared_per_um2(lambda_nm);
   const double refractivity_1e8 = c.constant_term + c.first_numerator / (c.first_pole_um2 - s2_per_um2) +

@@ -16,6 +16,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "physics/unmodelled_absorption.hpp"
 #include "base/atomic_file.hpp"
 #include "base/output_lock.hpp"
 #include "colour/display_pipeline.hpp"
@@ -76,6 +77,8 @@ std::map<std::string, std::string> render_provenance(const Scene& scene, const R
   std::map<std::string, std::string> provenance = provenance_attributes(scene, builtin_ocio_config);
   provenance["skyspec:renderPath"] = scene.render.path == RenderSpec::Path::RgbFast ? "rgb-fast" : "spectral";
   provenance["skyspec:wavelengths"] = make_wavelength_grid(scene).describe();
+  if (scene.render.path == RenderSpec::Path::Spectral)
+    provenance["skyspec:notModelled"] = unmodelled_absorption_note(make_wavelength_grid(scene));
   provenance["skyspec:exposure"] = exposure.description;
   return provenance;
 }

@@ -15,9 +15,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
+#include <optional>
 #include <sstream>
 
 #include "skyspec/error.hpp"
+#include "physics/ozone.hpp"
 #include "transport/optical_depth.hpp"
 #include "report/published_references.hpp"
 #include "skyspec/refractive_index.hpp"
@@ -39,6 +42,13 @@ constexpr double kStandardAtmosphereHighest_m = 100000.0;
 constexpr double kComparisonMin_nm = 350.0;
 constexpr double kComparisonMax_nm = 850.0;
 constexpr double kComparisonStep_nm = 50.0;
+/// Wavelength ranges of the comparisons with published fits, nm: Bodhaine's eqs. (29)-(30) from
+/// the ultraviolet to 1 um; Bucholtz's fit over the whole range of the refractive index (its long-wave
+/// branch has no stated upper limit).
+constexpr double kBodhaineFitMin_nm = 250.0;
+constexpr double kBodhaineFitMax_nm = 1000.0;
+constexpr double kBucholtzFitMin_nm = 250.0;
+constexpr double kBucholtzFitMax_nm = 1650.0;
 
 std::string fmt(const char* pattern, double v) {
   char buf[64];
@@ -71,6 +81,12 @@ double standard_atmosphere_pressure_altitude_m(double pressure_Pa) {
     (us_standard_atmosphere_1976(mid).pressure_Pa > pressure_Pa ? lo : hi) = mid;
   }
   return 0.5 * (lo + hi);
+}
+
+std::vector<double> scaled(const std::vector<double>& s, double factor) {
+  std::vector<double> v(s.size());
+  for (size_t i = 0; i < s.size(); ++i) v[i] = s[i] * factor;
+  return v;
 }
 
 std::vector<double> scaled(const SpectrumD& s, double factor) {
@@ -141,6 +157,12 @@ std::vector<ReferenceComparison> published_comparisons() {
   const RayleighDerivationInput bucholtz_air = peck_reeder_at(kBucholtz1995Co2_ppv);
   constexpr double kBodhaineLatitude_deg = 45.0;
   constexpr double kSeaLevel_m = 0.0;
+  // Bodhaine's method at his conditions: tau = sigma P N_A / (m_a g) for the sea-level column.
+  const auto bodhaine_sea_level_tau = [&](double lambda_nm) {
+    return rayleigh_optical_depth_hydrostatic(rayleigh_cross_section_m2(lambda_nm, bodhaine_air),
+                                              constants::kStandardPressure_Pa, kBodhaineLatitude_deg, kSeaLevel_m,
+                                              kBodhaine1999Co2_ppv);
+  };
 
   {  // Bodhaine et al. 1999 Table 3.
     ReferenceComparison c;
@@ -153,9 +175,7 @@ std::vector<ReferenceComparison> published_comparisons() {
     c.method = "sigma from Peck & Reeder (360 ppm) and Bates/Bodhaine King factors; tau = sigma P N_A / (m_a g), "
                "g (List 1968) at the column's mass-weighted altitude 5517.56 m";
     for (const auto& p : bodhaine1999_table3_optical_depth()) {
-      const double tau = rayleigh_optical_depth_hydrostatic(rayleigh_cross_section_m2(p.wavelength_nm, bodhaine_air),
-                                                            constants::kStandardPressure_Pa, kBodhaineLatitude_deg,
-                                                            kSeaLevel_m, kBodhaine1999Co2_ppv);
+      const double tau = bodhaine_sea_level_tau(p.wavelength_nm);
       c.rows.push_back({p.wavelength_nm, p.value, tau, percent_difference(tau, p.value)});
     }
     finish_comparison(c);
@@ -165,6 +185,28 @@ std::vector<ReferenceComparison> published_comparisons() {
         fmt("%.3f", kPercent * 0.5e-5 / c.rows.back().published) +
         " % for the smallest value) and of the constants. Because tau = sigma x (one wavelength-independent column), "
         "this table also checks the shape of sigma(lambda) to the same accuracy.";
+    out.push_back(c);
+  }
+  {  // Bodhaine et al. 1999 eq. (30), the fit to their optical depths.
+    ReferenceComparison c;
+    c.id = "bodhaine1999_fit";
+    c.title = "Rayleigh optical depth of the sea-level column, ultraviolet to 1 um (Bodhaine et al. 1999, eq. 30)";
+    c.quantity = "vertical optical depth";
+    c.conditions = "sea level, 1013.25 hPa, 45 deg latitude, dry air with 360 ppm CO2";
+    c.source = "Bodhaine et al. 1999, eq. (30): their fit to their own optical depths, tau = 0.0021520 (1.0455996 - "
+               "341.29061 l^-2 - 0.90230850 l^2) / (1 + 0.0027059889 l^-2 - 85.968563 l^2), l in um "
+               "(data/reference/bodhaine1999_fit.csv)";
+    c.method = "as for Table 3 above";
+    for (double l = kBodhaineFitMin_nm; l <= kBodhaineFitMax_nm + 1e-9; l += kComparisonStep_nm) {
+      const double published = bodhaine1999_optical_depth_fit(l);
+      const double tau = bodhaine_sea_level_tau(l);
+      c.rows.push_back({l, published, tau, percent_difference(tau, published)});
+    }
+    finish_comparison(c);
+    c.explanation = "The paper's own fit to the calculation skyspec repeats, so the differences (largest " +
+                    fmt("%.3f", c.max_abs_difference_percent) +
+                    " %) are those of the fit; this extends the check of Table 3 into the ultraviolet (300 nm: " +
+                    fmt("%+.3f", c.rows[1].difference_percent) + " %) and to 1 um.";
     out.push_back(c);
   }
   const Bodhaine1999TextValues& text = bodhaine1999_text_values();
@@ -228,7 +270,7 @@ std::vector<ReferenceComparison> published_comparisons() {
                "sets split at 0.5 um (data/reference/bucholtz1995_cross_section_fit.csv). Bucholtz's table of "
                "cross-sections itself was not available to transcribe; this is his fit to it";
     c.method = "Peck & Reeder at 300 ppm, Bates/Bodhaine King factor, N_s = 2.546899e25 m^-3";
-    for (double l = kComparisonMin_nm; l <= kComparisonMax_nm + 1e-9; l += kComparisonStep_nm) {
+    for (double l = kBucholtzFitMin_nm; l <= kBucholtzFitMax_nm + 1e-9; l += kComparisonStep_nm) {
       const double published = bucholtz1995_cross_section_fit_m2(l);
       const double s = rayleigh_cross_section_m2(l, bucholtz_air);
       c.rows.push_back({l, published, s, percent_difference(s, published)});
@@ -302,6 +344,32 @@ std::vector<ReferenceComparison> published_comparisons() {
   return out;
 }
 
+namespace {
+/// Which report wavelengths the scene's ozone cross-sections cover: all of them for a scene's own
+/// table (checked by the model) or no ozone; the built-in table's range otherwise.
+struct OzoneCoverage {
+  std::vector<double> covered_nm, missing_nm;
+  std::vector<size_t> covered_index;  ///< index in the report's grid of each covered_nm
+  std::string table_range;
+};
+OzoneCoverage ozone_coverage(const AtmosphereSpec& spec, const WavelengthGrid& grid) {
+  OzoneCoverage c;
+  const bool built_in = spec.ozone.enabled && spec.ozone.cross_section_m2.empty();
+  const TabulatedSpectrum& table = ozone_cross_section_table();
+  c.table_range = format_number(table.min_nm()) + "-" + format_number(table.max_nm()) + " nm";
+  for (int i = 0; i < grid.size(); ++i) {
+    const double nm = grid.nm(i);
+    if (built_in && (nm < table.min_nm() || nm > table.max_nm())) {
+      c.missing_nm.push_back(nm);
+    } else {
+      c.covered_nm.push_back(nm);
+      c.covered_index.push_back(static_cast<size_t>(i));
+    }
+  }
+  return c;
+}
+}  // namespace
+
 CoefficientReport make_coefficient_report(const CoefficientReportRequest& req) {
   if (req.wavelengths_nm.empty()) throw InputError("wavelengths_nm", "[]", "at least one wavelength");
   const WavelengthGrid grid = WavelengthGrid::from_list(req.wavelengths_nm);
@@ -309,8 +377,14 @@ CoefficientReport make_coefficient_report(const CoefficientReportRequest& req) {
     throw InputError("latitude_deg", format_number(req.latitude_deg), "-90 to 90 degrees");
   if (req.column_segments < 1 || req.column_segments > 1 << 16)
     throw InputError("column_segments", std::to_string(req.column_segments), "1 to 65536");
-  const AtmosphereModel model(req.atmosphere, grid);
   const AtmosphereSpec& spec = req.atmosphere;
+  // The built-in ozone table ends where its laboratory data end (230-1060 nm) while the derivation
+  // reaches 1690 nm: beyond the table the ozone columns are n/a (NaN) and tau total leaves ozone
+  // out; the model of everything else is built without ozone, the ozone on the wavelengths it covers.
+  const OzoneCoverage ozone = ozone_coverage(spec, grid);
+  AtmosphereSpec without_ozone = spec;
+  if (!ozone.missing_nm.empty()) without_ozone.ozone.enabled = false;
+  const AtmosphereModel model(without_ozone, grid);
 
   CoefficientReport r;
   r.skyspec_version = version_string();
@@ -333,12 +407,19 @@ CoefficientReport make_coefficient_report(const CoefficientReportRequest& req) {
   r.mie_tabulated = !spec.mie.table_wavelengths_nm.empty();
   r.mie_profile_description = model.mie().profile.describe();
 
-  r.ozone_enabled = model.ozone().enabled();
-  if (r.ozone_enabled) {
+  r.ozone_enabled = spec.ozone.enabled;
+  std::optional<AtmosphereModel> ozone_model;  // on ozone.covered_nm
+  std::vector<double> ozone_extinction_per_m(grid.size(), std::numeric_limits<double>::quiet_NaN());
+  if (r.ozone_enabled && !ozone.covered_nm.empty()) {
+    ozone_model.emplace(spec, WavelengthGrid::from_list(ozone.covered_nm));
+    for (size_t k = 0; k < ozone.covered_index.size(); ++k)
+      ozone_extinction_per_m[ozone.covered_index[k]] = ozone_model->ozone().extinction_per_m[static_cast<int>(k)];
     r.ozone_column_DU = spec.ozone.column_DU;
-    r.ozone_peak_number_density_per_m3 = model.ozone_peak_number_density_per_m3();
-    r.ozone_cross_section_m2 = scaled(model.ozone().extinction_per_m, 1.0 / r.ozone_peak_number_density_per_m3);
-    r.ozone_profile_description = model.ozone().profile.describe();
+    r.ozone_peak_number_density_per_m3 = ozone_model->ozone_peak_number_density_per_m3();
+    r.ozone_cross_section_m2 = scaled(ozone_extinction_per_m, 1.0 / r.ozone_peak_number_density_per_m3);
+    r.ozone_profile_description = ozone_model->ozone().profile.describe();
+  } else if (r.ozone_enabled) {
+    r.ozone_enabled = false;  // no requested wavelength has ozone data: reported in the notes
   }
 
   const double R = model.planet_radius_m(), Rt = model.top_radius_m();
@@ -359,18 +440,19 @@ CoefficientReport make_coefficient_report(const CoefficientReportRequest& req) {
     level.mie_extinction_per_m = scaled(model.mie().extinction_per_m, rho_m);
     level.mie_optical_depth = scaled(model.mie().extinction_per_m, column_m_m);
     if (r.ozone_enabled) {
-      const double rho_o = model.ozone().profile.relative(z);
-      const double column_o_m = column_to_top_m(model.ozone().profile, R, Rt, R + z, 1.0, req.column_segments);
-      level.ozone_absorption_per_m = scaled(model.ozone().extinction_per_m, rho_o);
-      level.ozone_optical_depth = scaled(model.ozone().extinction_per_m, column_o_m);
+      const DensityProfile& profile = ozone_model->ozone().profile;
+      const double rho_o = profile.relative(z);
+      const double column_o_m = column_to_top_m(profile, R, Rt, R + z, 1.0, req.column_segments);
+      level.ozone_absorption_per_m = scaled(ozone_extinction_per_m, rho_o);
+      level.ozone_optical_depth = scaled(ozone_extinction_per_m, column_o_m);
     } else {
       level.ozone_absorption_per_m.assign(r.wavelengths_nm.size(), 0.0);
       level.ozone_optical_depth.assign(r.wavelengths_nm.size(), 0.0);
     }
     level.total_optical_depth.resize(level.rayleigh_optical_depth.size());
     for (size_t i = 0; i < level.total_optical_depth.size(); ++i)
-      level.total_optical_depth[i] =
-          level.rayleigh_optical_depth[i] + level.mie_optical_depth[i] + level.ozone_optical_depth[i];
+      level.total_optical_depth[i] = level.rayleigh_optical_depth[i] + level.mie_optical_depth[i] +
+                                     (std::isnan(level.ozone_optical_depth[i]) ? 0.0 : level.ozone_optical_depth[i]);
 
     std::ostringstream origin;
     if (!r.rayleigh_derived) {
@@ -424,7 +506,14 @@ CoefficientReport make_coefficient_report(const CoefficientReportRequest& req) {
     r.conditions = rc;
   }
 
-  if (!r.ozone_enabled)
+  if (!ozone.missing_nm.empty()) {
+    std::string listed;
+    for (double nm : ozone.missing_nm) listed += (listed.empty() ? "" : ", ") + format_number(nm);
+    r.notes.push_back("Ozone: the built-in cross-sections (laboratory data at 233 K) cover " + ozone.table_range +
+                      "; at " + listed + " nm the ozone columns are n/a and tau total is that of air molecules "
+                      "and aerosols (ozone absorbs little there: about 1e-28 m^2 per molecule at 1000-1060 nm).");
+  }
+  if (!spec.ozone.enabled)
     r.notes.push_back("Ozone: this atmosphere has no ozone (atmosphere.ozone.enabled = false), so the report has "
                       "no ozone columns; the optical depths are those of air molecules and aerosols.");
   if (!r.rayleigh_derived)

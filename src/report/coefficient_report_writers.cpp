@@ -22,10 +22,10 @@ constexpr double kPpmPerPpv = 1.0e6;
 
 // ---- numbers --------------------------------------------------------------------------------
 
-/// Shortest decimal text that reads back to exactly v (C++17 to_chars). Callers never pass
-/// non-finite values (the report has none); they would be written as 0 to keep files valid.
+/// Shortest decimal text that reads back to exactly v (C++17 to_chars); "" (an empty CSV cell) for
+/// a value the report does not have (NaN: ozone beyond its table).
 std::string exact(double v) {
-  if (!std::isfinite(v)) return "0";
+  if (!std::isfinite(v)) return "";
   char buf[64];
   const auto res = std::to_chars(buf, buf + sizeof buf, v);
   return std::string(buf, res.ptr);
@@ -38,6 +38,7 @@ std::string sig(double v, int digits = 6) {
 }
 
 std::string sci(double v, int digits = 5) {
+  if (!std::isfinite(v)) return "n/a";  // a value the report does not have (ozone beyond its table)
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*e", digits - 1, v);
   return buf;

@@ -84,6 +84,33 @@ const std::vector<FitBranch>& bucholtz_fit() {
 
 }  // namespace
 
+const Bodhaine1999Fit& bodhaine1999_fit() {
+  static const Bodhaine1999Fit fit = [] {
+    const std::string name = "reference/bodhaine1999_fit.csv";
+    const auto rows = csv_rows(name);
+    if (rows.size() != 1 || rows[0].size() != 6) throw Error("embedded table " + name + ": expected 1 row of 6 columns");
+    const auto& r = rows[0];
+    return Bodhaine1999Fit{number(r[0], name), number(r[1], name), number(r[2], name),
+                           number(r[3], name), number(r[4], name), number(r[5], name)};
+  }();
+  return fit;
+}
+
+// Bodhaine et al. 1999 eq. (29): sigma = 1e-28 cm^2 (a + b/l^2 + c l^2) / (1 + d/l^2 + e l^2), l in um.
+double bodhaine1999_fit_ratio(double lambda_nm) {
+  const Bodhaine1999Fit& f = bodhaine1999_fit();
+  const double l2 = std::pow(lambda_nm / kNanometresPerMicrometre, 2.0);
+  return (f.a + f.b / l2 + f.c * l2) / (1.0 + f.d / l2 + f.e * l2);
+}
+double bodhaine1999_cross_section_fit_m2(double lambda_nm) {
+  constexpr double kFitUnit_cm2 = 1e-28;
+  return bodhaine1999_fit_ratio(lambda_nm) * kFitUnit_cm2 * kSquareMetresPerSquareCentimetre;
+}
+// Eq. (30): tau = tau_scale (the same ratio).
+double bodhaine1999_optical_depth_fit(double lambda_nm) {
+  return bodhaine1999_fit().tau_scale * bodhaine1999_fit_ratio(lambda_nm);
+}
+
 const std::vector<PublishedValue>& bodhaine1999_table3_optical_depth() {
   static const auto table = two_column_table("reference/bodhaine1999_table3_optical_depth.csv", 1.0, 1.0);
   return table;
@@ -122,7 +149,7 @@ double bucholtz1995_cross_section_fit_m2(double lambda_nm) {
   const auto& branches = bucholtz_fit();
   const double lambda_um = lambda_nm / kNanometresPerMicrometre;
   if (!std::isfinite(lambda_um) || lambda_um < branches.front().min_um || lambda_um > branches.back().max_um)
-    throw InputError("wavelength_nm", format_number(lambda_nm), "200 to 1000 nm (the range of Bucholtz's fit)");
+    throw InputError("wavelength_nm", format_number(lambda_nm), "200 to 1690 nm (Bucholtz's fit, used up to the range of the refractive index of air)");
   const FitBranch* use = &branches.back();
   for (const auto& b : branches)
     if (lambda_um <= b.max_um) {

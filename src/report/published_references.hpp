@@ -27,6 +27,15 @@ struct Bodhaine1999TextValues {
 };
 const Bodhaine1999TextValues& bodhaine1999_text_values();
 
+/// Bodhaine et al. 1999 eqs. (29)-(30): their fits to their own cross-sections (360 ppm CO2) and
+/// sea-level optical depths (1013.25 hPa, 45 degrees), ratio (a + b/l^2 + c l^2) / (1 + d/l^2 + e l^2)
+/// with l in micrometres; sigma = 1e-28 cm^2 x ratio, tau = tau_scale x ratio.
+struct Bodhaine1999Fit {
+  double a, b, c, d, e, tau_scale;
+};
+const Bodhaine1999Fit& bodhaine1999_fit();
+double bodhaine1999_cross_section_fit_m2(double lambda_nm);
+double bodhaine1999_optical_depth_fit(double lambda_nm);
 /// Bucholtz 1995 (Appl. Opt. 34, 2765): depolarization factor rho_n of standard air (288.15 K,
 /// 1013.25 mb, 300 ppm CO2) as tabulated there (a fraction, not percent), 200-1000 nm.
 const std::vector<PublishedValue>& bucholtz1995_depolarization();
@@ -34,7 +43,8 @@ const std::vector<PublishedValue>& bucholtz1995_depolarization();
 double king_factor_from_depolarization(double rho);
 
 /// Bucholtz 1995's analytic fit to his cross-sections of standard air, sigma = A lambda_um^-(B + C
-/// lambda_um + D / lambda_um), in m^2; defined for 200-1000 nm (throws InputError outside).
+/// lambda_um + D / lambda_um), in m^2; the long-wave set applies above 500 nm with no stated upper
+/// limit; used for 200-1690 nm (throws InputError outside).
 double bucholtz1995_cross_section_fit_m2(double lambda_nm);
 /// The wavelength (nm) where the fit switches from its short- to its long-wave coefficients.
 double bucholtz1995_fit_branch_nm();

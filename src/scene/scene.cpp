@@ -18,6 +18,8 @@
 
 #include "skyspec/camera.hpp"
 #include "physics/date_time.hpp"
+#include "physics/ozone.hpp"
+#include "physics/solar_spectrum.hpp"
 #include "physics/solar_position.hpp"
 #include "base/embedded_data.hpp"
 #include "skyspec/error.hpp"
@@ -795,7 +797,69 @@ void SceneLoader::apply_override(const std::string& key, const std::string& toml
   given_.insert(key);
 }
 
-Scene SceneLoader::finish() const {
+namespace {
+// The wavelengths a spectral render can take: where every built-in table the scene uses is
+// defined. Colour (XYZ, RGB, PNG) integrates over the grid's overlap with the CIE colour-matching
+// functions (360-830 nm), so it sets no limit here.
+struct SpectralLimit {
+  double min_nm, max_nm;
+  std::string reason;
+};
+bool has_refractive_index_limit(const Scene& s) {
+  return s.atmosphere.rayleigh.source == RayleighSpec::Source::Derived &&
+         s.atmosphere.rayleigh.derivation.gas == ScatteringGas::Air;
+}
+// The refractive index's limit first (check_refractive_index_range keeps only that one).
+std::vector<SpectralLimit> spectral_limits(const Scene& s) {
+  std::vector<SpectralLimit> limits;
+  if (has_refractive_index_limit(s)) {
+    const RefractiveIndexValidity v = validity(s.atmosphere.rayleigh.derivation.formula);
+    limits.push_back({v.min_nm, v.max_nm, "the refractive index of air: " + v.reason});
+  }
+  if (s.sun.spectrum == SunSpec::Spectrum::Solar) {
+    const TabulatedSpectrum& sun = solar_irradiance_table();
+    limits.push_back({sun.min_nm(), sun.max_nm(), "the extraterrestrial solar spectrum (ASTM G173-03, sun.spectrum = \"solar\")"});
+  }
+  const OzoneSpec& o3 = s.atmosphere.ozone;
+  if (o3.enabled && o3.cross_section_m2.empty()) {
+    const TabulatedSpectrum& table = ozone_cross_section_table();
+    limits.push_back({table.min_nm(), table.max_nm(),
+                      "the built-in ozone cross-sections (laboratory data at 233 K; ozone.enabled = true)"});
+  }
+  return limits;
+}
+
+
+void check_limits(const WavelengthGrid& grid, const std::vector<SpectralLimit>& limits, const std::string& what) {
+  double lo = 0.0, hi = std::numeric_limits<double>::infinity();
+  std::string lo_reason, hi_reason;
+  for (const SpectralLimit& l : limits) {
+    if (l.min_nm > lo) lo = l.min_nm, lo_reason = l.reason;
+    if (l.max_nm < hi) hi = l.max_nm, hi_reason = l.reason;
+  }
+  if (grid.min_nm() >= lo && grid.max_nm() <= hi) return;
+  if (lo_reason == hi_reason)
+    throw InputError("spectrum", grid.describe(),
+                     "wavelengths from " + format_number(lo) + " to " + format_number(hi) + " nm" + what + ": " + lo_reason);
+  throw InputError("spectrum", grid.describe(),
+                   "wavelengths from " + format_number(lo) + " nm (" + lo_reason + ") to " + format_number(hi) + " nm (" +
+                       hi_reason + ")" + what);
+}
+
+void check_refractive_index_range(const Scene& s, const WavelengthGrid& grid) {
+  std::vector<SpectralLimit> limits = spectral_limits(s);
+  limits.resize(std::min<size_t>(limits.size(), has_refractive_index_limit(s) ? 1 : 0));
+  check_limits(grid, limits, "");
+}
+}  // namespace
+
+void check_spectral_range(const Scene& s, const WavelengthGrid& grid) {
+  if (grid.size() < 2)
+    throw InputError("spectrum", grid.describe(), "at least 2 wavelengths when render.path = \"spectral\"");
+  check_limits(grid, spectral_limits(s), " when render.path = \"spectral\"");
+}
+
+Scene SceneLoader::finish(SceneUse use) const {
   Scene s = scene_;
   const double R = s.atmosphere.planet_radius_m;
   // Camera: not inside the planet.
@@ -862,10 +926,10 @@ Scene SceneLoader::finish() const {
     if (!ok)
       throw InputError("spectrum", grid.describe(),
                        "exactly 440, 550 and 680 nm when render.path = \"rgb-fast\" (they become B, G, R)");
-  } else if (grid.min_nm() < 360.0 || grid.max_nm() > 830.0 || grid.size() < 2) {
-    throw InputError("spectrum", grid.describe(),
-                     "at least 2 wavelengths within 360-830 nm, the range of the CIE colour-matching functions, "
-                     "when render.path = \"spectral\"");
+  } else if (use == SceneUse::Render) {
+    check_spectral_range(s, grid);
+  } else {
+    check_refractive_index_range(s, grid);
   }
   if (s.atmosphere.rayleigh.source == RayleighSpec::Source::Fixed) {
     // AtmosphereModel reports the details; evaluate once here so errors surface before rendering.

@@ -21,7 +21,7 @@ expect_error elevation_range 2 "sun.elevation_deg = 95" --sun-elevation 95
 expect_error unknown_key 2 "did you mean \"atmosphere.mie.g\"" --set atmosphere.mie.gg=0.7
 expect_error set_syntax 2 "KEY=VALUE" --set novalue
 expect_error camera_type 2 "one of: fisheye, perspective, equirectangular" --camera pinhole
-expect_error grid_outside_cmf 2 "360-830 nm" --lambda-min 300
+expect_error grid_outside_tables 2 "from 280 nm (the extraterrestrial solar spectrum" --lambda-min 270
 expect_error below_ground 2 "below" --position 0,0,-50
 expect_error top_not_above_ground 2 "atmosphere.top_altitude_m = -1000" --set atmosphere.top_altitude_m=-1000
 expect_error negative_radius 2 "planet.radius_m = -6360000" --set planet.radius_m=-6360e3
@@ -73,6 +73,27 @@ fi
 [ $? = 2 ] && grep -q -- "--end" "$work/stderr" && [ ! -e "$work/tl2" -o -z "$(ls -A "$work/tl2" 2>/dev/null)" ] && ok || bad "timelapse: end before start not rejected"
 "$skyspec" timelapse -q --start 2026-13-01T00:00:00Z --end 2026-06-21T19:00:00Z --step-minutes 5 --out "$work/tl3" 2>"$work/stderr"
 [ $? = 2 ] && grep -q -- "--start" "$work/stderr" && ok || bad "timelapse: bad date not rejected"
+
+# The ultraviolet (from the solar spectrum's 280 nm) and the near infrared (to the ozone table's
+# 1060 nm): finite radiances, colour from the overlap with the CMFs, and the header says which gas
+# bands are not modelled (none in the UV; the oxygen A band and water vapour in the near infrared).
+for band in "uv 290 400 10" "nir 700 1060 20"; do
+  set -- $band
+  if "$skyspec" render -q --out "$work/$1" --width 16 --height 8 --lambda-min "$2" --lambda-max "$3" --lambda-step "$4" \
+      2>"$work/stderr"; then
+    exrheader "$work/$1/sky.exr" | grep -q "S0.$2,000000nm" && ok || bad "$1: no S0.$2 channel"
+    nans=$(oiiotool "$work/$1/sky.exr" --printstats 2>&1 | grep -E "Stats (Nan|Inf)Count" | tr -d ' a-zA-Z:' | tr -d '0\n')
+    [ -z "$nans" ] && ok || bad "$1: NaN or Inf in the file"
+    [ -s "$work/$1/sky.png" ] && ok || bad "$1: no PNG"
+  else
+    bad "$1 render failed"; cat "$work/stderr"
+  fi
+done
+exrheader "$work/uv/sky.exr" | grep -q 'skyspec:notModelled (type string): "no oxygen or water vapour band in 290-400 nm' \
+  && ok || bad "uv: skyspec:notModelled missing or wrong"
+exrheader "$work/nir/sky.exr" | grep 'skyspec:notModelled' | grep -q "oxygen A band 759-771 nm.*water vapour (940 nm band)" \
+  && ok || bad "nir: skyspec:notModelled does not name the A band and the 940 nm band"
+expect_error grid_beyond_ozone 2 "to 1060 nm (the built-in ozone cross-sections" --lambda-min 700 --lambda-max 1100 --lambda-step 20
 
 # Aerial perspective: a constant distance, then a bad depth-mode.
 "$skyspec" aerial -q --distance 2000 --camera perspective --position 0,0,2 --look-at 0,1000,300 --fov 40 \

@@ -24,6 +24,9 @@ expect_error altitude_not_number 2 "--altitudes" --altitudes 0,high
 expect_error formula 2 "one of: peck-reeder, edlen, ciddor" --refractive-index peck_reeder
 expect_error unknown_key 2 "unknown key" --set atmosphere.rayleigh.co2=400
 expect_error grid 2 "spectrum" --lambda-min 100
+# The report's range is the refractive index's (Peck & Reeder measured 230-1690 nm), said with why.
+expect_error below_refractive_index 2 "wavelengths from 230 to 1690 nm: the refractive index of air: the range of Peck & Reeder's measurements" --wavelengths 225,550
+expect_error above_refractive_index 2 "wavelengths from 230 to 1690 nm" --wavelengths 550,1700
 expect_error unwritable 2 "--out" --out /proc/skyspec/report.md
 
 # Markdown on stdout by default, with the published comparisons.
@@ -34,6 +37,17 @@ if "$skyspec" coefficients --wavelengths 440,550,680 >"$work/report.md" 2>"$work
   [ ! -s "$work/stderr" ] && ok || bad "stderr not empty"
 else
   bad "markdown report failed"; cat "$work/stderr"
+fi
+
+# The ultraviolet and the near infrared: ozone where its table has data (to 1060 nm), n/a beyond;
+# the published fits reach 250 nm (Bodhaine eq. 30) and 1650 nm (Bucholtz).
+if "$skyspec" coefficients --wavelengths 300,350,1500 >"$work/uvnir.md" 2>"$work/stderr"; then
+  grep -q "^| 1500 | .* | n/a | n/a | n/a | " "$work/uvnir.md" && ok || bad "1500 nm row without n/a ozone"
+  grep -q "^| 300 | .*e-23 | " "$work/uvnir.md" && ok || bad "300 nm row without the Huggins-band cross-section"
+  grep -q "Bodhaine et al. 1999, eq. 30" "$work/uvnir.md" && ok || bad "Bodhaine eq. 30 comparison missing"
+  grep -q "^| 1500 | 7.8696e-33 | " "$work/uvnir.md" && ok || bad "Bucholtz fit at 1500 nm missing"
+else
+  bad "ultraviolet/near-infrared report failed"; cat "$work/stderr"
 fi
 
 # JSON through --out (format from the extension), 220 K and 250 hPa, two altitudes.

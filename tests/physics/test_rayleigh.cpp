@@ -215,6 +215,29 @@ BOOST_AUTO_TEST_CASE(names_round_trip_and_bad_names_are_refused) {
   BOOST_CHECK_THROW(refractivity_standard_air(RefractiveIndexFormula::PeckReeder1972, 100.0), InputError);
 }
 
+BOOST_AUTO_TEST_CASE(valid_from_230_to_1690_nm_and_refused_beyond_with_the_reason) {
+  // Peck & Reeder measured the dispersion of air over 0.23-1.69 um; every formula is used there.
+  for (RefractiveIndexFormula f : {RefractiveIndexFormula::PeckReeder1972, RefractiveIndexFormula::Edlen1966,
+                                   RefractiveIndexFormula::Ciddor1996}) {
+    BOOST_TEST(validity(f).min_nm == 230.0);
+    BOOST_TEST(validity(f).max_nm == 1690.0);
+    BOOST_CHECK_NO_THROW(refractivity_standard_air(f, 230.0));
+    BOOST_CHECK_NO_THROW(refractivity_standard_air(f, 1690.0));
+  }
+  const auto pr = RefractiveIndexFormula::PeckReeder1972;
+  for (double nm : {229.0, 1691.0}) {
+    const std::string message = test::input_error_message([&] { refractivity_standard_air(pr, nm); });
+    BOOST_TEST(message.find("230 to 1690 nm") != std::string::npos, message);
+    BOOST_TEST(message.find("Peck & Reeder") != std::string::npos, message);
+  }
+  // Beyond the visible the dispersion goes on smoothly: (n - 1) is 1.6 % lower at 1500 nm and 8.5 %
+  // higher at 250 nm than at 550 nm.
+  BOOST_TEST(refractivity_standard_air(pr, 1500.0) / refractivity_standard_air(pr, 550.0) ==
+             0.98369, boost::test_tools::tolerance(1e-4));
+  BOOST_TEST(refractivity_standard_air(pr, 250.0) / refractivity_standard_air(pr, 550.0) ==
+             1.08509, boost::test_tools::tolerance(1e-4));
+}
+
 BOOST_AUTO_TEST_SUITE_END()
 
 BOOST_AUTO_TEST_SUITE(derivation)

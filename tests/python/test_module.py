@@ -298,10 +298,14 @@ class HostileInput(unittest.TestCase):
         self.assertIn("this is a folder", str(e.exception))
 
     def test_wavelengths_and_altitudes_are_checked(self):
-        for bad in [1e300, float("nan"), 100.0]:
+        for bad in [1e300, float("nan"), 100.0, 1700.0]:
             with self.assertRaises(ValueError) as e:
                 skyspec.rayleigh_cross_section([550.0, bad])
             self.assertIn("wavelengths_nm", str(e.exception))
+            self.assertIn("230 to 1690 nm", str(e.exception))
+        # The refractive index's range reaches into the ultraviolet and near infrared.
+        uv, nir = skyspec.rayleigh_cross_section([300.0, 1500.0])
+        self.assertGreater(uv / nir, 700.0)  # (1500/300)^4 = 625; 718 with n - 1 and F rising
         with self.assertRaises(ValueError) as e:
             skyspec.us_standard_atmosphere(None)
         self.assertIn("altitude_m = None", str(e.exception))

@@ -19,6 +19,7 @@
 #include "skyspec/scene.hpp"
 #include "skyspec/standard_atmosphere.hpp"
 #include "skyspec/units.hpp"
+#include "check_helpers.hpp"
 
 BOOST_AUTO_TEST_SUITE(test_coefficient_report)
 
@@ -95,8 +96,8 @@ BOOST_AUTO_TEST_CASE(bucholtz_king_factors) {
 }
 
 // Bucholtz 1995's analytic fit to his cross-sections: its two branches disagree by 0.11 % where they
-// meet, so agreement is asked to 0.3 % over 350-850 nm (the largest difference, 0.27 %, is at 500 nm
-// on the fit's junction) and 0.1 % over 550-850 nm.
+// meet, so agreement is asked to 0.3 % over 250-500 nm (the largest differences, 0.29 % at 300 nm and
+// 0.27 % at 500 nm on the fit's junction) and 0.1 % from 550 nm to 1650 nm (1500 nm: 0.06 %).
 BOOST_AUTO_TEST_CASE(bucholtz_cross_section_fit) {
   const double junction_nm = bucholtz1995_fit_branch_nm();
   BOOST_TEST(junction_nm == 500.0);
@@ -106,12 +107,34 @@ BOOST_AUTO_TEST_CASE(bucholtz_cross_section_fit) {
   BOOST_TEST(jump < 1.5e-3);
   const auto all = published_comparisons();
   const auto& c = comparison(all, "bucholtz1995_cross_section_fit");
-  BOOST_TEST(c.rows.size() == 11u);
+  BOOST_TEST(c.rows.size() == 29u);
+  BOOST_TEST(c.rows.front().wavelength_nm == 250.0);
+  BOOST_TEST(c.rows.back().wavelength_nm == 1650.0);
+  bool saw_1500 = false;
   for (const auto& r : c.rows) {
     BOOST_TEST(std::abs(r.difference_percent) < 0.3, r.wavelength_nm << " nm: " << r.difference_percent << " %");
     if (r.wavelength_nm >= 550.0) BOOST_TEST(std::abs(r.difference_percent) < kPublishedTolerancePercent);
+    if (r.wavelength_nm == 1500.0) saw_1500 = true;
   }
+  BOOST_TEST(saw_1500);
   BOOST_CHECK_THROW(bucholtz1995_cross_section_fit_m2(150.0), InputError);
+  BOOST_CHECK_THROW(bucholtz1995_cross_section_fit_m2(1700.0), InputError);
+}
+
+// Bodhaine et al.'s own fit to their optical depths (eq. 30): the same calculation, so within
+// 0.01 % from 250 to 850 nm (300 nm: 0.002 %, 350 nm: 0.002 %) and 0.05 % up to 1000 nm, where the
+// fit drifts from the calculation it summarises (-0.046 %).
+BOOST_AUTO_TEST_CASE(bodhaine_fit_from_the_ultraviolet_to_1_um) {
+  const auto all = published_comparisons();
+  const auto& c = comparison(all, "bodhaine1999_fit");
+  BOOST_TEST(c.rows.size() == 16u);
+  BOOST_TEST(c.rows[1].wavelength_nm == 300.0);
+  BOOST_TEST(c.rows[1].published == 1.21641, boost::test_tools::tolerance(1e-5));  // eq. (30) at 0.3 um
+  for (const auto& r : c.rows) {
+    BOOST_TEST(std::abs(r.difference_percent) < 0.05, r.wavelength_nm << " nm: " << r.difference_percent << " %");
+    if (r.wavelength_nm <= 850.0)
+      BOOST_TEST(std::abs(r.difference_percent) < 0.01, r.wavelength_nm << " nm: " << r.difference_percent << " %");
+  }
 }
 
 // The report's embedded copy of Table 3 is the test data file, figure for figure.
@@ -272,6 +295,33 @@ BOOST_AUTO_TEST_CASE(ozone_rows_when_present) {
   const CoefficientReport plain = make_coefficient_report(plain_req);
   BOOST_TEST(!plain.ozone_enabled);
   BOOST_TEST(report_to_markdown(plain).find("tau_O3") == std::string::npos);
+}
+
+// The report works across the refractive index's range (230-1690 nm): ozone where its table has
+// data (230-1060 nm), n/a beyond, and tau total then of air and aerosols; beyond the range, a clear
+// error naming it and why.
+BOOST_AUTO_TEST_CASE(ultraviolet_to_near_infrared) {
+  const CoefficientReport r = make_coefficient_report(default_request({300.0, 350.0, 1500.0}));
+  BOOST_REQUIRE(r.ozone_enabled);
+  BOOST_TEST(r.ozone_cross_section_m2[0] > 1e-23);  // the Huggins band at 300 nm
+  BOOST_TEST(std::isnan(r.ozone_cross_section_m2[2]));
+  const ReportLevel& l = r.levels[0];
+  BOOST_TEST(std::isnan(l.ozone_optical_depth[2]));
+  BOOST_TEST(l.total_optical_depth[2] == l.rayleigh_optical_depth[2] + l.mie_optical_depth[2],
+             boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(l.total_optical_depth[0] == l.rayleigh_optical_depth[0] + l.mie_optical_depth[0] + l.ozone_optical_depth[0],
+             boost::test_tools::tolerance(1e-12));
+  // Rayleigh: (1500/300)^4 = 625; sigma at 300 nm is 718 times that at 1500 nm (n - 1 and F rise).
+  BOOST_TEST(r.derivation[0].cross_section_m2 / r.derivation[2].cross_section_m2 > 700.0);
+  const std::string md = report_to_markdown(r);
+  BOOST_TEST(md.find("n/a") != std::string::npos);
+  BOOST_TEST(md.find("230-1060 nm") != std::string::npos);
+  BOOST_TEST(report_to_json(r).find("null") != std::string::npos);
+  BOOST_TEST(report_to_csv(r).find("nan") == std::string::npos);
+  for (double nm : {225.0, 1700.0}) {
+    const std::string message = test::input_error_message([&] { make_coefficient_report(default_request({nm})); });
+    BOOST_TEST(message.find("230 to 1690 nm") != std::string::npos, message);
+  }
 }
 
 // The seed preset types its coefficients in: the report shows them as the renderer uses them.

@@ -77,8 +77,26 @@ BOOST_AUTO_TEST_CASE(invalid_toml_reports_position) {
   BOOST_TEST(contains(e, "valid TOML"));
 }
 
-BOOST_AUTO_TEST_CASE(wavelength_grid_must_suit_the_colour_path) {
-  BOOST_TEST(contains(load_error("[spectrum]\nmin_nm = 300\n"), "360-830 nm"));
+BOOST_AUTO_TEST_CASE(wavelength_grid_must_lie_where_the_tables_are) {
+  // The ultraviolet and near infrared render (colour comes from the overlap with the CMFs); each
+  // end is where a table the scene uses ends, named in the message.
+  const auto grid_from = [](const std::string& toml) {
+    SceneLoader l("default");
+    l.apply_toml(toml, "test.toml");
+    return make_wavelength_grid(l.finish());
+  };
+  BOOST_TEST(grid_from("[spectrum]\nmin_nm = 300\n").min_nm() == 300.0);
+  BOOST_TEST(grid_from("[spectrum]\nmin_nm = 280\nmax_nm = 1060\nstep_nm = 20\n").max_nm() == 1060.0);
+  BOOST_TEST(contains(load_error("[spectrum]\nmin_nm = 270\n"), "from 280 nm (the extraterrestrial solar spectrum"));
+  BOOST_TEST(contains(load_error("[spectrum]\nmax_nm = 1100\nstep_nm = 10\n"), "to 1060 nm (the built-in ozone"));
+  // Without ozone the solar spectrum and the refractive index (to 1690 nm) set the range; with a
+  // flat sun too, the refractive index alone (from 230 nm).
+  BOOST_TEST(grid_from("[atmosphere.ozone]\nenabled = false\n[spectrum]\nmin_nm = 400\nmax_nm = 1600\nstep_nm = 100\n")
+                 .max_nm() == 1600.0);
+  BOOST_TEST(contains(load_error("[atmosphere.ozone]\nenabled = false\n[spectrum]\nmax_nm = 1700\nstep_nm = 10\n"),
+                      "to 1690 nm (the refractive index of air: the range of Peck & Reeder"));
+  BOOST_TEST(contains(load_error("[atmosphere.ozone]\nenabled = false\n[sun]\nspectrum = \"flat\"\n[spectrum]\nmin_nm = 220\n"),
+                      "from 230 to 1690 nm when render.path = \"spectral\": the refractive index of air"));
   BOOST_TEST(contains(load_error("[spectrum]\nstep_nm = 0.5\n"), "spectrum.step_nm = 0.5 is not allowed: a number in nm, >= 1"));
   BOOST_TEST(contains(load_error("[spectrum]\nstep_nm = 7\n"), "divides"));
   BOOST_TEST(contains(load_error("[spectrum]\ncount = 500\n"), "at least 1 nm apart"));
