@@ -56,31 +56,44 @@ int run(IrradianceOptions& o) {
   std::ostringstream text;
   if (o.format == "md") {
     text << "| sun elevation (deg) | direct normal (W/m2) | direct normal (lx) | direct horizontal (lx) | "
-            "diffuse horizontal (W/m2) | diffuse horizontal (lx) | global horizontal (lx) |\n"
-         << "| ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+            "diffuse horizontal (W/m2) | diffuse horizontal (lx) | global horizontal (lx) | global CCT (K) | "
+            "diffuse CCT (K) |\n"
+         << "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
   } else {
     text << "sun_elevation_deg,direct_normal_W_m2,direct_normal_lux,direct_horizontal_W_m2,direct_horizontal_lux,"
-            "diffuse_horizontal_W_m2,diffuse_horizontal_lux,global_horizontal_lux\n";
+            "diffuse_horizontal_W_m2,diffuse_horizontal_lux,global_horizontal_lux,global_cct_K,global_duv,"
+            "diffuse_cct_K,diffuse_duv\n";
   }
+  // A CCT as text: empty (CSV) or "-" (Markdown) where the light has none.
+  const auto cct_text = [&](const std::optional<ColourTemperature>& c, bool with_duv) {
+    if (!c) return std::string(o.format == "md" ? "-" : (with_duv ? "," : ""));
+    char buf[64];
+    if (with_duv) std::snprintf(buf, sizeof buf, "%.1f,%.5f", c->cct_K, c->duv);
+    else std::snprintf(buf, sizeof buf, "%.0f", c->cct_K);
+    return std::string(buf);
+  };
   for (double el : elevations) {
     Scene s = base;
     s.sun.elevation_deg = el;
     const SkyRenderer r(s);
     const IrradianceReport rep = irradiance_at_camera(r);
     char line[512];
-    if (o.format == "md")
-      std::snprintf(line, sizeof line, "| %g | %.1f | %.0f | %.0f | %.1f | %.0f | %.0f |\n", el, rep.direct_normal_W_m2,
+    const bool md = o.format == "md";
+    if (md)
+      std::snprintf(line, sizeof line, "| %g | %.1f | %.0f | %.0f | %.1f | %.0f | %.0f | ", el, rep.direct_normal_W_m2,
                     rep.direct_normal_lux, rep.direct_horizontal_lux, rep.diffuse_horizontal_W_m2,
                     rep.diffuse_horizontal_lux, rep.global_horizontal_lux());
     else
-      std::snprintf(line, sizeof line, "%g,%.4f,%.2f,%.4f,%.2f,%.4f,%.2f,%.2f\n", el, rep.direct_normal_W_m2,
+      std::snprintf(line, sizeof line, "%g,%.4f,%.2f,%.4f,%.2f,%.4f,%.2f,%.2f,", el, rep.direct_normal_W_m2,
                     rep.direct_normal_lux, rep.direct_horizontal_W_m2, rep.direct_horizontal_lux,
                     rep.diffuse_horizontal_W_m2, rep.diffuse_horizontal_lux, rep.global_horizontal_lux());
-    text << line;
+    text << line << cct_text(rep.global_horizontal_cct, !md) << (md ? " | " : ",")
+         << cct_text(rep.diffuse_horizontal_cct, !md) << (md ? " |\n" : "\n");
   }
   if (o.format == "md")
     text << "\nBroadband W/m2 over " << make_wavelength_grid(base).min_nm() << "-" << make_wavelength_grid(base).max_nm()
-         << " nm; lux = 683 lm/W x y-bar-weighted integral.\n";
+         << " nm; lux = 683 lm/W x y-bar-weighted integral; CCT: correlated colour temperature (CIE 015, nearest "
+            "Planckian chromaticity in the CIE 1960 UCS diagram; - where the light has none).\n";
   print_or_write(text.str(), o.out);
   return kExitOk;
 }
@@ -90,7 +103,8 @@ int run(IrradianceOptions& o) {
 Command add_irradiance_command(CLI::App& app) {
   auto o = std::make_shared<IrradianceOptions>();
   auto* cmd = app.add_subcommand(
-      "irradiance", "Direct and diffuse irradiance (W/m2) and illuminance (lux) on a horizontal surface at the camera");
+      "irradiance",
+      "Direct and diffuse irradiance (W/m2), illuminance (lux) and colour temperature on a horizontal surface at the camera");
   cmd->footer(
       "Example:\n"
       "  skyspec irradiance --sun-elevations 5,10,20,30,45,60,90\n"

@@ -65,6 +65,9 @@ IrradianceReport irradiance_at_camera(const SkyRenderer& r, int zenith_nodes, in
   rep.direct_normal_lux = xyz(rep.direct_normal)[1];
   rep.direct_horizontal_lux = xyz(rep.direct_horizontal)[1];
   rep.diffuse_horizontal_lux = xyz(rep.diffuse_horizontal)[1];
+  const SpectrumD global_horizontal = rep.direct_horizontal + rep.diffuse_horizontal;
+  rep.global_horizontal_cct = correlated_colour_temperature(xyz(global_horizontal));
+  rep.diffuse_horizontal_cct = correlated_colour_temperature(xyz(rep.diffuse_horizontal));
   return rep;
 }
 

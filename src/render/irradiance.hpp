@@ -11,7 +11,10 @@
 // integral weighted by the CIE 1931 y-bar function.
 #pragma once
 
+#include <optional>
 #include <string>
+
+#include "colour/colour_temperature.hpp"
 
 #include "skyspec/render.hpp"
 #include "skyspec/spectrum.hpp"
@@ -24,6 +27,9 @@ struct IrradianceReport {
   double direct_normal_W_m2 = 0, direct_horizontal_W_m2 = 0, diffuse_horizontal_W_m2 = 0;
   double direct_normal_lux = 0, direct_horizontal_lux = 0, diffuse_horizontal_lux = 0;
   double global_horizontal_lux() const { return direct_horizontal_lux + diffuse_horizontal_lux; }
+  /// Correlated colour temperature of the global (direct + diffuse) and the diffuse horizontal
+  /// light (colour_temperature.hpp); empty when the light has no colour or lies off the locus.
+  std::optional<ColourTemperature> global_horizontal_cct, diffuse_horizontal_cct;
   /// A few lines for people, e.g. for the render summary.
   std::string describe() const;
 };

@@ -95,6 +95,22 @@ exrheader "$work/nir/sky.exr" | grep 'skyspec:notModelled' | grep -q "oxygen A b
   && ok || bad "nir: skyspec:notModelled does not name the A band and the 940 nm band"
 expect_error grid_beyond_ozone 2 "to 1060 nm (the built-in ozone cross-sections" --lambda-min 700 --lambda-max 1100 --lambda-step 20
 
+# Daylight's colour temperature (irradiance): global light with the sun 30 degrees up lies between
+# CIE D50 and D65 (5003-6504 K; 5631 K when measured), the skylight alone is bluer than 10000 K
+# (18804 K); a sun 4 degrees down leaves only skylight.
+if "$skyspec" irradiance --sun-elevations 30,-4 --format csv >"$work/irr.csv" 2>"$work/stderr"; then
+  /usr/bin/python3 - "$work/irr.csv" <<'PY' && ok || bad "irradiance: colour temperatures out of range"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+day, dusk = rows
+assert 5003 < float(day["global_cct_K"]) < 6504, day
+assert float(day["diffuse_cct_K"]) > 10000, day
+assert float(dusk["direct_horizontal_lux"]) == 0 and dusk["global_cct_K"] == dusk["diffuse_cct_K"], dusk
+PY
+else
+  bad "irradiance failed"; cat "$work/stderr"
+fi
+
 # Aerial perspective: a constant distance, then a bad depth-mode.
 "$skyspec" aerial -q --distance 2000 --camera perspective --position 0,0,2 --look-at 0,1000,300 --fov 40 \
   --image "$out/sky.exr" --out "$work/ap" 2>"$work/stderr" && [ -s "$work/ap/sky_transmittance.exr" ] \
