@@ -107,7 +107,6 @@ void SourceTable::source(double r_m, double mu, double mu_view, double nu, float
   const double fm = (u_from_mu(mu_s) + 1.0) * 0.5 * (n_mu_ - 1);
   const int ih = std::min(static_cast<int>(fh), n_h_ - 2), im = std::min(static_cast<int>(fm), n_mu_ - 2);
   const float ah = static_cast<float>(fh - ih), am = static_cast<float>(fm - im);
-  const float wa = (1 - ah) * (1 - am), wb = (1 - ah) * am, wc = ah * (1 - am), wd = ah * am;
   const float* a = &j_[index(ih, im)];
   const float* b = &j_[index(ih, im + 1)];
   const float* c = &j_[index(ih + 1, im)];
@@ -118,13 +117,41 @@ void SourceTable::source(double r_m, double mu, double mu_view, double nu, float
   const double cos_phi = sin_product > 1e-12 ? (nu - mv * mu_s) / sin_product : 1.0;
   double basis[kMaxHarmonics];
   symmetric_harmonics(degree_, mv, cos_phi, basis);
-  // Per harmonic: the bilinear blend of the four entries, weighted by Y_lm(view) and each species'
-  // chi_l, summed over the harmonics (Eigen arrays over the wavelengths, vectorised).
+  // Along the sun angle the source can fall by orders of magnitude between two columns (inside the
+  // planet's shadow), where a linear blend lies far above the decay: each altitude row's blend is
+  // scaled, per wavelength, by the ratio of the geometric to the arithmetic mean of its two mean
+  // radiances (the harmonic l = 0), so that the mean follows an exponential between the columns and
+  // the harmonics keep their shape. Where the two agree within a factor 2 (everywhere but near the
+  // terminator; the factor would be above 0.94 there) the blend is left linear.
   using Map = Eigen::Map<const Eigen::ArrayXf>;
-  thread_local Eigen::ArrayXf v;
+  thread_local Eigen::ArrayXf v, wa, wb, wc, wd;
+  // The factor of a row (x, y: its two columns' harmonic l = 0), or false when the row is not steep.
+  const auto log_blend = [&](const float* x, const float* y, Eigen::ArrayXf& factor) {
+    const Map x0(x, n_l_), y0(y, n_l_);
+    const bool steep = ((x0 > 2.0f * y0) || (y0 > 2.0f * x0)).any();
+    if (!steep || !((x0 > 0.0f) && (y0 > 0.0f)).all()) return false;
+    const Eigen::ArrayXf linear = (1 - am) * x0 + am * y0;
+    factor = ((1 - am) * x0.log() + am * y0.log()).exp() / linear.max(1e-30f);
+    return true;
+  };
+  thread_local Eigen::ArrayXf lower_row, upper_row;
+  const bool lower_steep = log_blend(a, b, lower_row), upper_steep = log_blend(c, d, upper_row);
+  // The four corners' weights per wavelength: bilinear, times the row's factor.
+  if (!lower_steep) lower_row.setOnes(n_l_);
+  if (!upper_steep) upper_row.setOnes(n_l_);
+  const bool steep = lower_steep || upper_steep;
+  if (steep) {
+    wa = ((1 - ah) * (1 - am)) * lower_row;
+    wb = ((1 - ah) * am) * lower_row;
+    wc = (ah * (1 - am)) * upper_row;
+    wd = (ah * am) * upper_row;
+  }
+  const float sa = (1 - ah) * (1 - am), sb = (1 - ah) * am, sc = ah * (1 - am), sd = ah * am;
   Eigen::Map<Eigen::ArrayXf> out_r(rayleigh, n_l_), out_m(mie, n_l_);
   out_r.setZero();
   out_m.setZero();
+  // Per harmonic: the blend of the four entries, weighted by Y_lm(view) and each species' chi_l,
+  // summed over the harmonics (Eigen arrays over the wavelengths, vectorised).
   for (int l = 0; l <= degree_; ++l) {
     const Map chi_r(&moments_->rayleigh[static_cast<size_t>(l) * n_l_], n_l_);
     const Map chi_m(&moments_->mie[static_cast<size_t>(l) * n_l_], n_l_);
@@ -132,8 +159,11 @@ void SourceTable::source(double r_m, double mu, double mu_view, double nu, float
       const int k = harmonic_index(l, m);
       const size_t o = static_cast<size_t>(k) * n_l_;
       const float y = static_cast<float>(basis[k]);
-      v = (y * wa) * Map(a + o, n_l_) + (y * wb) * Map(b + o, n_l_) + (y * wc) * Map(c + o, n_l_) +
-          (y * wd) * Map(d + o, n_l_);
+      if (steep)
+        v = y * (wa * Map(a + o, n_l_) + wb * Map(b + o, n_l_) + wc * Map(c + o, n_l_) + wd * Map(d + o, n_l_));
+      else
+        v = (y * sa) * Map(a + o, n_l_) + (y * sb) * Map(b + o, n_l_) + (y * sc) * Map(c + o, n_l_) +
+            (y * sd) * Map(d + o, n_l_);
       out_r += chi_r * v;
       out_m += chi_m * v;
     }
@@ -356,7 +386,7 @@ namespace {
 // The cache file: magic, key size and key (the inputs the tables depend on), table count, the
 // tables, and last an FNV-1a 64 checksum of everything before it, so that a file that was
 // truncated, damaged or edited is rebuilt rather than trusted.
-constexpr char kCacheMagic[] = "skyspec scattering orders v3\n";
+constexpr char kCacheMagic[] = "skyspec scattering orders v4\n";
 }  // namespace
 
 bool ScatteringOrders::save(const std::string& path, const std::string& key) const {

@@ -263,4 +263,34 @@ BOOST_AUTO_TEST_CASE(degree_zero_is_the_mean_radiance) {
   }
 }
 
+// Between two sun-angle columns whose mean radiances differ by more than a factor 2 (inside the
+// planet's shadow the sources fall by orders of magnitude per column) the lookup follows an
+// exponential, not a straight line; where they are close it stays linear.
+BOOST_AUTO_TEST_CASE(steep_sun_angle_decays_are_interpolated_exponentially) {
+  const AtmosphereModel atm(test::simple_atmosphere(ProfileKind::Exponential, 60e3, kNm, kBetaR, 21e-6),
+                            WavelengthGrid::from_list(kNm));
+  SourceTable table(atm.planet_radius_m(), atm.top_radius_m(), 2, 3, PhaseMoments::of(atm, 0));
+  const double norm = std::sqrt(4 * kPi);  // a_00 = sqrt(4 pi) x the mean radiance
+  // Column 0 (mu = -1) and 1 (mu = 0): the first wavelength falls 1000-fold, the others by 1.5.
+  for (int ih = 0; ih < 2; ++ih) {
+    for (int l = 0; l < 3; ++l) table.j_at(ih, 1)[l] = static_cast<float>(norm);
+    table.j_at(ih, 0)[0] = static_cast<float>(1e-3 * norm);
+    for (int l = 1; l < 3; ++l) table.j_at(ih, 0)[l] = static_cast<float>(norm / 1.5);
+  }
+  BOOST_TEST(table.mu_sun(0) == -1.0);
+  BOOST_TEST(table.mu_sun(1) == 0.0);
+  // Halfway in the table's coordinate (u = -0.5, mu = -0.375): the geometric mean for the steep
+  // wavelength (the whole row is then scaled, as all of a row's wavelengths share the blend).
+  float jr[3], jm[3];
+  table.source(atm.planet_radius_m() + 1000.0, -0.375, 0.5, 0.2, jr, jm);
+  BOOST_TEST(jr[0] == std::sqrt(1e-3), boost::test_tools::tolerance(1e-4));
+  // A factor 1.5 between the columns: the geometric mean sqrt(1/1.5) = 0.8165 against the linear
+  // 0.8333; the blend follows the exponential there too, once any wavelength of the row is steep.
+  BOOST_TEST(jr[1] == std::sqrt(1.0 / 1.5), boost::test_tools::tolerance(1e-4));
+  // No steep wavelength: linear.
+  for (int ih = 0; ih < 2; ++ih) table.j_at(ih, 0)[0] = static_cast<float>(norm / 1.5);
+  table.source(atm.planet_radius_m() + 1000.0, -0.375, 0.5, 0.2, jr, jm);
+  for (int l = 0; l < 3; ++l) BOOST_TEST(jr[l] == 0.5 * (1.0 + 1.0 / 1.5), boost::test_tools::tolerance(1e-5));
+}
+
 BOOST_AUTO_TEST_SUITE_END()
