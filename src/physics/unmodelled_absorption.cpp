@@ -34,9 +34,9 @@ std::string unmodelled_absorption_note(const WavelengthGrid& grid) {
   }
   const std::string range = format_number(grid.min_nm()) + "-" + format_number(grid.max_nm()) + " nm";
   if (listed.empty())
-    return "no oxygen or water vapour band in " + range +
+    return "no band of the Earth's oxygen or water vapour in " + range +
            " (absorption modelled: ozone and the aerosols' extinction/scattering ratio)";
-  return "gas absorption not modelled in " + range + ": " + listed +
+  return "absorption by the Earth's gases not modelled in " + range + ": " + listed +
          " (radiances there are too high; absorption modelled: ozone and the aerosols' extinction/scattering ratio)";
 }
 

@@ -11,6 +11,7 @@
 #include <iomanip>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -805,17 +806,17 @@ struct SpectralLimit {
   double min_nm, max_nm;
   std::string reason;
 };
-bool has_refractive_index_limit(const Scene& s) {
-  return s.atmosphere.rayleigh.source == RayleighSpec::Source::Derived &&
-         s.atmosphere.rayleigh.derivation.gas == ScatteringGas::Air;
+// The refractive index of air bounds any derivation of air's Rayleigh coefficients.
+std::optional<SpectralLimit> refractive_index_limit(const Scene& s) {
+  if (s.atmosphere.rayleigh.source != RayleighSpec::Source::Derived ||
+      s.atmosphere.rayleigh.derivation.gas != ScatteringGas::Air)
+    return std::nullopt;
+  const RefractiveIndexValidity v = validity(s.atmosphere.rayleigh.derivation.formula);
+  return SpectralLimit{v.min_nm, v.max_nm, "the refractive index of air: " + v.reason};
 }
-// The refractive index's limit first (check_refractive_index_range keeps only that one).
 std::vector<SpectralLimit> spectral_limits(const Scene& s) {
   std::vector<SpectralLimit> limits;
-  if (has_refractive_index_limit(s)) {
-    const RefractiveIndexValidity v = validity(s.atmosphere.rayleigh.derivation.formula);
-    limits.push_back({v.min_nm, v.max_nm, "the refractive index of air: " + v.reason});
-  }
+  if (const auto air = refractive_index_limit(s)) limits.push_back(*air);
   if (s.sun.spectrum == SunSpec::Spectrum::Solar) {
     const TabulatedSpectrum& sun = solar_irradiance_table();
     limits.push_back({sun.min_nm(), sun.max_nm(), "the extraterrestrial solar spectrum (ASTM G173-03, sun.spectrum = \"solar\")"});
@@ -828,7 +829,6 @@ std::vector<SpectralLimit> spectral_limits(const Scene& s) {
   }
   return limits;
 }
-
 
 void check_limits(const WavelengthGrid& grid, const std::vector<SpectralLimit>& limits, const std::string& what) {
   double lo = 0.0, hi = std::numeric_limits<double>::infinity();
@@ -847,9 +847,7 @@ void check_limits(const WavelengthGrid& grid, const std::vector<SpectralLimit>& 
 }
 
 void check_refractive_index_range(const Scene& s, const WavelengthGrid& grid) {
-  std::vector<SpectralLimit> limits = spectral_limits(s);
-  limits.resize(std::min<size_t>(limits.size(), has_refractive_index_limit(s) ? 1 : 0));
-  check_limits(grid, limits, "");
+  if (const auto air = refractive_index_limit(s)) check_limits(grid, {*air}, "");
 }
 }  // namespace
 
