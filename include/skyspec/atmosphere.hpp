@@ -62,7 +62,8 @@ struct OzoneSpec {
   double column_DU = 300.0;  ///< total column, Dobson units (1 DU = 2.6867e20 molecules m^-2)
   double bottom_m = 10e3, peak_m = 25e3, top_m = 40e3;
   /// Absorption cross-sections (m^2 per molecule) at these wavelengths, linearly interpolated; when
-  /// empty, the built-in laboratory table (Serdyuchenko et al. 2014, 233 K; data/ozone/) is used.
+  /// empty, the built-in laboratory table (233 K, 230-1060 nm: Serdyuchenko et al. 2014 and Bogumil
+  /// et al. 2003; data/ozone/) is used.
   std::vector<double> cross_section_wavelengths_nm, cross_section_m2;
 };
 

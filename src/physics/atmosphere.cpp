@@ -14,7 +14,8 @@ namespace skyspec {
 
 namespace {
 // Ozone absorption cross-sections on the grid: the scene's own table if it has one, else the
-// built-in laboratory data (Serdyuchenko et al. 2014, 233 K, 10 nm bins; data/ozone/), averaged
+// built-in laboratory data (233 K, 230-1060 nm: Serdyuchenko et al. 2014 and Bogumil et al. 2003;
+// data/ozone/), averaged
 // over each grid sample's bin.
 SpectrumD ozone_cross_sections_m2(const OzoneSpec& o, const WavelengthGrid& grid) {
   SpectrumD sigma(grid.size());

@@ -137,7 +137,8 @@ std::vector<ReportFormula> report_formulas(const CoefficientReport& r) {
   if (r.ozone_enabled)
     f.push_back({"ozone absorption", "beta_O3(lambda, z) = sigma_O3(lambda) N_peak rho_O3(z), N_peak = column / (area of the "
                                      "profile), 1 DU = 2.6867e20 molecules m^-2",
-               "sigma_O3 in m^2 per molecule, column in Dobson units", "the scene's table, or the built-in one (Serdyuchenko et al. 2014, 233 K; data/ozone/)"});
+               "sigma_O3 in m^2 per molecule, column in Dobson units", "the scene's table, or the built-in one (233 K: Serdyuchenko et al. 2014, 360-840 nm; Bogumil et al. 2003, "
+               "230-360 and 840-1060 nm; data/ozone/)"});
   if (r.mie_tabulated)
     f.push_back({"aerosol (tabulated)", "beta_sca(lambda) = beta_ref Q(lambda) w(lambda) / (Q(lambda_ref) w(lambda_ref)), "
                                         "beta_ext = beta_sca / w",
