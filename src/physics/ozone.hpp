@@ -12,8 +12,8 @@
 // from Serdyuchenko et al. (2014) / Gorshelev et al. (2014), IUP Bremen (their integrals are
 // exactly the published means times 10 nm); 230-360 nm in 1 nm bins (the Hartley and Huggins
 // bands) and 840-1060 nm in 10 nm bins from Bogumil, Orphal & Burrows (2003, SCIAMACHY, the mean
-// of their 223 K and 243 K spectra). Where the two overlap, Bogumil's values are about 3 % above
-// Serdyuchenko's in the Chappuis band (data/README.md).
+// of their 223 K and 243 K spectra). Where the two overlap they differ by a few percent in absolute
+// scale (data/README.md compares them).
 //
 // Column: in Dobson units, 1 DU = 2.6867e20 molecules m^-2 (a 10 um layer of pure ozone at 0 degC
 // and 1 atm; constants::kDobsonUnit_per_m2). A typical mid-latitude column is ~300 DU.

@@ -96,8 +96,8 @@ exrheader "$work/nir/sky.exr" | grep 'skyspec:notModelled' | grep -q "oxygen A b
 expect_error grid_beyond_ozone 2 "to 1060 nm (the built-in ozone cross-sections" --lambda-min 700 --lambda-max 1100 --lambda-step 20
 
 # Daylight's colour temperature (irradiance): global light with the sun 30 degrees up lies between
-# CIE D50 and D65 (5003-6504 K; 5631 K when measured), the skylight alone is bluer than 10000 K
-# (18804 K); a sun 4 degrees down leaves only skylight.
+# CIE D50 and D65 (5003-6504 K), the skylight alone is bluer than 10000 K; a sun 4 degrees down
+# leaves only skylight (docs/validation.md, "Daylight", has the figures).
 if "$skyspec" irradiance --sun-elevations 30,-4 --format csv >"$work/irr.csv" 2>"$work/stderr"; then
   /usr/bin/python3 - "$work/irr.csv" <<'PY' && ok || bad "irradiance: colour temperatures out of range"
 import csv, sys

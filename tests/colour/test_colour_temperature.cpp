@@ -2,8 +2,7 @@
 
 // Correlated colour temperature from its CIE definition: the Planckian locus recovers its own
 // temperatures; the CIE illuminants D65, D50 and A get their published CCTs (6504 K, 5003 K and
-// 2856 K, CIE 015:2004; measured 6503.6, 5001.8 and 2855.7 K) and D65 its distance above the locus
-// (Duv +0.0032).
+// 2856 K, CIE 015:2004) and D65 its distance above the locus (Duv +0.0032).
 
 #include <cmath>
 

@@ -96,8 +96,8 @@ BOOST_AUTO_TEST_CASE(bucholtz_king_factors) {
 }
 
 // Bucholtz 1995's analytic fit to his cross-sections: its two branches disagree by 0.11 % where they
-// meet, so agreement is asked to 0.3 % over 250-500 nm (the largest differences, 0.29 % at 300 nm and
-// 0.27 % at 500 nm on the fit's junction) and 0.1 % from 550 nm to 1650 nm (1500 nm: 0.06 %).
+// meet, so agreement is asked to 0.3 % over 250-500 nm (the fit's short-wave branch and its junction)
+// and 0.1 % from 550 nm to 1650 nm (docs/validation.md has the figures).
 BOOST_AUTO_TEST_CASE(bucholtz_cross_section_fit) {
   const double junction_nm = bucholtz1995_fit_branch_nm();
   BOOST_TEST(junction_nm == 500.0);
@@ -122,8 +122,8 @@ BOOST_AUTO_TEST_CASE(bucholtz_cross_section_fit) {
 }
 
 // Bodhaine et al.'s own fit to their optical depths (eq. 30): the same calculation, so within
-// 0.01 % from 250 to 850 nm (300 nm: 0.002 %, 350 nm: 0.002 %) and 0.05 % up to 1000 nm, where the
-// fit drifts from the calculation it summarises (-0.046 %).
+// 0.01 % from 250 to 850 nm and 0.05 % up to 1000 nm, where the fit drifts from the calculation it
+// summarises.
 BOOST_AUTO_TEST_CASE(bodhaine_fit_from_the_ultraviolet_to_1_um) {
   const auto all = published_comparisons();
   const auto& c = comparison(all, "bodhaine1999_fit");
@@ -311,7 +311,7 @@ BOOST_AUTO_TEST_CASE(ultraviolet_to_near_infrared) {
              boost::test_tools::tolerance(1e-12));
   BOOST_TEST(l.total_optical_depth[0] == l.rayleigh_optical_depth[0] + l.mie_optical_depth[0] + l.ozone_optical_depth[0],
              boost::test_tools::tolerance(1e-12));
-  // Rayleigh: (1500/300)^4 = 625; sigma at 300 nm is 718 times that at 1500 nm (n - 1 and F rise).
+  // Rayleigh: (1500/300)^4 = 625, and more since n - 1 and F rise towards the ultraviolet.
   BOOST_TEST(r.derivation[0].cross_section_m2 / r.derivation[2].cross_section_m2 > 700.0);
   const std::string md = report_to_markdown(r);
   BOOST_TEST(md.find("n/a") != std::string::npos);
