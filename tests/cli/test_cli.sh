@@ -79,8 +79,10 @@ fi
 # bands are not modelled (none in the UV; the oxygen A band and water vapour in the near infrared).
 for band in "uv 290 400 10" "nir 700 1060 20"; do
   set -- $band
+  # Single scattering: the ranges and the header are what is tested here, not the tables (which
+  # would be built for each grid).
   if "$skyspec" render -q --out "$work/$1" --width 16 --height 8 --lambda-min "$2" --lambda-max "$3" --lambda-step "$4" \
-      2>"$work/stderr"; then
+      --set render.scattering_orders=1 2>"$work/stderr"; then
     exrheader "$work/$1/sky.exr" | grep -q "S0.$2,000000nm" && ok || bad "$1: no S0.$2 channel"
     nans=$(oiiotool "$work/$1/sky.exr" --printstats 2>&1 | grep -E "Stats (Nan|Inf)Count" | tr -d ' a-zA-Z:' | tr -d '0\n')
     [ -z "$nans" ] && ok || bad "$1: NaN or Inf in the file"
