@@ -151,7 +151,8 @@ def derive(
 ) -> Dict[str, Any]:
     """The scattering coefficients of a scene's atmosphere per wavelength, from n(lambda) and N: a
     dict of NumPy arrays (shapes (n,), (k,) or (k, n) for n wavelengths and k altitudes) and the
-    strings refractive_index, rayleigh_source and the float co2_ppm. help(skyspec.derive) lists the keys."""
+    strings refractive_index, rayleigh_source and the float co2_ppm. help(skyspec.derive) lists the keys.
+    Wavelengths 230-1690 nm; the ozone arrays hold NaN beyond the built-in ozone table (230-1060 nm)."""
 
 def coefficient_report(
     format: str = "md",
