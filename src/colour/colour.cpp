@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <locale>
-#include <sstream>
 #include <string>
 #include <string_view>
 

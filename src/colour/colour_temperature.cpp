@@ -1,6 +1,7 @@
 // Correlated colour temperature from its definition; see colour_temperature.hpp.
 #include "colour/colour_temperature.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 

@@ -124,7 +124,7 @@ void SourceTable::source(double r_m, double mu, double mu_view, double nu, float
   // the harmonics keep their shape. Where the two agree within a factor 2 (everywhere but near the
   // terminator; the factor would be above 0.94 there) the blend is left linear.
   using Map = Eigen::Map<const Eigen::ArrayXf>;
-  thread_local Eigen::ArrayXf v, wa, wb, wc, wd;
+  thread_local Eigen::ArrayXf v, wa, wb, wc, wd, lower_row, upper_row;
   // The factor of a row (x, y: its two columns' harmonic l = 0), or false when the row is not steep.
   const auto log_blend = [&](const float* x, const float* y, Eigen::ArrayXf& factor) {
     const Map x0(x, n_l_), y0(y, n_l_);
@@ -134,19 +134,17 @@ void SourceTable::source(double r_m, double mu, double mu_view, double nu, float
     factor = ((1 - am) * x0.log() + am * y0.log()).exp() / linear.max(1e-30f);
     return true;
   };
-  thread_local Eigen::ArrayXf lower_row, upper_row;
   const bool lower_steep = log_blend(a, b, lower_row), upper_steep = log_blend(c, d, upper_row);
-  // The four corners' weights per wavelength: bilinear, times the row's factor.
-  if (!lower_steep) lower_row.setOnes(n_l_);
-  if (!upper_steep) upper_row.setOnes(n_l_);
   const bool steep = lower_steep || upper_steep;
-  if (steep) {
-    wa = ((1 - ah) * (1 - am)) * lower_row;
-    wb = ((1 - ah) * am) * lower_row;
-    wc = (ah * (1 - am)) * upper_row;
-    wd = (ah * am) * upper_row;
-  }
   const float sa = (1 - ah) * (1 - am), sb = (1 - ah) * am, sc = ah * (1 - am), sd = ah * am;
+  if (steep) {  // the four corners' weights per wavelength: bilinear, times the row's factor
+    if (!lower_steep) lower_row.setOnes(n_l_);
+    if (!upper_steep) upper_row.setOnes(n_l_);
+    wa = sa * lower_row;
+    wb = sb * lower_row;
+    wc = sc * upper_row;
+    wd = sd * upper_row;
+  }
   Eigen::Map<Eigen::ArrayXf> out_r(rayleigh, n_l_), out_m(mie, n_l_);
   out_r.setZero();
   out_m.setZero();
