@@ -62,7 +62,7 @@ std::shared_ptr<const PhaseMoments> PhaseMoments::of(const AtmosphereModel& atm,
   const int n = atm.grid().size();
   m->degree = degree;
   m->wavelengths = n;
-  m->rayleigh.assign(static_cast<size_t>(degree + 1) * n, 0.0f);
+  m->rayleigh.assign(static_cast<size_t>(degree + 1) * n + SourceTable::kLookupSlack, 0.0f);
   m->mie = m->rayleigh;
   for (int i = 0; i < n; ++i) {
     const double gamma = atm.rayleigh_phase_gamma()[i];
@@ -73,6 +73,8 @@ std::shared_ptr<const PhaseMoments> PhaseMoments::of(const AtmosphereModel& atm,
     for (int l = 0; l <= degree; ++l) {
       m->rayleigh[static_cast<size_t>(l) * n + i] = static_cast<float>(r[static_cast<size_t>(l)]);
       m->mie[static_cast<size_t>(l) * n + i] = static_cast<float>(a[static_cast<size_t>(l)]);
+      // Zero to rounding beyond l = 2 (the quadrature is exact for a quadratic).
+      if (std::abs(r[static_cast<size_t>(l)]) > 1e-9 * std::abs(r[0])) m->rayleigh_degree = std::max(m->rayleigh_degree, l);
     }
   }
   return m;
@@ -88,7 +90,7 @@ SourceTable::SourceTable(double planet_radius_m, double top_radius_m, int n_alti
       n_c_(skyspec::harmonic_count(degree_)),
       n_l_(moments->wavelengths),
       moments_(std::move(moments)),
-      j_(static_cast<size_t>(n_altitude) * n_sun * n_c_ * n_l_),
+      j_(static_cast<size_t>(n_altitude) * n_sun * n_c_ * n_l_ + kLookupSlack),
       g_(static_cast<size_t>(n_sun) * n_l_, 0.0f) {
   if (n_c_ > kMaxHarmonics) throw Error("the scattering-order tables take harmonics up to degree 12");
 }
@@ -100,7 +102,28 @@ double SourceTable::altitude_m(int ih) const {
 
 double SourceTable::mu_sun(int imu) const { return mu_from_u(-1.0 + 2.0 * imu / (n_mu_ - 1)); }
 
+bool SourceTable::steep_pair(int ih, int imu) const {
+  using Map = Eigen::Map<const Eigen::ArrayXf>;
+  const Map x(&j_[index(ih, imu)], n_l_), y(&j_[index(ih, imu + 1)], n_l_);
+  return ((x > 2.0f * y) || (y > 2.0f * x)).any() && ((x > 0.0f) && (y > 0.0f)).all();
+}
+
+void SourceTable::prepare() {
+  steep_.assign(static_cast<size_t>(n_h_) * (n_mu_ - 1), 0);
+  log_mean_.assign(static_cast<size_t>(n_h_) * n_mu_ * n_l_, 0.0f);
+  for (int ih = 0; ih < n_h_; ++ih)
+    for (int imu = 0; imu + 1 < n_mu_; ++imu) {
+      if (!steep_pair(ih, imu)) continue;
+      steep_[static_cast<size_t>(ih) * (n_mu_ - 1) + imu] = 1;
+      for (int e = imu; e <= imu + 1; ++e)
+        for (int i = 0; i < n_l_; ++i)
+          log_mean_[(static_cast<size_t>(ih) * n_mu_ + e) * n_l_ + i] = std::log(j_[index(ih, e) + i]);
+    }
+  prepared_ = true;
+}
+
 void SourceTable::source(double r_m, double mu, double mu_view, double nu, float* rayleigh, float* mie) const {
+  if (!prepared_) throw std::logic_error("SourceTable::source: the table was not prepared after it was written");
   const double h = std::clamp(r_m - R_, 0.0, Rt_ - R_);
   const double fh = std::sqrt(h / (Rt_ - R_)) * (n_h_ - 1);
   const double mu_s = std::clamp(mu, -1.0, 1.0);
@@ -115,55 +138,77 @@ void SourceTable::source(double r_m, double mu, double mu_view, double nu, float
   const double mv = std::clamp(mu_view, -1.0, 1.0);
   const double sin_product = std::sqrt(std::max(0.0, (1.0 - mv * mv) * (1.0 - mu_s * mu_s)));
   const double cos_phi = sin_product > 1e-12 ? (nu - mv * mu_s) / sin_product : 1.0;
-  double basis[kMaxHarmonics];
-  symmetric_harmonics(degree_, mv, cos_phi, basis);
-  // Along the sun angle the source can fall by orders of magnitude between two columns (inside the
-  // planet's shadow), where a linear blend lies far above the decay: each altitude row's blend is
-  // scaled, per wavelength, by the ratio of the geometric to the arithmetic mean of its two mean
-  // radiances (the harmonic l = 0), so that the mean follows an exponential between the columns and
-  // the harmonics keep their shape. Where the two agree within a factor 2 (everywhere but near the
-  // terminator; the factor would be above 0.94 there) the blend is left linear.
-  using Map = Eigen::Map<const Eigen::ArrayXf>;
-  thread_local Eigen::ArrayXf v, wa, wb, wc, wd, lower_row, upper_row;
-  // The factor of a row (x, y: its two columns' harmonic l = 0), or false when the row is not steep.
-  const auto log_blend = [&](const float* x, const float* y, Eigen::ArrayXf& factor) {
-    const Map x0(x, n_l_), y0(y, n_l_);
-    const bool steep = ((x0 > 2.0f * y0) || (y0 > 2.0f * x0)).any();
-    if (!steep || !((x0 > 0.0f) && (y0 > 0.0f)).all()) return false;
-    const Eigen::ArrayXf linear = (1 - am) * x0 + am * y0;
-    factor = ((1 - am) * x0.log() + am * y0.log()).exp() / linear.max(1e-30f);
-    return true;
-  };
-  const bool lower_steep = log_blend(a, b, lower_row), upper_steep = log_blend(c, d, upper_row);
-  const bool steep = lower_steep || upper_steep;
+  double basis_d[kMaxHarmonics];
+  symmetric_harmonics(degree_, mv, cos_phi, basis_d);
+  float basis[kMaxHarmonics];
+  for (int k = 0; k < n_c_; ++k) basis[k] = static_cast<float>(basis_d[k]);
+
+  // The four corners' weights: bilinear. Along the sun angle the source can fall by orders of
+  // magnitude between two columns (inside the planet's shadow), where a linear blend lies far above
+  // the decay: each steep altitude row's weights (prepare()) are scaled, per wavelength, by the
+  // ratio of the geometric to the arithmetic mean of its two mean radiances (the harmonic l = 0),
+  // so that the mean follows an exponential between the columns and the harmonics keep their
+  // shape. Elsewhere (everywhere but near the terminator; the factor would be above 0.94 there) the
+  // blend is left linear.
   const float sa = (1 - ah) * (1 - am), sb = (1 - ah) * am, sc = ah * (1 - am), sd = ah * am;
-  if (steep) {  // the four corners' weights per wavelength: bilinear, times the row's factor
-    if (!lower_steep) lower_row.setOnes(n_l_);
-    if (!upper_steep) upper_row.setOnes(n_l_);
-    wa = sa * lower_row;
-    wb = sb * lower_row;
-    wc = sc * upper_row;
-    wd = sd * upper_row;
+  const bool lower_steep = steep_[static_cast<size_t>(ih) * (n_mu_ - 1) + im] != 0;
+  const bool upper_steep = steep_[static_cast<size_t>(ih + 1) * (n_mu_ - 1) + im] != 0;
+  const int padded = (n_l_ + kLookupSlack - 1) / kLookupSlack * kLookupSlack;
+  thread_local std::vector<float> row_factors;
+  if (lower_steep || upper_steep) {
+    row_factors.assign(2 * static_cast<size_t>(padded), 1.0f);
+    const auto factor = [&](int row, const float* x, const float* y, float* out) {
+      const float* lx = &log_mean_[(static_cast<size_t>(row) * n_mu_ + im) * n_l_];
+      const float* ly = lx + n_l_;
+      for (int i = 0; i < n_l_; ++i)
+        out[i] = std::exp((1 - am) * lx[i] + am * ly[i]) / std::max((1 - am) * x[i] + am * y[i], 1e-30f);
+    };
+    if (lower_steep) factor(ih, a, b, row_factors.data());
+    if (upper_steep) factor(ih + 1, c, d, row_factors.data() + padded);
   }
-  Eigen::Map<Eigen::ArrayXf> out_r(rayleigh, n_l_), out_m(mie, n_l_);
-  out_r.setZero();
-  out_m.setZero();
-  // Per harmonic: the blend of the four entries, weighted by Y_lm(view) and each species' chi_l,
-  // summed over the harmonics (Eigen arrays over the wavelengths, vectorised).
-  for (int l = 0; l <= degree_; ++l) {
-    const Map chi_r(&moments_->rayleigh[static_cast<size_t>(l) * n_l_], n_l_);
-    const Map chi_m(&moments_->mie[static_cast<size_t>(l) * n_l_], n_l_);
-    for (int m = 0; m <= l; ++m) {
-      const int k = harmonic_index(l, m);
-      const size_t o = static_cast<size_t>(k) * n_l_;
-      const float y = static_cast<float>(basis[k]);
-      if (steep)
-        v = y * (wa * Map(a + o, n_l_) + wb * Map(b + o, n_l_) + wc * Map(c + o, n_l_) + wd * Map(d + o, n_l_));
-      else
-        v = (y * sa) * Map(a + o, n_l_) + (y * sb) * Map(b + o, n_l_) + (y * sc) * Map(c + o, n_l_) +
-            (y * sd) * Map(d + o, n_l_);
-      out_r += chi_r * v;
-      out_m += chi_m * v;
+
+  // J_s = sum_l chi_s,l sum_m Y_lm(view) a_lm, a_lm the blend of the four corners, per block of
+  // kLookupSlack wavelengths (Eigen fixed-size arrays, one or two vector registers each): the
+  // harmonics of each l are summed per corner first and blended once per l. Blocks read past the
+  // last wavelength into the next harmonic or the spare floats; those lanes are not written out.
+  using Lanes = Eigen::Array<float, kLookupSlack, 1>;
+  using LanesMap = Eigen::Map<const Lanes, Eigen::Unaligned>;
+  const int rayleigh_degree = std::min(moments_->rayleigh_degree, degree_);
+  for (int i0 = 0; i0 < n_l_; i0 += kLookupSlack) {
+    Lanes wa = Lanes::Constant(sa), wb = Lanes::Constant(sb), wc = Lanes::Constant(sc), wd = Lanes::Constant(sd);
+    if (lower_steep) {
+      const LanesMap f(row_factors.data() + i0);
+      wa *= f;
+      wb *= f;
+    }
+    if (upper_steep) {
+      const LanesMap f(row_factors.data() + padded + i0);
+      wc *= f;
+      wd *= f;
+    }
+    Lanes out_r = Lanes::Zero(), out_m = Lanes::Zero();
+    for (int l = 0; l <= degree_; ++l) {
+      Lanes pa = Lanes::Zero(), pb = Lanes::Zero(), pc = Lanes::Zero(), pd = Lanes::Zero();
+      for (int m = 0; m <= l; ++m) {
+        const int k = harmonic_index(l, m);
+        const size_t o = static_cast<size_t>(k) * n_l_ + i0;
+        const float y = basis[k];
+        pa += y * LanesMap(a + o);
+        pb += y * LanesMap(b + o);
+        pc += y * LanesMap(c + o);
+        pd += y * LanesMap(d + o);
+      }
+      const Lanes v = wa * pa + wb * pb + wc * pc + wd * pd;
+      const size_t o = static_cast<size_t>(l) * n_l_ + i0;
+      out_m += LanesMap(&moments_->mie[o]) * v;
+      if (l <= rayleigh_degree) out_r += LanesMap(&moments_->rayleigh[o]) * v;
+    }
+    if (n_l_ - i0 >= kLookupSlack) {
+      Eigen::Map<Lanes, Eigen::Unaligned>(rayleigh + i0) = out_r;
+      Eigen::Map<Lanes, Eigen::Unaligned>(mie + i0) = out_m;
+    } else {
+      std::copy_n(out_r.data(), n_l_ - i0, rayleigh + i0);
+      std::copy_n(out_m.data(), n_l_ - i0, mie + i0);
     }
   }
 }
@@ -178,6 +223,7 @@ void SourceTable::ground_irradiance(double mu, float* out) const {
 }
 
 void SourceTable::add(const SourceTable& o) {
+  prepared_ = false;
   const size_t block = static_cast<size_t>(o.n_c_) * n_l_;  // the other's harmonics, a prefix of ours
   for (size_t e = 0; e < static_cast<size_t>(n_h_) * n_mu_; ++e)
     for (size_t i = 0; i < block; ++i) j_[e * n_c_ * n_l_ + i] += o.j_[e * block + i];
@@ -185,6 +231,7 @@ void SourceTable::add(const SourceTable& o) {
 }
 
 void SourceTable::add_geometric_tail(const SourceTable& last, const SourceTable& before) {
+  prepared_ = false;
   auto factor = [](float a, float b) {
     const float r = b > 0.0f ? std::clamp(a / b, 0.0f, 0.9f) : 0.0f;
     return r / (1.0f - r);
@@ -201,7 +248,7 @@ void SourceTable::add_geometric_tail(const SourceTable& last, const SourceTable&
 void SourceTable::write(std::ostream& out) const {
   const int32_t shape[4] = {n_h_, n_mu_, n_c_, n_l_};
   out.write(reinterpret_cast<const char*>(shape), sizeof shape);
-  out.write(reinterpret_cast<const char*>(j_.data()), static_cast<std::streamsize>(j_.size() * sizeof(float)));
+  out.write(reinterpret_cast<const char*>(j_.data()), static_cast<std::streamsize>(j_size() * sizeof(float)));
   out.write(reinterpret_cast<const char*>(g_.data()), static_cast<std::streamsize>(g_.size() * sizeof(float)));
 }
 
@@ -209,16 +256,17 @@ bool SourceTable::read(std::istream& in) {
   int32_t shape[4];
   if (!in.read(reinterpret_cast<char*>(shape), sizeof shape)) return false;
   if (shape[0] != n_h_ || shape[1] != n_mu_ || shape[2] != n_c_ || shape[3] != n_l_) return false;
-  ZeroedFloats j(j_.size());
+  ZeroedFloats j(j_size() + kLookupSlack);
   std::vector<float> g(g_.size());
-  if (!in.read(reinterpret_cast<char*>(j.data()), static_cast<std::streamsize>(j.size() * sizeof(float)))) return false;
+  if (!in.read(reinterpret_cast<char*>(j.data()), static_cast<std::streamsize>(j_size() * sizeof(float)))) return false;
   if (!in.read(reinterpret_cast<char*>(g.data()), static_cast<std::streamsize>(g.size() * sizeof(float)))) return false;
-  for (size_t i = 0; i < j.size(); ++i)
+  for (size_t i = 0; i < j_size(); ++i)
     if (!std::isfinite(j[i])) return false;
   for (float v : g)
     if (!std::isfinite(v)) return false;
   j_.swap(j);
   g_.swap(g);
+  prepared_ = false;
   return true;
 }
 
@@ -292,6 +340,7 @@ void integrate_order(const SingleScattering& integrator, const ScatteringSources
     for (int c = 0; c < n_c; ++c) std::copy(sc.a.col(c).data(), sc.a.col(c).data() + n, out + static_cast<size_t>(c) * n);
     if (at_ground) std::copy(sc.g.data(), sc.g.data() + n, table.g_at(imu));
   });
+  table.prepare();
 }
 
 }  // namespace
@@ -322,6 +371,7 @@ ScatteringOrders::ScatteringOrders(const SingleScattering& integrator, const Mul
     orders_.push_back(std::move(table));
   }
   if (orders_.size() >= 2) sum_->add_geometric_tail(*orders_.back(), *orders_[orders_.size() - 2]);
+  sum_->prepare();
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
@@ -363,11 +413,13 @@ double ScatteringOrders::estimate_build_seconds(const SingleScattering& integrat
   if (settings.orders > 2) {
     const int d_max = degree_of_order(settings.angular_degree, 2);
     const int d_min = degree_of_order(settings.angular_degree, settings.orders - 1);
-    const SourceTable big(atm.planet_radius_m(), atm.top_radius_m(), 4, 4, moments, d_max);
+    SourceTable big(atm.planet_radius_m(), atm.top_radius_m(), 4, 4, moments, d_max);
+    big.prepare();
     const double t_max = seconds_per_entry(ScatteringSources{false, &big});
     double t_min = t_max;
     if (d_min != d_max) {
-      const SourceTable small(atm.planet_radius_m(), atm.top_radius_m(), 4, 4, moments, d_min);
+      SourceTable small(atm.planet_radius_m(), atm.top_radius_m(), 4, 4, moments, d_min);
+      small.prepare();
       t_min = seconds_per_entry(ScatteringSources{false, &small});
     }
     const double c_max = harmonic_count(d_max), c_min = harmonic_count(d_min);
@@ -449,10 +501,12 @@ std::unique_ptr<ScatteringOrders> ScatteringOrders::load(const std::string& path
     auto t = std::make_unique<SourceTable>(atm.planet_radius_m(), atm.top_radius_m(), settings.altitude_samples,
                                            settings.sun_samples, moments, degree_of_order(settings.angular_degree, k + 2));
     if (!t->read(in)) return nullptr;
+    t->prepare();
     o->orders_.push_back(std::move(t));
   }
   o->sum_ = make_table();
   if (!o->sum_->read(in) || in.peek() != std::char_traits<char>::eof()) return nullptr;
+  o->sum_->prepare();
   return o;
 }
 

@@ -49,7 +49,11 @@ struct MultipleScatteringSettings {
 /// wavelength (spherical_harmonics.hpp), as the source tables weight the harmonics.
 struct PhaseMoments {
   int degree = 0, wavelengths = 0;
-  std::vector<float> rayleigh, mie;  ///< [l][wavelength]
+  /// The highest l at which Rayleigh's moments are not zero: 2 (its phase function is a quadratic
+  /// in the scattering cosine), or the degree if that is lower.
+  int rayleigh_degree = 0;
+  /// [l][wavelength], followed by kLookupSlack zeros (SourceTable::source reads whole blocks).
+  std::vector<float> rayleigh, mie;
   static std::shared_ptr<const PhaseMoments> of(const AtmosphereModel& atm, int degree);
 };
 
@@ -57,11 +61,19 @@ struct PhaseMoments {
 /// and G over mu_s, per wavelength.
 class SourceTable : public InScatteringSource {
  public:
+  /// Wavelengths the look-up handles at once (one AVX-512 register, two AVX2 ones); the arrays it
+  /// reads are followed by this many spare floats, so that the last block needs no special case.
+  static constexpr int kLookupSlack = 16;
   /// degree <= moments->degree (default: the moments' degree).
   SourceTable(double planet_radius_m, double top_radius_m, int n_altitude, int n_sun,
               std::shared_ptr<const PhaseMoments> moments, int degree = -1);
+  /// Needs prepare() after the last change to the table.
   void source(double r_m, double mu_sun, double mu_view, double nu, float* rayleigh, float* mie) const override;
   void ground_irradiance(double mu_sun, float* out) const override;
+  /// Makes the table ready for source() once it is filled: notes which pairs of neighbouring sun
+  /// angles are steep (see source()) and keeps the logarithms of their mean radiance. add,
+  /// add_geometric_tail and read undo it (source() then throws), as does writing through j_at.
+  void prepare();
 
   /// Geometry of the table's samples.
   double altitude_m(int i_altitude) const;
@@ -71,6 +83,8 @@ class SourceTable : public InScatteringSource {
   int harmonic_count() const { return n_c_; }
   int degree() const { return degree_; }
   /// The coefficients of an entry: [harmonic][wavelength].
+  /// Writing through j_at or g_at needs prepare() again before source() (not tracked: the
+  /// builders write entries from many threads at once).
   float* j_at(int i_altitude, int i_sun) { return &j_[index(i_altitude, i_sun)]; }
   const float* j_at(int i_altitude, int i_sun) const { return &j_[index(i_altitude, i_sun)]; }
   float* g_at(int i_sun) { return &g_[static_cast<size_t>(i_sun) * n_l_]; }
@@ -94,11 +108,20 @@ class SourceTable : public InScatteringSource {
 
  private:
   size_t index(int ih, int imu) const { return ((static_cast<size_t>(ih) * n_mu_ + imu) * n_c_) * n_l_; }
+  size_t j_size() const { return static_cast<size_t>(n_h_) * n_mu_ * n_c_ * n_l_; }
+  /// Whether the mean radiance changes more than 2-fold between sun angles imu and imu + 1 at
+  /// altitude ih (at some wavelength), both positive throughout.
+  bool steep_pair(int ih, int imu) const;
   double R_, Rt_;
   int n_h_, n_mu_, degree_, n_c_, n_l_;
   std::shared_ptr<const PhaseMoments> moments_;
-  ZeroedFloats j_;  // large at high degrees and fine tables: zeroed pages on first use
+  ZeroedFloats j_;  // j_size() floats and kLookupSlack spare; large tables: zeroed pages on first use
   std::vector<float> g_;
+  // Filled by prepare(): steep_[ih * (n_mu_ - 1) + imu] and the logarithm of each entry's mean
+  // radiance (the harmonic l = 0) per wavelength, [ih][imu][wavelength] (entries of steep pairs).
+  bool prepared_ = false;
+  std::vector<unsigned char> steep_;
+  std::vector<float> log_mean_;
 };
 
 /// Orders 2..K computed one from the other; source() and ground_irradiance() return their sum and,

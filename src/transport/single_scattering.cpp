@@ -123,6 +123,27 @@ void segment_over_wavelengths(Eigen::Index n, const float* __restrict ta, const 
     out_m[l] += dt * log_mean_term(x_m - dtau, m_a * ea[l], m_b * eb[l]);
   }
 }
+// One species' half of segment_over_wavelengths (a higher-order pass weights one species).
+void segment_one_species(Eigen::Index n, const float* __restrict ta, const float* __restrict ea,
+                         const float* __restrict tb, const float* __restrict eb, float x, float rho_a, float rho_b,
+                         float dt, float* __restrict out) {
+  for (Eigen::Index l = 0; l < n; ++l) out[l] += dt * log_mean_term(x - (ta[l] - tb[l]), rho_a * ea[l], rho_b * eb[l]);
+}
+// The fine and coarse sums of species sp only, [wavelength, node] arrays.
+void accumulate_species_by_wavelength(const NodeArray& tau, const NodeArray& trans, const PieceSegments& g, int sp,
+                                      Spectrum& fine, Spectrum& coarse) {
+  const Eigen::Index n = tau.rows();
+  const float* rho = g.rho[sp].data();
+  for (int k = 0; k < g.segments; ++k)
+    segment_one_species(n, tau.col(k).data(), trans.col(k).data(), tau.col(k + 1).data(), trans.col(k + 1).data(),
+                        g.log_ratio[sp][k], rho[k], rho[k + 1], g.dt[k], fine.data());
+  for (int j = 0; j < g.segments / 2; ++j) {
+    const int a = 2 * j, b = 2 * j + 2;
+    segment_one_species(n, tau.col(a).data(), trans.col(a).data(), tau.col(b).data(), trans.col(b).data(),
+                        g.log_ratio2[sp][j], rho[a], rho[b], g.dt2[j], coarse.data());
+  }
+}
+
 void accumulate_piece_by_wavelength(const NodeArray& tau, const NodeArray& trans, const PieceSegments& g,
                                     Spectrum& fine_r, Spectrum& fine_m, Spectrum& coarse_r, Spectrum& coarse_m) {
   const Eigen::Index n = tau.rows();
@@ -407,7 +428,7 @@ struct SingleScattering::PieceScratch {
   bool ozone = false;
   PieceSegments seg;
   Eigen::ArrayXXf columns, view_columns;
-  NodeArray tau, trans, source, view_tau;
+  NodeArray tau, trans, source, view_tau, view_trans;
   std::vector<double> node_r, node_mu_sun;  // the sun columns' arguments at a piece's nodes
   std::vector<Columns> sun;
   Eigen::ArrayXXf source_t, source_mie_t;  // [wavelength, node], as the source tables write them
@@ -474,7 +495,9 @@ void SingleScattering::higher_orders_piece(const Node* nodes, int m, double os, 
                   sc.source_mie_t.col(k).data());
   }
   optical_depths(sc.view_columns, sc, sc.view_tau);
-  // Rayleigh's sums with J_R, the aerosol's with J_M (each pass computes both; one is kept).
+  sc.view_trans = (-sc.view_tau).exp();
+  // Rayleigh's sums with J_R, the aerosol's with J_M. [wavelength, node] arrays: one species per
+  // pass; [node, wavelength] (few wavelengths): each pass computes both and one is kept.
   Spectrum* rayleigh_sums[4] = {sums[0], &sc.unused[0], sums[2], &sc.unused[1]};
   Spectrum* mie_sums[4] = {&sc.unused[2], sums[1], &sc.unused[3], sums[3]};
   for (int pass = 0; pass < 2; ++pass) {
@@ -483,8 +506,13 @@ void SingleScattering::higher_orders_piece(const Node* nodes, int m, double os, 
       sc.source = source_t.transpose().max(1e-30f);
     else
       sc.source = source_t.max(1e-30f);
-    sc.trans = (-sc.view_tau).exp() * sc.source;
+    sc.trans = sc.view_trans * sc.source;
     sc.tau = sc.view_tau - sc.source.log();
+    if (!sc.by_node) {
+      accumulate_species_by_wavelength(sc.tau, sc.trans, sc.seg, pass, pass == 0 ? *sums[0] : *sums[1],
+                                       pass == 0 ? *sums[2] : *sums[3]);
+      continue;
+    }
     for (auto& u : sc.unused) u.setZero(n);
     accumulate(sc, pass == 0 ? rayleigh_sums : mie_sums);
   }

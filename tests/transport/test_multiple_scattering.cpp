@@ -216,6 +216,7 @@ BOOST_AUTO_TEST_CASE(angular_source_is_the_phase_weighted_field) {
     for (int im = 0; im < 4; ++im)
       for (int c = 0; c < n_c; ++c)
         for (int l = 0; l < 3; ++l) table.j_at(ih, im)[c * 3 + l] = static_cast<float>(a[static_cast<size_t>(c * 3 + l)]);
+  table.prepare();
   // Views at several zenith angles and azimuths, the sun at mu_s = 0.4.
   const double mu_s = 0.4, ss = std::sqrt(1 - mu_s * mu_s);
   std::vector<double> fmu, fw;
@@ -254,6 +255,9 @@ BOOST_AUTO_TEST_CASE(degree_zero_is_the_mean_radiance) {
     for (int im = 0; im < 4; ++im)
       for (int l = 0; l < 3; ++l) table.j_at(ih, im)[l] = static_cast<float>(std::sqrt(4 * kPi) * 0.25 * (l + 1));
   float jr[3], jm[3];
+  // Not prepared after it was written: refused rather than read with stale look-up data.
+  BOOST_CHECK_THROW(table.source(atm.planet_radius_m() + 500.0, 0.3, 0.2, 0.0, jr, jm), std::logic_error);
+  table.prepare();
   for (double nu : {-1.0, 0.0, 0.9}) {
     table.source(atm.planet_radius_m() + 500.0, 0.3, 0.2, nu, jr, jm);
     for (int l = 0; l < 3; ++l) {
@@ -281,6 +285,7 @@ BOOST_AUTO_TEST_CASE(steep_sun_angle_decays_are_interpolated_exponentially) {
   BOOST_TEST(table.mu_sun(1) == 0.0);
   // Halfway in the table's coordinate (u = -0.5, mu = -0.375): the geometric mean for the steep
   // wavelength (the whole row is then scaled, as all of a row's wavelengths share the blend).
+  table.prepare();
   float jr[3], jm[3];
   table.source(atm.planet_radius_m() + 1000.0, -0.375, 0.5, 0.2, jr, jm);
   BOOST_TEST(jr[0] == std::sqrt(1e-3), boost::test_tools::tolerance(1e-4));
@@ -289,6 +294,7 @@ BOOST_AUTO_TEST_CASE(steep_sun_angle_decays_are_interpolated_exponentially) {
   BOOST_TEST(jr[1] == std::sqrt(1.0 / 1.5), boost::test_tools::tolerance(1e-4));
   // No steep wavelength: linear.
   for (int ih = 0; ih < 2; ++ih) table.j_at(ih, 0)[0] = static_cast<float>(norm / 1.5);
+  table.prepare();
   table.source(atm.planet_radius_m() + 1000.0, -0.375, 0.5, 0.2, jr, jm);
   for (int l = 0; l < 3; ++l) BOOST_TEST(jr[l] == 0.5 * (1.0 + 1.0 / 1.5), boost::test_tools::tolerance(1e-5));
 }
