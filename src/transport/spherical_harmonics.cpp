@@ -12,25 +12,41 @@ namespace skyspec {
 
 namespace {
 constexpr int kMaxDegree = 16;
-// K_lm (x sqrt 2 for m > 0) for l, m <= kMaxDegree, at harmonic_index(l, m), computed once.
-const std::vector<double>& normalisation() {
-  static const std::vector<double> k = [] {
-    std::vector<double> v(static_cast<size_t>(harmonic_count(kMaxDegree)));
+// Per (l, m) at harmonic_index(l, m), computed once: K_lm (x sqrt 2 for m > 0), and the
+// coefficients of the recurrence in l, P_l^m = alpha_lm x P_{l-1}^m - beta_lm P_{l-2}^m with
+// alpha_lm = (2l - 1) / (l - m), beta_lm = (l + m - 1) / (l - m) (l > m + 1; for l = m + 1,
+// alpha = 2m + 1 and beta = 0).
+struct Coefficients {
+  std::vector<double> k, alpha, beta;
+};
+const Coefficients& coefficients() {
+  static const Coefficients c = [] {
+    Coefficients v;
+    const size_t n = static_cast<size_t>(harmonic_count(kMaxDegree));
+    v.k.resize(n);
+    v.alpha.assign(n, 0.0);
+    v.beta.assign(n, 0.0);
     for (int l = 0; l <= kMaxDegree; ++l)
       for (int m = 0; m <= l; ++m) {
         double ratio = 1.0;  // (l - m)! / (l + m)!
         for (int j = l - m + 1; j <= l + m; ++j) ratio /= j;
-        v[static_cast<size_t>(harmonic_index(l, m))] =
-            std::sqrt((2.0 * l + 1.0) / (4.0 * kPi) * ratio) * (m > 0 ? std::sqrt(2.0) : 1.0);
+        const size_t i = static_cast<size_t>(harmonic_index(l, m));
+        v.k[i] = std::sqrt((2.0 * l + 1.0) / (4.0 * kPi) * ratio) * (m > 0 ? std::sqrt(2.0) : 1.0);
+        if (l == m + 1) {
+          v.alpha[i] = 2.0 * m + 1.0;
+        } else if (l > m + 1) {
+          v.alpha[i] = (2.0 * l - 1.0) / (l - m);
+          v.beta[i] = (l + m - 1.0) / (l - m);
+        }
       }
     return v;
   }();
-  return k;
+  return c;
 }
 }  // namespace
 
 void symmetric_harmonics(int degree, double mu, double cos_phi, double* out) {
-  const std::vector<double>& k = normalisation();
+  const Coefficients& co = coefficients();
   const double x = std::clamp(mu, -1.0, 1.0), s = std::sqrt(std::max(0.0, 1.0 - x * x));
   const double c = std::clamp(cos_phi, -1.0, 1.0);
   double cos_m_prev = 1.0, cos_m = 1.0;  // cos((m - 1) phi), cos(m phi) by Chebyshev's recurrence
@@ -47,13 +63,13 @@ void symmetric_harmonics(int degree, double mu, double cos_phi, double* out) {
     // P_l^m for l = m .. degree by the three-term recurrence in l.
     double p_prev = 0.0, p = pmm;
     for (int l = m; l <= degree; ++l) {
+      const int i = harmonic_index(l, m);
       if (l > m) {
-        const double next = l == m + 1 ? x * (2.0 * m + 1.0) * p : ((2.0 * l - 1.0) * x * p - (l + m - 1.0) * p_prev) / (l - m);
+        const double next = co.alpha[static_cast<size_t>(i)] * x * p - co.beta[static_cast<size_t>(i)] * p_prev;
         p_prev = p;
         p = next;
       }
-      const int i = harmonic_index(l, m);
-      out[i] = k[static_cast<size_t>(i)] * p * cos_m;
+      out[i] = co.k[static_cast<size_t>(i)] * p * cos_m;
     }
   }
 }
