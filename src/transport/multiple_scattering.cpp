@@ -110,7 +110,7 @@ bool SourceTable::steep_pair(int ih, int imu) const {
 
 void SourceTable::prepare() {
   steep_.assign(static_cast<size_t>(n_h_) * (n_mu_ - 1), 0);
-  log_mean_.assign(static_cast<size_t>(n_h_) * n_mu_ * n_l_, 0.0f);
+  log_mean_.assign(static_cast<size_t>(n_h_) * n_mu_ * n_l_ + kLookupSlack, 0.0f);
   for (int ih = 0; ih < n_h_; ++ih)
     for (int imu = 0; imu + 1 < n_mu_; ++imu) {
       if (!steep_pair(ih, imu)) continue;
@@ -157,11 +157,13 @@ void SourceTable::source(double r_m, double mu, double mu_view, double nu, float
   thread_local std::vector<float> row_factors;
   if (lower_steep || upper_steep) {
     row_factors.assign(2 * static_cast<size_t>(padded), 1.0f);
+    // Over whole blocks (Eigen's vectorised exp): the lanes past the last wavelength read the
+    // next harmonic or the spare floats and are never written out.
     const auto factor = [&](int row, const float* x, const float* y, float* out) {
+      using Map = Eigen::Map<const Eigen::ArrayXf>;
       const float* lx = &log_mean_[(static_cast<size_t>(row) * n_mu_ + im) * n_l_];
-      const float* ly = lx + n_l_;
-      for (int i = 0; i < n_l_; ++i)
-        out[i] = std::exp((1 - am) * lx[i] + am * ly[i]) / std::max((1 - am) * x[i] + am * y[i], 1e-30f);
+      Eigen::Map<Eigen::ArrayXf>(out, padded) = ((1 - am) * Map(lx, padded) + am * Map(lx + n_l_, padded)).exp() /
+                                                ((1 - am) * Map(x, padded) + am * Map(y, padded)).max(1e-30f);
     };
     if (lower_steep) factor(ih, a, b, row_factors.data());
     if (upper_steep) factor(ih + 1, c, d, row_factors.data() + padded);

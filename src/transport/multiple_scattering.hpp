@@ -118,7 +118,8 @@ class SourceTable : public InScatteringSource {
   ZeroedFloats j_;  // j_size() floats and kLookupSlack spare; large tables: zeroed pages on first use
   std::vector<float> g_;
   // Filled by prepare(): steep_[ih * (n_mu_ - 1) + imu] and the logarithm of each entry's mean
-  // radiance (the harmonic l = 0) per wavelength, [ih][imu][wavelength] (entries of steep pairs).
+  // radiance (the harmonic l = 0) per wavelength, [ih][imu][wavelength] (entries of steep pairs;
+  // 0 elsewhere), and kLookupSlack zeros.
   bool prepared_ = false;
   std::vector<unsigned char> steep_;
   std::vector<float> log_mean_;
