@@ -157,13 +157,18 @@ void SourceTable::source(double r_m, double mu, double mu_view, double nu, float
   thread_local std::vector<float> row_factors;
   if (lower_steep || upper_steep) {
     row_factors.assign(2 * static_cast<size_t>(padded), 1.0f);
-    // Over whole blocks (Eigen's vectorised exp): the lanes past the last wavelength read the
-    // next harmonic or the spare floats and are never written out.
+    // Over whole blocks of fixed size (Eigen's vectorised exp on every lane: a dynamic-size
+    // expression would peel a head with the scalar expf depending on the buffer's alignment, so
+    // that the last bit depended on the heap, hence on the thread); the lanes past the last
+    // wavelength read the next harmonic or the spare floats and are never written out.
     const auto factor = [&](int row, const float* x, const float* y, float* out) {
-      using Map = Eigen::Map<const Eigen::ArrayXf>;
+      using Block = Eigen::Array<float, kLookupSlack, 1>;
+      using In = Eigen::Map<const Block, Eigen::Unaligned>;
       const float* lx = &log_mean_[(static_cast<size_t>(row) * n_mu_ + im) * n_l_];
-      Eigen::Map<Eigen::ArrayXf>(out, padded) = ((1 - am) * Map(lx, padded) + am * Map(lx + n_l_, padded)).exp() /
-                                                ((1 - am) * Map(x, padded) + am * Map(y, padded)).max(1e-30f);
+      const float* ly = lx + n_l_;
+      for (int i0 = 0; i0 < padded; i0 += kLookupSlack)
+        Eigen::Map<Block, Eigen::Unaligned>(out + i0) =
+            ((1 - am) * In(lx + i0) + am * In(ly + i0)).exp() / ((1 - am) * In(x + i0) + am * In(y + i0)).max(1e-30f);
     };
     if (lower_steep) factor(ih, a, b, row_factors.data());
     if (upper_steep) factor(ih + 1, c, d, row_factors.data() + padded);
