@@ -72,7 +72,8 @@ class SourceTable : public InScatteringSource {
   void ground_irradiance(double mu_sun, float* out) const override;
   /// Makes the table ready for source() once it is filled: notes which pairs of neighbouring sun
   /// angles are steep (see source()) and keeps the logarithms of their mean radiance. add,
-  /// add_geometric_tail and read undo it (source() then throws), as does writing through j_at.
+  /// add_geometric_tail and read undo it (source() then throws); after writing through j_at it
+  /// must be called again too (that is not tracked).
   void prepare();
 
   /// Geometry of the table's samples.
