@@ -155,6 +155,9 @@ void SourceTable::source(double r_m, double mu, double mu_view, double nu, float
   const bool lower_steep = steep_[static_cast<size_t>(ih) * (n_mu_ - 1) + im] != 0;
   const bool upper_steep = steep_[static_cast<size_t>(ih + 1) * (n_mu_ - 1) + im] != 0;
   const int padded = (n_l_ + kLookupSlack - 1) / kLookupSlack * kLookupSlack;
+  // Blocks of kLookupSlack wavelengths as Eigen fixed-size arrays (one or two vector registers).
+  using Lanes = Eigen::Array<float, kLookupSlack, 1>;
+  using LanesMap = Eigen::Map<const Lanes, Eigen::Unaligned>;
   thread_local std::vector<float> row_factors;
   if (lower_steep || upper_steep) {
     row_factors.assign(2 * static_cast<size_t>(padded), 1.0f);
@@ -163,24 +166,20 @@ void SourceTable::source(double r_m, double mu, double mu_view, double nu, float
     // that the last bit depended on the heap, hence on the thread); the lanes past the last
     // wavelength read the next harmonic or the spare floats and are never written out.
     const auto factor = [&](int row, const float* x, const float* y, float* out) {
-      using Block = Eigen::Array<float, kLookupSlack, 1>;
-      using In = Eigen::Map<const Block, Eigen::Unaligned>;
       const float* lx = &log_mean_[(static_cast<size_t>(row) * n_mu_ + im) * n_l_];
       const float* ly = lx + n_l_;
       for (int i0 = 0; i0 < padded; i0 += kLookupSlack)
-        Eigen::Map<Block, Eigen::Unaligned>(out + i0) =
-            ((1 - am) * In(lx + i0) + am * In(ly + i0)).exp() / ((1 - am) * In(x + i0) + am * In(y + i0)).max(1e-30f);
+        Eigen::Map<Lanes, Eigen::Unaligned>(out + i0) = ((1 - am) * LanesMap(lx + i0) + am * LanesMap(ly + i0)).exp() /
+                                                        ((1 - am) * LanesMap(x + i0) + am * LanesMap(y + i0)).max(1e-30f);
     };
     if (lower_steep) factor(ih, a, b, row_factors.data());
     if (upper_steep) factor(ih + 1, c, d, row_factors.data() + padded);
   }
 
   // J_s = sum_l chi_s,l sum_m Y_lm(view) a_lm, a_lm the blend of the four corners, per block of
-  // kLookupSlack wavelengths (Eigen fixed-size arrays, one or two vector registers each): the
-  // harmonics of each l are summed per corner first and blended once per l. Blocks read past the
-  // last wavelength into the next harmonic or the spare floats; those lanes are not written out.
-  using Lanes = Eigen::Array<float, kLookupSlack, 1>;
-  using LanesMap = Eigen::Map<const Lanes, Eigen::Unaligned>;
+  // wavelengths: the harmonics of each l are summed per corner first and blended once per l.
+  // Blocks read past the last wavelength into the next harmonic or the spare floats; those lanes
+  // are not written out.
   const int rayleigh_degree = std::min(moments_->rayleigh_degree, degree_);
   for (int i0 = 0; i0 < n_l_; i0 += kLookupSlack) {
     Lanes wa = Lanes::Constant(sa), wb = Lanes::Constant(sb), wc = Lanes::Constant(sc), wd = Lanes::Constant(sd);
