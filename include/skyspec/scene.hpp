@@ -83,7 +83,7 @@ struct RenderSpec {
   /// Spherical-harmonic degree of the multiple-scattering tables' radiance fields: 0 treats light
   /// scattered more than once as isotropic (the draft quality); 2 makes Rayleigh exact; more
   /// resolves the aerosol's forward scattering (multiple_scattering.hpp).
-  int ms_angular_degree = 6;
+  int ms_angular_degree = 10;
   /// Keep the multiple-scattering tables on disk and reuse them for the same atmosphere.
   bool cache_tables = true;
   /// Interpolate images from a table of the sky over view directions (sky_view_table.hpp) rather

@@ -53,8 +53,7 @@ std::string_view embedded_file(std::string_view path_below_data) {
   throw Error("no embedded data file named '" + std::string(path_below_data) + "'");
 }
 
-std::uint64_t fnv1a64(std::string_view bytes) {
-  std::uint64_t hash = 0xcbf29ce484222325ull;  // the FNV-1a 64 offset basis
+std::uint64_t fnv1a64(std::string_view bytes, std::uint64_t hash) {
   for (const unsigned char c : bytes) hash = (hash ^ c) * 1099511628211ull;
   return hash;
 }

@@ -13,8 +13,11 @@ const std::vector<std::pair<std::string_view, std::string_view>>& embedded_files
 /// The content of one embedded file; throws skyspec::Error if there is none by that name.
 std::string_view embedded_file(std::string_view path_below_data);
 
-/// FNV-1a, 64 bit, of bytes (a content fingerprint, not a cryptographic hash).
-std::uint64_t fnv1a64(std::string_view bytes);
+/// The FNV-1a 64 offset basis: the hash of no bytes.
+inline constexpr std::uint64_t kFnv1a64Basis = 0xcbf29ce484222325ull;
+/// FNV-1a, 64 bit, of bytes (a content fingerprint, not a cryptographic hash). Bytes hashed in
+/// pieces give the same result when each piece starts from the hash of the ones before.
+std::uint64_t fnv1a64(std::string_view bytes, std::uint64_t hash = kFnv1a64Basis);
 
 /// What an output file says about one embedded data table: its path below data/, where its
 /// numbers come from (the source and version data/README.md states for it), and the size and

@@ -6,7 +6,10 @@
 #include <cstdint>
 #include <cstring>
 #include <fstream>
-#include <sstream>
+#include <istream>
+#include <ostream>
+#include <streambuf>
+#include <string_view>
 #include <stdexcept>
 
 #include <tbb/enumerable_thread_specific.h>
@@ -123,7 +126,8 @@ void SourceTable::prepare() {
   prepared_ = true;
 }
 
-void SourceTable::source(double r_m, double mu, double mu_view, double nu, float* rayleigh, float* mie) const {
+void SourceTable::source_to_degree(int max_degree, double r_m, double mu, double mu_view, double nu, float* rayleigh,
+                                   float* mie) const {
   if (!prepared_) throw std::logic_error("SourceTable::source: the table was not prepared after it was written");
   const double h = std::clamp(r_m - R_, 0.0, Rt_ - R_);
   const double fh = std::sqrt(h / (Rt_ - R_)) * (n_h_ - 1);
@@ -139,10 +143,11 @@ void SourceTable::source(double r_m, double mu, double mu_view, double nu, float
   const double mv = std::clamp(mu_view, -1.0, 1.0);
   const double sin_product = std::sqrt(std::max(0.0, (1.0 - mv * mv) * (1.0 - mu_s * mu_s)));
   const double cos_phi = sin_product > 1e-12 ? (nu - mv * mu_s) / sin_product : 1.0;
+  const int degree = std::clamp(max_degree, 0, degree_);
   double basis_d[kMaxHarmonics];
-  symmetric_harmonics(degree_, mv, cos_phi, basis_d);
+  symmetric_harmonics(degree, mv, cos_phi, basis_d);
   float basis[kMaxHarmonics];
-  for (int k = 0; k < n_c_; ++k) basis[k] = static_cast<float>(basis_d[k]);
+  for (int k = 0; k < skyspec::harmonic_count(degree); ++k) basis[k] = static_cast<float>(basis_d[k]);
 
   // The four corners' weights: bilinear. Along the sun angle the source can fall by orders of
   // magnitude between two columns (inside the planet's shadow), where a linear blend lies far above
@@ -180,7 +185,7 @@ void SourceTable::source(double r_m, double mu, double mu_view, double nu, float
   // wavelengths: the harmonics of each l are summed per corner first and blended once per l.
   // Blocks read past the last wavelength into the next harmonic or the spare floats; those lanes
   // are not written out.
-  const int rayleigh_degree = std::min(moments_->rayleigh_degree, degree_);
+  const int rayleigh_degree = std::min(moments_->rayleigh_degree, degree);
   for (int i0 = 0; i0 < n_l_; i0 += kLookupSlack) {
     Lanes wa = Lanes::Constant(sa), wb = Lanes::Constant(sb), wc = Lanes::Constant(sc), wd = Lanes::Constant(sd);
     if (lower_steep) {
@@ -194,7 +199,7 @@ void SourceTable::source(double r_m, double mu, double mu_view, double nu, float
       wd *= f;
     }
     Lanes out_r = Lanes::Zero(), out_m = Lanes::Zero();
-    for (int l = 0; l <= degree_; ++l) {
+    for (int l = 0; l <= degree; ++l) {
       Lanes pa = Lanes::Zero(), pb = Lanes::Zero(), pc = Lanes::Zero(), pd = Lanes::Zero();
       for (int m = 0; m <= l; ++m) {
         const int k = harmonic_index(l, m);
@@ -290,17 +295,18 @@ double SourceTable::mean_source() const {
 
 namespace {
 
-// Fill `table` with J and G computed from the radiance field that `sources` describes; with a
-// stride > 1, only every stride-th entry (altitude x sun angle, row-major) is computed.
-void integrate_order(const SingleScattering& integrator, const ScatteringSources& sources,
-                     const MultipleScatteringSettings& st, SourceTable& table, int stride = 1) {
+// Fill `table` with J and G computed from the radiance field that `sources` describes, integrated
+// over the directions of `q`; with a stride > 1, only every stride-th entry (altitude x sun angle,
+// row-major) is computed.
+void integrate_order(const SingleScattering& integrator, const ScatteringSources& sources, const DirectionQuadrature& q,
+                     SourceTable& table, int stride = 1) {
   const AtmosphereModel& atm = integrator.atmosphere();
   const double R = atm.planet_radius_m();
   const int n = atm.grid().size();
   const Spectrum unit = Spectrum::Ones(n);
-  std::vector<double> az(static_cast<size_t>(st.azimuth_nodes));
-  for (int j = 0; j < st.azimuth_nodes; ++j) az[static_cast<size_t>(j)] = (j + 0.5) * kPi / st.azimuth_nodes;
-  const double w_az = 2.0 * kPi / st.azimuth_nodes;  // both halves of the symmetric field
+  std::vector<double> az(static_cast<size_t>(q.azimuth_nodes));
+  for (int j = 0; j < q.azimuth_nodes; ++j) az[static_cast<size_t>(j)] = (j + 0.5) * kPi / q.azimuth_nodes;
+  const double w_az = 2.0 * kPi / q.azimuth_nodes;  // both halves of the symmetric field
 
   const int n_c = table.harmonic_count(), degree = table.degree();
   struct Scratch {
@@ -323,8 +329,8 @@ void integrate_order(const SingleScattering& integrator, const ScatteringSources
     const Vec3 x(0, 0, r), s(std::sqrt(std::max(0.0, 1 - mu_s * mu_s)), 0, mu_s);
     const double mu_horizon = -std::sqrt(std::max(0.0, 1 - (R / r) * (R / r)));
     std::vector<double> nodes, weights, gn, gw;
-    gauss_legendre(st.sky_zenith_nodes, mu_horizon, 1.0, nodes, weights);
-    gauss_legendre(st.ground_zenith_nodes, -1.0, mu_horizon, gn, gw);
+    gauss_legendre(q.sky_zenith_nodes, mu_horizon, 1.0, nodes, weights);
+    gauss_legendre(q.ground_zenith_nodes, -1.0, mu_horizon, gn, gw);
     const bool at_ground = ih == 0;
     sc.a.setZero();
     sc.g.setZero();
@@ -350,6 +356,20 @@ void integrate_order(const SingleScattering& integrator, const ScatteringSources
   table.prepare();
 }
 
+// A table read only up to a given degree (ScatteringOrders: building order k from order k - 1).
+class SourceToDegree final : public InScatteringSource {
+ public:
+  SourceToDegree(const SourceTable& table, int degree) : table_(table), degree_(degree) {}
+  void source(double r_m, double mu_sun, double mu_view, double nu, float* rayleigh, float* mie) const override {
+    table_.source_to_degree(degree_, r_m, mu_sun, mu_view, nu, rayleigh, mie);
+  }
+  void ground_irradiance(double mu_sun, float* out) const override { table_.ground_irradiance(mu_sun, out); }
+
+ private:
+  const SourceTable& table_;
+  int degree_;
+};
+
 }  // namespace
 
 ScatteringOrders::ScatteringOrders(const SingleScattering& integrator, const MultipleScatteringSettings& settings)
@@ -367,13 +387,15 @@ ScatteringOrders::ScatteringOrders(const SingleScattering& integrator, const Mul
   sum_ = make_table();
   for (int k = 2; k <= settings_.orders; ++k) {
     throw_if_cancelled();
+    const int degree = degree_of_order(settings_.angular_degree, k);
     auto table = std::make_unique<SourceTable>(atm.planet_radius_m(), atm.top_radius_m(), settings_.altitude_samples,
-                                               settings_.sun_samples, moments,
-                                               degree_of_order(settings_.angular_degree, k));
+                                               settings_.sun_samples, moments, degree);
+    std::unique_ptr<SourceToDegree> source_of_previous;
+    if (k > 2) source_of_previous = std::make_unique<SourceToDegree>(*orders_.back(), degree);
     ScatteringSources previous;
     previous.single = k == 2;
-    previous.higher = k == 2 ? nullptr : orders_.back().get();
-    integrate_order(builder, previous, settings_, *table);
+    previous.higher = source_of_previous.get();
+    integrate_order(builder, previous, quadrature_of_order(settings_.angular_degree, k, settings_.quadrature_refinement), *table);
     sum_->add(*table);
     orders_.push_back(std::move(table));
   }
@@ -394,6 +416,15 @@ int ScatteringOrders::degree_of_order(int angular_degree, int k) {
   return std::max(2, angular_degree - 2 * (k - 2));
 }
 
+DirectionQuadrature ScatteringOrders::quadrature_of_order(int angular_degree, int k, int refinement) {
+  const int d = degree_of_order(angular_degree, k), extra = k == 2 ? 2 : 0;
+  DirectionQuadrature q;
+  q.sky_zenith_nodes = (std::max(8, d + 4) + extra) * refinement;
+  q.ground_zenith_nodes = q.sky_zenith_nodes / 2;
+  q.azimuth_nodes = (std::max(4, d) + extra) * refinement;
+  return q;
+}
+
 double ScatteringOrders::estimate_build_seconds(const SingleScattering& integrator,
                                                const MultipleScatteringSettings& settings) {
   if (settings.orders < 2) return 0.0;
@@ -407,32 +438,35 @@ double ScatteringOrders::estimate_build_seconds(const SingleScattering& integrat
   const int sampled = (entries + stride - 1) / stride;
   const auto moments = PhaseMoments::of(atm, settings.angular_degree);
   SourceTable table(atm.planet_radius_m(), atm.top_radius_m(), n_alt, n_sun, moments);
-  const auto seconds_per_entry = [&](const ScatteringSources& sources) {
+  const auto seconds_per_entry = [&](const ScatteringSources& sources, const DirectionQuadrature& q) {
     const auto t0 = std::chrono::steady_clock::now();
-    integrate_order(builder, sources, settings, table, stride);
+    integrate_order(builder, sources, q, table, stride);
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / sampled;
   };
-  // Order 2 integrates single scattering along its rays; order k > 2 looks order k - 1's table up,
-  // at a cost that grows with that table's harmonics: timed at the largest and the smallest degree
-  // used (zero tables of those degrees), interpolated in the number of harmonics between them.
-  const double second = seconds_per_entry(ScatteringSources{true, nullptr});
+  // Order 2 integrates single scattering along its rays; order k > 2 looks order k - 1's table up
+  // to order k's degree, at a cost per ray that grows with the harmonics read: timed per ray at the
+  // largest and the smallest such degree (zero tables of those degrees, with the quadratures of
+  // orders 3 and K), interpolated in the number of harmonics, times each order's rays.
+  const int a = settings.angular_degree, refine = settings.quadrature_refinement;
+  const double second = seconds_per_entry(ScatteringSources{true, nullptr}, quadrature_of_order(a, 2, refine));
   double higher = 0.0;
   if (settings.orders > 2) {
-    const int d_max = degree_of_order(settings.angular_degree, 2);
-    const int d_min = degree_of_order(settings.angular_degree, settings.orders - 1);
+    const int d_max = degree_of_order(a, 3), d_min = degree_of_order(a, settings.orders);
+    const DirectionQuadrature q_max = quadrature_of_order(a, 3, refine), q_min = quadrature_of_order(a, settings.orders, refine);
     SourceTable big(atm.planet_radius_m(), atm.top_radius_m(), 4, 4, moments, d_max);
     big.prepare();
-    const double t_max = seconds_per_entry(ScatteringSources{false, &big});
+    const double t_max = seconds_per_entry(ScatteringSources{false, &big}, q_max) / q_max.rays();
     double t_min = t_max;
     if (d_min != d_max) {
       SourceTable small(atm.planet_radius_m(), atm.top_radius_m(), 4, 4, moments, d_min);
       small.prepare();
-      t_min = seconds_per_entry(ScatteringSources{false, &small});
+      t_min = seconds_per_entry(ScatteringSources{false, &small}, q_min) / q_min.rays();
     }
     const double c_max = harmonic_count(d_max), c_min = harmonic_count(d_min);
     for (int k = 3; k <= settings.orders; ++k) {
-      const double c = harmonic_count(degree_of_order(settings.angular_degree, k - 1));
-      higher += c_max == c_min ? t_max : t_min + (t_max - t_min) * (c - c_min) / (c_max - c_min);
+      const double c = harmonic_count(degree_of_order(a, k));
+      const double per_ray = c_max == c_min ? t_max : t_min + (t_max - t_min) * (c - c_min) / (c_max - c_min);
+      higher += per_ray * quadrature_of_order(a, k, refine).rays();
     }
   }
   const double all_entries = static_cast<double>(settings.altitude_samples) * settings.sun_samples;
@@ -444,11 +478,65 @@ namespace {
 // tables, and last an FNV-1a 64 checksum of everything before it, so that a file that was
 // truncated, damaged or edited is rebuilt rather than trusted.
 constexpr char kCacheMagic[] = "skyspec scattering orders v4\n";
+
+// Passes what is written on to another stream buffer and hashes it on the way (the tables are tens
+// of megabytes: no copy of them is kept).
+class HashingStreambuf final : public std::streambuf {
+ public:
+  explicit HashingStreambuf(std::streambuf* out) : out_(out) {}
+  std::uint64_t hash() const { return hash_; }
+
+ protected:
+  std::streamsize xsputn(const char* s, std::streamsize n) override {
+    hash_ = fnv1a64(std::string_view(s, static_cast<size_t>(n)), hash_);
+    return out_->sputn(s, n);
+  }
+  int_type overflow(int_type c) override {
+    if (traits_type::eq_int_type(c, traits_type::eof())) return traits_type::not_eof(c);
+    const char ch = traits_type::to_char_type(c);
+    return xsputn(&ch, 1) == 1 ? c : traits_type::eof();
+  }
+
+ private:
+  std::streambuf* out_;
+  std::uint64_t hash_ = kFnv1a64Basis;
+};
+
+// Passes on what is read from another stream buffer, unbuffered, and hashes it on the way: the
+// bytes after the last one taken (the checksum) stay unread in the other buffer.
+class HashingInStreambuf final : public std::streambuf {
+ public:
+  explicit HashingInStreambuf(std::streambuf* in) : in_(in) {}
+  std::uint64_t hash() const { return hash_; }
+
+ protected:
+  int_type underflow() override { return in_->sgetc(); }
+  int_type uflow() override {
+    const int_type c = in_->sbumpc();
+    if (!traits_type::eq_int_type(c, traits_type::eof())) {
+      const char ch = traits_type::to_char_type(c);
+      hash_ = fnv1a64(std::string_view(&ch, 1), hash_);
+    }
+    return c;
+  }
+  std::streamsize xsgetn(char* s, std::streamsize n) override {
+    const std::streamsize got = in_->sgetn(s, n);
+    hash_ = fnv1a64(std::string_view(s, static_cast<size_t>(got)), hash_);
+    return got;
+  }
+
+ private:
+  std::streambuf* in_;
+  std::uint64_t hash_ = kFnv1a64Basis;
+};
 }  // namespace
 
 bool ScatteringOrders::save(const std::string& path, const std::string& key) const {
   try {
-    std::ostringstream out(std::ios::binary);
+    AtomicOutputFile file(path);
+    std::ofstream f(file.temporary_path(), std::ios::binary);
+    HashingStreambuf hashing(f.rdbuf());
+    std::ostream out(&hashing);
     out.write(kCacheMagic, sizeof kCacheMagic - 1);
     const uint64_t key_size = key.size();
     out.write(reinterpret_cast<const char*>(&key_size), sizeof key_size);
@@ -457,15 +545,10 @@ bool ScatteringOrders::save(const std::string& path, const std::string& key) con
     out.write(reinterpret_cast<const char*>(&count), sizeof count);
     for (const auto& t : orders_) t->write(out);
     sum_->write(out);
-    const std::string body = out.str();
-    const uint64_t checksum = fnv1a64(body);
-    AtomicOutputFile file(path);
-    {
-      std::ofstream f(file.temporary_path(), std::ios::binary);
-      f.write(body.data(), static_cast<std::streamsize>(body.size()));
-      f.write(reinterpret_cast<const char*>(&checksum), sizeof checksum);
-      if (!f.flush()) return false;
-    }
+    const uint64_t checksum = hashing.hash();
+    f.write(reinterpret_cast<const char*>(&checksum), sizeof checksum);
+    if (!out || !f.flush()) return false;
+    f.close();
     file.commit();
     return true;
   } catch (const std::exception&) {
@@ -476,20 +559,12 @@ bool ScatteringOrders::save(const std::string& path, const std::string& key) con
 std::unique_ptr<ScatteringOrders> ScatteringOrders::load(const std::string& path, const std::string& key,
                                                          const AtmosphereModel& atm,
                                                          const MultipleScatteringSettings& settings) {
-  std::string bytes;
-  {
-    std::ifstream f(path, std::ios::binary);
-    if (!f) return nullptr;
-    std::ostringstream all;
-    all << f.rdbuf();
-    bytes = all.str();
-  }
-  uint64_t checksum = 0;
-  if (bytes.size() < sizeof checksum) return nullptr;
-  std::memcpy(&checksum, bytes.data() + bytes.size() - sizeof checksum, sizeof checksum);
-  bytes.resize(bytes.size() - sizeof checksum);
-  if (fnv1a64(bytes) != checksum) return nullptr;
-  std::istringstream in(bytes, std::ios::binary);
+  // Read straight into the tables (no copy of the file), hashing on the way; the tables are
+  // trusted only if the checksum that follows them matches and nothing follows it.
+  std::ifstream f(path, std::ios::binary);
+  if (!f) return nullptr;
+  HashingInStreambuf hashing(f.rdbuf());
+  std::istream in(&hashing);
   std::string magic(sizeof kCacheMagic - 1, '\0');
   if (!in.read(magic.data(), static_cast<std::streamsize>(magic.size())) || magic != kCacheMagic) return nullptr;
   uint64_t key_size = 0;
@@ -512,7 +587,10 @@ std::unique_ptr<ScatteringOrders> ScatteringOrders::load(const std::string& path
     o->orders_.push_back(std::move(t));
   }
   o->sum_ = make_table();
-  if (!o->sum_->read(in) || in.peek() != std::char_traits<char>::eof()) return nullptr;
+  if (!o->sum_->read(in)) return nullptr;
+  uint64_t checksum = 0;
+  if (!f.read(reinterpret_cast<char*>(&checksum), sizeof checksum) || checksum != hashing.hash()) return nullptr;
+  if (f.peek() != std::char_traits<char>::eof()) return nullptr;
   o->sum_->prepare();
   return o;
 }

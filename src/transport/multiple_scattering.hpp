@@ -19,7 +19,8 @@
 // radiance for every species and direction). Everything else, extinction, shadow, ground,
 // curvature, is as for single scattering. The directional integrals use Gauss-Legendre
 // quadrature in the zenith cosine, split at the horizon, and the midpoint rule in azimuth over the
-// half space (the field is symmetric about the sun's vertical plane).
+// half space (the field is symmetric about the sun's vertical plane), with as many nodes as the
+// order's degree needs (ScatteringOrders::quadrature_of_order).
 // The tables depend on the atmosphere and the grid only, not on the sun's spectrum.
 #pragma once
 
@@ -38,11 +39,19 @@ struct MultipleScatteringSettings {
   int orders = 4;              ///< highest scattering order counted (1: single scattering only)
   int altitude_samples = 24;   ///< table rows, denser near the ground (x = sqrt(h / h_top))
   int sun_samples = 48;        ///< table columns over mu_s in [-1, 1], denser near the horizon
-  int sky_zenith_nodes = 12;   ///< Gauss-Legendre nodes above the horizon
-  int ground_zenith_nodes = 6; ///< Gauss-Legendre nodes below the horizon
-  int azimuth_nodes = 8;       ///< midpoint nodes over [0, pi]
   int view_segments = 24;      ///< quadrature segments of each ray while building the tables
+  /// Every order's direction nodes (quadrature_of_order) times this in each of the three
+  /// dimensions: 1 for renders; more to check that the tables have converged.
+  int quadrature_refinement = 1;
   int angular_degree = 0;      ///< spherical-harmonic degree of the tabulated fields (0: isotropic)
+};
+
+/// The directions over which an order's radiance field is integrated at each table entry.
+struct DirectionQuadrature {
+  int sky_zenith_nodes = 0;     ///< Gauss-Legendre nodes in the zenith cosine above the horizon
+  int ground_zenith_nodes = 0;  ///< Gauss-Legendre nodes below the horizon
+  int azimuth_nodes = 0;        ///< midpoint nodes over [0, pi]
+  int rays() const { return (sky_zenith_nodes + ground_zenith_nodes) * azimuth_nodes; }
 };
 
 /// The Legendre moments chi_l (l <= degree) of the Rayleigh and aerosol phase functions per
@@ -68,7 +77,13 @@ class SourceTable : public InScatteringSource {
   SourceTable(double planet_radius_m, double top_radius_m, int n_altitude, int n_sun,
               std::shared_ptr<const PhaseMoments> moments, int degree = -1);
   /// Needs prepare() after the last change to the table.
-  void source(double r_m, double mu_sun, double mu_view, double nu, float* rayleigh, float* mie) const override;
+  void source(double r_m, double mu_sun, double mu_view, double nu, float* rayleigh, float* mie) const override {
+    source_to_degree(degree_, r_m, mu_sun, mu_view, nu, rayleigh, mie);
+  }
+  /// source() from the harmonics up to max_degree only (all of them if it is the table's degree or
+  /// more): the field smoothed to that degree.
+  void source_to_degree(int max_degree, double r_m, double mu_sun, double mu_view, double nu, float* rayleigh,
+                        float* mie) const;
   void ground_irradiance(double mu_sun, float* out) const override;
   /// Makes the table ready for source() once it is filled: notes which pairs of neighbouring sun
   /// angles are steep (see source()) and keeps the logarithms of their mean radiance. add,
@@ -129,7 +144,11 @@ class SourceTable : public InScatteringSource {
 /// Orders 2..K computed one from the other; source() and ground_irradiance() return their sum and,
 /// for K >= 3, the orders after K as a geometric series (SourceTable::add_geometric_tail).
 /// Order k's table holds the harmonics of L_{k-1} up to degree_of_order(k): each order's field is
-/// smoother than the one before (every scattering blurs it), so later orders need fewer.
+/// smoother than the one before (every scattering blurs it), so later orders need fewer, and fewer
+/// directions to integrate them (quadrature_of_order). Building order k reads order k - 1's table
+/// only up to order k's degree: along a ray the source's angular shape is carried in the ray's
+/// direction, so the source's harmonics above that degree would feed mainly the field's harmonics
+/// above it, which order k's table does not keep (docs/validation.md measures the effect).
 class ScatteringOrders : public InScatteringSource {
  public:
   /// The integrator provides the atmosphere, the sun columns and the single-scattering term.
@@ -143,15 +162,19 @@ class ScatteringOrders : public InScatteringSource {
   /// The degree of order k's table: angular_degree for order 2, two less per order after it, but
   /// never below 2 (Rayleigh's degree) unless angular_degree is below 2.
   static int degree_of_order(int angular_degree, int k);
+  /// The directions order k's table is integrated over, for a table of degree d: Gauss-Legendre
+  /// nodes max(8, d + 4) above the horizon and half as many below, max(4, d) azimuths over [0, pi];
+  /// order 2, whose source (single scattering) is cheap to evaluate and whose field has the
+  /// sharpest features (the aerosol's forward peak around the sun), two more of each.
+  static DirectionQuadrature quadrature_of_order(int angular_degree, int k, int refinement = 1);
   /// The table of order k, 2 <= k <= highest_order().
   const SourceTable& order(int k) const { return *orders_.at(static_cast<size_t>(k - 2)); }
   const SourceTable& sum() const { return *sum_; }
   double build_seconds() const { return build_seconds_; }
 
-  /// Seconds the constructor would take for these settings, without building them: orders 2 of a
-  /// 4 x 4 table (the same rays per entry as the real one) are built and timed, and the time is
-  /// scaled by the entries (altitudes x sun angles) and the orders. Orders after the second cost
-  /// about what the second does (a table look-up replaces the single-scattering sum at each step).
+  /// Seconds the constructor would take for these settings, without building them: order 2 and
+  /// the look-ups of the higher orders are timed on a sample of entries with each order's
+  /// directions and scaled by the entries (altitudes x sun angles) and the orders.
   static double estimate_build_seconds(const SingleScattering& integrator, const MultipleScatteringSettings& settings);
   /// Bytes of the tables these settings build (every order's and the sum) for n wavelengths.
   static std::uint64_t table_bytes(const MultipleScatteringSettings& settings, int wavelengths);

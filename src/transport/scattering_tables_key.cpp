@@ -46,9 +46,12 @@ ScatteringTablesKey scattering_tables_key(const AtmosphereModel& atm, const SunC
   write_array(out, "ground.albedo", atm.ground_albedo());
   out << "sun_table " << sun_table.n_r << ' ' << sun_table.n_mu << ' ' << sun_table.segments << '\n';
   out << "orders " << ms.orders << "\naltitude_samples " << ms.altitude_samples << "\nsun_samples "
-      << ms.sun_samples << "\nsky_zenith_nodes " << ms.sky_zenith_nodes << "\nground_zenith_nodes "
-      << ms.ground_zenith_nodes << "\nazimuth_nodes " << ms.azimuth_nodes << "\nview_segments " << ms.view_segments
-      << "\nangular_degree " << ms.angular_degree << '\n';
+      << ms.sun_samples << "\nview_segments " << ms.view_segments << "\nangular_degree " << ms.angular_degree << '\n';
+  for (int k = 2; k <= ms.orders; ++k) {
+    const DirectionQuadrature q = ScatteringOrders::quadrature_of_order(ms.angular_degree, k, ms.quadrature_refinement);
+    out << "order " << k << " degree " << ScatteringOrders::degree_of_order(ms.angular_degree, k) << " directions "
+        << q.sky_zenith_nodes << ' ' << q.ground_zenith_nodes << ' ' << q.azimuth_nodes << '\n';
+  }
   ScatteringTablesKey key;
   key.inputs = out.str();
   key.hash = fnv1a64(key.inputs);
