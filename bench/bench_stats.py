@@ -123,6 +123,82 @@ def paired_lines(out, base):
     return lines
 
 
+def codec_lines(out):
+    """OpenEXR's lossless codecs on case 5's pixels (codecs.tsv from bench/exr_codecs.cpp)."""
+    path = out / "codecs.tsv"
+    if not path.exists():
+        return []
+    rows = [line.split("\t") for line in path.read_text().splitlines() if line.strip()]
+    piz = {int(t): int(b) for c, t, _, _, b in rows if c == "piz"}
+    lines = ["OpenEXR's lossless codecs on case 5's panorama at 1024 x 512 x 81 wavelengths (bench/exr_codecs.cpp, "
+             "fastest of 2 writes to /dev/shm):", "",
+             "| codec | threads | seconds | MB/s of floats | file (MB) | size / PIZ's |", "| --- | ---: | ---: | ---: | ---: | ---: |"]
+    for codec, threads, sec, raw, size in rows:
+        t, sec, raw, size = int(threads), float(sec), float(raw), int(size)
+        lines.append(f"| {codec} | {t} | {sec:.3f} | {raw / sec / 1e6:.0f} | {size / 1e6:.1f} | {size / piz[t]:.2f} |")
+    # The fastest lossless codec whose file is at most 1.25 x PIZ's (issue 21's bound), on 2 threads,
+    # and what its rate means for case 5's full-size file (8192 x 4096 x 84 channels of floats).
+    ok = [(float(raw) / float(sec), codec) for codec, t, sec, raw, size in rows
+          if int(t) == 2 and codec != "none" and int(size) <= 1.25 * piz[2]]
+    if ok:
+        rate, codec = max(ok)
+        full = 8192 * 4096 * 84 * 4
+        lines += ["", f"fastest lossless codec within 1.25 x PIZ's size on 2 threads: {codec}, {rate / 1e6:.0f} MB/s of floats; "
+                  f"case 5's {full / 1e9:.1f} GB of floats at that rate: {full / rate:.1f} s for the compression alone"]
+    return lines
+
+
+def target_lines(out, base, table_p99):
+    """Issue 21's six targets, each with its figure from this run and a pass / FAIL mark."""
+    def mark(ok):
+        return "-" if ok is None else ("pass" if ok else "FAIL")
+
+    def exists(*names):
+        return all((out / f"{n}.time").exists() for n in names)
+    lines = ["Issue 21's targets, from this run:"]
+    if exists("c5-10"):
+        wall, rss = time_of(out, "c5-10")
+        lines.append(f"1. 8192 x 4096 x 81 spectral EXR, lossless (PIZ): {wall:.1f} s (at most 15 s: {mark(wall <= 15)}), "
+                     f"peak RSS {rss:.0f} MB (at most 1024 MB: {mark(rss <= 1024)}); 16384 x 8192 not run "
+                     "(a 43 GB file, several minutes)")
+    def pairs_over_suns(a, b, case):
+        """Run i of a over run i of b at every sun the case ran at ("{}" in a and b is the sun)."""
+        suns = [s for s in ("30", "10", "2") if s in base and exists(f"{case}-{s}")]
+        r = []
+        for sun in suns:
+            r += [p / q for p, q in zip(runs_of(out, a.format(sun))[0], runs_of(out, b.format(sun))[0])]
+        return suns, r
+    suns, ratios = pairs_over_suns("c1-{}", "base-{}", "c1")
+    if ratios:
+        p99 = max(table_p99.get(f"c1-{s}", 1.0) for s in suns)
+        lines.append(f"2. case 1 (41 wl, 512 fisheye, default PIZ file) / baseline, per interleaved pair: "
+                     f"{min(ratios):.2f}-{max(ratios):.2f} (at most 0.5 in every pair: {mark(max(ratios) <= 0.5)}); "
+                     f"p99 error {p99:.1e} (at most 5e-3: {mark(p99 <= 5e-3)}); the file is PIZ's (size 1.00 x)")
+    if exists("c6-cold"):
+        wall, _ = time_of(out, "c6-cold")
+        lines.append(f"3. default scene, first render with no cached tables (256 x 256): {wall:.2f} s "
+                     f"(at most 2 s: {mark(wall <= 2.0)})")
+    if exists("c3-1t", "c3-2t", "c3x-1t"):
+        t2, tx = runs_of(out, "c3-2t")[0], runs_of(out, "c3x-1t")[0]
+        # speed-up / ceiling per pair = (t1 / t2) / (2 t1 / tx) = tx / (2 t2)
+        share = sorted(x / (2 * y) for x, y in zip(tx, t2))
+        med = float(np.median(share))
+        lines.append(f"4. two threads on case 1 (PIZ), speed-up / ceiling per interleaved pair: median {med:.2f} "
+                     f"({share[0]:.2f}-{share[-1]:.2f}) (at least 0.95: {mark(med >= 0.95)})")
+    _, r = pairs_over_suns("base-{}", "c2-{}", "c2")
+    if r:
+        lines.append(f"5. RGB-fast, default quality and PIZ file: baseline / case 2 per interleaved pair {min(r):.1f}-{max(r):.1f}x "
+                     f"(at least 10x in every pair: {mark(min(r) >= 10)})")
+    if exists("c4-10", "c6-hemi") and "10" in base:
+        single, _ = time_of(out, "c4-10")
+        multi, _ = time_of(out, "c6-hemi")
+        lines.append(f"6. 512 x 256 upper hemisphere, 41 wl, PIZ: default scene (6 orders, tables cached) {multi:.3f} s, "
+                     f"{multi / base['10']:.2f} x the baseline's time; case 1's scene (single scattering) {single:.3f} s, "
+                     f"{single / base['10']:.2f} x (target: at most 0.5 x the process time of Blender's Nishita texture "
+                     f"for the same view, which is not in the repository: {mark(None)})")
+    return lines
+
+
 def main():
     out = Path(sys.argv[1])
     rows = [line.rstrip("\n").split("\t") for line in (out / "manifest.tsv").read_text().splitlines()]
@@ -142,6 +218,7 @@ def main():
         rows_out.append((label, sun, wall_cell(out, name), 1.0, p50, p99, rss, None))
     has_base = any(k != "rows" for k in base)
     table = []
+    table_p99 = {}
     refcheck = None
     for kind, name, label, sun in rows:
         if kind == "base":
@@ -159,6 +236,8 @@ def main():
             p50, p99 = rel_error(img, ref)
         ratio = wall / base[sun] if has_base and sun in base and label.startswith(("1", "2", "3", "4")) else None
         table.append((label, sun, wall_cell(out, name), ratio, p50, p99, rss, stages_of(out, name)))
+        if p99 is not None:
+            table_p99[name] = p99
     if has_base:
         table = sorted(base["rows"], key=lambda r: -float(r[1])) + table
 
@@ -185,6 +264,10 @@ def main():
     if refcheck:
         print(f"reference check, case 1 at sun 2: 256 vs 512 view segments differ by p50 {refcheck[0]:.1e}, "
               f"p99 {refcheck[1]:.1e}")
+    for block in (codec_lines(out), target_lines(out, base, table_p99)):
+        if block:
+            print()
+            print("\n".join(block))
 
 
 if __name__ == "__main__":

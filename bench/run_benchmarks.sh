@@ -190,10 +190,21 @@ cp "$out/ref-c4-10.exr" "$out/ref-c4n1-10.exr"
 echo "case 5 (large EXR) ..."
 sky time "c5-10" "5: spectral 81 wl, 8192x4096 equirect EXR" 10 --scene "$scene" --camera equirectangular --width 8192 --height 4096 --lambda-step 5
 rm -f "$out/c5-10.exr"
+# What OpenEXR's lossless codecs can do with case 5's pixels: its scene and view at 1024 x 512 (a
+# 64th of the pixels), uncompressed, then written again with each codec on 1 and 2 threads
+# (bench/exr_codecs.cpp, the fastest of 2 writes each, into /dev/shm so the disk does not count).
+echo "codecs (case 5's panorama at 1024 x 512, each lossless codec) ..."
+"$skyspec" render -q --no-png --out "$out" --name "codec-sample" --sun-elevation 10 --scene "$scene" \
+  --camera equirectangular --width 1024 --height 512 --lambda-step 5 --set output.exr_compression=none
+g++ -O2 -std=c++17 "$here/exr_codecs.cpp" -o "$out/exr_codecs" $(pkg-config --cflags --libs OpenEXR)
+"$out/exr_codecs" "$out/codec-sample.exr" /dev/shm 2 > "$out/codecs.tsv"
+rm -f "$out/codec-sample.exr"
 echo "case 6 (multiple scattering tables, cold then cached) ..."
 sky time "c6-cold" "6: default scene (6 orders), tables built" 30 --width 256 --height 256
 sky time "c6-warm" "6: the same, tables from the disk cache" 30 --width 256 --height 256
 sky time "c6-single" "6: the same, single scattering (no tables)" 30 --width 256 --height 256 --set render.scattering_orders=1
+# Issue 21's target 6 with multiple scattering: case 4's view of the default scene (tables cached).
+sky time "c6-hemi" "6: default scene, 512x256 equirect upper hemisphere, tables cached, EXR (PIZ)" 10 "${HEMI[@]}"
 # The default scene's accuracy at the default quality (ozone, sun disk, 6 orders; the reference
 # shares its multiple-scattering tables, so this is the error of the march and the tables of
 # the render itself).
