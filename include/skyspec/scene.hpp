@@ -78,8 +78,8 @@ struct RenderSpec {
   int threads = 0;  ///< 0: all cores
   /// Highest scattering order (1: single scattering); orders >= 2 come from precomputed tables.
   int scattering_orders = 6;
-  int ms_altitude_samples = 24;
-  int ms_sun_samples = 48;
+  int ms_altitude_samples = 16;
+  int ms_sun_samples = 72;
   /// Spherical-harmonic degree of the multiple-scattering tables' radiance fields: 0 treats light
   /// scattered more than once as isotropic (the draft quality); 2 makes Rayleigh exact; more
   /// resolves the aerosol's forward scattering (multiple_scattering.hpp).

@@ -37,8 +37,8 @@ namespace skyspec {
 
 struct MultipleScatteringSettings {
   int orders = 4;              ///< highest scattering order counted (1: single scattering only)
-  int altitude_samples = 24;   ///< table rows, denser near the ground (x = sqrt(h / h_top))
-  int sun_samples = 48;        ///< table columns over mu_s in [-1, 1], denser near the horizon
+  int altitude_samples = 16;   ///< table rows, denser near the ground (x = sqrt(h / h_top))
+  int sun_samples = 72;        ///< table columns over mu_s in [-1, 1], denser near the horizon
   int view_segments = 24;      ///< quadrature segments of each ray while building the tables
   /// Every order's direction nodes (quadrature_of_order) times this in each of the three
   /// dimensions: 1 for renders; more to check that the tables have converged.
