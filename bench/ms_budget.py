@@ -22,7 +22,7 @@ def read(path):
 def main():
     out = Path(sys.argv[1])
     base, wl = read(out / "orders6.exr")
-    for name, what in (("orders12", "6 orders instead of 12"), ("tables48x96", "24 x 48 tables instead of 48 x 96")):
+    for name, what in (("orders12", "6 orders instead of 12"), ("tables32x144", "16 x 72 tables instead of 32 x 144")):
         other, _ = read(out / f"{name}.exr")
         lit = other.max(axis=-1) > 1e-6 * other.max()  # the fisheye's corners are black
         cells = []

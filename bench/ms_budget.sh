@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The multiple-scattering figures of docs/physics.md (section "Beyond single scattering"): how much
-# stopping at 6 orders and the default 24 x 48 tables change the default scene, per wavelength,
+# stopping at 6 orders and the default 16 x 72 tables change the default scene, per wavelength,
 # and what the higher orders add at the zenith. About a minute on 2 cores.
 #
 #   bench/ms_budget.sh [--skyspec PATH] [--out DIR]
@@ -21,7 +21,7 @@ export SKYSPEC_CACHE_DIR="$out/cache"; rm -rf "$SKYSPEC_CACHE_DIR"
 common=(render -q --no-png --out "$out" --width 128 --height 128)
 "$skyspec" "${common[@]}" --name orders6
 "$skyspec" "${common[@]}" --name orders12 --set render.scattering_orders=12
-"$skyspec" "${common[@]}" --name tables48x96 --set render.ms_altitude_samples=48 --set render.ms_sun_samples=96
+"$skyspec" "${common[@]}" --name tables32x144 --set render.ms_altitude_samples=32 --set render.ms_sun_samples=144
 "$skyspec" "${common[@]}" --name zenith6 --width 33 --height 33
 "$skyspec" "${common[@]}" --name zenith1 --width 33 --height 33 --set render.scattering_orders=1
 /usr/bin/python3 "$here/ms_budget.py" "$out"
