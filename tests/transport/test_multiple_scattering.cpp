@@ -23,6 +23,17 @@ namespace {
 const std::vector<double>& kNm = test::kSeedNm;
 const std::vector<double>& kBetaR = test::kSeedBetaRayleigh;
 
+// Tables small enough for a unit test: `orders` orders over altitudes x sun angles entries, of the
+// given spherical-harmonic degree (0: isotropic, the settings' own default).
+MultipleScatteringSettings small_tables(int orders, int altitudes, int sun_angles, int degree = 0) {
+  MultipleScatteringSettings ms;
+  ms.orders = orders;
+  ms.altitude_samples = altitudes;
+  ms.sun_samples = sun_angles;
+  ms.angular_degree = degree;
+  return ms;
+}
+
 // Upward flux leaving the top of the atmosphere at the sub-solar point:
 // F_up = integral over downward directions of L |mu| d omega (Gauss-Legendre in mu, azimuth
 // symmetric for a sun at the zenith).
@@ -51,10 +62,7 @@ BOOST_AUTO_TEST_CASE(conservative_atmosphere_over_white_ground_conserves_energy)
   spec.ground.albedo = 1.0;
   const test::IntegratorChain chain(spec, kNm, {128, 256, 64}, 64);
   const SingleScattering& ss = chain.integrator;
-  MultipleScatteringSettings ms;
-  ms.orders = 30;
-  ms.altitude_samples = 16;
-  ms.sun_samples = 32;
+  MultipleScatteringSettings ms = small_tables(30, 16, 32);
   // The isotropic tables (degree 0) and the angular ones of the default quality (degree 10; 12
   // orders and the geometric series of the rest, for time).
   for (int degree : {0, 10}) {
@@ -79,10 +87,7 @@ BOOST_AUTO_TEST_CASE(orders_decrease) {
   const test::IntegratorChain chain(test::simple_atmosphere(ProfileKind::Exponential, 60e3, kNm, kBetaR, 21e-6), kNm,
                                     {64, 128, 64}, 32);
   const SingleScattering& ss = chain.integrator;
-  MultipleScatteringSettings ms;
-  ms.orders = 6;
-  ms.altitude_samples = 12;
-  ms.sun_samples = 24;
+  MultipleScatteringSettings ms = small_tables(6, 12, 24);
   const ScatteringOrders orders(ss, ms);
   double previous = orders.order(2).mean_source();
   BOOST_TEST(previous > 0.0);
@@ -102,10 +107,7 @@ BOOST_AUTO_TEST_CASE(single_scattering_part_is_unchanged) {
   spec.ground.albedo = 0.3;
   const test::IntegratorChain chain(spec, kNm, {64, 128, 64}, 64);
   const SingleScattering& ss = chain.integrator;
-  MultipleScatteringSettings ms;
-  ms.orders = 3;
-  ms.altitude_samples = 8;
-  ms.sun_samples = 16;
+  MultipleScatteringSettings ms = small_tables(3, 8, 16);
   const ScatteringOrders orders(ss, ms);
   ScatteringWorkspace ws(3);
   Spectrum all(3), higher(3), single(3);
@@ -138,10 +140,7 @@ BOOST_AUTO_TEST_CASE(tables_round_trip_through_the_cache) {
                                     {32, 64, 32}, 16);
   const AtmosphereModel& atm = chain.atm;
   const SingleScattering& ss = chain.integrator;
-  MultipleScatteringSettings ms;
-  ms.orders = 3;
-  ms.altitude_samples = 6;
-  ms.sun_samples = 8;
+  MultipleScatteringSettings ms = small_tables(3, 6, 8);
   const ScatteringOrders built(ss, ms);
   const test::ScratchFolder dir("ms-cache");
   const std::string path = (dir.path / "orders.bin").string();
@@ -353,11 +352,7 @@ BOOST_AUTO_TEST_CASE(direction_quadrature_of_the_orders_has_converged) {
   spec.ground.albedo = 0.3;
   const test::IntegratorChain chain(spec, kNm, {64, 128, 64}, 64);
   const SingleScattering& ss = chain.integrator;
-  MultipleScatteringSettings ms;
-  ms.orders = 4;
-  ms.altitude_samples = 8;
-  ms.sun_samples = 16;
-  ms.angular_degree = 10;
+  MultipleScatteringSettings ms = small_tables(4, 8, 16, 10);
   const ScatteringOrders coarse(ss, ms);
   ms.quadrature_refinement = 2;
   const ScatteringOrders fine(ss, ms);
