@@ -99,10 +99,19 @@ SourceTable::SourceTable(double planet_radius_m, double top_radius_m, int n_alti
   if (n_c_ > kMaxHarmonics) throw Error("the scattering-order tables take harmonics up to degree 12");
 }
 
-double SourceTable::altitude_m(int ih) const {
-  const double x = static_cast<double>(ih) / (n_h_ - 1);
-  return (Rt_ - R_) * x * x;
+// The rows are uniform in x = ln(1 + h / H) / ln(1 + h_top / H), H = kRowAltitudeScale_m: nearly
+// linear in h below H, logarithmic above. 16 rows over 60 km lie at 0, 0.13, 0.31, 0.57, 0.93, 1.46,
+// 2.2, 3.3 km, ..., 29, 42, 60 km: the lowest kilometre, where the aerosol is and the observer
+// usually stands, gets a third of them (docs/validation.md compares mappings).
+double SourceTable::altitude_of_row_coordinate(double x) const {
+  return kRowAltitudeScale_m * std::expm1(x * std::log1p((Rt_ - R_) / kRowAltitudeScale_m));
 }
+
+double SourceTable::row_coordinate_of_altitude(double h) const {
+  return std::log1p(h / kRowAltitudeScale_m) / std::log1p((Rt_ - R_) / kRowAltitudeScale_m);
+}
+
+double SourceTable::altitude_m(int ih) const { return altitude_of_row_coordinate(static_cast<double>(ih) / (n_h_ - 1)); }
 
 double SourceTable::mu_sun(int imu) const { return mu_from_u(-1.0 + 2.0 * imu / (n_mu_ - 1)); }
 
@@ -130,7 +139,7 @@ void SourceTable::source_to_degree(int max_degree, double r_m, double mu, double
                                    float* mie) const {
   if (!prepared_) throw std::logic_error("SourceTable::source: the table was not prepared after it was written");
   const double h = std::clamp(r_m - R_, 0.0, Rt_ - R_);
-  const double fh = std::sqrt(h / (Rt_ - R_)) * (n_h_ - 1);
+  const double fh = row_coordinate_of_altitude(h) * (n_h_ - 1);
   const double mu_s = std::clamp(mu, -1.0, 1.0);
   const double fm = (u_from_mu(mu_s) + 1.0) * 0.5 * (n_mu_ - 1);
   const int ih = std::min(static_cast<int>(fh), n_h_ - 2), im = std::min(static_cast<int>(fm), n_mu_ - 2);

@@ -37,7 +37,7 @@ namespace skyspec {
 
 struct MultipleScatteringSettings {
   int orders = 4;              ///< highest scattering order counted (1: single scattering only)
-  int altitude_samples = 16;   ///< table rows, denser near the ground (x = sqrt(h / h_top))
+  int altitude_samples = 16;   ///< table rows, denser near the ground (SourceTable::altitude_m)
   int sun_samples = 72;        ///< table columns over mu_s in [-1, 1], denser near the horizon
   int view_segments = 24;      ///< quadrature segments of each ray while building the tables
   /// Every order's direction nodes (quadrature_of_order) times this in each of the three
@@ -91,8 +91,13 @@ class SourceTable : public InScatteringSource {
   /// must be called again too (that is not tracked).
   void prepare();
 
-  /// Geometry of the table's samples.
+  /// The altitude scale of the rows' spacing (altitude_of_row_coordinate), m.
+  static constexpr double kRowAltitudeScale_m = 300.0;
+  /// Geometry of the table's samples: row i at altitude_of_row_coordinate(i / (rows - 1)).
   double altitude_m(int i_altitude) const;
+  /// h(x) = H (exp(x ln(1 + h_top / H)) - 1) for x in [0, 1], H = kRowAltitudeScale_m, and its inverse.
+  double altitude_of_row_coordinate(double x) const;
+  double row_coordinate_of_altitude(double altitude_m) const;
   double mu_sun(int i_sun) const;
   int altitude_count() const { return n_h_; }
   int sun_count() const { return n_mu_; }

@@ -266,6 +266,43 @@ BOOST_AUTO_TEST_CASE(degree_zero_is_the_mean_radiance) {
   }
 }
 
+// The rows: the ground and the top, the lowest kilometre with a third of 16 rows over 60 km, the
+// spacing growing upwards, and the look-up's coordinate the inverse of the rows' altitudes. A
+// field linear in altitude between two rows is read back exactly at any altitude between them
+// (the look-up interpolates in the row coordinate, so only its rows are exact: it is checked here
+// at the rows and at their midpoints in the coordinate).
+BOOST_AUTO_TEST_CASE(altitude_rows_are_dense_near_the_ground) {
+  const AtmosphereModel atm(test::simple_atmosphere(ProfileKind::Exponential, 60e3, kNm, kBetaR, 21e-6),
+                            WavelengthGrid::from_list(kNm));
+  const int rows = 16;
+  SourceTable table(atm.planet_radius_m(), atm.top_radius_m(), rows, 4, PhaseMoments::of(atm, 0));
+  BOOST_TEST(table.altitude_m(0) == 0.0, boost::test_tools::tolerance(1e-9));
+  BOOST_TEST(table.altitude_m(rows - 1) == 60e3, boost::test_tools::tolerance(1e-9));
+  int below_1km = 0;
+  for (int i = 0; i < rows; ++i) {
+    const double h = table.altitude_m(i);
+    if (h < 1000.0) ++below_1km;
+    BOOST_TEST(table.row_coordinate_of_altitude(h) * (rows - 1) == static_cast<double>(i), boost::test_tools::tolerance(1e-9));
+    if (i >= 2) BOOST_TEST(h - table.altitude_m(i - 1) > table.altitude_m(i - 1) - table.altitude_m(i - 2));
+  }
+  BOOST_TEST(below_1km == 5);  // 0, 0.13, 0.31, 0.57, 0.93 km
+  BOOST_TEST(table.altitude_m(1) < 200.0);
+  // Each row holds its own altitude as the mean radiance; reading between rows gives the blend in
+  // the row coordinate.
+  for (int ih = 0; ih < rows; ++ih)
+    for (int im = 0; im < 4; ++im)
+      for (int l = 0; l < 3; ++l) table.j_at(ih, im)[l] = static_cast<float>(std::sqrt(4 * kPi) * table.altitude_m(ih));
+  table.prepare();
+  float jr[3], jm[3];
+  for (int i = 0; i + 1 < rows; ++i) {
+    const double x = (i + 0.5) / (rows - 1);
+    const double h = table.altitude_of_row_coordinate(x);
+    table.source(atm.planet_radius_m() + h, 0.3, 0.2, 0.0, jr, jm);
+    const double expected = 0.5 * (table.altitude_m(i) + table.altitude_m(i + 1));
+    BOOST_TEST(jr[0] == expected, boost::test_tools::tolerance(1e-5));
+  }
+}
+
 // Between two sun-angle columns whose mean radiances differ by more than a factor 2 (inside the
 // planet's shadow the sources fall by orders of magnitude per column) the lookup follows an
 // exponential, not a straight line; where they are close it stays linear.
