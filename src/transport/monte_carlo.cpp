@@ -51,6 +51,18 @@ Vec3 rotate_about(const Vec3& d, double mu, double phi) {
   const double s = std::sqrt(std::max(0.0, 1.0 - mu * mu));
   return (s * std::cos(phi) * u + s * std::sin(phi) * v + mu * d).normalized();
 }
+
+// The first axis of a Stokes frame for light travelling along k: `reference` made perpendicular to
+// k (any perpendicular axis if they are parallel).
+Vec3 frame_axis(const Vec3& k, const Vec3& reference) {
+  Vec3 e1 = reference - reference.dot(k) * k;
+  if (e1.norm() < 1e-9) {
+    Vec3 u, v;
+    basis_around(k, u, v);
+    return u;
+  }
+  return e1.normalized();
+}
 }  // namespace
 
 // PCG32 (O'Neill 2014, "PCG: A family of simple fast space-efficient statistically good
@@ -212,6 +224,29 @@ double MonteCarloIntegrator::phase_to_sun(const double* scattering, double total
   return p / total;
 }
 
+ScatteringMatrix MonteCarloIntegrator::mixture_matrix(const double* scattering, double total, double mu) const {
+  ScatteringMatrix f;
+  for (size_t k = 0; k < medium_.components.size(); ++k) {
+    if (scattering[k] <= 0.0) continue;
+    const auto& c = medium_.components[k];
+    ScatteringMatrix fk;
+    switch (c.phase) {
+      case MonteCarloComponent::Phase::Rayleigh: fk = rayleigh_scattering_matrix(mu, c.phase_parameter); break;
+      case MonteCarloComponent::Phase::HenyeyGreenstein:
+        fk = non_polarising_scattering_matrix(henyey_greenstein_phase(mu, c.phase_parameter));
+        break;
+      case MonteCarloComponent::Phase::CornetteShanks:
+        fk = non_polarising_scattering_matrix(cornette_shanks_phase(mu, c.phase_parameter));
+        break;
+      case MonteCarloComponent::Phase::None: continue;
+    }
+    fk *= scattering[k];
+    f += fk;
+  }
+  f *= 1.0 / total;
+  return f;
+}
+
 Vec3 MonteCarloIntegrator::sample_scattering(const double* scattering, double total, const Vec3& d, Rng& rng) const {
   // The species, in proportion to its scattering coefficient.
   size_t k = 0;
@@ -266,11 +301,32 @@ Vec3 MonteCarloIntegrator::sample_scattering(const double* scattering, double to
 //     and the phase function gives the next direction. Without one the path goes on from the
 //     ground (weight x albedo, a cosine-distributed direction) or ends in space.
 // So every segment scores, even where most paths leave the medium without a collision.
-double MonteCarloIntegrator::path(Vec3 p, Vec3 d, int max_orders, Rng& rng) const {
+template <int N>
+Eigen::Matrix<double, N, 1> MonteCarloIntegrator::path(Vec3 p, Vec3 d, const Vec3& reference, int max_orders,
+                                                       Rng& rng) const {
+  constexpr bool kStokes = N == 4;
+  using Result = Eigen::Matrix<double, N, 1>;
   constexpr double kPointsPerSegment = 8.0;
-  double L = 0.0, w = 1.0;
+  Result L = Result::Zero();
+  double w = 1.0;
   const double E = medium_.sun_irradiance;
   double scattering[kMaxComponents] = {};
+  // Vector transport: M maps the Stokes vector of the light arriving along the current segment
+  // (travelling along k = -d), in the frame (e1, k x e1), to the observer's; w stays the scalar
+  // part (albedos, roulette), so the intensity path is the scalar one.
+  MuellerMatrix M = MuellerMatrix::Identity();
+  Vec3 e1 = Vec3::Zero();
+  if constexpr (kStokes) e1 = frame_axis(-d, reference);
+  // The light leaving a scattering point towards the observer along -d, from light arriving along
+  // k_in: returns n, the scattering plane's normal, and the rotation from the plane's outgoing
+  // frame to (e1, k x e1).
+  const auto scattering_plane = [&](const Vec3& k_in, const Vec3& k_out, Vec3& n) {
+    n = k_in.cross(k_out);
+    const double len = n.norm();
+    n = len > 1e-12 ? Vec3(n / len) : Vec3(k_out.cross(e1));  // forward or backward: any plane
+    const Vec3 e1_plane = n.cross(k_out);
+    return stokes_rotation(e1.dot(e1_plane), e1.dot(n));
+  };
   for (int order = 1; order <= kMaxEvents; ++order) {
     bool ground = false;
     const double t_max = distance_to_boundary(p, d, ground);
@@ -278,6 +334,14 @@ double MonteCarloIntegrator::path(Vec3 p, Vec3 d, int max_orders, Rng& rng) cons
     double T = 1.0, t = 0.0;
     double t_real = -1.0, albedo_real = 0.0;
     Vec3 d_real = d;
+    double scattering_real[kMaxComponents] = {};
+    double sigma_s_real = 0.0;
+    // Rotation from the sun's scattering plane to the segment's frame (the same at every point).
+    MuellerMatrix sun_rotation = MuellerMatrix::Identity();
+    if constexpr (kStokes) {
+      Vec3 n;
+      sun_rotation = scattering_plane(-sun_, -d, n);
+    }
     if (rate > 0.0 && t_max > 0.0) {
       const double mu_sun = d.dot(sun_);
       while (true) {
@@ -287,12 +351,27 @@ double MonteCarloIntegrator::path(Vec3 p, Vec3 d, int max_orders, Rng& rng) cons
         const double z = altitude(x);
         const double sigma_t = extinction_at(z);
         const double sigma_s = scattering_at(z, scattering);
-        if (T > 0.0 && sigma_s > 0.0)
-          L += w * T * sigma_s / rate * E * phase_to_sun(scattering, sigma_s, mu_sun) * transmittance_to_sun(x, rng);
+        if (T > 0.0 && sigma_s > 0.0) {
+          const double k = w * T * sigma_s / rate * E * transmittance_to_sun(x, rng);
+          if constexpr (kStokes) {
+            if (k > 0.0) {
+              const ScatteringMatrix f = mixture_matrix(scattering, sigma_s, mu_sun);
+              L += k * (M * (sun_rotation * Stokes(f.a1, f.b1, 0.0, 0.0)));
+            }
+          } else {
+            L[0] += k * phase_to_sun(scattering, sigma_s, mu_sun);
+          }
+        }
         if (t_real < 0.0 && rng.uniform() * rate < sigma_t) {
           t_real = t;
           albedo_real = sigma_s / sigma_t;
-          if (order != max_orders && sigma_s > 0.0) d_real = sample_scattering(scattering, sigma_s, d, rng);
+          if (order != max_orders && sigma_s > 0.0) {
+            d_real = sample_scattering(scattering, sigma_s, d, rng);
+            if constexpr (kStokes) {
+              std::copy(scattering, scattering + kMaxComponents, scattering_real);
+              sigma_s_real = sigma_s;
+            }
+          }
         }
         if (T > 0.0) T = roulette(T * (1.0 - sigma_t / rate), rng);
         if (T == 0.0 && (t_real >= 0.0 || order == max_orders)) break;  // nothing more to score or to find
@@ -302,13 +381,29 @@ double MonteCarloIntegrator::path(Vec3 p, Vec3 d, int max_orders, Rng& rng) cons
       const Vec3 g = p + t_max * d;
       const Vec3 n = up(g);
       const double cos_sun = n.dot(sun_);
-      if (cos_sun > 0.0 && medium_.ground_albedo > 0.0)
-        L += w * T * medium_.ground_albedo / kPi * E * cos_sun * transmittance_to_sun(snap_to_ground(g), rng);
+      if (cos_sun > 0.0 && medium_.ground_albedo > 0.0) {
+        // Lambertian: unpolarised whatever the light it reflects.
+        const double k = w * T * medium_.ground_albedo / kPi * E * cos_sun * transmittance_to_sun(snap_to_ground(g), rng);
+        if constexpr (kStokes)
+          L += k * M.col(0);
+        else
+          L[0] += k;
+      }
     }
     if (order == max_orders) return L;
     if (t_real >= 0.0) {
       p += t_real * d;
       w *= albedo_real;
+      if constexpr (kStokes) {
+        if (sigma_s_real > 0.0) {
+          // M <- M R F(mu) / p(mu): the direction was drawn from p = a1, the matrix's own phase function.
+          Vec3 n;
+          const MuellerMatrix rotation = scattering_plane(-d_real, -d, n);
+          const ScatteringMatrix f = mixture_matrix(scattering_real, sigma_s_real, d_real.dot(d));
+          M = M * rotation * (f.matrix() / f.a1);
+          e1 = n.cross(-d_real);  // the plane's incoming frame
+        }
+      }
       d = d_real;
     } else if (ground) {
       p = snap_to_ground(p + t_max * d);
@@ -318,6 +413,11 @@ double MonteCarloIntegrator::path(Vec3 p, Vec3 d, int max_orders, Rng& rng) cons
       do mu = std::sqrt(rng.uniform());
       while (mu <= 1e-9);
       d = rotate_about(up(p), mu, 2.0 * kPi * rng.uniform());
+      if constexpr (kStokes) {
+        // The reflected light is unpolarised: only I of the arriving light matters.
+        M.rightCols<3>().setZero();
+        e1 = frame_axis(-d, up(p));
+      }
     } else {
       return L;  // into space: the sun is a point, never hit
     }
@@ -338,11 +438,14 @@ Vec3 MonteCarloIntegrator::snap_to_ground(Vec3 p) const {
   return p;
 }
 
-MonteCarloValue MonteCarloIntegrator::estimate(ProbeKind kind, const Vec3& origin_m, const Vec3& dir,
-                                               const MonteCarloSettings& s, std::uint64_t stream) const {
+template <int N>
+std::array<MonteCarloValue, N> MonteCarloIntegrator::estimate(ProbeKind kind, const Vec3& origin_m, const Vec3& dir,
+                                                              const Vec3& reference, const MonteCarloSettings& s,
+                                                              std::uint64_t stream) const {
+  using Sum = Eigen::Matrix<double, N, 1>;
   if (s.paths < 2) throw Error("the Monte Carlo estimate needs at least 2 paths");
   const std::int64_t batches = (s.paths + kBatchPaths - 1) / kBatchPaths;
-  std::vector<double> sum(static_cast<size_t>(batches)), sum_sq(static_cast<size_t>(batches));
+  std::vector<Sum> sum(static_cast<size_t>(batches)), sum_sq(static_cast<size_t>(batches));
   // An observer outside the medium starts where its line of sight enters it.
   Vec3 origin = origin_m;
   bool outside = false;
@@ -368,11 +471,11 @@ MonteCarloValue MonteCarloIntegrator::estimate(ProbeKind kind, const Vec3& origi
         throw_if_cancelled();
         Rng rng(s.seed, stream, static_cast<std::uint64_t>(b));
         const std::int64_t n = std::min(kBatchPaths, s.paths - b * kBatchPaths);
-        double acc = 0.0, acc_sq = 0.0;
+        Sum acc = Sum::Zero(), acc_sq = Sum::Zero();
         for (std::int64_t k = 0; k < n; ++k) {
-          double x = 0.0;
+          Sum x = Sum::Zero();
           if (kind == ProbeKind::Radiance) {
-            if (!outside) x = path(origin, dir, s.max_orders, rng);
+            if (!outside) x = path<N>(origin, dir, reference, s.max_orders, rng);
           } else {
             // E = integral of L cos over the hemisphere = pi x mean of L over cosine-distributed
             // directions; the observer looks along -(arrival direction), i.e. into the hemisphere.
@@ -380,10 +483,10 @@ MonteCarloValue MonteCarloIntegrator::estimate(ProbeKind kind, const Vec3& origi
             do mu = std::sqrt(rng.uniform());
             while (mu <= 1e-9);
             const Vec3 look = rotate_about(dir, mu, 2.0 * kPi * rng.uniform());
-            x = kPi * path(origin, look, s.max_orders, rng);
+            x = kPi * path<N>(origin, look, reference, s.max_orders, rng);
           }
           acc += x;
-          acc_sq += x * x;
+          acc_sq += x.cwiseProduct(x);
         }
         sum[static_cast<size_t>(b)] = acc;
         sum_sq[static_cast<size_t>(b)] = acc_sq;
@@ -391,28 +494,36 @@ MonteCarloValue MonteCarloIntegrator::estimate(ProbeKind kind, const Vec3& origi
     });
   });
   // Batches in order: the same sums whatever the threads did.
-  double total = 0.0, total_sq = 0.0;
+  Sum total = Sum::Zero(), total_sq = Sum::Zero();
   for (std::int64_t b = 0; b < batches; ++b) {
     total += sum[static_cast<size_t>(b)];
     total_sq += sum_sq[static_cast<size_t>(b)];
   }
   const double n = static_cast<double>(s.paths);
-  MonteCarloValue v;
-  v.paths = s.paths;
-  v.mean = total / n;
-  const double var = std::max(0.0, (total_sq - total * total / n) / (n - 1.0));
-  v.standard_error = std::sqrt(var / n);
-  return v;
+  std::array<MonteCarloValue, N> values;
+  for (int i = 0; i < N; ++i) {
+    MonteCarloValue& v = values[static_cast<size_t>(i)];
+    v.paths = s.paths;
+    v.mean = total[i] / n;
+    const double var = std::max(0.0, (total_sq[i] - total[i] * total[i] / n) / (n - 1.0));
+    v.standard_error = std::sqrt(var / n);
+  }
+  return values;
 }
 
 MonteCarloValue MonteCarloIntegrator::radiance(const Vec3& origin_m, const Vec3& look, const MonteCarloSettings& s,
                                                std::uint64_t stream) const {
-  return estimate(ProbeKind::Radiance, origin_m, look.normalized(), s, stream);
+  return estimate<1>(ProbeKind::Radiance, origin_m, look.normalized(), Vec3::Zero(), s, stream)[0];
+}
+
+MonteCarloStokes MonteCarloIntegrator::stokes_radiance(const Vec3& origin_m, const Vec3& look, const Vec3& reference,
+                                                       const MonteCarloSettings& s, std::uint64_t stream) const {
+  return estimate<4>(ProbeKind::Radiance, origin_m, look.normalized(), reference, s, stream);
 }
 
 MonteCarloValue MonteCarloIntegrator::irradiance(const Vec3& origin_m, const Vec3& normal, const MonteCarloSettings& s,
                                                  std::uint64_t stream) const {
-  return estimate(ProbeKind::Irradiance, origin_m, normal.normalized(), s, stream);
+  return estimate<1>(ProbeKind::Irradiance, origin_m, normal.normalized(), Vec3::Zero(), s, stream)[0];
 }
 
 }  // namespace skyspec

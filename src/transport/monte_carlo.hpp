@@ -32,12 +32,14 @@
 // published plane-parallel benchmarks, a flat slab.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
 #include "skyspec/atmosphere.hpp"
 #include "skyspec/density_profile.hpp"
 #include "skyspec/geometry.hpp"
+#include "physics/scattering_matrix.hpp"
 
 namespace skyspec {
 
@@ -81,6 +83,9 @@ struct MonteCarloValue {
   std::int64_t paths = 0;
 };
 
+/// A Stokes vector [I, Q, U, V] estimated by the same paths: each component's mean and standard error.
+using MonteCarloStokes = std::array<MonteCarloValue, 4>;
+
 class MonteCarloIntegrator {
  public:
   /// sun_dir: unit vector towards the sun (world space of the medium's geometry).
@@ -91,6 +96,15 @@ class MonteCarloIntegrator {
   /// depend on seed, stream and paths only, never on the number of threads.
   MonteCarloValue radiance(const Vec3& origin_m, const Vec3& look, const MonteCarloSettings& settings,
                            std::uint64_t stream) const;
+  /// The Stokes vector [I, Q, U, V] of that radiance (vector transport: scattering matrices, the
+  /// frames rotated between events; physics/scattering_matrix.hpp). Q and U refer to the frame
+  /// (e1, e2, k) of the arriving light, k = -look: e1 is `reference` made perpendicular to k (for
+  /// example the local vertical: Q > 0 is light polarised in the vertical plane), e2 = k x e1.
+  /// The ground reflects as a depolarising Lambertian surface; aerosols neither polarise nor
+  /// depolarise (non_polarising_scattering_matrix). I differs from radiance() by the coupling of
+  /// polarisation into intensity (a few percent for Rayleigh air).
+  MonteCarloStokes stokes_radiance(const Vec3& origin_m, const Vec3& look, const Vec3& reference,
+                                   const MonteCarloSettings& settings, std::uint64_t stream) const;
   /// Irradiance on a surface at origin_m facing `normal` (unit) from the light scattered or
   /// reflected towards it (the direct sun excluded): the integral of radiance x cos over the
   /// hemisphere around normal, by cosine-distributed look directions.
@@ -104,9 +118,12 @@ class MonteCarloIntegrator {
  private:
   struct Rng;
   enum class ProbeKind { Radiance, Irradiance };
-  MonteCarloValue estimate(ProbeKind kind, const Vec3& origin_m, const Vec3& dir, const MonteCarloSettings& s,
-                           std::uint64_t stream) const;
-  double path(Vec3 p, Vec3 d, int max_orders, Rng& rng) const;
+  /// N = 1: the radiance (scalar transport); N = 4: the Stokes vector in the frame of `reference`.
+  template <int N>
+  std::array<MonteCarloValue, N> estimate(ProbeKind kind, const Vec3& origin_m, const Vec3& dir, const Vec3& reference,
+                                          const MonteCarloSettings& s, std::uint64_t stream) const;
+  template <int N>
+  Eigen::Matrix<double, N, 1> path(Vec3 p, Vec3 d, const Vec3& reference, int max_orders, Rng& rng) const;
   double altitude(const Vec3& p) const;
   Vec3 up(const Vec3& p) const;
   Vec3 snap_to_ground(Vec3 p) const;
@@ -117,6 +134,9 @@ class MonteCarloIntegrator {
   double transmittance_to_sun(const Vec3& p, Rng& rng) const;
   static double roulette(double transmittance, Rng& rng);
   double phase_to_sun(const double* scattering, double total_scattering, double mu) const;
+  /// The scattering matrix of the mixture at a point (each species' matrix weighted by its share
+  /// of the scattering coefficient); its a1 is phase_to_sun.
+  ScatteringMatrix mixture_matrix(const double* scattering, double total_scattering, double mu) const;
   Vec3 sample_scattering(const double* scattering, double total_scattering, const Vec3& d, Rng& rng) const;
 
   MonteCarloMedium medium_;

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "atmosphere_fixtures.hpp"
+#include "monte_carlo_fixtures.hpp"
 #include "skyspec/camera.hpp"
 #include "skyspec/phase_function.hpp"
 #include "transport/monte_carlo.hpp"
@@ -18,22 +19,9 @@ BOOST_AUTO_TEST_SUITE(test_monte_carlo)
 using namespace skyspec;
 
 namespace {
-// A homogeneous slab 1 m thick, so that beta in m^-1 is the optical thickness.
 MonteCarloMedium slab(double tau, double single_scattering_albedo, double ground_albedo, double sun_irradiance,
                       double rayleigh_gamma = 0.0) {
-  MonteCarloMedium m;
-  m.geometry = MonteCarloMedium::Geometry::PlaneParallel;
-  m.top_altitude_m = 1.0;
-  MonteCarloComponent c;
-  c.profile = DensityProfile::constant();
-  c.extinction_per_m = tau;
-  c.scattering_per_m = tau * single_scattering_albedo;
-  c.phase = MonteCarloComponent::Phase::Rayleigh;
-  c.phase_parameter = rayleigh_gamma;
-  m.components.push_back(c);
-  m.ground_albedo = ground_albedo;
-  m.sun_irradiance = sun_irradiance;
-  return m;
+  return test::rayleigh_slab(tau, single_scattering_albedo, ground_albedo, sun_irradiance, rayleigh_gamma);
 }
 
 // |mc - expected| within k standard errors plus a relative allowance for the reference's own rounding.

@@ -1,0 +1,26 @@
+// Media for the Monte Carlo tests: a homogeneous Rayleigh slab 1 m thick, so that a coefficient in
+// m^-1 is the optical thickness.
+#pragma once
+
+#include "transport/monte_carlo.hpp"
+
+namespace skyspec::test {
+
+inline MonteCarloMedium rayleigh_slab(double tau, double single_scattering_albedo, double ground_albedo,
+                                      double sun_irradiance, double rayleigh_gamma = 0.0) {
+  MonteCarloMedium m;
+  m.geometry = MonteCarloMedium::Geometry::PlaneParallel;
+  m.top_altitude_m = 1.0;
+  MonteCarloComponent c;
+  c.profile = DensityProfile::constant();
+  c.extinction_per_m = tau;
+  c.scattering_per_m = tau * single_scattering_albedo;
+  c.phase = MonteCarloComponent::Phase::Rayleigh;
+  c.phase_parameter = rayleigh_gamma;
+  m.components.push_back(c);
+  m.ground_albedo = ground_albedo;
+  m.sun_irradiance = sun_irradiance;
+  return m;
+}
+
+}  // namespace skyspec::test
