@@ -117,10 +117,12 @@ def monte_carlo(
     seed: int = 1,
     orders: int = 0,
     irradiance: bool = False,
+    stokes: bool = False,
 ) -> Dict[str, Any]:
     """The Monte Carlo reference (all scattering orders) at (azimuth_deg, elevation_deg) probes:
     radiance and standard_error arrays (probes x wavelengths), optionally the diffuse horizontal
-    irradiance. docs/validation.md."""
+    irradiance and the Stokes vectors (stokes, stokes_standard_error: probes x wavelengths x 4).
+    docs/validation.md."""
 
 def run_job(
     job: str,

@@ -317,7 +317,8 @@ RenderResult render(const std::string& preset, const std::optional<std::string>&
 // The Monte Carlo reference at probes given as (azimuth, elevation) pairs (default: the standard ones).
 py::dict monte_carlo(const std::string& preset, const std::optional<std::string>& scene_file,
                      const std::optional<std::string>& scene_toml, const std::optional<py::dict>& overrides,
-                     const py::object& probes, long long paths, unsigned long long seed, int orders, bool irradiance) {
+                     const py::object& probes, long long paths, unsigned long long seed, int orders, bool irradiance,
+                     bool stokes) {
   const Scene scene = load_scene(preset, scene_file, scene_toml, overrides);
   std::vector<ReferenceProbe> list;
   if (probes.is_none()) {
@@ -336,6 +337,7 @@ py::dict monte_carlo(const std::string& preset, const std::optional<std::string>
   settings.seed = seed;
   settings.max_orders = orders;
   settings.diffuse_irradiance = irradiance;
+  settings.stokes = stokes;
   ReferenceResult r;
   {
     py::gil_scoped_release release;
@@ -363,6 +365,18 @@ py::dict monte_carlo(const std::string& preset, const std::optional<std::string>
   if (irradiance) {
     out["diffuse_horizontal"] = array1(r.diffuse_horizontal);
     out["diffuse_horizontal_standard_error"] = array1(r.diffuse_horizontal_standard_error);
+  }
+  if (stokes) {
+    py::array_t<double> sv({k, n, py::ssize_t{4}}), se({k, n, py::ssize_t{4}});
+    for (py::ssize_t a = 0; a < k; ++a)
+      for (py::ssize_t i = 0; i < n; ++i)
+        for (py::ssize_t c = 0; c < 4; ++c) {
+          sv.mutable_at(a, i, c) = r.stokes[static_cast<size_t>(a)][static_cast<size_t>(i)][static_cast<size_t>(c)];
+          se.mutable_at(a, i, c) =
+              r.stokes_standard_error[static_cast<size_t>(a)][static_cast<size_t>(i)][static_cast<size_t>(c)];
+        }
+    out["stokes"] = sv;
+    out["stokes_standard_error"] = se;
   }
   out["paths"] = paths;
   out["seed"] = seed;
@@ -682,15 +696,19 @@ valid, pixel(), spectrum_at()), the sun (sun_direction, sun_azimuth_deg, sun_ele
   m.def("monte_carlo", &monte_carlo, py::arg("preset") = "default", py::kw_only(), py::arg("scene_file") = py::none(),
         py::arg("scene_toml") = py::none(), py::arg("overrides") = py::none(), py::arg("probes") = py::none(),
         py::arg("paths") = 100000, py::arg("seed") = 1, py::arg("orders") = 0, py::arg("irradiance") = false,
+        py::arg("stokes") = false,
         R"(The Monte Carlo reference of a scene (`skyspec reference`): sky radiance with every scattering order
 at the camera's position, by backward path tracing independent of the renderer (docs/validation.md).
 
 probes: (azimuth_deg, elevation_deg) pairs (default: zenith, 45 deg up towards the sun, 1 deg above the
 horizon towards, across and away from it); paths per probe and wavelength; seed; orders: 0 for all,
-1 for single scattering; irradiance: also the diffuse horizontal irradiance.
+1 for single scattering; irradiance: also the diffuse horizontal irradiance; stokes: also the Stokes
+vectors (vector transport, as many paths again).
 Returns a dict: wavelength_nm (n), labels, azimuth_deg, elevation_deg (k), radiance and standard_error
 ((k, n), W m^-2 sr^-1 nm^-1), with irradiance diffuse_horizontal and its standard error (n,
-W m^-2 nm^-1), and paths, seed, orders, seconds. The same seed gives the same values on any machine
+W m^-2 nm^-1), with stokes `stokes` and `stokes_standard_error` ((k, n, 4): I, Q, U, V in the frame of
+the vertical through the line of sight, Q > 0 polarised in that plane, U > 0 at 45 deg from it towards
+the observer's left; at the zenith from north), and paths, seed, orders, seconds. The same seed gives the same values on any machine
 and number of threads.)");
 
   // Jobs run on Dask through the pure-Python driver beside this module (skyspec_jobs.py).

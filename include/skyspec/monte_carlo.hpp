@@ -8,6 +8,7 @@
 // point, and its disk and direct beam are not part of the sky radiance or the diffuse irradiance.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -30,6 +31,9 @@ struct ReferenceSettings {
   std::uint64_t seed = 1;
   int max_orders = 0;           ///< 0: all orders; 1: single scattering (air and ground); k: up to k events
   bool diffuse_irradiance = false;  ///< also the diffuse horizontal irradiance at the camera
+  /// Also the Stokes vector of each probe (vector transport; as many paths again): see
+  /// ReferenceResult::stokes.
+  bool stokes = false;
 };
 
 struct ReferenceResult {
@@ -40,6 +44,15 @@ struct ReferenceResult {
   /// [wavelength]: W m^-2 nm^-1 on a horizontal surface at the camera, the sun's direct beam
   /// excluded (empty unless asked for).
   std::vector<double> diffuse_horizontal, diffuse_horizontal_standard_error;
+  /// [probe][wavelength]: [I, Q, U, V] in the radiance's units, and their standard errors (empty
+  /// unless settings.stokes). The frame of each probe: e1 in the vertical plane through the line
+  /// of sight, pointing up (Q > 0: light polarised in that vertical plane), e2 = k x e1 with k the
+  /// light's direction (towards the observer), which is the observer's left; the angle of
+  /// polarisation 1/2 atan2(U, Q) counts from the vertical towards the left, counterclockwise as
+  /// the observer sees it. At the zenith (and nadir) e1 points north. I includes polarisation's coupling into intensity, which `radiance`
+  /// (scalar transport, as in the renderer) leaves out. Aerosols neither polarise nor depolarise
+  /// (physics/scattering_matrix.hpp); the ground depolarises.
+  std::vector<std::vector<std::array<double, 4>>> stokes, stokes_standard_error;
   ReferenceSettings settings;
   double seconds = 0.0;
 };

@@ -1,6 +1,7 @@
 // `skyspec reference`: the Monte Carlo reference radiance (all scattering orders, with standard
 // errors) in a few sky directions, optionally beside the renderer's own values.
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -23,6 +24,7 @@
 #include "skyspec/error.hpp"
 #include "skyspec/monte_carlo.hpp"
 #include "skyspec/render.hpp"
+#include "skyspec/units.hpp"
 #include "skyspec/version.hpp"
 
 namespace skyspec::cli {
@@ -34,7 +36,7 @@ struct ReferenceOptions {
   long long paths = 100000;
   unsigned long long seed = 1;
   int orders = 0;
-  bool irradiance = false, compare = false, quiet = false;
+  bool irradiance = false, compare = false, stokes = false, quiet = false;
   std::string format = "md";
   std::string out;
 };
@@ -67,6 +69,7 @@ Checked check(const ReferenceOptions& o) {
   c.settings.seed = o.seed;
   c.settings.max_orders = o.orders;
   c.settings.diffuse_irradiance = o.irradiance;
+  c.settings.stokes = o.stokes;
   return c;
 }
 
@@ -109,7 +112,26 @@ std::string format_table(const ReferenceResult& r, const Deterministic* det, con
     std::snprintf(b, sizeof b, fmt, v);
     return std::string(b);
   };
-  auto row = [&](const std::string& label, double az, double el, size_t i, double mc, double se, double renderer) {
+  const bool stokes = !r.stokes.empty();
+  // The Stokes vector's derived figures: degree and angle (deg, from the vertical towards the
+  // observer's left) of linear polarisation; empty where there is no light.
+  auto polarisation_cells = [&](const std::array<double, 4>& v, const std::array<double, 4>& e) {
+    std::vector<std::string> cells;
+    const bool lit = v[0] > 0.0;
+    if (md) {
+      cells = {num("%.6g", v[0]), lit ? num("%.4f", std::hypot(v[1], v[2]) / v[0]) : "",
+               lit ? num("%.2f", 0.5 * std::atan2(v[2], v[1]) * 180.0 / kPi) : "", lit ? num("%.2g", v[3] / v[0]) : ""};
+    } else {
+      for (size_t c = 0; c < 4; ++c) cells.push_back(num("%.9g", v[c]));
+      for (size_t c = 0; c < 4; ++c) cells.push_back(num("%.9g", e[c]));
+      cells.push_back(lit ? num("%.6g", std::hypot(v[1], v[2]) / v[0]) : "");
+      cells.push_back(lit ? num("%.6g", 0.5 * std::atan2(v[2], v[1]) * 180.0 / kPi) : "");
+    }
+    return cells;
+  };
+  const size_t stokes_columns = md ? 4 : 10;
+  auto row = [&](const std::string& label, double az, double el, size_t i, double mc, double se, double renderer,
+                 const std::array<double, 4>* sv, const std::array<double, 4>* sv_error) {
     const bool relative = mc > 0.0 && se > 0.0;
     std::vector<std::string> cells = {md ? markdown_cell(label) : csv_quoted(label), num(md ? "%.2f" : "%.6g", az),
                                       num(md ? "%.2f" : "%.6g", el), num("%g", r.wavelengths_nm[i]),
@@ -120,29 +142,45 @@ std::string format_table(const ReferenceResult& r, const Deterministic* det, con
       cells.push_back(relative ? num(md ? "%+.2f" : "%.6g", 100.0 * (renderer / mc - 1.0)) : "");
       cells.push_back(relative ? num(md ? "%+.1f" : "%.6g", (renderer - mc) / se) : "");
     }
+    if (stokes) {
+      const auto extra = sv ? polarisation_cells(*sv, *sv_error) : std::vector<std::string>(stokes_columns);
+      cells.insert(cells.end(), extra.begin(), extra.end());
+    }
     for (size_t c = 0; c < cells.size(); ++c) t << (md ? (c ? " | " : "| ") : (c ? "," : "")) << cells[c];
     t << (md ? " |\n" : "\n");
   };
   if (format == "md") {
     t << "| probe | azimuth (deg) | elevation (deg) | wavelength (nm) | Monte Carlo | standard error (%) |"
-      << (det ? " renderer | renderer - MC (%) | (renderer - MC) / sigma |" : "") << "\n"
-      << "| --- | ---: | ---: | ---: | ---: | ---: |" << (det ? " ---: | ---: | ---: |" : "") << "\n";
+      << (det ? " renderer | renderer - MC (%) | (renderer - MC) / sigma |" : "")
+      << (stokes ? " I (polarised) | DoLP | AoLP (deg) | V / I |" : "") << "\n"
+      << "| --- | ---: | ---: | ---: | ---: | ---: |" << (det ? " ---: | ---: | ---: |" : "")
+      << (stokes ? " ---: | ---: | ---: | ---: |" : "") << "\n";
   } else {
     t << "probe,azimuth_deg,elevation_deg,wavelength_nm,monte_carlo,standard_error"
-      << (det ? ",renderer,renderer_minus_mc_percent,renderer_minus_mc_sigma" : "") << "\n";
+      << (det ? ",renderer,renderer_minus_mc_percent,renderer_minus_mc_sigma" : "")
+      << (stokes ? ",stokes_i,stokes_q,stokes_u,stokes_v,stokes_i_error,stokes_q_error,stokes_u_error,stokes_v_error,"
+                   "degree_of_linear_polarisation,angle_of_linear_polarisation_deg"
+                 : "")
+      << "\n";
   }
   for (size_t k = 0; k < r.probes.size(); ++k)
     for (size_t i = 0; i < n; ++i)
       row(r.probes[k].label, r.probes[k].azimuth_deg, r.probes[k].elevation_deg, i, r.radiance[k][i],
-          r.radiance_standard_error[k][i], det ? static_cast<double>(det->radiance[k][static_cast<long>(i)]) : 0.0);
+          r.radiance_standard_error[k][i], det ? static_cast<double>(det->radiance[k][static_cast<long>(i)]) : 0.0,
+          stokes ? &r.stokes[k][i] : nullptr, stokes ? &r.stokes_standard_error[k][i] : nullptr);
   for (size_t i = 0; i < r.diffuse_horizontal.size(); ++i)
     row("diffuse horizontal irradiance", 0.0, 90.0, i, r.diffuse_horizontal[i], r.diffuse_horizontal_standard_error[i],
-        det ? det->diffuse[static_cast<long>(i)] : 0.0);
+        det ? det->diffuse[static_cast<long>(i)] : 0.0, nullptr, nullptr);
   if (format == "md") {
     t << "\nRadiance in W m^-2 sr^-1 nm^-1 (irradiance in W m^-2 nm^-1), sun at elevation " << scene.sun.elevation_deg
       << " deg, azimuth " << scene.sun.azimuth_deg << " deg; " << r.settings.paths << " paths per value, seed "
       << r.settings.seed << ", " << (r.settings.max_orders == 0 ? std::string("all orders") : std::to_string(r.settings.max_orders) + " order(s)")
       << "; " << r.seconds << " s.\n";
+    if (stokes)
+      t << "Polarisation (vector transport, the same number of paths): I with polarisation's coupling into "
+           "intensity (the Monte Carlo column and the renderer are scalar); degree and angle of linear "
+           "polarisation, the angle from the vertical towards the observer's left (at the zenith from north); "
+           "aerosols neither polarise nor depolarise in this model.\n";
   }
   return t.str();
 }
@@ -166,6 +204,10 @@ std::string format_json(const ReferenceResult& r, const Deterministic* det, cons
                      {"radiance", r.radiance[k]},
                      {"standard_error", r.radiance_standard_error[k]}};
     if (det) p["renderer"] = std::vector<double>(det->radiance[k].data(), det->radiance[k].data() + det->radiance[k].size());
+    if (!r.stokes.empty()) {
+      p["stokes"] = r.stokes[k];
+      p["stokes_standard_error"] = r.stokes_standard_error[k];
+    }
     j["probes"].push_back(p);
   }
   if (!r.diffuse_horizontal.empty()) {
@@ -212,7 +254,9 @@ Command add_reference_command(CLI::App& app) {
       "probe and wavelength, each depending only on the seed, --paths, the direction and the wavelength.\n"
       "Without --probe: the zenith, 45 deg up towards the sun, and 1 deg above the horizon towards,\n"
       "across and away from it. --compare adds the renderer's radiance (and irradiance) and their\n"
-      "difference in percent and in standard errors (docs/validation.md).");
+      "difference in percent and in standard errors (docs/validation.md). --stokes adds each probe's\n"
+      "Stokes vector in the frame of the vertical through the line of sight (Q > 0: polarised in that\n"
+      "plane; U > 0: at 45 deg from it towards the observer's left).");
   o->scene.flags = spectrum_flags();
   append_flags(o->scene.flags, sun_flags());
   o->scene.flags.push_back({"--position", "camera.position_m", "observer east,north,height in m", {}, true});
@@ -226,6 +270,9 @@ Command add_reference_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--irradiance", o->irradiance, "also the diffuse horizontal irradiance at the observer");
   cmd->add_flag("--compare", o->compare, "also the renderer's values at the same probes, and the differences");
+  cmd->add_flag("--stokes", o->stokes,
+                "also the Stokes vector [I, Q, U, V] of each probe, with the degree and angle of linear polarisation "
+                "(vector transport: as many paths again)");
   cmd->add_option("--format", o->format, "md (Markdown table), csv or json")->capture_default_str();
   cmd->add_option("--out", o->out, "write to this file instead of standard output");
   cmd->add_flag("-q,--quiet", o->quiet, "no progress bar");

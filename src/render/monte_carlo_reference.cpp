@@ -96,10 +96,15 @@ ReferenceResult monte_carlo_reference(const Scene& scene, const std::vector<Refe
   mc.seed = settings.seed;
   mc.max_orders = settings.max_orders;
   mc.threads = scene.render.threads;
-  const int total = static_cast<int>(probes.size()) * n + (settings.diffuse_irradiance ? n : 0);
+  const int total =
+      static_cast<int>(probes.size()) * n * (settings.stokes ? 2 : 1) + (settings.diffuse_irradiance ? n : 0);
   int done = 0;
   out.radiance.assign(probes.size(), std::vector<double>(static_cast<size_t>(n)));
   out.radiance_standard_error = out.radiance;
+  if (settings.stokes) {
+    out.stokes.assign(probes.size(), std::vector<std::array<double, 4>>(static_cast<size_t>(n)));
+    out.stokes_standard_error = out.stokes;
+  }
   if (settings.diffuse_irradiance) {
     out.diffuse_horizontal.assign(static_cast<size_t>(n), 0.0);
     out.diffuse_horizontal_standard_error = out.diffuse_horizontal;
@@ -114,6 +119,18 @@ ReferenceResult monte_carlo_reference(const Scene& scene, const std::vector<Refe
       out.radiance[k][static_cast<size_t>(i)] = e * v.mean;
       out.radiance_standard_error[k][static_cast<size_t>(i)] = e * v.standard_error;
       if (progress) progress(++done, total);
+      if (settings.stokes) {
+        // The vertical through the line of sight; straight up or down, where that plane is
+        // undefined, the vertical plane towards azimuth 0 (e1 points north).
+        const Vec3 reference = std::abs(dir.dot(up)) > 1.0 - 1e-12 ? direction_from_angles(0.0, 0.0) : up;
+        const MonteCarloStokes s = integrator.stokes_radiance(
+            origin, dir, reference, mc, stream_of(probes[k].azimuth_deg, probes[k].elevation_deg, grid.nm(i), 3));
+        for (size_t c = 0; c < 4; ++c) {
+          out.stokes[k][static_cast<size_t>(i)][c] = e * s[c].mean;
+          out.stokes_standard_error[k][static_cast<size_t>(i)][c] = e * s[c].standard_error;
+        }
+        if (progress) progress(++done, total);
+      }
     }
     if (settings.diffuse_irradiance) {
       const MonteCarloValue v = integrator.irradiance(origin, up, mc, stream_of(0.0, 0.0, grid.nm(i), 2));

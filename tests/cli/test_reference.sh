@@ -54,6 +54,34 @@ grep -qi "nan\|inf" "$work/shadow.csv" && bad "NaN or Inf in the shadow's CSV: $
 grep -q "diffuse horizontal irradiance" "$work/t.md" && grep -q "500 paths per value, seed 1" "$work/t.md" && ok \
   || bad "markdown content"
 
+# --stokes: Rayleigh air once scattered at 90 degrees from the sun (sun on the horizon in the north,
+# looking at the zenith) is polarised east-west to the degree 1 / (1 + 2 rho / (1 - rho)), 0.94-0.95
+# for air's depolarisation ratio; V is 0; the same with 1 and 2 threads; I the scalar radiance
+# within the errors (independent paths).
+for t in 1 2; do
+  "$skyspec" reference --wavelengths 450,650 --sun-elevation 0 --probe 0,90 --probe 90,30 --orders 1 --stokes \
+    --paths 2000 --format json -q --set atmosphere.mie.enabled=false --set render.threads=$t >"$work/stokes$t.json" \
+    && ok || bad "--stokes json ($t threads)"
+done
+$py - "$work/stokes1.json" "$work/stokes2.json" <<'PY' && ok || bad "--stokes: closed form, V = 0, thread independence"
+import json, math, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+assert a["probes"][0]["stokes"] == b["probes"][0]["stokes"]
+for p in a["probes"]:
+    for s, e, r, re in zip(p["stokes"], p["stokes_standard_error"], p["radiance"], p["standard_error"]):
+        assert len(s) == 4 and s[3] == 0.0 and all(math.isfinite(x) for x in s + e), s
+        assert abs(s[0] - r) < 4 * math.hypot(e[0], re), (s, r)  # one order: the same expected intensity
+zenith = a["probes"][0]["stokes"]
+for I, Q, U, V in zenith:
+    dolp, aolp = math.hypot(Q, U) / I, math.degrees(0.5 * math.atan2(U, Q))
+    assert 0.93 < dolp < 0.96 and abs(abs(aolp) - 90) < 0.5, (dolp, aolp)
+PY
+"$skyspec" reference --wavelengths 550,650 --probe 90,20 --paths 500 --stokes --format csv -q >"$work/stokes.csv" \
+  && $py -c 'import csv,sys; r=list(csv.DictReader(open(sys.argv[1]))); assert 0 < float(r[0]["degree_of_linear_polarisation"]) < 1 and r[0]["stokes_v"] == "0", r' "$work/stokes.csv" \
+  && ok || bad "--stokes csv columns"
+"$skyspec" reference --wavelengths 550,650 --probe 90,20 --paths 500 --stokes --irradiance -q | grep -q "AoLP (deg)" \
+  && ok || bad "--stokes markdown columns"
+
 mkdir -p "$work/empty"
 run_expecting_error "bad probe" 2 "--probe" "$work/empty" "$skyspec" reference --probe 0,95 --paths 10
 run_expecting_error "bad probe text" 2 "azimuth,elevation" "$work/empty" "$skyspec" reference --probe north

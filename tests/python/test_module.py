@@ -211,6 +211,16 @@ class MonteCarloAgainstCli(unittest.TestCase):
             np.testing.assert_allclose(r["standard_error"][k], probe["standard_error"], rtol=1e-12, atol=0)
         np.testing.assert_allclose(r["diffuse_horizontal"], j["diffuse_horizontal"]["irradiance"], rtol=1e-12, atol=0)
 
+    def test_stokes_equal_the_cli_json(self):
+        overrides = {"spectrum.wavelengths_nm": [450, 650], "sun.elevation_deg": 15}
+        r = skyspec.monte_carlo(overrides=overrides, probes=[(90, 30)], paths=1000, seed=3, stokes=True)
+        self.assertEqual(r["stokes"].shape, (1, 2, 4))
+        self.assertEqual(r["stokes_standard_error"].shape, (1, 2, 4))
+        self.assertTrue((r["stokes"][..., 3] == 0).all())
+        j = json.loads(cli("reference", "--wavelengths", "450,650", "--sun-elevation", "15", "--probe", "90,30",
+                           "--paths", "1000", "--seed", "3", "--stokes", "--format", "json", "-q"))
+        np.testing.assert_allclose(r["stokes"][0], j["probes"][0]["stokes"], rtol=1e-12, atol=0)
+
     def test_bad_probe_names_the_argument(self):
         with self.assertRaises(ValueError) as e:
             skyspec.monte_carlo(probes=[(0, 91)], paths=10)
