@@ -118,7 +118,8 @@ double SourceTable::mu_sun(int imu) const { return mu_from_u(-1.0 + 2.0 * imu / 
 bool SourceTable::steep_pair(int ih, int imu) const {
   using Map = Eigen::Map<const Eigen::ArrayXf>;
   const Map x(&j_[index(ih, imu)], n_l_), y(&j_[index(ih, imu + 1)], n_l_);
-  return ((x > 2.0f * y) || (y > 2.0f * x)).any() && ((x > 0.0f) && (y > 0.0f)).all();
+  constexpr float r = kSteepRatio;
+  return ((x > r * y) || (y > r * x)).any() && ((x > 0.0f) && (y > 0.0f)).all();
 }
 
 void SourceTable::prepare() {
@@ -163,8 +164,8 @@ void SourceTable::source_to_degree(int max_degree, double r_m, double mu, double
   // the decay: each steep altitude row's weights (prepare()) are scaled, per wavelength, by the
   // ratio of the geometric to the arithmetic mean of its two mean radiances (the harmonic l = 0),
   // so that the mean follows an exponential between the columns and the harmonics keep their
-  // shape. Elsewhere (everywhere but near the terminator; the factor would be above 0.94 there) the
-  // blend is left linear.
+  // shape. Elsewhere (everywhere but near the terminator) the blend is left linear: there the
+  // factor, 2 sqrt(r) / (1 + r) for a ratio r of the two means, would be above 0.994.
   const float sa = (1 - ah) * (1 - am), sb = (1 - ah) * am, sc = ah * (1 - am), sd = ah * am;
   const bool lower_steep = steep_[static_cast<size_t>(ih) * (n_mu_ - 1) + im] != 0;
   const bool upper_steep = steep_[static_cast<size_t>(ih + 1) * (n_mu_ - 1) + im] != 0;

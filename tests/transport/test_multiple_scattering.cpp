@@ -303,9 +303,9 @@ BOOST_AUTO_TEST_CASE(altitude_rows_are_dense_near_the_ground) {
   }
 }
 
-// Between two sun-angle columns whose mean radiances differ by more than a factor 2 (inside the
-// planet's shadow the sources fall by orders of magnitude per column) the lookup follows an
-// exponential, not a straight line; where they are close it stays linear.
+// Between two sun-angle columns whose mean radiances differ by more than SourceTable::kSteepRatio
+// (1.25; inside the planet's shadow the sources fall by orders of magnitude per column) the lookup
+// follows an exponential, not a straight line; where they are closer it stays linear.
 BOOST_AUTO_TEST_CASE(steep_sun_angle_decays_are_interpolated_exponentially) {
   const AtmosphereModel atm(test::simple_atmosphere(ProfileKind::Exponential, 60e3, kNm, kBetaR, 21e-6),
                             WavelengthGrid::from_list(kNm));
@@ -328,11 +328,17 @@ BOOST_AUTO_TEST_CASE(steep_sun_angle_decays_are_interpolated_exponentially) {
   // A factor 1.5 between the columns: the geometric mean sqrt(1/1.5) = 0.8165 against the linear
   // 0.8333; the blend follows the exponential there too, once any wavelength of the row is steep.
   BOOST_TEST(jr[1] == std::sqrt(1.0 / 1.5), boost::test_tools::tolerance(1e-4));
-  // No steep wavelength: linear.
+  // A factor 1.5 alone is steep too: the geometric mean.
   for (int ih = 0; ih < 2; ++ih) table.j_at(ih, 0)[0] = static_cast<float>(norm / 1.5);
   table.prepare();
   table.source(atm.planet_radius_m() + 1000.0, -0.375, 0.5, 0.2, jr, jm);
-  for (int l = 0; l < 3; ++l) BOOST_TEST(jr[l] == 0.5 * (1.0 + 1.0 / 1.5), boost::test_tools::tolerance(1e-5));
+  for (int l = 0; l < 3; ++l) BOOST_TEST(jr[l] == std::sqrt(1.0 / 1.5), boost::test_tools::tolerance(1e-4));
+  // No wavelength steeper than 1.2: linear.
+  for (int ih = 0; ih < 2; ++ih)
+    for (int l = 0; l < 3; ++l) table.j_at(ih, 0)[l] = static_cast<float>(norm / 1.2);
+  table.prepare();
+  table.source(atm.planet_radius_m() + 1000.0, -0.375, 0.5, 0.2, jr, jm);
+  for (int l = 0; l < 3; ++l) BOOST_TEST(jr[l] == 0.5 * (1.0 + 1.0 / 1.2), boost::test_tools::tolerance(1e-5));
 }
 
 // Read up to a lower degree, a table gives exactly what a table holding only those harmonics gives;
