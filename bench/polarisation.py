@@ -6,7 +6,11 @@ renderer's and the scalar reference's) misses in intensity by ignoring polarisat
 
     /usr/bin/python3 bench/polarisation.py [--skyspec build/skyspec] [--paths 20000] [--suns 0,5,10,20,30]
         [--preset default] [--set KEY=VALUE ...] [--markdown FILE]
-        [--intensity-suns 30,10,2] [--intensity-paths 100000]
+        [--intensity-suns 30,10,2] [--intensity-paths 100000] [--parts neutral,intensity,renderer]
+
+The third part, renderer: the renderer's polarisation (single scattering by air; the rest counted
+as unpolarised: SkyRenderer::stokes) against the vector reference's at the standard probes
+(`skyspec reference --stokes --compare`), suns of --intensity-suns, 450 and 650 nm.
 
 For each sun it runs `skyspec reference --stokes` at probes every --step degrees along the solar and
 antisolar verticals (450 and 550 nm). In the frame of the vertical plane through the line of sight,
@@ -59,10 +63,12 @@ def main():
     ap.add_argument("--markdown")
     ap.add_argument("--intensity-suns", default="30,10,2", help="suns of the scalar-vs-vector intensity table ('' for none)")
     ap.add_argument("--intensity-paths", type=int, default=100000)
+    ap.add_argument("--parts", default="neutral,intensity,renderer")
     a = ap.parse_args()
+    parts = a.parts.split(",")
     rows = []
     t0 = time.time()
-    for sun in [float(s) for s in a.suns.split(",")]:
+    for sun in [float(s) for s in a.suns.split(",")] if "neutral" in parts else []:
         els = [0.5 + a.step * i for i in range(int(89 / a.step) + 1)]
         anti = [(180.0, e) for e in els]
         solar = [(0.0, e) for e in els if abs(e - sun) > 3.0]
@@ -84,14 +90,15 @@ def main():
             dolp_max = max(math.hypot(p["stokes"][i][1], p["stokes"][i][2]) / p["stokes"][i][0] for p in ps)
             rows.append((sun, lam, arago, babinet, brewster, dolp90, dolp_max))
     fmt = lambda c: "none in view" if c is None else f"{c[0]:.1f} +- {c[1]:.1f}"
-    lines = ["| sun (deg) | nm | Arago above antisolar point (deg) | Babinet above sun (deg) | Brewster below sun (deg) "
+    lines = [] if not rows else ["| sun (deg) | nm | Arago above antisolar point (deg) | Babinet above sun (deg) | Brewster below sun (deg) "
              "| DoLP 90 deg from sun, horizon | DoLP max on the sun's vertical |",
              "| ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
     for sun, lam, ar, ba, br, d90, dmax in rows:
         lines.append(f"| {sun:g} | {lam} | {fmt(ar)} | {fmt(ba)} | {fmt(br)} | {d90:.3f} | {dmax:.3f} |")
-    lines.append("")
-    lines.append(f"preset {a.preset}, {a.paths} paths per probe, probes every {a.step:g} deg; {time.time() - t0:.0f} s")
-    if a.intensity_suns:
+    if rows:
+        lines.append("")
+        lines.append(f"preset {a.preset}, {a.paths} paths per probe, probes every {a.step:g} deg; {time.time() - t0:.0f} s")
+    if a.intensity_suns and "intensity" in parts:
         # The standard probes (no --probe): the vector intensity against the scalar one, each from
         # its own paths, with the combined standard error.
         t1 = time.time()
@@ -109,6 +116,25 @@ def main():
         lines.append("")
         lines.append(f"(vector I - scalar radiance) / scalar radiance, +- one combined standard error; preset {a.preset}, "
                      f"{a.intensity_paths} paths each; {time.time() - t1:.0f} s")
+    if a.intensity_suns and "renderer" in parts:
+        t2 = time.time()
+        lines += ["", "| sun (deg) | probe | DoLP 450 nm: reference / renderer | DoLP 650 nm: reference / renderer |",
+                  "| ---: | --- | ---: | ---: |"]
+        for sun in [float(x) for x in a.intensity_suns.split(",")]:
+            cmd = [a.skyspec, "reference", "--preset", a.preset, "--sun-elevation", str(sun), "--wavelengths", "450,650",
+                   "--paths", str(a.paths), "--stokes", "--compare", "--format", "json", "-q"]
+            for x in a.set:
+                cmd += ["--set", x]
+            r = json.loads(subprocess.run(cmd, check=True, capture_output=True, text=True).stdout)
+            for p in r["probes"]:
+                cells = []
+                for i in range(2):
+                    s_mc, s_r = p["stokes"][i], p["renderer_stokes"][i]
+                    cells.append(f"{math.hypot(s_mc[1], s_mc[2]) / s_mc[0]:.3f} / {math.hypot(s_r[1], s_r[2]) / s_r[0]:.3f}")
+                lines.append(f"| {sun:g} | {p['label']} | " + " | ".join(cells) + " |")
+        lines.append("")
+        lines.append(f"degree of linear polarisation, the vector reference (all orders) / the renderer (single scattering "
+                     f"polarised, the rest unpolarised); preset {a.preset}, {a.paths} paths; {time.time() - t2:.0f} s")
     text = "\n".join(lines)
     print(text)
     if a.markdown:

@@ -2,6 +2,9 @@
 // m^-1 is the optical thickness.
 #pragma once
 
+#include <vector>
+
+#include "atmosphere_fixtures.hpp"
 #include "transport/monte_carlo.hpp"
 
 namespace skyspec::test {
@@ -21,6 +24,15 @@ inline MonteCarloMedium rayleigh_slab(double tau, double single_scattering_albed
   m.ground_albedo = ground_albedo;
   m.sun_irradiance = sun_irradiance;
   return m;
+}
+
+/// The wavelengths and the deterministic side of the order-1 comparisons with the Monte Carlo:
+/// the default atmosphere over a ground of albedo 0.3, a fine sun-column table, 128 view segments.
+inline const std::vector<double> kOrderOneNm = {400, 550, 700};
+inline IntegratorChain default_air_over_ground() {
+  AtmosphereSpec spec;
+  spec.ground.albedo = 0.3;
+  return IntegratorChain(spec, kOrderOneNm, {256, 512, 64}, 128);  // guaranteed copy elision
 }
 
 }  // namespace skyspec::test

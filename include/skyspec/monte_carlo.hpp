@@ -57,6 +57,11 @@ struct ReferenceResult {
   double seconds = 0.0;
 };
 
+/// The first axis of a probe's Stokes frame (ReferenceResult::stokes) for an observer looking
+/// along `look` (unit, the scene's east-north-up frame): the vertical through the line of sight
+/// made perpendicular to it, pointing up; straight up or down, north.
+Vec3 stokes_frame_axis(const Vec3& look);
+
 /// The probes of the validation table (docs/validation.md): the zenith, 45 degrees up towards the
 /// sun, and 1 degree above the horizon towards, across (90 degrees to the right of) and away from it.
 std::vector<ReferenceProbe> standard_reference_probes(const Scene& scene);

@@ -53,6 +53,13 @@ class SkyRenderer {
   /// so is this.
   Spectrum radiance(const Vec3& dir) const;
   Rgb radiance_rgb(const Vec3& dir) const;
+  /// The sky's Stokes vector in that direction as far as the renderer models polarisation: i is
+  /// radiance(dir); q and u are the polarisation of light scattered once by the air (Rayleigh's
+  /// scattering matrix; the aerosol does not polarise), in the frame (e1, k x e1) of the light
+  /// arriving along k = -dir, e1 a unit vector perpendicular to dir; V = 0. Light scattered more
+  /// than once, and by the ground, counts as unpolarised: an approximation whose error
+  /// docs/validation.md measures against the vector Monte Carlo reference.
+  void stokes(const Vec3& dir, const Vec3& e1, Spectrum& i, Spectrum& q, Spectrum& u) const;
 
   /// Aerial perspective for rows [y0, y0 + rows): for each pixel, the spectral transmittance from
   /// the camera to a surface at distance_m[pixel] along the pixel's ray, and the light the air

@@ -77,6 +77,9 @@ Checked check(const ReferenceOptions& o) {
 struct Deterministic {
   std::vector<Spectrum> radiance;
   SpectrumD diffuse;
+  /// With --stokes: [probe][wavelength] the renderer's [I, Q, U, V] (its single-scattering
+  /// polarisation; SkyRenderer::stokes) in the reference's frame.
+  std::vector<std::vector<std::array<double, 4>>> stokes;
 };
 
 Deterministic render_probes(Scene scene, const Checked& c, int orders) {
@@ -84,6 +87,15 @@ Deterministic render_probes(Scene scene, const Checked& c, int orders) {
   const SkyRenderer renderer(scene);
   Deterministic d;
   for (const auto& p : c.probes) d.radiance.push_back(renderer.radiance(direction_from_angles(p.azimuth_deg, p.elevation_deg)));
+  if (c.settings.stokes)
+    for (const auto& p : c.probes) {
+      const Vec3 dir = direction_from_angles(p.azimuth_deg, p.elevation_deg);
+      Spectrum i, q, u;
+      renderer.stokes(dir, stokes_frame_axis(dir), i, q, u);
+      std::vector<std::array<double, 4>> v(static_cast<size_t>(i.size()));
+      for (Eigen::Index k = 0; k < i.size(); ++k) v[static_cast<size_t>(k)] = {i[k], q[k], u[k], 0.0};
+      d.stokes.push_back(std::move(v));
+    }
   if (c.settings.diffuse_irradiance) d.diffuse = irradiance_at_camera(renderer).diffuse_horizontal;
   return d;
 }
@@ -129,9 +141,11 @@ std::string format_table(const ReferenceResult& r, const Deterministic* det, con
     }
     return cells;
   };
-  const size_t stokes_columns = md ? 4 : 10;
+  const bool det_stokes = det && !det->stokes.empty();
+  const size_t stokes_columns = (md ? 4 : 10) + (det_stokes ? (md ? 1 : 3) : 0);
   auto row = [&](const std::string& label, double az, double el, size_t i, double mc, double se, double renderer,
-                 const std::array<double, 4>* sv, const std::array<double, 4>* sv_error) {
+                 const std::array<double, 4>* sv, const std::array<double, 4>* sv_error,
+                 const std::array<double, 4>* renderer_sv) {
     const bool relative = mc > 0.0 && se > 0.0;
     std::vector<std::string> cells = {md ? markdown_cell(label) : csv_quoted(label), num(md ? "%.2f" : "%.6g", az),
                                       num(md ? "%.2f" : "%.6g", el), num("%g", r.wavelengths_nm[i]),
@@ -143,7 +157,18 @@ std::string format_table(const ReferenceResult& r, const Deterministic* det, con
       cells.push_back(relative ? num(md ? "%+.1f" : "%.6g", (renderer - mc) / se) : "");
     }
     if (stokes) {
-      const auto extra = sv ? polarisation_cells(*sv, *sv_error) : std::vector<std::string>(stokes_columns);
+      auto extra = sv ? polarisation_cells(*sv, *sv_error) : std::vector<std::string>(stokes_columns);
+      if (sv && det_stokes) {
+        const auto& v = *renderer_sv;
+        const std::string dolp = v[0] > 0.0 ? num(md ? "%.4f" : "%.6g", std::hypot(v[1], v[2]) / v[0]) : "";
+        if (md) {
+          extra.push_back(dolp);
+        } else {
+          extra.push_back(num("%.9g", v[1]));
+          extra.push_back(num("%.9g", v[2]));
+          extra.push_back(dolp);
+        }
+      }
       cells.insert(cells.end(), extra.begin(), extra.end());
     }
     for (size_t c = 0; c < cells.size(); ++c) t << (md ? (c ? " | " : "| ") : (c ? "," : "")) << cells[c];
@@ -152,25 +177,28 @@ std::string format_table(const ReferenceResult& r, const Deterministic* det, con
   if (format == "md") {
     t << "| probe | azimuth (deg) | elevation (deg) | wavelength (nm) | Monte Carlo | standard error (%) |"
       << (det ? " renderer | renderer - MC (%) | (renderer - MC) / sigma |" : "")
-      << (stokes ? " I (polarised) | DoLP | AoLP (deg) | V / I |" : "") << "\n"
+      << (stokes ? " I (polarised) | DoLP | AoLP (deg) | V / I |" : "")
+      << (det_stokes ? " renderer DoLP (single scattering) |" : "") << "\n"
       << "| --- | ---: | ---: | ---: | ---: | ---: |" << (det ? " ---: | ---: | ---: |" : "")
-      << (stokes ? " ---: | ---: | ---: | ---: |" : "") << "\n";
+      << (stokes ? " ---: | ---: | ---: | ---: |" : "") << (det_stokes ? " ---: |" : "") << "\n";
   } else {
     t << "probe,azimuth_deg,elevation_deg,wavelength_nm,monte_carlo,standard_error"
       << (det ? ",renderer,renderer_minus_mc_percent,renderer_minus_mc_sigma" : "")
       << (stokes ? ",stokes_i,stokes_q,stokes_u,stokes_v,stokes_i_error,stokes_q_error,stokes_u_error,stokes_v_error,"
                    "degree_of_linear_polarisation,angle_of_linear_polarisation_deg"
                  : "")
+      << (det_stokes ? ",renderer_stokes_q,renderer_stokes_u,renderer_degree_of_linear_polarisation" : "")
       << "\n";
   }
   for (size_t k = 0; k < r.probes.size(); ++k)
     for (size_t i = 0; i < n; ++i)
       row(r.probes[k].label, r.probes[k].azimuth_deg, r.probes[k].elevation_deg, i, r.radiance[k][i],
           r.radiance_standard_error[k][i], det ? static_cast<double>(det->radiance[k][static_cast<long>(i)]) : 0.0,
-          stokes ? &r.stokes[k][i] : nullptr, stokes ? &r.stokes_standard_error[k][i] : nullptr);
+          stokes ? &r.stokes[k][i] : nullptr, stokes ? &r.stokes_standard_error[k][i] : nullptr,
+          det_stokes ? &det->stokes[k][i] : nullptr);
   for (size_t i = 0; i < r.diffuse_horizontal.size(); ++i)
     row("diffuse horizontal irradiance", 0.0, 90.0, i, r.diffuse_horizontal[i], r.diffuse_horizontal_standard_error[i],
-        det ? det->diffuse[static_cast<long>(i)] : 0.0, nullptr, nullptr);
+        det ? det->diffuse[static_cast<long>(i)] : 0.0, nullptr, nullptr, nullptr);
   if (format == "md") {
     t << "\nRadiance in W m^-2 sr^-1 nm^-1 (irradiance in W m^-2 nm^-1), sun at elevation " << scene.sun.elevation_deg
       << " deg, azimuth " << scene.sun.azimuth_deg << " deg; " << r.settings.paths << " paths per value, seed "
@@ -180,7 +208,11 @@ std::string format_table(const ReferenceResult& r, const Deterministic* det, con
       t << "Polarisation (vector transport, the same number of paths): I with polarisation's coupling into "
            "intensity (the Monte Carlo column and the renderer are scalar); degree and angle of linear "
            "polarisation, the angle from the vertical towards the observer's left (at the zenith from north); "
-           "aerosols neither polarise nor depolarise in this model.\n";
+           "aerosols neither polarise nor depolarise in this model."
+        << (det_stokes ? " The renderer's DoLP is that of single scattering by air, the other light counted as "
+                         "unpolarised."
+                       : "")
+        << "\n";
   }
   return t.str();
 }
@@ -208,6 +240,7 @@ std::string format_json(const ReferenceResult& r, const Deterministic* det, cons
       p["stokes"] = r.stokes[k];
       p["stokes_standard_error"] = r.stokes_standard_error[k];
     }
+    if (det && !det->stokes.empty()) p["renderer_stokes"] = det->stokes[k];
     j["probes"].push_back(p);
   }
   if (!r.diffuse_horizontal.empty()) {

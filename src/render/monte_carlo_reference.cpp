@@ -32,6 +32,15 @@ std::uint64_t stream_of(double a, double b, double lambda_nm, std::uint64_t kind
 }
 }  // namespace
 
+Vec3 stokes_frame_axis(const Vec3& look) {
+  // The vertical plane through the line of sight; straight up or down, where that plane is
+  // undefined, the vertical plane towards azimuth 0.
+  const Vec3 up(0, 0, 1);
+  const Vec3 d = look.normalized();
+  const Vec3 reference = std::abs(d.dot(up)) > 1.0 - 1e-12 ? direction_from_angles(0.0, 0.0) : up;
+  return (reference - reference.dot(d) * d).normalized();
+}
+
 std::vector<ReferenceProbe> standard_reference_probes(const Scene& scene) {
   const double sun = scene.sun.azimuth_deg;
   auto wrap = [](double az) { return std::fmod(std::fmod(az, 360.0) + 360.0, 360.0); };
@@ -120,11 +129,8 @@ ReferenceResult monte_carlo_reference(const Scene& scene, const std::vector<Refe
       out.radiance_standard_error[k][static_cast<size_t>(i)] = e * v.standard_error;
       if (progress) progress(++done, total);
       if (settings.stokes) {
-        // The vertical through the line of sight; straight up or down, where that plane is
-        // undefined, the vertical plane towards azimuth 0 (e1 points north).
-        const Vec3 reference = std::abs(dir.dot(up)) > 1.0 - 1e-12 ? direction_from_angles(0.0, 0.0) : up;
         const MonteCarloStokes s = integrator.stokes_radiance(
-            origin, dir, reference, mc, stream_of(probes[k].azimuth_deg, probes[k].elevation_deg, grid.nm(i), 3));
+            origin, dir, stokes_frame_axis(dir), mc, stream_of(probes[k].azimuth_deg, probes[k].elevation_deg, grid.nm(i), 3));
         for (size_t c = 0; c < 4; ++c) {
           out.stokes[k][static_cast<size_t>(i)][c] = e * s[c].mean;
           out.stokes_standard_error[k][static_cast<size_t>(i)][c] = e * s[c].standard_error;

@@ -246,6 +246,18 @@ Spectrum SkyRenderer::radiance(const Vec3& dir) const {
 
 Rgb SkyRenderer::radiance_rgb(const Vec3& dir) const { return spectrum_to_rgb(radiance(dir)); }
 
+void SkyRenderer::stokes(const Vec3& dir, const Vec3& e1, Spectrum& i, Spectrum& q, Spectrum& u) const {
+  const auto& m = *impl_;
+  const int n = m.grid.size();
+  thread_local std::optional<ScatteringWorkspace> ws;
+  if (!ws || ws->view_tau.size() != n) ws.emplace(n);
+  const Vec3 d = dir.normalized();
+  RadianceParts parts(n);
+  if (!(m.sky_view && m.sky_view->lookup(d, parts)))
+    m.integrator.radiance_parts(m.camera->origin_m(), d, m.sun_dir, m.sources, *ws, parts);
+  m.integrator.stokes(parts, d, m.sun_dir, e1.normalized(), m.sun_irradiance, *ws, i, q, u);
+}
+
 void SkyRenderer::aerial_rows(int y0, int rows, const float* distance_m, float* transmittance, float* inscatter) const {
   const auto& m = *impl_;
   const int w = m.camera->width(), n = m.grid.size();

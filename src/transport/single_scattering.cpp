@@ -225,6 +225,30 @@ void SingleScattering::combine(const RadianceParts& parts, double mu, const Spec
                 out.data());
 }
 
+void SingleScattering::stokes(const RadianceParts& parts, const Vec3& view, const Vec3& sun, const Vec3& e1,
+                              const Spectrum& sun_irradiance, ScatteringWorkspace& ws, Spectrum& I, Spectrum& Q,
+                              Spectrum& U) const {
+  const double mu = view.dot(sun);
+  combine(parts, mu, sun_irradiance, ws, I);
+  // The scattering plane of sunlight (travelling along -sun) seen along -view: its normal n and
+  // its outgoing frame's first axis n x k; the rotation into (e1, k x e1) by psi with
+  // cos psi = e1 . (n x k), sin psi = e1 . n (stokes_rotation).
+  const Vec3 k = -view;
+  Vec3 n = (-sun).cross(k);
+  double c2 = 1.0, s2 = 0.0;
+  if (n.norm() > 1e-12) {
+    n.normalize();
+    const double c = e1.dot(n.cross(k)), s = e1.dot(n);
+    c2 = c * c - s * s;
+    s2 = 2.0 * c * s;
+  }
+  // Q' = Q cos 2psi, U' = -Q sin 2psi for Q in the plane's frame (U = 0 there).
+  const Spectrum q_plane =
+      -(rayleigh_phase_b_ * static_cast<float>(1.0 - mu * mu)) * parts.rayleigh * sun_irradiance;
+  Q = static_cast<float>(c2) * q_plane;
+  U = static_cast<float>(-s2) * q_plane;
+}
+
 void SingleScattering::combine_many(int count, const float* packed, const double* mu, const bool* use,
                                     const Spectrum& sun_irradiance, float* const* out, ScatteringWorkspace& ws) const {
   const Eigen::Index n = sca_rayleigh_.size();

@@ -141,6 +141,16 @@ class SingleScattering {
   /// L = E_sun [p_R(mu) rayleigh + p_M(mu) mie + phase_free] for mu = cos(scattering angle).
   void combine(const RadianceParts& parts, double mu, const Spectrum& sun_irradiance, ScatteringWorkspace& ws,
                Spectrum& out) const;
+  /// The polarisation of combine()'s light as far as single scattering makes it: the Stokes vector
+  /// [I, Q, U] (V = 0) of the light arriving along k = -view, in the frame (e1, k x e1) (e1 unit,
+  /// perpendicular to view). I is combine()'s radiance; Q and U are order 1's Rayleigh light
+  /// polarised by Rayleigh's scattering matrix: E rayleigh b1(mu) in the scattering plane's frame,
+  /// b1 = -B (1 - mu^2) with B the phase function's mu^2 coefficient (physics/scattering_matrix.hpp),
+  /// turned into (e1, k x e1). The aerosol is non-polarising (as in the Monte Carlo reference); the
+  /// higher orders and the ground add unpolarised light (an approximation: multiply scattered
+  /// light is polarised too, docs/validation.md measures what this misses).
+  void stokes(const RadianceParts& parts, const Vec3& view, const Vec3& sun, const Vec3& e1,
+              const Spectrum& sun_irradiance, ScatteringWorkspace& ws, Spectrum& I, Spectrum& Q, Spectrum& U) const;
   /// combine() for `count` directions whose parts are packed as SkyViewTable::lookup_many gives
   /// them (3 n floats each: Rayleigh, Mie, phase-free; n wavelengths): direction k, at cosine
   /// mu[k] to the sun, goes to out[k] (n floats) where use[k]. The phase functions of all of them

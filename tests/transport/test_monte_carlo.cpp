@@ -133,10 +133,8 @@ BOOST_AUTO_TEST_CASE(optically_thin_limit_is_single_scattering) {
 // aerosol, ozone, a reflecting ground), against the deterministic single-scattering integral:
 // zenith, 45 degrees up, and near the horizon towards and away from low and high suns.
 BOOST_AUTO_TEST_CASE(single_scattering_matches_the_deterministic_integrator) {
-  AtmosphereSpec spec;
-  spec.ground.albedo = 0.3;
-  const std::vector<double> nm = {400, 550, 700};
-  const test::IntegratorChain chain(spec, nm, {256, 512, 64}, 128);
+  const std::vector<double>& nm = test::kOrderOneNm;
+  const test::IntegratorChain chain = test::default_air_over_ground();
   const int n = static_cast<int>(nm.size());
   ScatteringWorkspace ws(n);
   Spectrum det(n);

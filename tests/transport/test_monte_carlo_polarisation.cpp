@@ -7,10 +7,13 @@
 #include <cmath>
 #include <cstdio>
 
+#include "atmosphere_fixtures.hpp"
 #include "monte_carlo_fixtures.hpp"
+#include "skyspec/camera.hpp"
 #include "physics/scattering_matrix.hpp"
 #include "skyspec/phase_function.hpp"
 #include "transport/monte_carlo.hpp"
+#include "transport/single_scattering.hpp"
 
 BOOST_AUTO_TEST_SUITE(test_monte_carlo_polarisation)
 
@@ -140,6 +143,46 @@ BOOST_AUTO_TEST_CASE(vector_intensity_is_the_scalar_one_for_one_order) {
   const MonteCarloStokes vector = mc.stokes_radiance(Vec3(0, 0, 0), look, Vec3(0, 0, 1), settings, 9);
   BOOST_TEST(std::abs(vector[0].mean / scalar.mean - 1.0) < 0.15);
   BOOST_TEST(std::abs(vector[0].mean / scalar.mean - 1.0) > 1e-4);
+}
+
+// The deterministic integrator's single-scattering polarisation (SingleScattering::stokes) against
+// the vector Monte Carlo limited to one order, in the default atmosphere's physics (depolarised
+// Rayleigh, non-polarising aerosol, ozone, a depolarising ground of albedo 0.3): Q and U in the
+// frame of the vertical through the line of sight, for suns at 30 and 2 degrees.
+BOOST_AUTO_TEST_CASE(deterministic_single_scattering_polarisation_matches_the_monte_carlo) {
+  const std::vector<double>& nm = test::kOrderOneNm;
+  const test::IntegratorChain chain = test::default_air_over_ground();
+  const int n = static_cast<int>(nm.size());
+  ScatteringWorkspace ws(n);
+  RadianceParts parts(n);
+  Spectrum I(n), Q(n), U(n);
+  MonteCarloSettings settings;
+  settings.paths = 20000;
+  settings.seed = 8;
+  settings.max_orders = 1;
+  const Vec3 origin(0, 0, chain.atm.planet_radius_m() + 1.0);
+  const Vec3 up(0, 0, 1);
+  std::uint64_t stream = 0;
+  for (double sun_elevation : {30.0, 2.0}) {
+    const Vec3 sun = direction_from_angles(0.0, sun_elevation);
+    for (auto [az, el] : {std::pair{0.0, 60.0}, {120.0, 45.0}, {90.0, 10.0}, {250.0, 20.0}}) {
+      const Vec3 dir = direction_from_angles(az, el);
+      const Vec3 e1 = (up - up.dot(dir) * dir).normalized();
+      chain.integrator.radiance_parts(origin, dir, sun, ScatteringSources{}, ws, parts);
+      chain.integrator.stokes(parts, dir, sun, e1, Spectrum::Ones(n), ws, I, Q, U);
+      for (int i = 0; i < n; ++i) {
+        const MonteCarloIntegrator mc(MonteCarloMedium::from_atmosphere(chain.atm, i), sun);
+        const MonteCarloStokes v = mc.stokes_radiance(origin, dir, up, settings, ++stream);
+        BOOST_TEST_MESSAGE("sun " << sun_elevation << ", view " << az << "/" << el << ", " << nm[size_t(i)] << " nm");
+        BOOST_TEST(agrees("I", v[0], I[i], 4.0, 2e-3));
+        // Q and U against the intensity's scale: they may be near 0.
+        BOOST_TEST(std::abs(v[1].mean - Q[i]) <= 4.0 * v[1].standard_error + 2e-3 * I[i]);
+        BOOST_TEST(std::abs(v[2].mean - U[i]) <= 4.0 * v[2].standard_error + 2e-3 * I[i]);
+        std::printf("  Q %.5g / %.5g, U %.5g / %.5g (MC / deterministic)\n", v[1].mean, Q[i], v[2].mean, U[i]);
+      }
+      BOOST_TEST(std::hypot(Q[0], U[0]) > 0.05 * I[0]);  // polarised: the comparison is not of zeros
+    }
+  }
 }
 
 BOOST_AUTO_TEST_SUITE_END()
