@@ -31,9 +31,11 @@ import time
 WAVELENGTHS = [450, 550]
 
 
-def run(skyspec, preset, sun, probes, paths, sets, wavelengths=WAVELENGTHS):
+def run(skyspec, preset, sun, probes, paths, sets, wavelengths=WAVELENGTHS, compare=False):
     cmd = [skyspec, "reference", "--preset", preset, "--sun-elevation", str(sun), "--wavelengths",
            ",".join(map(str, wavelengths)), "--paths", str(paths), "--stokes", "--format", "json", "-q"]
+    if compare:
+        cmd.append("--compare")
     for az, el in probes:
         cmd += ["--probe", f"{az:g},{el:g}"]
     for s in sets:
@@ -121,11 +123,7 @@ def main():
         lines += ["", "| sun (deg) | probe | DoLP 450 nm: reference / renderer | DoLP 650 nm: reference / renderer |",
                   "| ---: | --- | ---: | ---: |"]
         for sun in [float(x) for x in a.intensity_suns.split(",")]:
-            cmd = [a.skyspec, "reference", "--preset", a.preset, "--sun-elevation", str(sun), "--wavelengths", "450,650",
-                   "--paths", str(a.paths), "--stokes", "--compare", "--format", "json", "-q"]
-            for x in a.set:
-                cmd += ["--set", x]
-            r = json.loads(subprocess.run(cmd, check=True, capture_output=True, text=True).stdout)
+            r = run(a.skyspec, a.preset, sun, [], a.paths, a.set, [450, 650], compare=True)
             for p in r["probes"]:
                 cells = []
                 for i in range(2):

@@ -102,7 +102,7 @@ class MonteCarloIntegrator {
   /// example the local vertical: Q > 0 is light polarised in the vertical plane), e2 = k x e1.
   /// The ground reflects as a depolarising Lambertian surface; aerosols neither polarise nor
   /// depolarise (non_polarising_scattering_matrix). I differs from radiance() by the coupling of
-  /// polarisation into intensity (a few percent for Rayleigh air).
+  /// polarisation into intensity (docs/validation.md, "Polarisation", measures it).
   MonteCarloStokes stokes_radiance(const Vec3& origin_m, const Vec3& look, const Vec3& reference,
                                    const MonteCarloSettings& settings, std::uint64_t stream) const;
   /// Irradiance on a surface at origin_m facing `normal` (unit) from the light scattered or

@@ -131,9 +131,9 @@ class SourceTable : public InScatteringSource {
   size_t index(int ih, int imu) const { return ((static_cast<size_t>(ih) * n_mu_ + imu) * n_c_) * n_l_; }
   size_t j_size() const { return static_cast<size_t>(n_h_) * n_mu_ * n_c_ * n_l_; }
   /// Two neighbouring sun angles whose mean radiances differ by more than this factor are read
-  /// in log space (source()). At 2 (before), pairs just below it were blended linearly with up to
-  /// 6 % error at the midpoint, enough to make twilight skies jump by several percent between 72,
-  /// 144 and 288 sun angles (docs/validation.md); at 1.25 the linear blend's error is below 0.6 %.
+  /// in log space (source()). Below it the linear blend of an exponential errs by at most
+  /// 1 - 2 sqrt(r) / (1 + r): 0.6 % at 1.25 (6 % at 2, the former value; docs/validation.md
+  /// measures what that did to twilight skies).
   static constexpr float kSteepRatio = 1.25f;
   /// Whether the mean radiance changes more than kSteepRatio-fold between sun angles imu and
   /// imu + 1 at altitude ih (at some wavelength), both positive throughout.
