@@ -53,12 +53,13 @@ class SkyRenderer {
   /// so is this.
   Spectrum radiance(const Vec3& dir) const;
   Rgb radiance_rgb(const Vec3& dir) const;
-  /// The sky's Stokes vector in that direction as far as the renderer models polarisation: i is
-  /// radiance(dir); q and u are the polarisation of light scattered once by the air (Rayleigh's
-  /// scattering matrix; the aerosol does not polarise), in the frame (e1, k x e1) of the light
-  /// arriving along k = -dir, e1 a unit vector perpendicular to dir; V = 0. Light scattered more
-  /// than once, and by the ground, counts as unpolarised: an approximation whose error
-  /// docs/validation.md measures against the vector Monte Carlo reference.
+  /// The sky's Stokes vector in that direction as far as the renderer models polarisation, in the
+  /// frame (e1, k x e1) of the light arriving along k = -dir, e1 a unit vector perpendicular to
+  /// dir; V = 0. i is radiance(dir) (integrated along the ray, not read from the sky-view table);
+  /// q and u are the polarisation that the light gets at its last scattering by air (Rayleigh's
+  /// scattering matrix): exact for single scattering; for the higher orders the diffuse field
+  /// that is scattered counts as unpolarised. The aerosol does not polarise, the ground
+  /// depolarises. docs/validation.md measures the approximation against the vector Monte Carlo.
   void stokes(const Vec3& dir, const Vec3& e1, Spectrum& i, Spectrum& q, Spectrum& u) const;
 
   /// Aerial perspective for rows [y0, y0 + rows): for each pixel, the spectral transmittance from

@@ -103,6 +103,9 @@ struct OutputSpec {
   /// Pixel type of the spectral channels: "float" or "half" (R, G, B are always float).
   std::string exr_spectral_type = "float";
   std::optional<double> exposure_ev;  ///< preview exposure; automatic when absent
+  /// Vector transport for the air: the scattering-order tables carry linear polarisation, and the
+  /// spectral EXR gets S1-S3 beside S0 (docs/polarisation.md).
+  bool polarisation = false;
 };
 
 struct Scene {

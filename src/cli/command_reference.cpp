@@ -77,13 +77,16 @@ Checked check(const ReferenceOptions& o) {
 struct Deterministic {
   std::vector<Spectrum> radiance;
   SpectrumD diffuse;
-  /// With --stokes: [probe][wavelength] the renderer's [I, Q, U, V] (its single-scattering
-  /// polarisation; SkyRenderer::stokes) in the reference's frame.
+  /// With --stokes: [probe][wavelength] the renderer's [I, Q, U, V] (with output.polarisation;
+  /// SkyRenderer::stokes) in the reference's frame.
   std::vector<std::vector<std::array<double, 4>>> stokes;
 };
 
 Deterministic render_probes(Scene scene, const Checked& c, int orders) {
   if (orders == 1) scene.render.scattering_orders = 1;
+  // With --stokes the renderer's polarisation is compared: its vector tables.
+  if (c.settings.stokes && (scene.render.scattering_orders < 2 || scene.render.ms_angular_degree >= 2))
+    scene.output.polarisation = true;
   const SkyRenderer renderer(scene);
   Deterministic d;
   for (const auto& p : c.probes) d.radiance.push_back(renderer.radiance(direction_from_angles(p.azimuth_deg, p.elevation_deg)));
@@ -142,7 +145,7 @@ std::string format_table(const ReferenceResult& r, const Deterministic* det, con
     return cells;
   };
   const bool det_stokes = det && !det->stokes.empty();
-  const size_t stokes_columns = (md ? 4 : 10) + (det_stokes ? (md ? 1 : 3) : 0);
+  const size_t stokes_columns = (md ? 4 : 10) + (det_stokes ? (md ? 3 : 5) : 0);
   auto row = [&](const std::string& label, double az, double el, size_t i, double mc, double se, double renderer,
                  const std::array<double, 4>* sv, const std::array<double, 4>* sv_error,
                  const std::array<double, 4>* renderer_sv) {
@@ -159,15 +162,18 @@ std::string format_table(const ReferenceResult& r, const Deterministic* det, con
     if (stokes) {
       auto extra = sv ? polarisation_cells(*sv, *sv_error) : std::vector<std::string>(stokes_columns);
       if (sv && det_stokes) {
+        // The renderer's intensity (vector transport) against the vector reference's I.
         const auto& v = *renderer_sv;
+        const double vi = (*sv)[0], ve = (*sv_error)[0];
+        const bool vector_relative = vi > 0.0 && ve > 0.0;
         const std::string dolp = v[0] > 0.0 ? num(md ? "%.4f" : "%.6g", std::hypot(v[1], v[2]) / v[0]) : "";
-        if (md) {
-          extra.push_back(dolp);
-        } else {
+        extra.push_back(vector_relative ? num(md ? "%+.2f" : "%.6g", 100.0 * (v[0] / vi - 1.0)) : "");
+        extra.push_back(vector_relative ? num(md ? "%+.1f" : "%.6g", (v[0] - vi) / ve) : "");
+        if (!md) {
           extra.push_back(num("%.9g", v[1]));
           extra.push_back(num("%.9g", v[2]));
-          extra.push_back(dolp);
         }
+        extra.push_back(dolp);
       }
       cells.insert(cells.end(), extra.begin(), extra.end());
     }
@@ -178,16 +184,18 @@ std::string format_table(const ReferenceResult& r, const Deterministic* det, con
     t << "| probe | azimuth (deg) | elevation (deg) | wavelength (nm) | Monte Carlo | standard error (%) |"
       << (det ? " renderer | renderer - MC (%) | (renderer - MC) / sigma |" : "")
       << (stokes ? " I (polarised) | DoLP | AoLP (deg) | V / I |" : "")
-      << (det_stokes ? " renderer DoLP (single scattering) |" : "") << "\n"
+      << (det_stokes ? " renderer - I (%) | (renderer - I) / sigma | renderer DoLP |" : "") << "\n"
       << "| --- | ---: | ---: | ---: | ---: | ---: |" << (det ? " ---: | ---: | ---: |" : "")
-      << (stokes ? " ---: | ---: | ---: | ---: |" : "") << (det_stokes ? " ---: |" : "") << "\n";
+      << (stokes ? " ---: | ---: | ---: | ---: |" : "") << (det_stokes ? " ---: | ---: | ---: |" : "") << "\n";
   } else {
     t << "probe,azimuth_deg,elevation_deg,wavelength_nm,monte_carlo,standard_error"
       << (det ? ",renderer,renderer_minus_mc_percent,renderer_minus_mc_sigma" : "")
       << (stokes ? ",stokes_i,stokes_q,stokes_u,stokes_v,stokes_i_error,stokes_q_error,stokes_u_error,stokes_v_error,"
                    "degree_of_linear_polarisation,angle_of_linear_polarisation_deg"
                  : "")
-      << (det_stokes ? ",renderer_stokes_q,renderer_stokes_u,renderer_degree_of_linear_polarisation" : "")
+      << (det_stokes ? ",renderer_minus_stokes_i_percent,renderer_minus_stokes_i_sigma,renderer_stokes_q,renderer_stokes_u,"
+                       "renderer_degree_of_linear_polarisation"
+                     : "")
       << "\n";
   }
   for (size_t k = 0; k < r.probes.size(); ++k)
@@ -206,11 +214,12 @@ std::string format_table(const ReferenceResult& r, const Deterministic* det, con
       << "; " << r.seconds << " s.\n";
     if (stokes)
       t << "Polarisation (vector transport, the same number of paths): I with polarisation's coupling into "
-           "intensity (the Monte Carlo column and the renderer are scalar); degree and angle of linear "
-           "polarisation, the angle from the vertical towards the observer's left (at the zenith from north); "
-           "aerosols neither polarise nor depolarise in this model."
-        << (det_stokes ? " The renderer's DoLP is that of single scattering by air, the other light counted as "
-                         "unpolarised."
+           "intensity (the Monte Carlo column is scalar); degree and angle of linear polarisation, the angle from "
+           "the vertical towards the observer's left (at the zenith from north); aerosols neither polarise nor "
+           "depolarise in this model."
+        << (det_stokes ? " The renderer runs with output.polarisation = true (vector transport for the air; the "
+                         "light its aerosols scatter after the first order counts as unpolarised): its intensity is "
+                         "compared with I as well as with the scalar Monte Carlo."
                        : "")
         << "\n";
   }

@@ -252,9 +252,11 @@ void SkyRenderer::stokes(const Vec3& dir, const Vec3& e1, Spectrum& i, Spectrum&
   thread_local std::optional<ScatteringWorkspace> ws;
   if (!ws || ws->view_tau.size() != n) ws.emplace(n);
   const Vec3 d = dir.normalized();
+  // Integrated along the ray (not looked up in the sky-view table, which holds no polarisation).
   RadianceParts parts(n);
-  if (!(m.sky_view && m.sky_view->lookup(d, parts)))
-    m.integrator.radiance_parts(m.camera->origin_m(), d, m.sun_dir, m.sources, *ws, parts);
+  ScatteringSources sources = m.sources;
+  sources.polarisation = true;
+  m.integrator.radiance_parts(m.camera->origin_m(), d, m.sun_dir, sources, *ws, parts);
   m.integrator.stokes(parts, d, m.sun_dir, e1.normalized(), m.sun_irradiance, *ws, i, q, u);
 }
 

@@ -584,6 +584,11 @@ const std::vector<KeyDef>& registry() {
                          [](Scene& s) -> std::string& { return s.output.name; }, true));
     r.push_back(bool_key("output.exr", "write the spectral OpenEXR", [](Scene& s) -> bool& { return s.output.exr; }));
     r.push_back(bool_key("output.png", "write the sRGB PNG preview", [](Scene& s) -> bool& { return s.output.png; }));
+    r.push_back(bool_key("output.polarisation",
+                         "polarised sky: Stokes S1-S3 per wavelength in the spectral EXR beside S0 (vector transport "
+                         "for the air; aerosols scatter as non-polarising; needs render.ms_angular_degree >= 2 with "
+                         "multiple scattering)",
+                         [](Scene& s) -> bool& { return s.output.polarisation; }));
     r.push_back(choice_key(
         "output.exr_compression", {"piz", "zip", "zips", "rle", "none"},
         "lossless compression of the spectral EXR: piz (wavelet, smallest and fastest to write for sky "
@@ -917,6 +922,10 @@ Scene SceneLoader::finish(SceneUse use) const {
     if (!(gr.albedo_wavelengths_nm[i] > gr.albedo_wavelengths_nm[i - 1]))
       throw InputError("ground.albedo_wavelengths_nm", format_number(gr.albedo_wavelengths_nm[i]),
                        "strictly increasing wavelengths");
+  if (s.output.polarisation && s.render.scattering_orders >= 2 && s.render.ms_angular_degree < 2)
+    throw InputError("render.ms_angular_degree", std::to_string(s.render.ms_angular_degree),
+                     "2 or more with output.polarisation = true and multiple scattering (the polarisation of light "
+                     "scattered more than once comes from its field's quadrupole; the draft quality's 0 has none)");
   // Grid and colour path.
   const WavelengthGrid grid = make_wavelength_grid(s);
   if (s.render.path == RenderSpec::Path::RgbFast) {

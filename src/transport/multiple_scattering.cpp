@@ -85,7 +85,7 @@ std::shared_ptr<const PhaseMoments> PhaseMoments::of(const AtmosphereModel& atm,
 }
 
 SourceTable::SourceTable(double planet_radius_m, double top_radius_m, int n_altitude, int n_sun,
-                         std::shared_ptr<const PhaseMoments> moments, int degree)
+                         std::shared_ptr<const PhaseMoments> moments, int degree, bool polarised)
     : R_(planet_radius_m),
       Rt_(top_radius_m),
       n_h_(n_altitude),
@@ -95,7 +95,9 @@ SourceTable::SourceTable(double planet_radius_m, double top_radius_m, int n_alti
       n_l_(moments->wavelengths),
       moments_(std::move(moments)),
       j_(static_cast<size_t>(n_altitude) * n_sun * n_c_ * n_l_ + kLookupSlack),
-      g_(static_cast<size_t>(n_sun) * n_l_, 0.0f) {
+      g_(static_cast<size_t>(n_sun) * n_l_, 0.0f),
+      polarised_(polarised),
+      p_(p_size()) {
   if (n_c_ > kMaxHarmonics) throw Error("the scattering-order tables take harmonics up to degree 12");
 }
 
@@ -136,20 +138,66 @@ void SourceTable::prepare() {
   prepared_ = true;
 }
 
-void SourceTable::source_to_degree(int max_degree, double r_m, double mu, double mu_view, double nu, float* rayleigh,
-                                   float* mie) const {
+// The four table entries around (r, mu_s) and their weights: bilinear. Along the sun angle the
+// source can fall by orders of magnitude between two columns (inside the planet's shadow), where a
+// linear blend lies far above the decay: each steep altitude row's weights (prepare()) are scaled,
+// per wavelength, by the ratio of the geometric to the arithmetic mean of its two mean radiances
+// (the harmonic l = 0), so that the mean follows an exponential between the columns and the
+// harmonics keep their shape. Elsewhere (everywhere but near the terminator) the blend is left
+// linear: there the factor, 2 sqrt(r) / (1 + r) for a ratio r of the two means, would be above 0.994.
+struct SourceTable::Blend {
+  int ih, im;
+  const float *a, *b, *c, *d;    // entries (ih, im), (ih, im + 1), (ih + 1, im), (ih + 1, im + 1)
+  float sa, sb, sc, sd;          // their bilinear weights
+  const float* lower = nullptr;  // per-wavelength factors of row ih's weights (steep rows only)
+  const float* upper = nullptr;  // and of row ih + 1's
+};
+
+SourceTable::Blend SourceTable::blend(double r_m, double mu_s) const {
   if (!prepared_) throw std::logic_error("SourceTable::source: the table was not prepared after it was written");
   const double h = std::clamp(r_m - R_, 0.0, Rt_ - R_);
   const double fh = row_coordinate_of_altitude(h) * (n_h_ - 1);
-  const double mu_s = std::clamp(mu, -1.0, 1.0);
-  const double fm = (u_from_mu(mu_s) + 1.0) * 0.5 * (n_mu_ - 1);
+  const double fm = (u_from_mu(std::clamp(mu_s, -1.0, 1.0)) + 1.0) * 0.5 * (n_mu_ - 1);
   const int ih = std::min(static_cast<int>(fh), n_h_ - 2), im = std::min(static_cast<int>(fm), n_mu_ - 2);
   const float ah = static_cast<float>(fh - ih), am = static_cast<float>(fm - im);
-  const float* a = &j_[index(ih, im)];
-  const float* b = &j_[index(ih, im + 1)];
-  const float* c = &j_[index(ih + 1, im)];
-  const float* d = &j_[index(ih + 1, im + 1)];
+  Blend w{ih, im, &j_[index(ih, im)], &j_[index(ih, im + 1)], &j_[index(ih + 1, im)], &j_[index(ih + 1, im + 1)],
+          (1 - ah) * (1 - am), (1 - ah) * am, ah * (1 - am), ah * am};
+  const bool lower_steep = steep_[static_cast<size_t>(ih) * (n_mu_ - 1) + im] != 0;
+  const bool upper_steep = steep_[static_cast<size_t>(ih + 1) * (n_mu_ - 1) + im] != 0;
+  if (!lower_steep && !upper_steep) return w;
+  const int padded = (n_l_ + kLookupSlack - 1) / kLookupSlack * kLookupSlack;
+  using Lanes = Eigen::Array<float, kLookupSlack, 1>;
+  using LanesMap = Eigen::Map<const Lanes, Eigen::Unaligned>;
+  thread_local std::vector<float> row_factors;
+  row_factors.assign(2 * static_cast<size_t>(padded), 1.0f);
+  // Over whole blocks of fixed size (Eigen's vectorised exp on every lane: a dynamic-size
+  // expression would peel a head with the scalar expf depending on the buffer's alignment, so
+  // that the last bit depended on the heap, hence on the thread); the lanes past the last
+  // wavelength read the next harmonic or the spare floats and are never written out.
+  const auto factor = [&](int row, const float* x, const float* y, float* out) {
+    const float* lx = &log_mean_[(static_cast<size_t>(row) * n_mu_ + im) * n_l_];
+    const float* ly = lx + n_l_;
+    for (int i0 = 0; i0 < padded; i0 += kLookupSlack)
+      Eigen::Map<Lanes, Eigen::Unaligned>(out + i0) = ((1 - am) * LanesMap(lx + i0) + am * LanesMap(ly + i0)).exp() /
+                                                      ((1 - am) * LanesMap(x + i0) + am * LanesMap(y + i0)).max(1e-30f);
+  };
+  if (lower_steep) {
+    factor(ih, w.a, w.b, row_factors.data());
+    w.lower = row_factors.data();
+  }
+  if (upper_steep) {
+    factor(ih + 1, w.c, w.d, row_factors.data() + padded);
+    w.upper = row_factors.data() + padded;
+  }
+  return w;
+}
+
+void SourceTable::source_to_degree(int max_degree, double r_m, double mu, double mu_view, double nu, float* rayleigh,
+                                   float* mie) const {
+  const Blend w = blend(r_m, mu);
+  const float *a = w.a, *b = w.b, *c = w.c, *d = w.d;
   // The view direction's azimuth from the sun's vertical plane at this point.
+  const double mu_s = std::clamp(mu, -1.0, 1.0);
   const double mv = std::clamp(mu_view, -1.0, 1.0);
   const double sin_product = std::sqrt(std::max(0.0, (1.0 - mv * mv) * (1.0 - mu_s * mu_s)));
   const double cos_phi = sin_product > 1e-12 ? (nu - mv * mu_s) / sin_product : 1.0;
@@ -158,38 +206,8 @@ void SourceTable::source_to_degree(int max_degree, double r_m, double mu, double
   symmetric_harmonics(degree, mv, cos_phi, basis_d);
   float basis[kMaxHarmonics];
   for (int k = 0; k < skyspec::harmonic_count(degree); ++k) basis[k] = static_cast<float>(basis_d[k]);
-
-  // The four corners' weights: bilinear. Along the sun angle the source can fall by orders of
-  // magnitude between two columns (inside the planet's shadow), where a linear blend lies far above
-  // the decay: each steep altitude row's weights (prepare()) are scaled, per wavelength, by the
-  // ratio of the geometric to the arithmetic mean of its two mean radiances (the harmonic l = 0),
-  // so that the mean follows an exponential between the columns and the harmonics keep their
-  // shape. Elsewhere (everywhere but near the terminator) the blend is left linear: there the
-  // factor, 2 sqrt(r) / (1 + r) for a ratio r of the two means, would be above 0.994.
-  const float sa = (1 - ah) * (1 - am), sb = (1 - ah) * am, sc = ah * (1 - am), sd = ah * am;
-  const bool lower_steep = steep_[static_cast<size_t>(ih) * (n_mu_ - 1) + im] != 0;
-  const bool upper_steep = steep_[static_cast<size_t>(ih + 1) * (n_mu_ - 1) + im] != 0;
-  const int padded = (n_l_ + kLookupSlack - 1) / kLookupSlack * kLookupSlack;
-  // Blocks of kLookupSlack wavelengths as Eigen fixed-size arrays (one or two vector registers).
   using Lanes = Eigen::Array<float, kLookupSlack, 1>;
   using LanesMap = Eigen::Map<const Lanes, Eigen::Unaligned>;
-  thread_local std::vector<float> row_factors;
-  if (lower_steep || upper_steep) {
-    row_factors.assign(2 * static_cast<size_t>(padded), 1.0f);
-    // Over whole blocks of fixed size (Eigen's vectorised exp on every lane: a dynamic-size
-    // expression would peel a head with the scalar expf depending on the buffer's alignment, so
-    // that the last bit depended on the heap, hence on the thread); the lanes past the last
-    // wavelength read the next harmonic or the spare floats and are never written out.
-    const auto factor = [&](int row, const float* x, const float* y, float* out) {
-      const float* lx = &log_mean_[(static_cast<size_t>(row) * n_mu_ + im) * n_l_];
-      const float* ly = lx + n_l_;
-      for (int i0 = 0; i0 < padded; i0 += kLookupSlack)
-        Eigen::Map<Lanes, Eigen::Unaligned>(out + i0) = ((1 - am) * LanesMap(lx + i0) + am * LanesMap(ly + i0)).exp() /
-                                                        ((1 - am) * LanesMap(x + i0) + am * LanesMap(y + i0)).max(1e-30f);
-    };
-    if (lower_steep) factor(ih, a, b, row_factors.data());
-    if (upper_steep) factor(ih + 1, c, d, row_factors.data() + padded);
-  }
 
   // J_s = sum_l chi_s,l sum_m Y_lm(view) a_lm, a_lm the blend of the four corners, per block of
   // wavelengths: the harmonics of each l are summed per corner first and blended once per l.
@@ -197,14 +215,14 @@ void SourceTable::source_to_degree(int max_degree, double r_m, double mu, double
   // are not written out.
   const int rayleigh_degree = std::min(moments_->rayleigh_degree, degree);
   for (int i0 = 0; i0 < n_l_; i0 += kLookupSlack) {
-    Lanes wa = Lanes::Constant(sa), wb = Lanes::Constant(sb), wc = Lanes::Constant(sc), wd = Lanes::Constant(sd);
-    if (lower_steep) {
-      const LanesMap f(row_factors.data() + i0);
+    Lanes wa = Lanes::Constant(w.sa), wb = Lanes::Constant(w.sb), wc = Lanes::Constant(w.sc), wd = Lanes::Constant(w.sd);
+    if (w.lower) {
+      const LanesMap f(w.lower + i0);
       wa *= f;
       wb *= f;
     }
-    if (upper_steep) {
-      const LanesMap f(row_factors.data() + padded + i0);
+    if (w.upper) {
+      const LanesMap f(w.upper + i0);
       wc *= f;
       wd *= f;
     }
@@ -233,6 +251,52 @@ void SourceTable::source_to_degree(int max_degree, double r_m, double mu, double
       std::copy_n(out_m.data(), n_l_ - i0, mie + i0);
     }
   }
+  if (polarised_ && degree >= 2) {
+    // Polarisation's share of the Rayleigh intensity, -2 B k^T D_pol k (SingleScattering's
+    // polarised_sources derives it), B = 15 chi_2 / (8 pi) the phase function's mu^2 coefficient;
+    // k^T D_pol k is even in the azimuth, so its sign does not matter.
+    thread_local std::vector<float> tensor;
+    tensor.resize(3 * static_cast<size_t>(n_l_));
+    for (int j = 0; j < 3; ++j)
+      mix(w, &SourceTable::p_index, p_, static_cast<size_t>(j) * n_l_, tensor.data() + static_cast<size_t>(j) * n_l_);
+    const double sin_view = std::sqrt(std::max(0.0, 1.0 - mv * mv));
+    const double kx = sin_view * std::clamp(cos_phi, -1.0, 1.0), kz = mv;
+    const double ky2 = std::max(0.0, sin_view * sin_view - kx * kx);
+    const float cxx = static_cast<float>(kx * kx - kz * kz), cyy = static_cast<float>(ky2 - kz * kz),
+                cxz = static_cast<float>(2.0 * kx * kz);
+    const float* chi2 = &moments_->rayleigh[2 * static_cast<size_t>(n_l_)];
+    for (int i = 0; i < n_l_; ++i) {
+      const float b = static_cast<float>(15.0 / (8.0 * kPi)) * chi2[i];
+      rayleigh[i] -= 2.0f * b * (cxx * tensor[i] + cyy * tensor[n_l_ + i] + cxz * tensor[2 * n_l_ + i]);
+    }
+  }
+}
+
+void SourceTable::mix(const Blend& w, size_t (SourceTable::*at)(int, int) const, const ZeroedFloats& data, size_t offset,
+                      float* out) const {
+  const float* a = &data[(this->*at)(w.ih, w.im) + offset];
+  const float* b = &data[(this->*at)(w.ih, w.im + 1) + offset];
+  const float* c = &data[(this->*at)(w.ih + 1, w.im) + offset];
+  const float* d = &data[(this->*at)(w.ih + 1, w.im + 1) + offset];
+  for (int i = 0; i < n_l_; ++i) {
+    const float lower = w.lower ? w.lower[i] : 1.0f, upper = w.upper ? w.upper[i] : 1.0f;
+    out[i] = lower * (w.sa * a[i] + w.sb * b[i]) + upper * (w.sc * c[i] + w.sd * d[i]);
+  }
+}
+
+bool SourceTable::rayleigh_moments(double r_m, double mu, float* out) const {
+  if (degree_ < 2) return false;
+  const Blend w = blend(r_m, mu);
+  for (int m = 0; m <= 2; ++m)
+    mix(w, &SourceTable::index, j_, static_cast<size_t>(harmonic_index(2, m)) * n_l_, out + static_cast<size_t>(m) * n_l_);
+  float* tensor = out + 3 * static_cast<size_t>(n_l_);
+  if (!polarised_) {
+    std::fill(tensor, tensor + 3 * static_cast<size_t>(n_l_), 0.0f);
+    return true;
+  }
+  for (int j = 0; j < 3; ++j)
+    mix(w, &SourceTable::p_index, p_, static_cast<size_t>(j) * n_l_, tensor + static_cast<size_t>(j) * n_l_);
+  return true;
 }
 
 void SourceTable::ground_irradiance(double mu, float* out) const {
@@ -250,6 +314,8 @@ void SourceTable::add(const SourceTable& o) {
   for (size_t e = 0; e < static_cast<size_t>(n_h_) * n_mu_; ++e)
     for (size_t i = 0; i < block; ++i) j_[e * n_c_ * n_l_ + i] += o.j_[e * block + i];
   for (size_t i = 0; i < g_.size(); ++i) g_[i] += o.g_[i];
+  if (polarised_ && o.polarised_)
+    for (size_t i = 0; i < p_size(); ++i) p_[i] += o.p_[i];
 }
 
 void SourceTable::add_geometric_tail(const SourceTable& last, const SourceTable& before) {
@@ -263,6 +329,8 @@ void SourceTable::add_geometric_tail(const SourceTable& last, const SourceTable&
     for (size_t i = 0; i < static_cast<size_t>(n_l_); ++i) {
       const float f = factor(last.j_[e * n_last * n_l_ + i], before.j_[e * n_before * n_l_ + i]);
       for (size_t c = 0; c < n_last; ++c) j_[(e * n_c_ + c) * n_l_ + i] += f * last.j_[(e * n_last + c) * n_l_ + i];
+      if (polarised_ && last.polarised_)
+        for (size_t c = 0; c < 3; ++c) p_[(e * 3 + c) * n_l_ + i] += f * last.p_[(e * 3 + c) * n_l_ + i];
     }
   for (size_t i = 0; i < g_.size(); ++i) g_[i] += factor(last.g_[i], before.g_[i]) * last.g_[i];
 }
@@ -272,6 +340,7 @@ void SourceTable::write(std::ostream& out) const {
   out.write(reinterpret_cast<const char*>(shape), sizeof shape);
   out.write(reinterpret_cast<const char*>(j_.data()), static_cast<std::streamsize>(j_size() * sizeof(float)));
   out.write(reinterpret_cast<const char*>(g_.data()), static_cast<std::streamsize>(g_.size() * sizeof(float)));
+  if (p_size() > 0) out.write(reinterpret_cast<const char*>(p_.data()), static_cast<std::streamsize>(p_size() * sizeof(float)));
 }
 
 bool SourceTable::read(std::istream& in) {
@@ -282,12 +351,18 @@ bool SourceTable::read(std::istream& in) {
   std::vector<float> g(g_.size());
   if (!in.read(reinterpret_cast<char*>(j.data()), static_cast<std::streamsize>(j_size() * sizeof(float)))) return false;
   if (!in.read(reinterpret_cast<char*>(g.data()), static_cast<std::streamsize>(g.size() * sizeof(float)))) return false;
+  ZeroedFloats p(p_size());
+  if (p_size() > 0 && !in.read(reinterpret_cast<char*>(p.data()), static_cast<std::streamsize>(p_size() * sizeof(float))))
+    return false;
   for (size_t i = 0; i < j_size(); ++i)
     if (!std::isfinite(j[i])) return false;
   for (float v : g)
     if (!std::isfinite(v)) return false;
+  for (size_t i = 0; i < p_size(); ++i)
+    if (!std::isfinite(p[i])) return false;
   j_.swap(j);
   g_.swap(g);
+  p_.swap(p);
   prepared_ = false;
   return true;
 }
@@ -319,13 +394,18 @@ void integrate_order(const SingleScattering& integrator, const ScatteringSources
   const double w_az = 2.0 * kPi / q.azimuth_nodes;  // both halves of the symmetric field
 
   const int n_c = table.harmonic_count(), degree = table.degree();
+  const bool polarised = table.polarised();
   struct Scratch {
     ScatteringWorkspace ws;
-    Spectrum radiance, g;
+    Spectrum radiance, g, q, u;
     Eigen::ArrayXXf a;  // [wavelength, harmonic]
+    Eigen::ArrayXXf p;  // [wavelength, xx yy xz]: the polarisation tensor (polarised tables)
+    RadianceParts parts;
     std::vector<double> basis;
-    Scratch(int m, int c) : ws(m), radiance(m), g(m), a(m, c), basis(static_cast<size_t>(c)) {}
+    Scratch(int m, int c) : ws(m), radiance(m), g(m), q(m), u(m), a(m, c), p(m, 3), parts(m), basis(static_cast<size_t>(c)) {}
   };
+  ScatteringSources ray_sources = sources;
+  ray_sources.polarisation = polarised;
   tbb::enumerable_thread_specific<Scratch> scratch([n, n_c] { return Scratch(n, n_c); });
   const int entries = table.altitude_count() * table.sun_count();
   tbb::parallel_for(0, (entries + stride - 1) / stride, [&](int sample) {
@@ -344,13 +424,30 @@ void integrate_order(const SingleScattering& integrator, const ScatteringSources
     const bool at_ground = ih == 0;
     sc.a.setZero();
     sc.g.setZero();
+    sc.p.setZero();
     auto integrate = [&](const std::vector<double>& mus, const std::vector<double>& ws_mu, bool sky) {
       for (size_t i = 0; i < mus.size(); ++i) {
         const double mu = mus[i], sin_t = std::sqrt(std::max(0.0, 1 - mu * mu));
         for (double phi : az) {
           const Vec3 w(sin_t * std::cos(phi), sin_t * std::sin(phi), mu);
-          integrator.radiance(x, w, s, unit, sources, sc.ws, sc.radiance);
           const double weight = ws_mu[i] * w_az;
+          if (polarised) {
+            // The Stokes vector of the light arriving from w in its frame (e1, e2) and the polarised
+            // part of its coherency matrix, C_pol = (Q (e1 e1^T - e2 e2^T) + U (e1 e2^T + e2 e1^T)) / 2,
+            // summed into D_pol's xx, yy and xz (its xy and yz cancel between the two halves).
+            integrator.radiance_parts(x, w, s, ray_sources, sc.ws, sc.parts);
+            const Vec3 e1 = polarisation_frame(w, s), e2 = (-w).cross(e1);
+            integrator.stokes(sc.parts, w, s, e1, unit, sc.ws, sc.radiance, sc.q, sc.u);
+            const auto component = [&](int a, int b) {
+              return static_cast<float>(0.5 * weight * (e1[a] * e1[b] - e2[a] * e2[b])) * sc.q +
+                     static_cast<float>(0.5 * weight * (e1[a] * e2[b] + e2[a] * e1[b])) * sc.u;
+            };
+            sc.p.col(0) += component(0, 0);
+            sc.p.col(1) += component(1, 1);
+            sc.p.col(2) += component(0, 2);
+          } else {
+            integrator.radiance(x, w, s, unit, sources, sc.ws, sc.radiance);
+          }
           symmetric_harmonics(degree, mu, std::cos(phi), sc.basis.data());
           for (int c = 0; c < n_c; ++c) sc.a.col(c) += static_cast<float>(weight * sc.basis[static_cast<size_t>(c)]) * sc.radiance;
           if (sky && at_ground) sc.g += static_cast<float>(mu * weight) * sc.radiance;
@@ -362,6 +459,9 @@ void integrate_order(const SingleScattering& integrator, const ScatteringSources
     float* out = table.j_at(ih, imu);
     for (int c = 0; c < n_c; ++c) std::copy(sc.a.col(c).data(), sc.a.col(c).data() + n, out + static_cast<size_t>(c) * n);
     if (at_ground) std::copy(sc.g.data(), sc.g.data() + n, table.g_at(imu));
+    if (polarised)
+      for (int c = 0; c < 3; ++c)
+        std::copy(sc.p.col(c).data(), sc.p.col(c).data() + n, table.p_at(ih, imu) + static_cast<size_t>(c) * n);
   });
   table.prepare();
 }
@@ -374,6 +474,9 @@ class SourceToDegree final : public InScatteringSource {
     table_.source_to_degree(degree_, r_m, mu_sun, mu_view, nu, rayleigh, mie);
   }
   void ground_irradiance(double mu_sun, float* out) const override { table_.ground_irradiance(mu_sun, out); }
+  bool rayleigh_moments(double r_m, double mu_sun, float* out) const override {
+    return table_.rayleigh_moments(r_m, mu_sun, out);
+  }
 
  private:
   const SourceTable& table_;
@@ -387,9 +490,12 @@ ScatteringOrders::ScatteringOrders(const SingleScattering& integrator, const Mul
   const auto t0 = std::chrono::steady_clock::now();
   const AtmosphereModel& atm = integrator.atmosphere();
   const auto moments = PhaseMoments::of(atm, settings_.angular_degree);
+  if (settings_.polarisation && settings_.angular_degree < 2 && settings_.orders >= 2)
+    throw Error("polarised scattering-order tables need an angular degree of 2 or more (got " +
+                std::to_string(settings_.angular_degree) + ")");
   auto make_table = [&] {
     return std::make_unique<SourceTable>(atm.planet_radius_m(), atm.top_radius_m(), settings_.altitude_samples,
-                                         settings_.sun_samples, moments);
+                                         settings_.sun_samples, moments, -1, settings_.polarisation);
   };
   // The tables are built with their own, coarser ray quadrature.
   const SingleScattering builder(atm, integrator.sun_columns(), IntegratorSettings{settings_.view_segments});
@@ -399,7 +505,7 @@ ScatteringOrders::ScatteringOrders(const SingleScattering& integrator, const Mul
     throw_if_cancelled();
     const int degree = degree_of_order(settings_.angular_degree, k);
     auto table = std::make_unique<SourceTable>(atm.planet_radius_m(), atm.top_radius_m(), settings_.altitude_samples,
-                                               settings_.sun_samples, moments, degree);
+                                               settings_.sun_samples, moments, degree, settings_.polarisation);
     std::unique_ptr<SourceToDegree> source_of_previous;
     if (k > 2) source_of_previous = std::make_unique<SourceToDegree>(*orders_.back(), degree);
     ScatteringSources previous;
@@ -418,6 +524,7 @@ std::uint64_t ScatteringOrders::table_bytes(const MultipleScatteringSettings& st
   const std::uint64_t entry = static_cast<std::uint64_t>(st.altitude_samples) * st.sun_samples * wavelengths * sizeof(float);
   std::uint64_t harmonics = static_cast<std::uint64_t>(skyspec::harmonic_count(st.angular_degree));  // the sum
   for (int k = 2; k <= st.orders; ++k) harmonics += skyspec::harmonic_count(degree_of_order(st.angular_degree, k));
+  if (st.polarisation) harmonics += 3 * static_cast<std::uint64_t>(st.orders);  // each table's polarisation tensor
   return entry * harmonics;
 }
 
@@ -447,7 +554,7 @@ double ScatteringOrders::estimate_build_seconds(const SingleScattering& integrat
   const int entries = n_alt * n_sun, stride = std::max(1, entries / 48);
   const int sampled = (entries + stride - 1) / stride;
   const auto moments = PhaseMoments::of(atm, settings.angular_degree);
-  SourceTable table(atm.planet_radius_m(), atm.top_radius_m(), n_alt, n_sun, moments);
+  SourceTable table(atm.planet_radius_m(), atm.top_radius_m(), n_alt, n_sun, moments, -1, settings.polarisation);
   const auto seconds_per_entry = [&](const ScatteringSources& sources, const DirectionQuadrature& q) {
     const auto t0 = std::chrono::steady_clock::now();
     integrate_order(builder, sources, q, table, stride);
@@ -463,12 +570,12 @@ double ScatteringOrders::estimate_build_seconds(const SingleScattering& integrat
   if (settings.orders > 2) {
     const int d_max = degree_of_order(a, 3), d_min = degree_of_order(a, settings.orders);
     const DirectionQuadrature q_max = quadrature_of_order(a, 3, refine), q_min = quadrature_of_order(a, settings.orders, refine);
-    SourceTable big(atm.planet_radius_m(), atm.top_radius_m(), 4, 4, moments, d_max);
+    SourceTable big(atm.planet_radius_m(), atm.top_radius_m(), 4, 4, moments, d_max, settings.polarisation);
     big.prepare();
     const double t_max = seconds_per_entry(ScatteringSources{false, &big}, q_max) / q_max.rays();
     double t_min = t_max;
     if (d_min != d_max) {
-      SourceTable small(atm.planet_radius_m(), atm.top_radius_m(), 4, 4, moments, d_min);
+      SourceTable small(atm.planet_radius_m(), atm.top_radius_m(), 4, 4, moments, d_min, settings.polarisation);
       small.prepare();
       t_min = seconds_per_entry(ScatteringSources{false, &small}, q_min) / q_min.rays();
     }
@@ -537,11 +644,12 @@ std::unique_ptr<ScatteringOrders> ScatteringOrders::load(const std::string& path
   const auto moments = PhaseMoments::of(atm, settings.angular_degree);
   auto make_table = [&] {
     return std::make_unique<SourceTable>(atm.planet_radius_m(), atm.top_radius_m(), settings.altitude_samples,
-                                         settings.sun_samples, moments);
+                                         settings.sun_samples, moments, -1, settings.polarisation);
   };
   for (int k = 0; k < count; ++k) {
     auto t = std::make_unique<SourceTable>(atm.planet_radius_m(), atm.top_radius_m(), settings.altitude_samples,
-                                           settings.sun_samples, moments, degree_of_order(settings.angular_degree, k + 2));
+                                           settings.sun_samples, moments, degree_of_order(settings.angular_degree, k + 2),
+                                           settings.polarisation);
     if (!t->read(in)) return nullptr;
     t->prepare();
     o->orders_.push_back(std::move(t));

@@ -44,6 +44,10 @@ struct MultipleScatteringSettings {
   /// dimensions: 1 for renders; more to check that the tables have converged.
   int quadrature_refinement = 1;
   int angular_degree = 0;      ///< spherical-harmonic degree of the tabulated fields (0: isotropic)
+  /// Carry the fields' linear polarisation from order to order (vector transport for the air; needs
+  /// angular_degree >= 2): each table also holds its field's polarisation tensor
+  /// (InScatteringSource::rayleigh_moments), and the intensity gets polarisation's share.
+  bool polarisation = false;
 };
 
 /// The directions over which an order's radiance field is integrated at each table entry.
@@ -73,9 +77,10 @@ class SourceTable : public InScatteringSource {
   /// Wavelengths the look-up handles at once (one AVX-512 register, two AVX2 ones); the arrays it
   /// reads are followed by this many spare floats, so that the last block needs no special case.
   static constexpr int kLookupSlack = 16;
-  /// degree <= moments->degree (default: the moments' degree).
+  /// degree <= moments->degree (default: the moments' degree). A polarised table also holds the
+  /// field's polarisation tensor per entry (p_at).
   SourceTable(double planet_radius_m, double top_radius_m, int n_altitude, int n_sun,
-              std::shared_ptr<const PhaseMoments> moments, int degree = -1);
+              std::shared_ptr<const PhaseMoments> moments, int degree = -1, bool polarised = false);
   /// Needs prepare() after the last change to the table.
   void source(double r_m, double mu_sun, double mu_view, double nu, float* rayleigh, float* mie) const override {
     source_to_degree(degree_, r_m, mu_sun, mu_view, nu, rayleigh, mie);
@@ -85,6 +90,9 @@ class SourceTable : public InScatteringSource {
   void source_to_degree(int max_degree, double r_m, double mu_sun, double mu_view, double nu, float* rayleigh,
                         float* mie) const;
   void ground_irradiance(double mu_sun, float* out) const override;
+  /// The field's quadrupole and (polarised tables) its polarisation tensor at (r, mu_s), blended as
+  /// source() blends (InScatteringSource::rayleigh_moments). False if the degree is below 2.
+  bool rayleigh_moments(double r_m, double mu_sun, float* out) const override;
   /// Makes the table ready for source() once it is filled: notes which pairs of neighbouring sun
   /// angles are steep (see source()) and keeps the logarithms of their mean radiance. add,
   /// add_geometric_tail and read undo it (source() then throws); after writing through j_at it
@@ -108,6 +116,9 @@ class SourceTable : public InScatteringSource {
   /// builders write entries from many threads at once).
   float* j_at(int i_altitude, int i_sun) { return &j_[index(i_altitude, i_sun)]; }
   const float* j_at(int i_altitude, int i_sun) const { return &j_[index(i_altitude, i_sun)]; }
+  /// A polarised table's polarisation tensor at an entry: [xx, yy, xz][wavelength] (rayleigh_moments).
+  float* p_at(int i_altitude, int i_sun) { return &p_[p_index(i_altitude, i_sun)]; }
+  bool polarised() const { return polarised_; }
   float* g_at(int i_sun) { return &g_[static_cast<size_t>(i_sun) * n_l_]; }
   const float* g_at(int i_sun) const { return &g_[static_cast<size_t>(i_sun) * n_l_]; }
   /// this += the orders after `last` estimated as a geometric series: sum over j >= 1 of
@@ -128,7 +139,15 @@ class SourceTable : public InScatteringSource {
   double mean_source() const;
 
  private:
+  struct Blend;
+  /// The four entries around (r, mu_s) and their weights (per wavelength in steep rows).
+  Blend blend(double r_m, double mu_s) const;
+  /// One row of n wavelengths blended as `w` says from `data` (laid out by `at`), from `offset` on.
+  void mix(const Blend& w, size_t (SourceTable::*at)(int, int) const, const ZeroedFloats& data, size_t offset,
+           float* out) const;
   size_t index(int ih, int imu) const { return ((static_cast<size_t>(ih) * n_mu_ + imu) * n_c_) * n_l_; }
+  size_t p_index(int ih, int imu) const { return (static_cast<size_t>(ih) * n_mu_ + imu) * 3 * n_l_; }
+  size_t p_size() const { return polarised_ ? static_cast<size_t>(n_h_) * n_mu_ * 3 * n_l_ : 0; }
   size_t j_size() const { return static_cast<size_t>(n_h_) * n_mu_ * n_c_ * n_l_; }
   /// Two neighbouring sun angles whose mean radiances differ by more than this factor are read
   /// in log space (source()). Below it the linear blend of an exponential errs by at most
@@ -143,6 +162,8 @@ class SourceTable : public InScatteringSource {
   std::shared_ptr<const PhaseMoments> moments_;
   ZeroedFloats j_;  // j_size() floats and kLookupSlack spare; large tables: zeroed pages on first use
   std::vector<float> g_;
+  bool polarised_;
+  ZeroedFloats p_;  // polarised tables: p_size() floats
   // Filled by prepare(): steep_[ih * (n_mu_ - 1) + imu] and the logarithm of each entry's mean
   // radiance (the harmonic l = 0) per wavelength, [ih][imu][wavelength] (entries of steep pairs;
   // 0 elsewhere), and kLookupSlack zeros.
@@ -167,6 +188,9 @@ class ScatteringOrders : public InScatteringSource {
     sum_->source(r_m, mu_sun, mu_view, nu, rayleigh, mie);
   }
   void ground_irradiance(double mu_sun, float* out) const override { sum_->ground_irradiance(mu_sun, out); }
+  bool rayleigh_moments(double r_m, double mu_sun, float* out) const override {
+    return sum_->rayleigh_moments(r_m, mu_sun, out);
+  }
 
   int highest_order() const { return settings_.orders; }
   /// The degree of order k's table: angular_degree for order 2, two less per order after it, but

@@ -1,19 +1,31 @@
 #include "transport/single_scattering.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "skyspec/atmosphere.hpp"
 #include "transport/optical_depth.hpp"
 #include "skyspec/phase_function.hpp"
 #include "skyspec/units.hpp"
+#include "transport/spherical_harmonics.hpp"
 
 namespace skyspec {
 
 ScatteringWorkspace::ScatteringWorkspace(int n)
     : view_tau(n), view_trans(n), source(n), ground_sun(n), ground_sky(n),
       sum_rayleigh(n), sum_mie(n), coarse_rayleigh(n), coarse_mie(n), sum_ms_rayleigh(n), sum_ms_mie(n),
-      coarse_ms_rayleigh(n), coarse_ms_mie(n), phase(n), parts(n) {}
+      coarse_ms_rayleigh(n), coarse_ms_mie(n), sum_ms_q(n), coarse_ms_q(n), sum_ms_u(n), coarse_ms_u(n), phase(n),
+      parts(n) {}
+
+Vec3 polarisation_frame(const Vec3& view, const Vec3& sun) {
+  const Vec3 k = -view;
+  Vec3 e1 = sun - sun.dot(k) * k;
+  if (e1.norm() > 1e-9) return e1.normalized();
+  // The sun on the view's axis: any perpendicular, the same for the same view.
+  e1 = k.cross(std::abs(k.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0));
+  return e1.normalized();
+}
 
 SingleScattering::SingleScattering(const AtmosphereModel& atm, const SunColumns& sun_columns,
                                    IntegratorSettings s)
@@ -230,23 +242,21 @@ void SingleScattering::stokes(const RadianceParts& parts, const Vec3& view, cons
                               Spectrum& U) const {
   const double mu = view.dot(sun);
   combine(parts, mu, sun_irradiance, ws, I);
-  // The scattering plane of sunlight (travelling along -sun) seen along -view: its normal n and
-  // its outgoing frame's first axis n x k; the rotation into (e1, k x e1) by psi with
-  // cos psi = e1 . (n x k), sin psi = e1 . n (stokes_rotation).
+  // From the parts' frame (e1p, k x e1p) into (e1, k x e1): turned by psi with cos psi = e1 . e1p,
+  // sin psi = e1 . e2p (stokes_rotation): Q' = Q cos 2psi + U sin 2psi, U' = -Q sin 2psi + U cos 2psi.
   const Vec3 k = -view;
-  Vec3 n = (-sun).cross(k);
-  double c2 = 1.0, s2 = 0.0;
-  if (n.norm() > 1e-12) {
-    n.normalize();
-    const double c = e1.dot(n.cross(k)), s = e1.dot(n);
-    c2 = c * c - s * s;
-    s2 = 2.0 * c * s;
+  const Vec3 e1p = polarisation_frame(view, sun), e2p = k.cross(e1p);
+  const double c = e1.dot(e1p), s = e1.dot(e2p);
+  const float c2 = static_cast<float>(c * c - s * s), s2 = static_cast<float>(2.0 * c * s);
+  // Order 1 in the parts' frame, which contains the scattering plane: Q = E rayleigh b1(mu), U = 0.
+  Spectrum q_plane = -(rayleigh_phase_b_ * static_cast<float>(1.0 - mu * mu)) * parts.rayleigh * sun_irradiance;
+  Spectrum u_plane = Spectrum::Zero(q_plane.size());
+  if (parts.polarised_q.size() == q_plane.size()) {
+    q_plane += parts.polarised_q * sun_irradiance;
+    u_plane += parts.polarised_u * sun_irradiance;
   }
-  // Q' = Q cos 2psi, U' = -Q sin 2psi for Q in the plane's frame (U = 0 there).
-  const Spectrum q_plane =
-      -(rayleigh_phase_b_ * static_cast<float>(1.0 - mu * mu)) * parts.rayleigh * sun_irradiance;
-  Q = static_cast<float>(c2) * q_plane;
-  U = static_cast<float>(-s2) * q_plane;
+  Q = c2 * q_plane + s2 * u_plane;
+  U = -s2 * q_plane + c2 * u_plane;
 }
 
 void SingleScattering::combine_many(int count, const float* packed, const double* mu, const bool* use,
@@ -456,6 +466,8 @@ struct SingleScattering::PieceScratch {
   std::vector<double> node_r, node_mu_sun;  // the sun columns' arguments at a piece's nodes
   std::vector<Columns> sun;
   Eigen::ArrayXXf source_t, source_mie_t;  // [wavelength, node], as the source tables write them
+  Eigen::ArrayXXf source_q_t, source_u_t;   // J_R + P_Q, J_R + P_U (polarised_sources)
+  std::vector<float> moments;               // InScatteringSource::rayleigh_moments at one node
   Spectrum unused[4];                       // the other species' sums of a higher-order pass
 };
 
@@ -505,8 +517,75 @@ void SingleScattering::single_scattering_piece(const Node* nodes, int m, double 
 // depth and T' = exp(-tau_view) J_s in the place of the transmittance (ln of the integrand is
 // ln rho_s - tau' + const), once per species. J is floored at a tiny positive value so that its
 // logarithm is finite where the tables hold no light.
-void SingleScattering::higher_orders_piece(const Node* nodes, int m, double os, double ds, double od,
-                                           const InScatteringSource& higher, PieceScratch& sc, Spectrum* sums[4]) const {
+// The view ray and the Stokes frame of its polarised parts (polarisation_frame).
+struct SingleScattering::RayFrame {
+  Vec3 o, d, s, e1, e2;
+};
+
+// The higher orders' polarised Rayleigh source at a piece's nodes: source_q_t and source_u_t become
+// J_R + P_Q and J_R + P_U
+// (RadianceParts::polarised_q). For Rayleigh's matrix with the King factor's depolarisation, light
+// arriving with coherency matrices C(w) is scattered towards k as
+//
+//   I = 2 B tr(P D P) + (A - B) tr D,   Q = 2 B (e1^T D e1 - e2^T D e2),   U = 4 B e1^T D e2,
+//
+// with D = integral C(w) dw, P = 1 - k k^T and A + B mu^2 the phase function (at one unpolarised
+// direction these are a1 and b1 of physics/scattering_matrix.hpp). The unpolarised part of D is
+// (tr T 1 - T) / 2 with T the field's second moments, whose traceless part is
+// sum_m a_2m K_m (spherical_harmonics.hpp); the scalar source J_R already holds its intensity, and
+// the polarised part D_pol (traceless) adds -2 B k^T D_pol k to it (SourceTable::source adds that
+// for polarised tables, so that the intensity is the vector one in every render). At each node the tables' local
+// frame (z up, x towards the sun's azimuth, y = z x x) is rebuilt and e1, e2, k are expressed in
+// it. J_R + P is never negative for a real field (|P| <= J_R: scattered light is at most fully
+// polarised), which lets the log-mean rule integrate it; P is the difference of two such
+// integrals. False if `higher` does not resolve the quadrupole.
+bool SingleScattering::polarised_sources(const Node* nodes, int m, const RayFrame& f, const InScatteringSource& higher,
+                                         PieceScratch& sc) const {
+  const Eigen::Index n = sca_rayleigh_.size();
+  const auto& K = quadrupole_tensors();
+  // D_pol's components xx, yy, xz as tensors (zz = -xx - yy).
+  static const std::array<Eigen::Matrix3d, 3> E = [] {
+    std::array<Eigen::Matrix3d, 3> e;
+    e[0] << 1, 0, 0, 0, 0, 0, 0, 0, -1;
+    e[1] << 0, 0, 0, 0, 1, 0, 0, 0, -1;
+    e[2] << 0, 0, 1, 0, 0, 0, 1, 0, 0;
+    return e;
+  }();
+  sc.moments.resize(6 * static_cast<size_t>(n));
+  sc.source_q_t.resize(n, m);
+  sc.source_u_t.resize(n, m);
+  for (int k = 0; k < m; ++k) {
+    const Vec3 p = f.o + nodes[k].t * f.d;
+    const Vec3 z = p / p.norm();
+    if (!higher.rayleigh_moments(nodes[k].r, f.s.dot(z), sc.moments.data())) return false;
+    Vec3 x = f.s - f.s.dot(z) * z;
+    if (x.norm() < 1e-9) x = z.cross(std::abs(z.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0));  // sun at the zenith
+    x.normalize();
+    const Vec3 y = z.cross(x);
+    const Vec3 e(f.e1.dot(x), f.e1.dot(y), f.e1.dot(z)), g(f.e2.dot(x), f.e2.dot(y), f.e2.dot(z));
+    Spectrum q = Spectrum::Zero(n), u = Spectrum::Zero(n);
+    for (int j = 0; j < 3; ++j) {
+      // The quadrupole: D's part -T / 2, T = sum a_2m K_m.
+      const Eigen::Matrix3d& km = K[static_cast<size_t>(j)];
+      const Eigen::Map<const Spectrum> a(sc.moments.data() + static_cast<size_t>(j) * n, n);
+      q += static_cast<float>(-0.5 * (e.dot(km * e) - g.dot(km * g))) * a;
+      u += static_cast<float>(-e.dot(km * g)) * a;
+      // The polarisation tensor.
+      const Eigen::Matrix3d& ej = E[static_cast<size_t>(j)];
+      const Eigen::Map<const Spectrum> d(sc.moments.data() + static_cast<size_t>(3 + j) * n, n);
+      q += static_cast<float>(e.dot(ej * e) - g.dot(ej * g)) * d;
+      u += static_cast<float>(2.0 * e.dot(ej * g)) * d;
+    }
+    const Spectrum two_b = 2.0f * rayleigh_phase_b_;
+    sc.source_q_t.col(k) = sc.source_t.col(k) + two_b * q;
+    sc.source_u_t.col(k) = sc.source_t.col(k) + two_b * u;
+  }
+  return true;
+}
+
+bool SingleScattering::higher_orders_piece(const Node* nodes, int m, double os, double ds, double od,
+                                           const InScatteringSource& higher, const RayFrame* polarisation,
+                                           PieceScratch& sc, ScatteringWorkspace& ws, Spectrum* sums[4]) const {
   const int species = sc.ozone ? 3 : 2;
   const Eigen::Index n = sca_rayleigh_.size();
   sc.view_columns.resize(m, species);
@@ -520,12 +599,19 @@ void SingleScattering::higher_orders_piece(const Node* nodes, int m, double os, 
   }
   optical_depths(sc.view_columns, sc, sc.view_tau);
   sc.view_trans = (-sc.view_tau).exp();
-  // Rayleigh's sums with J_R, the aerosol's with J_M. [wavelength, node] arrays: one species per
-  // pass; [node, wavelength] (few wavelengths): each pass computes both and one is kept.
+  // Rayleigh's sums with J_R, the aerosol's with J_M; then, for polarisation, Rayleigh's with
+  // J_R + P_Q and J_R + P_U. [wavelength, node] arrays: one species per pass; [node, wavelength]
+  // (few wavelengths): each pass computes both and one is kept.
+  const bool polarised = polarisation && polarised_sources(nodes, m, *polarisation, higher, sc);
   Spectrum* rayleigh_sums[4] = {sums[0], &sc.unused[0], sums[2], &sc.unused[1]};
   Spectrum* mie_sums[4] = {&sc.unused[2], sums[1], &sc.unused[3], sums[3]};
-  for (int pass = 0; pass < 2; ++pass) {
-    const Eigen::ArrayXXf& source_t = pass == 0 ? sc.source_t : sc.source_mie_t;
+  Spectrum* q_sums[4] = {&ws.sum_ms_q, &sc.unused[0], &ws.coarse_ms_q, &sc.unused[1]};
+  Spectrum* u_sums[4] = {&ws.sum_ms_u, &sc.unused[0], &ws.coarse_ms_u, &sc.unused[1]};
+  const Eigen::ArrayXXf* pass_sources[4] = {&sc.source_t, &sc.source_mie_t, &sc.source_q_t, &sc.source_u_t};
+  Spectrum** pass_sums[4] = {rayleigh_sums, mie_sums, q_sums, u_sums};
+  for (int pass = 0; pass < (polarised ? 4 : 2); ++pass) {
+    const Eigen::ArrayXXf& source_t = *pass_sources[pass];
+    const int sp = pass == 1 ? 1 : 0;  // the species whose density weights the pass
     if (sc.by_node)
       sc.source = source_t.transpose().max(1e-30f);
     else
@@ -533,16 +619,15 @@ void SingleScattering::higher_orders_piece(const Node* nodes, int m, double os, 
     sc.trans = sc.view_trans * sc.source;
     sc.tau = sc.view_tau - sc.source.log();
     if (!sc.by_node) {
-      accumulate_species_by_wavelength(sc.tau, sc.trans, sc.seg, pass, pass == 0 ? *sums[0] : *sums[1],
-                                       pass == 0 ? *sums[2] : *sums[3]);
+      accumulate_species_by_wavelength(sc.tau, sc.trans, sc.seg, sp, *pass_sums[pass][sp], *pass_sums[pass][2 + sp]);
       continue;
     }
     for (auto& u : sc.unused) u.setZero(n);
-    accumulate(sc, pass == 0 ? rayleigh_sums : mie_sums);
+    accumulate(sc, pass_sums[pass]);
   }
+  return polarised;
 }
 
-// The fine and coarse log-mean sums of the piece in `sc` (tau, trans, seg), added to `sums`.
 void SingleScattering::accumulate(PieceScratch& sc, Spectrum* sums[4]) const {
   if (sc.by_node)
     accumulate_piece(sc.tau, sc.trans, sc.seg, *sums[0], *sums[1], *sums[2], *sums[3]);
@@ -589,8 +674,15 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
   const bool higher = sources.higher != nullptr;
   const double os = o.dot(s), ds = d.dot(s), od = o.dot(d);
   for (Spectrum* sum : {&ws.sum_rayleigh, &ws.sum_mie, &ws.coarse_rayleigh, &ws.coarse_mie, &ws.sum_ms_rayleigh,
-                        &ws.sum_ms_mie, &ws.coarse_ms_rayleigh, &ws.coarse_ms_mie})
+                        &ws.sum_ms_mie, &ws.coarse_ms_rayleigh, &ws.coarse_ms_mie, &ws.sum_ms_q, &ws.coarse_ms_q,
+                        &ws.sum_ms_u, &ws.coarse_ms_u})
     sum->setZero();
+  RayFrame frame;
+  bool polarised = false;  // whether the higher orders' sources had a quadrupole (all pieces or none)
+  if (sources.polarisation) {
+    frame = RayFrame{o, d, s, polarisation_frame(d, s), Vec3()};
+    frame.e2 = (-d).cross(frame.e1);
+  }
   Spectrum* single_sums[4] = {&ws.sum_rayleigh, &ws.sum_mie, &ws.coarse_rayleigh, &ws.coarse_mie};
   Spectrum* higher_sums[4] = {&ws.sum_ms_rayleigh, &ws.sum_ms_mie, &ws.coarse_ms_rayleigh, &ws.coarse_ms_mie};
 
@@ -604,7 +696,9 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
     const Node* nodes = ray.nodes.data() + pc.first_node;
     fill_piece_segments(nodes, pc.segments, sc.seg);
     if (single_here) single_scattering_piece(nodes, pc.segments + 1, os, ds, sc, single_sums);
-    if (higher) higher_orders_piece(nodes, pc.segments + 1, os, ds, od, *sources.higher, sc, higher_sums);
+    if (higher)
+      polarised |= higher_orders_piece(nodes, pc.segments + 1, os, ds, od, *sources.higher,
+                                       sources.polarisation ? &frame : nullptr, sc, ws, higher_sums);
   }
 
   if (sources.single) {
@@ -614,6 +708,15 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
   if (higher)
     parts.phase_free = sca_rayleigh_ * richardson(ws.sum_ms_rayleigh, ws.coarse_ms_rayleigh) +
                       sca_mie_ * richardson(ws.sum_ms_mie, ws.coarse_ms_mie);
+  if (sources.polarisation) {
+    // Zero where nothing was polarised (no higher orders, or tables without a quadrupole).
+    const Spectrum ms_rayleigh = richardson(ws.sum_ms_rayleigh, ws.coarse_ms_rayleigh);
+    const bool any = polarised;
+    parts.polarised_q = any ? Spectrum(sca_rayleigh_ * (richardson(ws.sum_ms_q, ws.coarse_ms_q) - ms_rayleigh))
+                            : Spectrum::Zero(ms_rayleigh.size());
+    parts.polarised_u = any ? Spectrum(sca_rayleigh_ * (richardson(ws.sum_ms_u, ws.coarse_ms_u) - ms_rayleigh))
+                            : Spectrum::Zero(ms_rayleigh.size());
+  }
 
   const Node& last = ray.nodes.back();
   if (sources.transmittance) {
@@ -629,6 +732,10 @@ void SingleScattering::radiance_parts(const Vec3& o, const Vec3& d, const Vec3& 
   parts.rayleigh.setZero();
   parts.mie.setZero();
   parts.phase_free.setZero();
+  if (sources.polarisation) {
+    parts.polarised_q.setZero(sca_rayleigh_.size());
+    parts.polarised_u.setZero(sca_rayleigh_.size());
+  }
   if (sources.transmittance) sources.transmittance->setOnes();
   if (o.norm() < atm_.planet_radius_m()) {  // inside the planet
     if (sources.transmittance) sources.transmittance->setZero();
@@ -643,7 +750,7 @@ void SingleScattering::radiance_parts(const Vec3& o, const Vec3& d, const Vec3& 
 void SingleScattering::radiance_parts_same_zenith(const Vec3& o, const Vec3* dirs, int count, const Vec3& s,
                                                   const ScatteringSources& sources, ScatteringWorkspace& ws,
                                                   RadianceParts* parts) const {
-  if (sources.transmittance || o.norm() < atm_.planet_radius_m()) {
+  if (sources.transmittance || sources.polarisation || o.norm() < atm_.planet_radius_m()) {
     for (int i = 0; i < count; ++i) radiance_parts(o, dirs[i], s, sources, ws, parts[i]);
     return;
   }

@@ -45,11 +45,32 @@ struct IntegratorSettings {
 /// inside the tables' sources) and the ground (per unit solar irradiance). All three are smooth functions of the view direction, which is what makes
 /// them worth tabulating (sky_view_table.hpp); the phase functions, peaked near the sun, are
 /// evaluated exactly afterwards.
+///
+/// With ScatteringSources::polarisation, polarised_q and polarised_u hold the linear polarisation
+/// that the higher orders' light gets at its last scattering by air, per unit solar irradiance:
+/// the Stokes Q and U of E_sun int exp(-tau_view) beta_sca,R rho_R P(r(t), mu_s(t), d) dt, where
+/// the polarised source P of Rayleigh's scattering matrix acting on the diffuse field, taken as
+/// unpolarised, depends on the field's second moments T = int L(w) w w^T dw only:
+///
+///   P_Q = -B (e1^T T e1 - e2^T T e2),   P_U = -2 B e1^T T e2
+///
+/// (B the phase function's mu^2 coefficient; at one incident direction this is the single-scattering
+/// b1 = -B (1 - mu^2) turned into (e1, e2)). The frame is the ray's polarisation_frame(): it stays
+/// the same along the ray, so the sources of all its points add up. The polarisation the diffuse
+/// field itself carries into the last scattering is neglected (docs/validation.md measures the
+/// result against the vector Monte Carlo). Empty otherwise.
 struct RadianceParts {
   explicit RadianceParts(int n_wavelengths = 0)
       : rayleigh(Spectrum::Zero(n_wavelengths)), mie(Spectrum::Zero(n_wavelengths)), phase_free(Spectrum::Zero(n_wavelengths)) {}
   Spectrum rayleigh, mie, phase_free;
+  Spectrum polarised_q, polarised_u;
 };
+
+/// The Stokes frame of a view ray's polarised parts: e1 = the sun direction's component
+/// perpendicular to the view, normalised (any unit vector perpendicular to the view when the sun
+/// lies on its axis); e2 = k x e1 with k = -view, the direction the light travels. In this frame
+/// Rayleigh's singly scattered light has U = 0.
+Vec3 polarisation_frame(const Vec3& view, const Vec3& sun);
 
 /// Per-thread scratch memory (spectral arrays are allocated once and reused).
 struct ScatteringWorkspace {
@@ -57,6 +78,7 @@ struct ScatteringWorkspace {
   Spectrum view_tau, view_trans, source, ground_sun, ground_sky;  // the ground's light
   Spectrum sum_rayleigh, sum_mie, coarse_rayleigh, coarse_mie;  // fine and coarse (paired) rules
   Spectrum sum_ms_rayleigh, sum_ms_mie, coarse_ms_rayleigh, coarse_ms_mie;
+  Spectrum sum_ms_q, coarse_ms_q, sum_ms_u, coarse_ms_u;  // of J_R + P_Q and J_R + P_U (polarisation)
   Spectrum phase;  // per-wavelength aerosol phase (spectral asymmetry)
   RadianceParts parts;
 };
@@ -97,6 +119,16 @@ class InScatteringSource {
   virtual ~InScatteringSource() = default;
   virtual void source(double r_m, double mu_sun, double mu_view, double nu, float* rayleigh, float* mie) const = 0;
   virtual void ground_irradiance(double mu_sun, float* out) const = 0;
+  /// What Rayleigh's scattering matrix reads of the radiance field that the source scatters, at
+  /// (r, mu_s), per unit solar irradiance, in the local frame (z up, x towards the sun's azimuth):
+  /// out[j n + i] for n wavelengths, rows j = 0, 1, 2 the field's quadrupole a_2m (m = j; its real
+  /// spherical-harmonic coefficients, spherical_harmonics.hpp), rows 3, 4, 5 the xx, yy and xz
+  /// components of its polarisation tensor D_pol = integral of C_pol(w) dw (C_pol the polarised
+  /// part of the coherency matrix of the light arriving from w; traceless, so zz = -xx - yy; xy and
+  /// yz vanish by the field's symmetry about the sun's vertical plane), zero where the field is
+  /// taken as unpolarised. False (out untouched) if the source does not resolve the quadrupole.
+  /// RadianceParts::polarised_q says how the integrator uses them.
+  virtual bool rayleigh_moments(double /*r_m*/, double /*mu_sun*/, float* /*out*/) const { return false; }
 };
 
 /// What a radiance evaluation includes.
@@ -108,6 +140,9 @@ struct ScatteringSources {
   /// transmittance from the origin to the end of the integrated stretch.
   double max_distance_m = std::numeric_limits<double>::infinity();
   Spectrum* transmittance = nullptr;
+  /// Also integrate the higher orders' polarisation (RadianceParts::polarised_q and polarised_u),
+  /// where `higher` resolves the field's quadrupole (InScatteringSource::rayleigh_moments).
+  bool polarisation = false;
 };
 
 class SingleScattering {
@@ -141,14 +176,14 @@ class SingleScattering {
   /// L = E_sun [p_R(mu) rayleigh + p_M(mu) mie + phase_free] for mu = cos(scattering angle).
   void combine(const RadianceParts& parts, double mu, const Spectrum& sun_irradiance, ScatteringWorkspace& ws,
                Spectrum& out) const;
-  /// The polarisation of combine()'s light as far as single scattering makes it: the Stokes vector
-  /// [I, Q, U] (V = 0) of the light arriving along k = -view, in the frame (e1, k x e1) (e1 unit,
-  /// perpendicular to view). I is combine()'s radiance; Q and U are order 1's Rayleigh light
-  /// polarised by Rayleigh's scattering matrix: E rayleigh b1(mu) in the scattering plane's frame,
-  /// b1 = -B (1 - mu^2) with B the phase function's mu^2 coefficient (physics/scattering_matrix.hpp),
-  /// turned into (e1, k x e1). The aerosol is non-polarising (as in the Monte Carlo reference); the
-  /// higher orders and the ground add unpolarised light (an approximation: multiply scattered
-  /// light is polarised too, docs/validation.md measures what this misses).
+  /// The polarisation of combine()'s light: the Stokes vector [I, Q, U] (V = 0) of the light
+  /// arriving along k = -view, in the frame (e1, k x e1) (e1 unit, perpendicular to view). I is
+  /// combine()'s radiance. Q and U are order 1's Rayleigh light polarised by Rayleigh's scattering
+  /// matrix, E rayleigh b1(mu) in the scattering plane's frame (b1 = -B (1 - mu^2) with B the phase
+  /// function's mu^2 coefficient; physics/scattering_matrix.hpp), plus, if the parts hold them, the
+  /// higher orders' polarised_q and polarised_u, all turned from polarisation_frame() into
+  /// (e1, k x e1). The aerosol is non-polarising (as in the Monte Carlo reference) and the ground
+  /// depolarises.
   void stokes(const RadianceParts& parts, const Vec3& view, const Vec3& sun, const Vec3& e1,
               const Spectrum& sun_irradiance, ScatteringWorkspace& ws, Spectrum& I, Spectrum& Q, Spectrum& U) const;
   /// combine() for `count` directions whose parts are packed as SkyViewTable::lookup_many gives
@@ -187,8 +222,12 @@ class SingleScattering {
   struct PieceScratch;
   void optical_depths(const Eigen::ArrayXXf& columns, PieceScratch& sc, Eigen::ArrayXXf& tau) const;
   void single_scattering_piece(const Node* nodes, int m, double os, double ds, PieceScratch& sc, Spectrum* sums[4]) const;
-  void higher_orders_piece(const Node* nodes, int m, double os, double ds, double od, const InScatteringSource& higher,
-                           PieceScratch& sc, Spectrum* sums[4]) const;
+  struct RayFrame;
+  /// True if it integrated the polarised sources too.
+  bool higher_orders_piece(const Node* nodes, int m, double os, double ds, double od, const InScatteringSource& higher,
+                           const RayFrame* polarisation, PieceScratch& sc, ScatteringWorkspace& ws, Spectrum* sums[4]) const;
+  bool polarised_sources(const Node* nodes, int m, const RayFrame& frame, const InScatteringSource& higher,
+                         PieceScratch& sc) const;
   void accumulate(PieceScratch& sc, Spectrum* sums[4]) const;
   void ground_reflection(const Node& ground, double mu_sun, const ScatteringSources& sources, ScatteringWorkspace& ws,
                          RadianceParts& parts) const;

@@ -103,4 +103,26 @@ std::vector<double> legendre_moments(const std::function<double(double)>& phase,
   return chi;
 }
 
+const std::array<Eigen::Matrix3d, 3>& quadrupole_tensors() {
+  // Gauss-Legendre in mu and the midpoint rule in phi, both exact for these polynomials of degree 4.
+  static const std::array<Eigen::Matrix3d, 3> k = [] {
+    std::array<Eigen::Matrix3d, 3> t;
+    for (auto& m : t) m.setZero();
+    std::vector<double> mus, weights;
+    gauss_legendre(8, -1.0, 1.0, mus, weights);
+    constexpr int kAzimuths = 16;
+    double y[harmonic_count(2)];
+    for (size_t i = 0; i < mus.size(); ++i)
+      for (int j = 0; j < kAzimuths; ++j) {
+        const double mu = mus[i], phi = 2.0 * kPi * (j + 0.5) / kAzimuths, s = std::sqrt(1.0 - mu * mu);
+        const Eigen::Vector3d w(s * std::cos(phi), s * std::sin(phi), mu);
+        symmetric_harmonics(2, mu, std::cos(phi), y);
+        for (int m = 0; m <= 2; ++m)
+          t[static_cast<size_t>(m)] += weights[i] * (2.0 * kPi / kAzimuths) * y[harmonic_index(2, m)] * (w * w.transpose());
+      }
+    return t;
+  }();
+  return k;
+}
+
 }  // namespace skyspec

@@ -17,15 +17,18 @@
 // methods of radiative transfer rest on).
 #pragma once
 
+#include <array>
 #include <functional>
 #include <vector>
+
+#include <Eigen/Core>
 
 namespace skyspec {
 
 /// Number of harmonics up to `degree`: (degree + 1)(degree + 2) / 2.
-inline int harmonic_count(int degree) { return (degree + 1) * (degree + 2) / 2; }
+constexpr int harmonic_count(int degree) { return (degree + 1) * (degree + 2) / 2; }
 /// Index of (l, m): l (l + 1) / 2 + m.
-inline int harmonic_index(int l, int m) { return l * (l + 1) / 2 + m; }
+constexpr int harmonic_index(int l, int m) { return l * (l + 1) / 2 + m; }
 
 /// Y_lm(mu, phi) for all 0 <= m <= l <= degree (at most 16), at harmonic_index(l, m); cos_phi is cos(phi).
 void symmetric_harmonics(int degree, double mu, double cos_phi, double* out);
@@ -33,5 +36,12 @@ void symmetric_harmonics(int degree, double mu, double cos_phi, double* out);
 /// chi_l = 2 pi integral_{-1}^{1} p(mu) P_l(mu) dmu for l = 0..degree, by Gauss-Legendre quadrature
 /// with `nodes` nodes (p normalised to 1 over the sphere, so chi_0 = 1).
 std::vector<double> legendre_moments(const std::function<double(double)>& phase, int degree, int nodes = 512);
+
+/// The second moments of the degree-2 harmonics: K_m = integral over the sphere of Y_2m(w) w w^T dw
+/// for m = 0, 1, 2 (local frame). A field L = sum a_lm Y_lm has the second-moment tensor
+/// T = integral L(w) w w^T dw = (a_00 / sqrt(4 pi)) (4 pi / 3) I + sum_m a_2m K_m: only its mean and
+/// its quadrupole reach T, which is all that Rayleigh scattering polarises
+/// (SingleScattering, RadianceParts::polarised_q).
+const std::array<Eigen::Matrix3d, 3>& quadrupole_tensors();
 
 }  // namespace skyspec

@@ -83,4 +83,24 @@ BOOST_AUTO_TEST_CASE(legendre_moments_of_the_phase_functions) {
   BOOST_TEST(cs[1] > 0.6);  // forward scattering
 }
 
+// The quadrupole tensors K_m = integral Y_2m(w) w w^T dw: for a field of two equal narrow beams
+// from u and its mirror image u' = (ux, -uy, uz) (symmetric about the xz plane, as the basis
+// assumes), a_lm = Y_lm(u) and the second moments are (u u^T + u' u'^T) / 2; the mean's share is
+// 1 / 3, so sum_m Y_2m(u) K_m = (u u^T + u' u'^T) / 2 - 1 / 3. And K_0's zz is sqrt(5 / (4 pi)) 8 pi / 15.
+BOOST_AUTO_TEST_CASE(quadrupole_tensors_give_the_second_moments) {
+  const auto& K = quadrupole_tensors();
+  BOOST_TEST(K[0](2, 2) == std::sqrt(5.0 / (4.0 * kPi)) * 8.0 * kPi / 15.0, boost::test_tools::tolerance(1e-12));
+  for (const Eigen::Vector3d& v : {Eigen::Vector3d(0.3, 0.5, 0.8), Eigen::Vector3d(-0.7, 0.1, -0.2), Eigen::Vector3d(0, 0, 1)}) {
+    const Eigen::Vector3d u = v.normalized(), mirror(u.x(), -u.y(), u.z());
+    const double cos_phi = std::hypot(u.x(), u.y()) > 0 ? u.x() / std::hypot(u.x(), u.y()) : 1.0;
+    double y[harmonic_count(2)];
+    symmetric_harmonics(2, u.z(), cos_phi, y);
+    Eigen::Matrix3d t = Eigen::Matrix3d::Zero();
+    for (int m = 0; m <= 2; ++m) t += y[harmonic_index(2, m)] * K[static_cast<size_t>(m)];
+    const Eigen::Matrix3d expected = 0.5 * (u * u.transpose() + mirror * mirror.transpose()) - Eigen::Matrix3d::Identity() / 3.0;
+    BOOST_TEST((t - expected).cwiseAbs().maxCoeff() < 1e-12);
+  }
+  for (const auto& k : K) BOOST_TEST(std::abs(k.trace()) < 1e-12);
+}
+
 BOOST_AUTO_TEST_SUITE_END()
