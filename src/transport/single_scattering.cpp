@@ -8,6 +8,7 @@
 #include "transport/optical_depth.hpp"
 #include "skyspec/phase_function.hpp"
 #include "skyspec/units.hpp"
+#include "transport/multiple_scattering.hpp"  // gauss_legendre
 #include "transport/spherical_harmonics.hpp"
 
 namespace skyspec {
@@ -15,8 +16,8 @@ namespace skyspec {
 ScatteringWorkspace::ScatteringWorkspace(int n)
     : view_tau(n), view_trans(n), source(n), ground_sun(n), ground_sky(n),
       sum_rayleigh(n), sum_mie(n), coarse_rayleigh(n), coarse_mie(n), sum_ms_rayleigh(n), sum_ms_mie(n),
-      coarse_ms_rayleigh(n), coarse_ms_mie(n), sum_ms_q(n), coarse_ms_q(n), sum_ms_u(n), coarse_ms_u(n), phase(n),
-      parts(n) {}
+      coarse_ms_rayleigh(n), coarse_ms_mie(n), sum_ms_q(n), coarse_ms_q(n), sum_ms_u(n), coarse_ms_u(n), sum_ms_mq(n),
+      coarse_ms_mq(n), sum_ms_mu(n), coarse_ms_mu(n), phase(n), parts(n) {}
 
 Vec3 polarisation_frame(const Vec3& view, const Vec3& sun) {
   const Vec3 k = -view;
@@ -40,6 +41,18 @@ SingleScattering::SingleScattering(const AtmosphereModel& atm, const SunColumns&
   const SpectrumD scale = 3.0 / (16.0 * kPi * (1.0 + 2.0 * gamma));
   rayleigh_phase_a_ = (scale * (1.0 + 3.0 * gamma)).cast<float>();
   rayleigh_phase_b_ = (scale * (1.0 - gamma)).cast<float>();
+  {
+    std::vector<double> mu, w;
+    gauss_legendre(512, -1.0, 1.0, mu, w);
+    mie_spin2_moment_.resize(gamma.size());
+    AerosolPhase aerosol = atm.mie_phase();
+    for (Eigen::Index i = 0; i < gamma.size(); ++i) {
+      aerosol.g = atm.mie_g()[i];
+      double sum = 0.0;
+      for (size_t k = 0; k < mu.size(); ++k) sum += w[k] * aerosol(mu[k]) * (1.0 + mu[k]) * (1.0 + mu[k]) / 4.0;
+      mie_spin2_moment_[i] = static_cast<float>(2.0 * kPi * sum);
+    }
+  }
   ext_[kRayleigh] = atm.rayleigh().extinction_per_m.cast<float>();
   ext_[kMie] = atm.mie().extinction_per_m.cast<float>();
   ext_[kOzone] = atm.ozone().extinction_per_m.cast<float>();
@@ -467,6 +480,7 @@ struct SingleScattering::PieceScratch {
   std::vector<Columns> sun;
   Eigen::ArrayXXf source_t, source_mie_t;  // [wavelength, node], as the source tables write them
   Eigen::ArrayXXf source_q_t, source_u_t;   // J_R + P_Q, J_R + P_U (polarised_sources)
+  Eigen::ArrayXXf source_mq_t, source_mu_t; // J_M + P_M,Q, J_M + P_M,U
   std::vector<float> moments;               // InScatteringSource::rayleigh_moments at one node
   Spectrum unused[4];                       // the other species' sums of a higher-order pass
 };
@@ -554,6 +568,8 @@ bool SingleScattering::polarised_sources(const Node* nodes, int m, const RayFram
   sc.moments.resize(6 * static_cast<size_t>(n));
   sc.source_q_t.resize(n, m);
   sc.source_u_t.resize(n, m);
+  sc.source_mq_t.resize(n, m);
+  sc.source_mu_t.resize(n, m);
   for (int k = 0; k < m; ++k) {
     const Vec3 p = f.o + nodes[k].t * f.d;
     const Vec3 z = p / p.norm();
@@ -577,6 +593,19 @@ bool SingleScattering::polarised_sources(const Node* nodes, int m, const RayFram
       u += static_cast<float>(2.0 * e.dot(ej * g)) * d;
     }
     const Spectrum two_b = 2.0f * rayleigh_phase_b_;
+    // The aerosol's unit matrix acting on the polarisation's quadrupole: the field's degree-2
+    // E-mode, C_pol(w) = P M P - P tr(P M P) / 2 with M = 5 D_pol / (8 pi) (its integral over the
+    // sphere is 8 pi M / 5), scaled by the phase function's spin-2 moment and seen from k:
+    // Q = e1^T M e1 - e2^T M e2, U = 2 e1^T M e2.
+    Spectrum mq = Spectrum::Zero(n), mu = Spectrum::Zero(n);
+    for (int j = 0; j < 3; ++j) {
+      const Eigen::Matrix3d& ej = E[static_cast<size_t>(j)];
+      const Eigen::Map<const Spectrum> d(sc.moments.data() + static_cast<size_t>(3 + j) * n, n);
+      mq += static_cast<float>(5.0 / (8.0 * kPi) * (e.dot(ej * e) - g.dot(ej * g))) * d;
+      mu += static_cast<float>(5.0 / (8.0 * kPi) * 2.0 * e.dot(ej * g)) * d;
+    }
+    sc.source_mq_t.col(k) = sc.source_mie_t.col(k) + mie_spin2_moment_ * mq;
+    sc.source_mu_t.col(k) = sc.source_mie_t.col(k) + mie_spin2_moment_ * mu;
     sc.source_q_t.col(k) = sc.source_t.col(k) + two_b * q;
     sc.source_u_t.col(k) = sc.source_t.col(k) + two_b * u;
   }
@@ -600,18 +629,21 @@ bool SingleScattering::higher_orders_piece(const Node* nodes, int m, double os, 
   optical_depths(sc.view_columns, sc, sc.view_tau);
   sc.view_trans = (-sc.view_tau).exp();
   // Rayleigh's sums with J_R, the aerosol's with J_M; then, for polarisation, Rayleigh's with
-  // J_R + P_Q and J_R + P_U. [wavelength, node] arrays: one species per pass; [node, wavelength]
+  // J_R + P_Q and J_R + P_U, the aerosol's with J_M + P_M,Q and J_M + P_M,U. [wavelength, node] arrays: one species per pass; [node, wavelength]
   // (few wavelengths): each pass computes both and one is kept.
   const bool polarised = polarisation && polarised_sources(nodes, m, *polarisation, higher, sc);
   Spectrum* rayleigh_sums[4] = {sums[0], &sc.unused[0], sums[2], &sc.unused[1]};
   Spectrum* mie_sums[4] = {&sc.unused[2], sums[1], &sc.unused[3], sums[3]};
   Spectrum* q_sums[4] = {&ws.sum_ms_q, &sc.unused[0], &ws.coarse_ms_q, &sc.unused[1]};
   Spectrum* u_sums[4] = {&ws.sum_ms_u, &sc.unused[0], &ws.coarse_ms_u, &sc.unused[1]};
-  const Eigen::ArrayXXf* pass_sources[4] = {&sc.source_t, &sc.source_mie_t, &sc.source_q_t, &sc.source_u_t};
-  Spectrum** pass_sums[4] = {rayleigh_sums, mie_sums, q_sums, u_sums};
-  for (int pass = 0; pass < (polarised ? 4 : 2); ++pass) {
+  Spectrum* mq_sums[4] = {&sc.unused[2], &ws.sum_ms_mq, &sc.unused[3], &ws.coarse_ms_mq};
+  Spectrum* mu_sums[4] = {&sc.unused[2], &ws.sum_ms_mu, &sc.unused[3], &ws.coarse_ms_mu};
+  const Eigen::ArrayXXf* pass_sources[6] = {&sc.source_t,   &sc.source_mie_t, &sc.source_q_t,
+                                            &sc.source_u_t, &sc.source_mq_t,  &sc.source_mu_t};
+  Spectrum** pass_sums[6] = {rayleigh_sums, mie_sums, q_sums, u_sums, mq_sums, mu_sums};
+  for (int pass = 0; pass < (polarised ? 6 : 2); ++pass) {
     const Eigen::ArrayXXf& source_t = *pass_sources[pass];
-    const int sp = pass == 1 ? 1 : 0;  // the species whose density weights the pass
+    const int sp = pass % 2;  // the species whose density weights the pass: Rayleigh, aerosol
     if (sc.by_node)
       sc.source = source_t.transpose().max(1e-30f);
     else
@@ -675,7 +707,8 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
   const double os = o.dot(s), ds = d.dot(s), od = o.dot(d);
   for (Spectrum* sum : {&ws.sum_rayleigh, &ws.sum_mie, &ws.coarse_rayleigh, &ws.coarse_mie, &ws.sum_ms_rayleigh,
                         &ws.sum_ms_mie, &ws.coarse_ms_rayleigh, &ws.coarse_ms_mie, &ws.sum_ms_q, &ws.coarse_ms_q,
-                        &ws.sum_ms_u, &ws.coarse_ms_u})
+                        &ws.sum_ms_u, &ws.coarse_ms_u, &ws.sum_ms_mq, &ws.coarse_ms_mq, &ws.sum_ms_mu,
+                        &ws.coarse_ms_mu})
     sum->setZero();
   RayFrame frame;
   bool polarised = false;  // whether the higher orders' sources had a quadrupole (all pieces or none)
@@ -711,11 +744,16 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
   if (sources.polarisation) {
     // Zero where nothing was polarised (no higher orders, or tables without a quadrupole).
     const Spectrum ms_rayleigh = richardson(ws.sum_ms_rayleigh, ws.coarse_ms_rayleigh);
-    const bool any = polarised;
-    parts.polarised_q = any ? Spectrum(sca_rayleigh_ * (richardson(ws.sum_ms_q, ws.coarse_ms_q) - ms_rayleigh))
-                            : Spectrum::Zero(ms_rayleigh.size());
-    parts.polarised_u = any ? Spectrum(sca_rayleigh_ * (richardson(ws.sum_ms_u, ws.coarse_ms_u) - ms_rayleigh))
-                            : Spectrum::Zero(ms_rayleigh.size());
+    const Spectrum ms_mie = richardson(ws.sum_ms_mie, ws.coarse_ms_mie);
+    if (polarised) {
+      parts.polarised_q = sca_rayleigh_ * (richardson(ws.sum_ms_q, ws.coarse_ms_q) - ms_rayleigh) +
+                          sca_mie_ * (richardson(ws.sum_ms_mq, ws.coarse_ms_mq) - ms_mie);
+      parts.polarised_u = sca_rayleigh_ * (richardson(ws.sum_ms_u, ws.coarse_ms_u) - ms_rayleigh) +
+                          sca_mie_ * (richardson(ws.sum_ms_mu, ws.coarse_ms_mu) - ms_mie);
+    } else {
+      parts.polarised_q.setZero(ms_rayleigh.size());
+      parts.polarised_u.setZero(ms_rayleigh.size());
+    }
   }
 
   const Node& last = ray.nodes.back();

@@ -79,6 +79,7 @@ struct ScatteringWorkspace {
   Spectrum sum_rayleigh, sum_mie, coarse_rayleigh, coarse_mie;  // fine and coarse (paired) rules
   Spectrum sum_ms_rayleigh, sum_ms_mie, coarse_ms_rayleigh, coarse_ms_mie;
   Spectrum sum_ms_q, coarse_ms_q, sum_ms_u, coarse_ms_u;  // of J_R + P_Q and J_R + P_U (polarisation)
+  Spectrum sum_ms_mq, coarse_ms_mq, sum_ms_mu, coarse_ms_mu;  // of J_M + P_M,Q and J_M + P_M,U
   Spectrum phase;  // per-wavelength aerosol phase (spectral asymmetry)
   RadianceParts parts;
 };
@@ -208,6 +209,10 @@ class SingleScattering {
   Spectrum ext_[kSpeciesCount];
   Spectrum sca_rayleigh_, sca_mie_, albedo_over_pi_;
   Spectrum rayleigh_phase_a_, rayleigh_phase_b_;  ///< the Rayleigh phase per wavelength: A + B mu^2
+  /// The aerosol phase function's degree-2 moment for spin-2 fields, 2 pi int p(mu) (1 + mu)^2 / 4 dmu
+  /// (the generalized spherical function P^2_22): what a unit scattering matrix keeps of the
+  /// quadrupole of the light's polarisation (polarised_sources).
+  Spectrum mie_spin2_moment_;
 
   // The quadrature along one ray (single_scattering.cpp): where the ray runs in the atmosphere,
   // its pieces (lit or in shadow), the nodes on them, and the integration over the nodes.
