@@ -28,6 +28,12 @@ class RenderResult:
     def spectral(self) -> npt.NDArray[np.float32]:
         """(h, w, n): spectral radiance, W m^-2 sr^-1 nm^-1 (absolute with sun.spectrum = "solar")."""
     @property
+    def stokes(self) -> Optional[npt.NDArray[np.float32]]:
+        """(h, w, n, 4): [S0, S1, S2, S3] in each pixel's frame with output.polarisation, else None."""
+    @property
+    def stokes_e1(self) -> Optional[npt.NDArray[np.float64]]:
+        """(h, w, 3): e1 of each pixel's Stokes frame (the image's x axis on the sky), else None."""
+    @property
     def wavelengths_nm(self) -> npt.NDArray[np.float64]:
         """(n,): the wavelengths, nm."""
     @property

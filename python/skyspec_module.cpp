@@ -444,12 +444,46 @@ Arrays (row 0 is the top of the image, as in the EXR; h x w pixels, n wavelength
   directions      float64 (h, w, 3): unit view direction through each pixel's centre, east-north-up at the
                   scene's reference point (x east, y north, z up); (0, 0, 0) where the camera has none
   valid           bool (h, w): the pixel has a direction (False outside a fisheye's circle)
+  stokes          float32 (h, w, n, 4): [S0, S1, S2, S3] per wavelength with output.polarisation (else None),
+                  in each pixel's frame: e1 = stokes_e1 (float64 (h, w, 3)), e2 = k x e1, k = -direction
 spectral and rgb are writable views of the result (write_exr/write_png write what they hold); directions and
 wavelengths_nm are read-only views.)")
       .def_property_readonly("spectral", [](const RenderResult& r) {
         auto& i = *r.image;
         return view_of<float>(r.image, {i.height, i.width, static_cast<py::ssize_t>(i.wavelengths_nm.size())}, i.spectral.data());
       }, "float32 (h, w, n): spectral radiance, W m^-2 sr^-1 nm^-1")
+      .def_property_readonly("stokes", [](const RenderResult& r) -> py::object {
+        // A copy: S0 is spectral, S1-S3 are kept apart in the image.
+        const auto& i = *r.image;
+        if (i.stokes.empty()) return py::none();
+        const size_t n = i.wavelengths_nm.size(), pixels = static_cast<size_t>(i.width) * static_cast<size_t>(i.height);
+        py::array_t<float> out({static_cast<py::ssize_t>(i.height), static_cast<py::ssize_t>(i.width),
+                                static_cast<py::ssize_t>(n), py::ssize_t{4}});
+        float* o = out.mutable_data();
+        for (size_t p = 0; p < pixels; ++p)
+          for (size_t k = 0; k < n; ++k) {
+            float* v = o + (p * n + k) * 4;
+            v[0] = i.spectral[p * n + k];
+            for (size_t c = 0; c < 3; ++c) v[c + 1] = i.stokes[(p * 3 + c) * n + k];
+          }
+        return out;
+      }, "float32 (h, w, n, 4): the Stokes vector [S0, S1, S2, S3] per pixel and wavelength (S0 = spectral) in\n"
+         "each pixel's frame (stokes_e1), with output.polarisation; None otherwise")
+      .def_property_readonly("stokes_e1", [](const RenderResult& r) -> py::object {
+        const auto& i = *r.image;
+        if (i.stokes.empty()) return py::none();
+        const auto camera = make_camera(i.scene);
+        py::array_t<double> out({static_cast<py::ssize_t>(i.height), static_cast<py::ssize_t>(i.width), py::ssize_t{3}});
+        double* o = out.mutable_data();
+        for (int y = 0; y < i.height; ++y)
+          for (int x = 0; x < i.width; ++x) {
+            Vec3 d, e1 = Vec3::Zero();
+            if (camera->direction(x + 0.5, y + 0.5, d)) e1 = stokes_frame_axis_of_pixel(*camera, x + 0.5, y + 0.5, d);
+            std::copy(e1.data(), e1.data() + 3, o + (static_cast<size_t>(y) * i.width + x) * 3);
+          }
+        return out;
+      }, "float64 (h, w, 3): e1 of each pixel's Stokes frame, east-north-up (the image's x axis on the sky; e2 =\n"
+         "k x e1 with k = -direction, the light's direction); (0, 0, 0) where no direction; None without polarisation")
       .def_property_readonly("wavelengths_nm", [](const RenderResult& r) {
         return view_of<double>(r.image, {static_cast<py::ssize_t>(r.image->wavelengths_nm.size())},
                                r.image->wavelengths_nm.data(), false);

@@ -26,6 +26,12 @@ std::unique_ptr<Camera> make_camera(const Scene& scene);
 /// min_elevation_deg = -90): its EXRs carry OpenEXR's envmap = latlong attribute.
 bool is_latlong_envmap(const CameraSpec& camera);
 
+/// e1 of the Stokes frame of the image point (x, y) (pixels) whose ray is dir (unit): the direction
+/// in which image x grows there, perpendicular to dir. e2 = k x e1 with k = -dir, the light's
+/// direction: the image's up for the perspective and equirectangular cameras, its down for the
+/// fisheye (a view from above). The frames of polarised renders (SkyRenderer::render_window_stokes).
+Vec3 stokes_frame_axis_of_pixel(const Camera& camera, double x, double y, const Vec3& dir);
+
 /// Everything needed to render one scene, built once: atmosphere on the grid, the sun's column
 /// table, the integrator, the camera, and the colour conversion.
 class SkyRenderer {
@@ -46,6 +52,16 @@ class SkyRenderer {
   /// The same for the columns [x0, x1) of those rows only (a tile of the image): rows x (x1 - x0)
   /// pixels, each the value render_rows gives it. Throws Error for a window outside the image.
   void render_window(int x0, int x1, int y0, int rows, float* spectral, float* rgb) const;
+  /// render_window for a scene with output.polarisation (Error otherwise): each pixel's Stokes
+  /// vector per wavelength, [row][x][S0, S1, S2, S3][lambda] in `stokes`, and the RGB of S0.
+  /// Every pixel is integrated along its ray (no sky-view table), so S0 can differ from
+  /// render_window's radiance by that table's interpolation error. The Stokes frame of a pixel
+  /// (stokes_frame_axis_of_pixel): e1 = the image's x axis at that pixel, carried onto the sky,
+  /// e2 = k x e1 with k = -dir the light's direction (the spectral EXR's polarisationHandedness =
+  /// "right"). S1 > 0: polarised along e1; S2 > 0: along e1 + e2. S3 (V) is 0.
+  void render_window_stokes(int x0, int x1, int y0, int rows, float* stokes, float* rgb) const;
+  /// skyspec::stokes_frame_axis_of_pixel for this renderer's camera.
+  Vec3 stokes_frame_axis_of_pixel(double x, double y, const Vec3& dir) const;
 
   /// Spectral radiance of the sky (one value per grid wavelength, W m^-2 sr^-1 nm^-1), without
   /// the sun's disk, seen from the scene's camera position looking along the world-space direction
@@ -53,13 +69,13 @@ class SkyRenderer {
   /// so is this.
   Spectrum radiance(const Vec3& dir) const;
   Rgb radiance_rgb(const Vec3& dir) const;
-  /// The sky's Stokes vector in that direction as far as the renderer models polarisation, in the
-  /// frame (e1, k x e1) of the light arriving along k = -dir, e1 a unit vector perpendicular to
-  /// dir; V = 0. i is radiance(dir) (integrated along the ray, not read from the sky-view table);
-  /// q and u are the polarisation that the light gets at its last scattering by air (Rayleigh's
-  /// scattering matrix): exact for single scattering; for the higher orders the diffuse field
-  /// that is scattered counts as unpolarised. The aerosol does not polarise, the ground
-  /// depolarises. docs/validation.md measures the approximation against the vector Monte Carlo.
+  /// The sky's Stokes vector in that direction, in the frame (e1, k x e1) of the light arriving
+  /// along k = -dir, e1 a unit vector perpendicular to dir; V = 0. i is radiance(dir), integrated
+  /// along the ray (not read from the sky-view table). With output.polarisation the higher orders
+  /// carry polarisation (vector tables for the air; aerosols keep the polarisation's quadrupole
+  /// through their unit matrix, docs/polarisation.md); without it only single scattering by air
+  /// is polarised. The ground depolarises. docs/validation.md measures both against the vector
+  /// Monte Carlo.
   void stokes(const Vec3& dir, const Vec3& e1, Spectrum& i, Spectrum& q, Spectrum& u) const;
 
   /// Aerial perspective for rows [y0, y0 + rows): for each pixel, the spectral transmittance from
@@ -99,6 +115,10 @@ struct SpectralImageBuffer {
   std::vector<double> wavelengths_nm;
   std::vector<float> spectral;  ///< [y][x][lambda]
   std::vector<float> rgb;       ///< [y][x][c]
+  /// [y][x][S1, S2, S3][lambda] with output.polarisation (else empty): the Stokes vector's
+  /// polarised components in the units of spectral, in each pixel's frame
+  /// (SkyRenderer::render_window_stokes); spectral is then S0.
+  std::vector<float> stokes;
   Scene scene;                  ///< the effective scene it is a render of
   /// [y][x][3]: the unit view direction through each pixel's centre, in the east-north-up frame of
   /// the scene's reference point (x east, y north, z up; camera.hpp); (0, 0, 0) where the camera
@@ -139,6 +159,9 @@ double write_display_png(const SpectralImageBuffer& image, const std::filesystem
 struct RenderOutputs {
   std::filesystem::path exr, png;  ///< empty when not written
   std::filesystem::path working_exr;  ///< the RGB EXR in DisplaySettings::exr_space, if asked for
+  /// output.polarisation: <name>-polarisation.exr (Y, DoLP, AoLP; not for a tile) and, with
+  /// output.polarisation_png, <name>-polarisation.png.
+  std::filesystem::path polarisation_exr, polarisation_png;
   double preview_scale = 1.0;      ///< the exposure: factor applied to linear RGB before display
   double preview_ev = 0.0;         ///< log2(preview_scale)
   std::string exposure;            ///< how the exposure was chosen (also in the files' headers)

@@ -103,9 +103,13 @@ struct OutputSpec {
   /// Pixel type of the spectral channels: "float" or "half" (R, G, B are always float).
   std::string exr_spectral_type = "float";
   std::optional<double> exposure_ev;  ///< preview exposure; automatic when absent
-  /// Vector transport for the air: the scattering-order tables carry linear polarisation, and the
-  /// spectral EXR gets S1-S3 beside S0 (docs/polarisation.md).
+  /// Vector transport for the air: the scattering-order tables carry linear polarisation, the
+  /// spectral EXR gets S1-S3 beside S0, and <name>-polarisation.exr holds the luminance-weighted
+  /// Y, DoLP and AoLP (docs/polarisation.md).
   bool polarisation = false;
+  /// With polarisation and png: also <name>-polarisation.png, the angle of linear polarisation as
+  /// hue and its degree as brightness (colour/polarisation_colour.hpp).
+  bool polarisation_png = false;
 };
 
 struct Scene {

@@ -98,7 +98,7 @@ int run_render(RenderOptions& o) {
   const DisplaySettings display = display_settings(o.display, exposure_flag_given(o));
   {
     const RenderOutputs outputs = render_output_paths(scene, display);
-    for (const auto& path : {outputs.exr, outputs.png, outputs.working_exr})
+    for (const auto& path : {outputs.exr, outputs.png, outputs.working_exr, outputs.polarisation_exr, outputs.polarisation_png})
       if (!path.empty()) refuse_output_replacing_input(path, "--out / --name", scene_input_files(o.scene));
   }
   // Absurd requests are refused up front (render_budget.hpp): the sizes and the memory before the
@@ -137,6 +137,8 @@ int run_render(RenderOptions& o) {
     if (!out.exr.empty()) std::cout << "wrote " << out.exr.string() << "\n";
     if (!out.png.empty()) std::cout << "wrote " << out.png.string() << " (preview exposure " << out.preview_ev << " EV)\n";
     if (!out.working_exr.empty()) std::cout << "wrote " << out.working_exr.string() << "\n";
+    if (!out.polarisation_exr.empty()) std::cout << "wrote " << out.polarisation_exr.string() << "\n";
+    if (!out.polarisation_png.empty()) std::cout << "wrote " << out.polarisation_png.string() << "\n";
     if (!out.png.empty()) std::cout << "display: " << out.display << "\n";
     std::cout << "exposure: " << out.exposure << "\n";
     std::cout << "estimate: " << estimate.describe() << "\n";

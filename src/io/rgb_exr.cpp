@@ -34,35 +34,37 @@ IMATH_NAMESPACE::V2f v2f(const double xy[2]) {
 
 }  // namespace
 
-void write_rgb_exr(const std::filesystem::path& path, int width, int height, const std::vector<float>& rgb,
-                   const Chromaticities& c, const std::map<std::string, std::string>& strings,
-                   const std::map<std::string, float>& floats, const std::map<std::string, double>& doubles,
-                   bool latlong_envmap) {
-  const std::string where = "RGB EXR '" + path.string() + "': ";
+namespace {
+
+// Float channels `names`, interleaved per pixel in `values` ([y][x][channel]), ZIP-compressed,
+// with the chromaticities attribute when given; atomic.
+void write_channels(const std::filesystem::path& path, const std::string& where, int width, int height,
+                    const std::vector<std::string>& names, const std::vector<float>& values, const Chromaticities* c,
+                    const std::map<std::string, std::string>& strings, const std::map<std::string, float>& floats,
+                    const std::map<std::string, double>& doubles, bool latlong_envmap) {
   if (width <= 0 || height <= 0)
     throw IoError(where + "image size " + std::to_string(width) + " x " + std::to_string(height) + " must be positive");
-  const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
-  if (rgb.size() != pixels * 3) throw IoError(where + "wrong number of values for the image size");
-  for (size_t i = 0; i < rgb.size(); ++i)
-    if (!std::isfinite(rgb[i]))
-      throw IoError(where + "non-finite value at x = " + std::to_string(i / 3 % static_cast<size_t>(width)) +
-                    ", y = " + std::to_string(i / 3 / static_cast<size_t>(width)));
+  const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height), k = names.size();
+  if (values.size() != pixels * k) throw IoError(where + "wrong number of values for the image size");
+  for (size_t i = 0; i < values.size(); ++i)
+    if (!std::isfinite(values[i]))
+      throw IoError(where + "non-finite value at x = " + std::to_string(i / k % static_cast<size_t>(width)) +
+                    ", y = " + std::to_string(i / k / static_cast<size_t>(width)) + ", channel " + names[i % k]);
 
   MemoryOStream memory;
   try {
     Imf::Header header(width, height);
     header.compression() = Imf::ZIP_COMPRESSION;
-    const char* names[3] = {"R", "G", "B"};
-    for (const char* name : names) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
-    Imf::addChromaticities(header, Imf::Chromaticities(v2f(c.red), v2f(c.green), v2f(c.blue), v2f(c.white)));
+    for (const std::string& name : names) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+    if (c) Imf::addChromaticities(header, Imf::Chromaticities(v2f(c->red), v2f(c->green), v2f(c->blue), v2f(c->white)));
     for (const auto& [key, value] : strings) header.insert(key, Imf::StringAttribute(value));
     for (const auto& [key, value] : floats) header.insert(key, Imf::FloatAttribute(value));
     for (const auto& [key, value] : doubles) header.insert(key, Imf::DoubleAttribute(value));
     if (latlong_envmap) Imf::addEnvmap(header, Imf::ENVMAP_LATLONG);
     Imf::FrameBuffer frame;
-    const size_t x_stride = 3 * sizeof(float), y_stride = static_cast<size_t>(width) * x_stride;
-    for (int ch = 0; ch < 3; ++ch)
-      frame.insert(names[ch], Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(rgb.data() + ch)),
+    const size_t x_stride = k * sizeof(float), y_stride = static_cast<size_t>(width) * x_stride;
+    for (size_t ch = 0; ch < k; ++ch)
+      frame.insert(names[ch], Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(values.data() + ch)),
                                          x_stride, y_stride));
     Imf::OutputFile out(memory, header);
     out.setFrameBuffer(frame);
@@ -79,6 +81,23 @@ void write_rgb_exr(const std::filesystem::path& path, int width, int height, con
   const bool closed = std::fclose(out) == 0;
   if (!written || !closed) throw IoError(where + "cannot write '" + file.temporary_path().string() + "'");
   file.commit();
+}
+
+}  // namespace
+
+void write_rgb_exr(const std::filesystem::path& path, int width, int height, const std::vector<float>& rgb,
+                   const Chromaticities& c, const std::map<std::string, std::string>& strings,
+                   const std::map<std::string, float>& floats, const std::map<std::string, double>& doubles,
+                   bool latlong_envmap) {
+  write_channels(path, "RGB EXR '" + path.string() + "': ", width, height, {"R", "G", "B"}, rgb, &c, strings, floats,
+                 doubles, latlong_envmap);
+}
+
+void write_float_channels_exr(const std::filesystem::path& path, int width, int height,
+                              const std::vector<std::string>& names, const std::vector<float>& values,
+                              const std::map<std::string, std::string>& strings, bool latlong_envmap) {
+  write_channels(path, "EXR '" + path.string() + "': ", width, height, names, values, nullptr, strings, {}, {},
+                 latlong_envmap);
 }
 
 RgbExrImage read_rgb_exr(const std::filesystem::path& path) {

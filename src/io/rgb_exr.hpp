@@ -24,6 +24,13 @@ void write_rgb_exr(const std::filesystem::path& path, int width, int height, con
                    const std::map<std::string, float>& floats = {},
                    const std::map<std::string, double>& doubles = {}, bool latlong_envmap = false);
 
+/// Float channels `names` ([y][x][channel] in `values`) with extra string attributes and the
+/// latlong envmap attribute when asked (ZIP compression); no chromaticities (the channels are not
+/// colours). Non-finite values are rejected with IoError naming the channel; atomic.
+void write_float_channels_exr(const std::filesystem::path& path, int width, int height,
+                              const std::vector<std::string>& names, const std::vector<float>& values,
+                              const std::map<std::string, std::string>& strings = {}, bool latlong_envmap = false);
+
 struct RgbExrImage {
   int width = 0, height = 0;
   std::vector<float> rgb;  ///< [y][x][c]

@@ -52,7 +52,6 @@ namespace {
 // Channel names: "S0.<number><prefix><unit>", the number with a decimal comma.
 // ---------------------------------------------------------------------------------------------
 
-constexpr const char* kEmissivePrefix = "S0.";
 constexpr double kSpeedOfLight_m_per_s = 299792458.0;  // exact (SI)
 
 /// 10^exponent, exact for |exponent| <= 22 (every SI prefix).
@@ -149,23 +148,32 @@ long first_non_finite(const float* values, size_t count) {
 
 // ---------------------------------------------------------------------------------------------
 
-std::string spectral_channel_name(double lambda_nm) {
+std::string spectral_channel_name(double lambda_nm, int stokes_component) {
   if (!std::isfinite(lambda_nm) || lambda_nm <= 0.0)
     throw Error("spectral_channel_name: wavelength must be positive and finite");
+  if (stokes_component < 0 || stokes_component > 3)
+    throw Error("spectral_channel_name: Stokes component " + std::to_string(stokes_component) + " is not 0 to 3");
   std::ostringstream number;
   number.imbue(std::locale::classic());
   number << std::fixed << std::setprecision(6) << lambda_nm;
   std::string text = number.str();
   std::replace(text.begin(), text.end(), '.', ',');
-  return kEmissivePrefix + text + "nm";
+  return "S" + std::to_string(stokes_component) + "." + text + "nm";
 }
 
-// Accepted: "S0." number [SI prefix] ("m" | "Hz"). Lengths are converted to nm; a frequency f is
-// converted to the vacuum wavelength c / f. Anything else, including a decimal point, which the
-// reference reader also ignores ("S0.400.5nm"), is not an S0 channel.
+// Accepted: "S" 0-3 "." number [SI prefix] ("m" | "Hz"). Lengths are converted to nm; a frequency f
+// is converted to the vacuum wavelength c / f. Anything else, including a decimal point, which the
+// reference reader also ignores ("S0.400.5nm"), is not a spectral channel.
 std::optional<double> parse_spectral_channel_name(const std::string& name) {
-  const std::string prefix = kEmissivePrefix;
-  if (name.compare(0, prefix.size(), prefix) != 0) return std::nullopt;
+  const auto stokes = parse_stokes_channel_name(name);
+  if (!stokes || stokes->first != 0) return std::nullopt;
+  return stokes->second;
+}
+
+std::optional<std::pair<int, double>> parse_stokes_channel_name(const std::string& name) {
+  if (name.size() < 3 || name[0] != 'S' || name[1] < '0' || name[1] > '3' || name[2] != '.') return std::nullopt;
+  const int component = name[1] - '0';
+  const std::string prefix = name.substr(0, 3);
   const std::string rest = name.substr(prefix.size());
   const size_t length = number_length(rest);
   if (length == 0) return std::nullopt;
@@ -187,7 +195,7 @@ std::optional<double> parse_spectral_channel_name(const std::string& name) {
     lambda_nm = value * power_of_ten(*exponent + 9);
   }
   if (!std::isfinite(lambda_nm) || lambda_nm <= 0.0) return std::nullopt;
-  return lambda_nm;
+  return std::pair<int, double>{component, lambda_nm};
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -260,6 +268,8 @@ Imf::Header spectral_header(int width, int height, const std::vector<std::string
   header.insert("spectralLayoutVersion", Imf::StringAttribute("1.0"));
   header.insert("emissiveUnits", Imf::StringAttribute("W.m^-2.sr^-1"));
   if (meta.ev) header.insert("EV", Imf::FloatAttribute(*meta.ev));
+  // Polarised files only (the layout): Stokes frames with e1 x e2 = the light's direction.
+  if (meta.polarised) header.insert("polarisationHandedness", Imf::StringAttribute("right"));
   if (meta.latlong_envmap) Imf::addEnvmap(header, Imf::ENVMAP_LATLONG);
   return header;
 }
@@ -305,14 +315,17 @@ Imf::FrameBuffer band_frame_buffer(const std::vector<std::string>& names, int x0
   return frame;
 }
 
-std::vector<std::string> channel_names_of(const std::vector<double>& wavelengths_nm, const std::string& where) {
+// S0 at every wavelength, then (polarised) S1, S2 and S3: a pixel's values in that order.
+std::vector<std::string> channel_names_of(const std::vector<double>& wavelengths_nm, const std::string& where,
+                                          bool polarised) {
   if (wavelengths_nm.empty()) throw IoError(where + "no wavelengths to write");
   std::vector<std::string> names;
-  for (double lambda_nm : wavelengths_nm) {
-    if (!std::isfinite(lambda_nm) || lambda_nm <= 0.0)
-      throw IoError(where + "wavelength " + std::to_string(lambda_nm) + " nm is not positive and finite");
-    names.push_back(spectral_channel_name(lambda_nm));
-  }
+  for (int component = 0; component < (polarised ? 4 : 1); ++component)
+    for (double lambda_nm : wavelengths_nm) {
+      if (!std::isfinite(lambda_nm) || lambda_nm <= 0.0)
+        throw IoError(where + "wavelength " + std::to_string(lambda_nm) + " nm is not positive and finite");
+      names.push_back(spectral_channel_name(lambda_nm, component));
+    }
   std::vector<std::string> sorted = names;
   std::sort(sorted.begin(), sorted.end());
   if (const auto dup = std::adjacent_find(sorted.begin(), sorted.end()); dup != sorted.end())
@@ -324,7 +337,7 @@ std::vector<std::string> channel_names_of(const std::vector<double>& wavelengths
 
 uint64_t detail::encode_spectral_rows(int width, int rows, const std::vector<double>& wavelengths_nm,
                                       const SpectralExrMetadata& meta, const float* spectral, const float* rgb) {
-  const std::vector<std::string> names = channel_names_of(wavelengths_nm, "spectral EXR sample: ");
+  const std::vector<std::string> names = channel_names_of(wavelengths_nm, "spectral EXR sample: ", meta.polarised);
   const Imf::Header header = spectral_header(width, rows, names, meta);
   DiscardingOStream stream;
   {
@@ -348,7 +361,7 @@ SpectralExrWriter::SpectralExrWriter(const fs::path& final_path, int width, int 
   if (width <= 0 || height <= 0)
     throw IoError(where + "image size " + std::to_string(width) + " x " + std::to_string(height) +
                   " must be positive");
-  std::vector<std::string> names = channel_names_of(wavelengths_nm, where);
+  std::vector<std::string> names = channel_names_of(wavelengths_nm, where, meta.polarised);
 
   impl_ = std::make_unique<Impl>(final_path, width, height);
   if (meta.data_window) {  // a tile: rows of the window (spectral_header checks it lies inside)
@@ -459,17 +472,21 @@ SpectralImage read_spectral_exr_unchecked(const fs::path& path) {
     return IoError("spectral EXR '" + path.string() + "': " + why);
   };
 
-  // Spectral channels, ascending in wavelength.
+  // Spectral channels, ascending in wavelength; S1-S3 of a polarised file.
   std::vector<std::pair<double, std::string>> spectral_channels;
+  std::map<std::pair<int, double>, std::string> stokes_channels;
   bool has_rgb = true;
   for (const char* name : kRgbNames) has_rgb = has_rgb && header.channels().findChannel(name);
   require_float_channels(header, {kRgbNames[0], kRgbNames[1], kRgbNames[2]}, "spectral EXR '" + path.string() + "': ");
   for (auto it = header.channels().begin(); it != header.channels().end(); ++it) {
     if (it.channel().xSampling != 1 || it.channel().ySampling != 1)
       throw fail(std::string("channel ") + it.name() + " is subsampled (not supported)");
-    if (const std::optional<double> lambda_nm = parse_spectral_channel_name(it.name())) {
+    if (const auto stokes = parse_stokes_channel_name(it.name())) {
       if (it.channel().type == Imf::UINT) throw fail(std::string("channel ") + it.name() + " holds UINT samples; skyspec reads HALF or FLOAT");
-      spectral_channels.emplace_back(*lambda_nm, it.name());
+      if (stokes->first == 0)
+        spectral_channels.emplace_back(stokes->second, it.name());
+      else
+        stokes_channels[*stokes] = it.name();
     }
   }
   if (spectral_channels.empty()) throw fail("no S0.<wavelength> spectral channels");
@@ -495,6 +512,22 @@ SpectralImage read_spectral_exr_unchecked(const fs::path& path) {
     for (size_t c = 0; c < 3; ++c)
       frame.insert(kRgbNames[c], Imf::Slice::Make(Imf::FLOAT, image.rgb.data() + c, window, 3 * sizeof(float),
                                                   static_cast<size_t>(image.width) * 3 * sizeof(float)));
+  // S1-S3: all of them at every wavelength, or none (a file with some is not one this reads).
+  if (!stokes_channels.empty()) {
+    if (stokes_channels.size() != 3 * n)
+      throw fail("it has " + std::to_string(stokes_channels.size()) + " S1-S3 channels; a polarised file has S1, S2 and S3 "
+                 "at each of its " + std::to_string(n) + " wavelengths");
+    image.stokes.resize(pixels * 3 * n);
+    for (int component = 1; component <= 3; ++component)
+      for (size_t c = 0; c < n; ++c) {
+        const auto found = stokes_channels.find({component, spectral_channels[c].first});
+        if (found == stokes_channels.end())
+          throw fail("S" + std::to_string(component) + " is missing at " + spectral_channels[c].second);
+        frame.insert(found->second,
+                     Imf::Slice::Make(Imf::FLOAT, image.stokes.data() + (component - 1) * n + c, window, 3 * n * sizeof(float),
+                                      static_cast<size_t>(image.width) * 3 * n * sizeof(float)));
+      }
+  }
   in.setFrameBuffer(frame);
   in.readPixels(window.min.y, window.max.y);
 

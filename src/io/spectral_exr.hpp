@@ -14,15 +14,19 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace skyspec {
 
-/// "S0.550,000000nm" for 550 (six decimals, comma as the decimal separator).
-std::string spectral_channel_name(double lambda_nm);
+/// "S0.550,000000nm" for 550 (six decimals, comma as the decimal separator); "S1.550,000000nm"
+/// for Stokes component 1, and so on to 3.
+std::string spectral_channel_name(double lambda_nm, int stokes_component = 0);
 /// The wavelength in nm of an emissive (S0) channel name in any unit the layout allows
 /// ("S0.550,5nm", "S0.0,55um", "S0.550nm"); nothing if the name is not an S0 spectral channel.
 std::optional<double> parse_spectral_channel_name(const std::string& name);
+/// The Stokes component (0 to 3) and wavelength in nm of any emissive channel name ("S2.550,5nm").
+std::optional<std::pair<int, double>> parse_stokes_channel_name(const std::string& name);
 
 struct SpectralExrMetadata {
   std::map<std::string, std::string> strings;  ///< extra string attributes, e.g. "skyspec:scene"
@@ -35,6 +39,10 @@ struct SpectralExrMetadata {
   /// S0 channels as 16-bit half floats (R, G, B stay float): a value above half's largest, 65504,
   /// is refused with IoError rather than written as infinity.
   bool half_spectral = false;
+  /// A polarised image: S1, S2 and S3 channels at every wavelength beside S0 (each pixel's values
+  /// come as S0 at all wavelengths, then S1, S2, S3), and the layout's polarisationHandedness =
+  /// "right": each pixel's Stokes frame (e1, e2) has e1 x e2 = the light's direction of travel.
+  bool polarised = false;
   std::string compression = "piz";             ///< lossless: piz, zip, zips, rle or none
   /// A tile of the image: only pixels [x0, x1) x [y0, y1) of the width x height image are stored
   /// (the file's dataWindow; its displayWindow stays the whole image). write_rows then takes rows
@@ -56,7 +64,8 @@ class SpectralExrWriter {
 
   /// Write the next `rows` rows (continuing from the last row written), each of the data window's
   /// width (the image's, unless meta.data_window says otherwise).
-  /// spectral: rows * width * n_wavelengths floats, pixel-major ([row][x][lambda]);
+  /// spectral: rows * width * n_wavelengths floats, pixel-major ([row][x][lambda]; polarised:
+  /// rows * width * 4 * n_wavelengths, [row][x][S0..S3][lambda]);
   /// rgb: rows * width * 3 floats ([row][x][c]). Non-finite values are rejected with IoError.
   void write_rows(int rows, const float* spectral, const float* rgb);
   /// All rows written: close, fsync, rename. Throws IoError if rows are missing.
@@ -73,6 +82,7 @@ struct SpectralImage {
   std::vector<double> wavelengths_nm;   ///< ascending
   std::vector<float> spectral;          ///< [y][x][lambda]
   std::vector<float> rgb;               ///< [y][x][c], empty if the file has no R, G, B
+  std::vector<float> stokes;            ///< [y][x][S1..S3][lambda] of a polarised file, else empty
   std::map<std::string, std::string> string_attributes;
   std::optional<float> ev;
 };

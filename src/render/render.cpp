@@ -295,6 +295,77 @@ void SkyRenderer::aerial_rows(int y0, int rows, const float* distance_m, float* 
   });
 }
 
+Vec3 stokes_frame_axis_of_pixel(const Camera& camera, double x, double y, const Vec3& dir) {
+  // Image x as a direction on the sky: the pixel's neighbours a quarter pixel either side (one side
+  // at the edge of a fisheye's circle), made perpendicular to the pixel's ray.
+  Vec3 right, left;
+  const bool has_right = camera.direction(x + 0.25, y, right), has_left = camera.direction(x - 0.25, y, left);
+  Vec3 t = has_right && has_left ? Vec3(right - left) : has_right ? Vec3(right - dir) : has_left ? Vec3(dir - left) : Vec3::Zero();
+  t -= t.dot(dir) * dir;
+  if (t.norm() > 1e-12) return t.normalized();
+  // No image x at this point (not met by skyspec's cameras at pixel centres): any perpendicular.
+  t = dir.cross(std::abs(dir.z()) < 0.9 ? Vec3(0, 0, 1) : Vec3(1, 0, 0));
+  return t.normalized();
+}
+
+Vec3 SkyRenderer::stokes_frame_axis_of_pixel(double x, double y, const Vec3& dir) const {
+  return skyspec::stokes_frame_axis_of_pixel(*impl_->camera, x, y, dir);
+}
+
+void SkyRenderer::render_window_stokes(int x0, int x1, int y0, int rows, float* stokes, float* rgb) const {
+  const auto& m = *impl_;
+  if (!m.scene.output.polarisation)
+    throw Error("render_window_stokes: the scene does not ask for polarisation (output.polarisation = false)");
+  if (!(0 <= x0 && x0 < x1 && x1 <= width() && 0 <= y0 && rows > 0 && y0 + rows <= height()))
+    throw Error("render_window_stokes: columns " + std::to_string(x0) + ".." + std::to_string(x1) + ", rows " +
+                std::to_string(y0) + ".." + std::to_string(y0 + rows) + " are not inside the " +
+                std::to_string(width()) + " x " + std::to_string(height()) + " image");
+  const int w = x1 - x0, n = m.grid.size();
+  const size_t stride = 4 * static_cast<size_t>(n);
+  // Every pixel is integrated along its ray with the polarised sources (the sky-view table holds
+  // no polarisation), in its own Stokes frame.
+  struct Scratch {
+    ScatteringWorkspace ws;
+    RadianceParts parts;
+    Spectrum i, q, u, disk, trans;
+    explicit Scratch(int k) : ws(k), parts(k), i(k), q(k), u(k), disk(k), trans(k) {}
+  };
+  tbb::enumerable_thread_specific<Scratch> scratch([n] { return Scratch(n); });
+  std::atomic<bool> non_finite{false};
+  ScatteringSources sources = m.sources;
+  sources.polarisation = true;
+  tbb::task_arena arena(m.threads);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<int>(0, rows * w, 16), [&](const tbb::blocked_range<int>& r) {
+      Scratch& sc = scratch.local();
+      throw_if_cancelled();
+      for (int idx = r.begin(); idx != r.end(); ++idx) {
+        const int x = x0 + idx % w, y = y0 + idx / w;
+        float* px = stokes + static_cast<size_t>(idx) * stride;
+        Vec3 dir;
+        if (!m.camera->direction(x + 0.5, y + 0.5, dir)) {
+          std::fill(px, px + stride, 0.0f);
+        } else {
+          const Vec3 e1 = stokes_frame_axis_of_pixel(x + 0.5, y + 0.5, dir);
+          m.integrator.radiance_parts(m.camera->origin_m(), dir, m.sun_dir, sources, sc.ws, sc.parts);
+          m.integrator.stokes(sc.parts, dir, m.sun_dir, e1, m.sun_irradiance, sc.ws, sc.i, sc.q, sc.u);
+          std::copy(sc.i.data(), sc.i.data() + n, px);
+          std::copy(sc.q.data(), sc.q.data() + n, px + n);
+          std::copy(sc.u.data(), sc.u.data() + n, px + 2 * n);
+          std::fill(px + 3 * n, px + 4 * n, 0.0f);  // V: zero for these scattering matrices
+          if (m.scene.sun.disk) m.add_sun_disk(x, y, dir, px, sc.disk, sc.trans);  // unpolarised
+        }
+        const Rgb c = spectrum_to_rgb(Eigen::Map<const Spectrum>(px, n));
+        std::copy(c.data(), c.data() + 3, rgb + static_cast<size_t>(idx) * 3);
+        if (!c.allFinite() || !Eigen::Map<const Eigen::ArrayXf>(px, static_cast<Eigen::Index>(stride)).allFinite())
+          non_finite.store(true, std::memory_order_relaxed);
+      }
+    });
+  });
+  if (non_finite.load())
+    throw Error("internal error: a non-finite Stokes or RGB value was computed; no file was written");
+}
+
 void SkyRenderer::render_rows(int y0, int rows, float* spectral, float* rgb) const {
   render_window(0, width(), y0, rows, spectral, rgb);
 }

@@ -87,6 +87,8 @@ RenderPlan RenderPlan::for_scene(const Scene& scene, bool working_exr, int png_b
   p.frames = frames;
   p.spectral_exr = scene.output.exr;
   p.png = scene.output.png;
+  p.stokes_components = scene.output.polarisation ? 4 : 1;
+  p.polarisation_png = scene.output.polarisation && scene.output.polarisation_png && scene.output.png;
   p.working_exr = working_exr;
   p.png_bit_depth = png_bit_depth;
   p.directory = scene.output.directory;
@@ -97,8 +99,10 @@ RenderPlan RenderPlan::for_scene(const Scene& scene, bool working_exr, int png_b
 
 std::uint64_t RenderPlan::output_bytes() const {
   std::uint64_t one = 0;
-  if (spectral_exr) one += spectral_exr_bytes(width, height, wavelengths);
+  if (spectral_exr) one += spectral_exr_bytes(width, height, wavelengths * stokes_components);
+  if (spectral_exr && stokes_components > 1) one += rgb_exr_bytes(width, height);  // Y, DoLP, AoLP
   if (png) one += png_bytes(width, height, png_bit_depth);
+  if (polarisation_png) one += png_bytes(width, height, 8);
   if (working_exr) one += rgb_exr_bytes(width, height);
   one += extra_output_bytes;
   return one * static_cast<std::uint64_t>(std::max(frames, 1));
@@ -108,7 +112,8 @@ std::uint64_t RenderPlan::peak_memory_bytes() const {
   const std::uint64_t px = pixels(width, height), n = static_cast<std::uint64_t>(std::max(wavelengths, 0));
   // render_scene_to_files renders a band of rows while the one before is written: bands of about
   // 64 MiB (8 to 64 rows), two of them, and OpenEXR's buffers for one (uncompressed and compressed).
-  const std::uint64_t row_bytes = static_cast<std::uint64_t>(std::max(width, 1)) * (n + 3) * 4;
+  const std::uint64_t row_bytes =
+      static_cast<std::uint64_t>(std::max(width, 1)) * (n * static_cast<std::uint64_t>(std::max(stokes_components, 1)) + 3) * 4;
   const std::uint64_t band_rows = std::clamp<std::uint64_t>((std::uint64_t{64} << 20) / row_bytes, 8, 64);
   const std::uint64_t band = std::min<std::uint64_t>(band_rows, static_cast<std::uint64_t>(std::max(height, 0))) * row_bytes;
   std::uint64_t bytes = 2 * band + table_bytes;
@@ -217,7 +222,8 @@ double measure_render_seconds(const SkyRenderer& renderer, const RenderPlan& pla
   // over the image by the R2 low-discrepancy sequence (Roberts 2018). CPU time of the thread: what the work costs,
   // whatever else the machine is doing.
   const auto camera = make_camera(renderer.scene());
-  Spectrum spectrum;
+  const bool polarised = renderer.scene().output.polarisation;  // every pixel marched with its Stokes vector
+  Spectrum spectrum, q, u;
   const double a1 = 0.7548776662466927, a2 = 0.5698402909980532;
   const auto start = std::chrono::steady_clock::now();
   const double cpu_start = thread_cpu_seconds();
@@ -225,8 +231,13 @@ double measure_render_seconds(const SkyRenderer& renderer, const RenderPlan& pla
   for (;;) {
     const double k = static_cast<double>(samples + 1);
     Vec3 dir;
-    if (camera->direction(std::fmod(0.5 + a1 * k, 1.0) * w, std::fmod(0.5 + a2 * k, 1.0) * h, dir))
-      spectrum = renderer.radiance(dir);
+    const double x = std::fmod(0.5 + a1 * k, 1.0) * w, y = std::fmod(0.5 + a2 * k, 1.0) * h;
+    if (camera->direction(x, y, dir)) {
+      if (polarised)
+        renderer.stokes(dir, renderer.stokes_frame_axis_of_pixel(x, y, dir), spectrum, q, u);
+      else
+        spectrum = renderer.radiance(dir);
+    }
     ++samples;
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (samples >= 64 || elapsed >= 0.1) break;
@@ -236,13 +247,16 @@ double measure_render_seconds(const SkyRenderer& renderer, const RenderPlan& pla
   // render_rows on the middle row and, when that was quick, a row a quarter down, timed by the
   // process's CPU time (all of render_rows's threads).
   if (marched * w / threads > 1.0) return marched * work / threads;
-  std::vector<float> spectral(static_cast<size_t>(w) * static_cast<size_t>(renderer.grid().size())),
-      rgb(static_cast<size_t>(w) * 3);
+  const size_t values = static_cast<size_t>(renderer.grid().size()) * (polarised ? 4 : 1);
+  std::vector<float> spectral(static_cast<size_t>(w) * values), rgb(static_cast<size_t>(w) * 3);
   double cpu = 0.0;
   long rendered = 0;
   for (const int y : {h / 2, h / 4}) {
     const double before = process_cpu_seconds();
-    renderer.render_rows(y, 1, spectral.data(), rgb.data());
+    if (polarised)
+      renderer.render_window_stokes(0, w, y, 1, spectral.data(), rgb.data());
+    else
+      renderer.render_rows(y, 1, spectral.data(), rgb.data());
     cpu += process_cpu_seconds() - before;
     rendered += w;
     if (cpu > 0.05 || h < 4) break;
@@ -259,6 +273,7 @@ double measure_render_seconds(const SkyRenderer& renderer, const RenderPlan& pla
     }
     SpectralExrMetadata meta;
     meta.compression = renderer.scene().output.exr_compression;
+    meta.polarised = polarised;
     meta.threads = renderer.threads();  // as the render's writer: no more OpenEXR threads than render.threads
     const double before = process_cpu_seconds();
     detail::encode_spectral_rows(w, rows, renderer.grid().nanometres(), meta, band_spectral.data(), band_rgb.data());

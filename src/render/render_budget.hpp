@@ -39,6 +39,9 @@ struct RenderPlan {
   int width = 0, height = 0, wavelengths = 0, view_segments = 0, threads = 1;
   int frames = 1;
   bool spectral_exr = true, png = true, working_exr = false;
+  /// 4 for a polarised render (S0-S3 per wavelength, output.polarisation; its Y/DoLP/AoLP EXR too), else 1.
+  int stokes_components = 1;
+  bool polarisation_png = false;  ///< output.polarisation_png
   int png_bit_depth = 8;
   std::filesystem::path directory;
   /// What a caller writes and holds besides what render_scene_to_files does (aerial perspective

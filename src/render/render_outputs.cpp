@@ -21,6 +21,7 @@
 #include "base/output_lock.hpp"
 #include "colour/display_pipeline.hpp"
 #include "colour/exposure.hpp"
+#include "colour/polarisation_colour.hpp"
 #include "io/png_image.hpp"
 #include "io/provenance.hpp"
 #include "io/rgb_exr.hpp"
@@ -95,12 +96,19 @@ SpectralExrMetadata spectral_exr_metadata(const Scene& scene, const std::map<std
   meta.threads = threads;
   meta.latlong_envmap = is_latlong_envmap(scene.camera);
   meta.half_spectral = scene.output.exr_spectral_type == "half";
+  meta.polarised = scene.output.polarisation;
   meta.strings["skyspec:units"] =
       scene.render.path == RenderSpec::Path::RgbFast
           ? "RGB-fast path: S0 channels and R,G,B in the sun's units (spectral_irradiance x sr^-1); "
             "R,G,B are the 680, 550, 440 nm values read as linear Rec.709"
           : "S0 channels: spectral radiance, W m^-2 sr^-1 nm^-1; R,G,B: linear Rec.709 (D65) with "
             "Y = luminance in cd m^-2";
+  if (scene.output.polarisation)
+    meta.strings["skyspec:polarisation"] =
+        "S1, S2, S3 per wavelength in the units of S0: the Stokes vector in each pixel's frame, e1 = the image's x axis "
+        "carried onto the sky (perpendicular to the pixel's ray), e2 = k x e1 with k the light's direction (towards the "
+        "camera); S1 > 0 polarised along e1, S2 > 0 along e1 + e2; S3 = 0. Vector transport for the air; aerosols "
+        "scatter as unit matrices; the ground depolarises (docs/polarisation.md)";
   return meta;
 }
 
@@ -115,11 +123,17 @@ std::string describe(const PixelBounds& b) {
 // the disk runs on a helper thread that only waits: spectral_exr.cpp). 64 rows are two PIZ or
 // four ZIP line blocks; wide images take fewer rows so that a band stays near 64 MB. The whole
 // image's linear RGB is kept in `rgb` when it is not empty (for the PNG and the working-space EXR).
-void render_bands(const SkyRenderer& r, SpectralExrWriter* exr, std::vector<float>& rgb, const ProgressFn& progress,
-                  const PixelBounds& window) {
+// A polarised render also keeps, when `stokes_y` is not empty, the luminance-weighted S0, S1, S2 of
+// every pixel ([y][x][3]: the spectrum_to_rgb of each component's spectrum, then Rec.709
+// luminance; both steps are linear in the spectrum) for the DoLP / AoLP images.
+void render_bands(const SkyRenderer& r, SpectralExrWriter* exr, std::vector<float>& rgb, std::vector<float>& stokes_y,
+                  const ProgressFn& progress, const PixelBounds& window) {
   const int x0 = window.x0, w = window.x1 - window.x0, y_first = window.y0, y_end = window.y1, n = r.grid().size();
   const int h = y_end - y_first;
-  const size_t band_row_bytes = static_cast<size_t>(w) * static_cast<size_t>(n + 3) * sizeof(float);
+  // Polarised: S0-S3 per wavelength (render_window_stokes), as the EXR takes them.
+  const bool polarised = r.scene().output.polarisation;
+  const int values = polarised ? 4 * n : n;
+  const size_t band_row_bytes = static_cast<size_t>(w) * static_cast<size_t>(values + 3) * sizeof(float);
   const int band = static_cast<int>(std::clamp<size_t>((size_t{64} << 20) / band_row_bytes, 8, 64));
   // Left uninitialised: render_rows writes every value, and its threads touch the pages first.
   struct Band {
@@ -127,7 +141,7 @@ void render_bands(const SkyRenderer& r, SpectralExrWriter* exr, std::vector<floa
   };
   Band bands[2];
   for (Band& b : bands) {
-    b.spectral.reset(new float[static_cast<size_t>(band) * w * n]);
+    b.spectral.reset(new float[static_cast<size_t>(band) * w * values]);
     b.rgb.reset(new float[static_cast<size_t>(band) * w * 3]);
   }
   std::future<void> writing;  // the previous band on its way to the file
@@ -135,7 +149,10 @@ void render_bands(const SkyRenderer& r, SpectralExrWriter* exr, std::vector<floa
   for (int y = 0, k = 0; y < h; y += band, k ^= 1) {  // y: rows of the window done
     const int rows = std::min(band, h - y);
     Band& b = bands[k];
-    r.render_window(x0, x0 + w, y_first + y, rows, b.spectral.get(), b.rgb.get());
+    if (polarised)
+      r.render_window_stokes(x0, x0 + w, y_first + y, rows, b.spectral.get(), b.rgb.get());
+    else
+      r.render_window(x0, x0 + w, y_first + y, rows, b.spectral.get(), b.rgb.get());
     if (writing.valid()) writing.get();  // rethrows a write error
     if (exr && overlap)
       writing = std::async(std::launch::async, [exr, &b, rows] { exr->write_rows(rows, b.spectral.get(), b.rgb.get()); });
@@ -143,6 +160,13 @@ void render_bands(const SkyRenderer& r, SpectralExrWriter* exr, std::vector<floa
       exr->write_rows(rows, b.spectral.get(), b.rgb.get());
     if (!rgb.empty())
       std::copy(b.rgb.get(), b.rgb.get() + static_cast<long>(rows) * w * 3, rgb.begin() + static_cast<long>(y) * w * 3);
+    if (polarised && !stokes_y.empty())
+      for (size_t p = 0; p < static_cast<size_t>(rows) * w; ++p) {
+        const float* v = b.spectral.get() + p * static_cast<size_t>(values);
+        float* out = stokes_y.data() + (static_cast<size_t>(y) * w + p) * 3;
+        for (int c = 0; c < 3; ++c)
+          out[c] = static_cast<float>(rec709_luminance(r.spectrum_to_rgb(Eigen::Map<const Spectrum>(v + c * n, n)).data()));
+      }
     if (progress) progress(y + rows, h);
   }
   if (writing.valid()) writing.get();
@@ -178,6 +202,44 @@ void write_working_space_exr(const std::filesystem::path& path, const Scene& sce
                 is_latlong_envmap(scene.camera));
 }
 
+// The luminance-weighted polarisation as float images: Y (S0's luminance), DoLP and AoLP (degrees,
+// from the pixel's e1 towards e2; spectral EXR's frame).
+void write_polarisation_exr(const std::filesystem::path& path, const Scene& scene, const std::vector<float>& stokes_y,
+                            std::map<std::string, std::string> strings) {
+  std::vector<float> values(stokes_y.size());
+  for (size_t p = 0; p < stokes_y.size() / 3; ++p) {
+    const float* s = &stokes_y[3 * p];
+    const LinearPolarisation lp = linear_polarisation(s[0], s[1], s[2]);
+    values[3 * p] = s[0];
+    values[3 * p + 1] = static_cast<float>(lp.degree);
+    values[3 * p + 2] = static_cast<float>(lp.angle_deg);
+  }
+  strings["skyspec:units"] =
+      "Y: luminance of S0 (cd m^-2 on the spectral path); DoLP: degree of linear polarisation of the luminance-weighted "
+      "Stokes vector (0 where Y = 0); AoLP: its angle in degrees, (-90, 90], from e1 (the image's x axis carried onto "
+      "the sky) towards e2 = k x e1 (the spectral EXR's frames; docs/polarisation.md)";
+  write_float_channels_exr(path, scene.camera.width, scene.camera.height, {"Y", "DoLP", "AoLP"}, values, strings,
+                           is_latlong_envmap(scene.camera));
+}
+
+// The polarisation as a picture (polarisation_colour.hpp), 8-bit sRGB.
+void write_polarisation_png(const std::filesystem::path& path, const Scene& scene, const std::vector<float>& stokes_y,
+                            const std::map<std::string, std::string>& provenance) {
+  std::vector<float> code(stokes_y.size());
+  for (size_t p = 0; p < stokes_y.size() / 3; ++p) {
+    const std::array<float, 3> c = polarisation_colour(linear_polarisation(stokes_y[3 * p], stokes_y[3 * p + 1], stokes_y[3 * p + 2]));
+    std::copy(c.begin(), c.end(), code.begin() + static_cast<long>(3 * p));
+  }
+  const std::vector<std::pair<std::string, std::string>> text = {
+      {"Software", std::string("skyspec ") + version_string()},
+      {"skyspec:polarisation", "hue: angle of linear polarisation of the luminance-weighted Stokes vector, once round the "
+                               "colour wheel over 180 degrees (red at +-90, yellow -60, green -30, cyan 0, blue 30, "
+                               "magenta 60 degrees from e1 towards e2); brightness: its degree (black 0, full 1)"},
+      {kVersionAttribute, provenance.at(kVersionAttribute)},
+      {kSceneAttribute, provenance.at(kSceneAttribute)}};
+  write_png_display(path, scene.camera.width, scene.camera.height, code, 8, PngColourTag::Srgb, text);
+}
+
 }  // namespace
 
 SpectralImageBuffer render_to_memory(const Scene& scene, const ProgressFn& progress) {
@@ -191,10 +253,24 @@ SpectralImageBuffer render_to_memory(const Scene& scene, const ProgressFn& progr
   img.spectral.resize(pixels * n);
   img.rgb.resize(pixels * 3);
   const int band = 16;
+  const bool polarised = scene.output.polarisation;
+  std::vector<float> stokes;  // a band's S0-S3 (polarised)
+  if (polarised) img.stokes.resize(pixels * 3 * n);
   for (int y = 0; y < img.height; y += band) {
     const int rows = std::min(band, img.height - y);
-    r.render_rows(y, rows, img.spectral.data() + static_cast<size_t>(y) * img.width * n,
-                  img.rgb.data() + static_cast<size_t>(y) * img.width * 3);
+    float* rgb = img.rgb.data() + static_cast<size_t>(y) * img.width * 3;
+    if (!polarised) {
+      r.render_rows(y, rows, img.spectral.data() + static_cast<size_t>(y) * img.width * n, rgb);
+    } else {
+      const size_t band_pixels = static_cast<size_t>(rows) * img.width, first = static_cast<size_t>(y) * img.width;
+      stokes.resize(band_pixels * 4 * n);
+      r.render_window_stokes(0, img.width, y, rows, stokes.data(), rgb);
+      for (size_t p = 0; p < band_pixels; ++p) {
+        const float* v = stokes.data() + p * 4 * n;
+        std::copy(v, v + n, img.spectral.begin() + static_cast<long>((first + p) * n));
+        std::copy(v + n, v + 4 * n, img.stokes.begin() + static_cast<long>((first + p) * 3 * n));
+      }
+    }
     if (progress) progress(y + rows, img.height);
   }
   // What the pixels show.
@@ -222,7 +298,8 @@ ChosenExposure exposure_of(const SpectralImageBuffer& image, const DisplaySettin
 void check_image_buffer(const SpectralImageBuffer& image, const std::filesystem::path& path) {
   const size_t pixels = static_cast<size_t>(image.width) * static_cast<size_t>(image.height);
   if (image.width != image.scene.camera.width || image.height != image.scene.camera.height ||
-      image.rgb.size() != pixels * 3 || image.spectral.size() != pixels * image.wavelengths_nm.size())
+      image.rgb.size() != pixels * 3 || image.spectral.size() != pixels * image.wavelengths_nm.size() ||
+      image.stokes.size() != (image.scene.output.polarisation ? 3 * image.spectral.size() : 0))
     throw Error("'" + path.string() + "': the image in memory is not one render_to_memory made (its size, "
                 "channels and scene disagree)");
   // The EXR writer checks every value it writes; a display encoding would turn a NaN into a code value.
@@ -253,7 +330,17 @@ void write_spectral_exr(const SpectralImageBuffer& image, const std::filesystem:
   SpectralExrWriter exr(path, image.width, image.height, image.wavelengths_nm,
                         spectral_exr_metadata(image.scene, provenance, exposure.resolved.scale, image.sun_rgb,
                                               image.scene.render.threads));
-  exr.write_rows(image.height, image.spectral.data(), image.rgb.data());
+  if (image.scene.output.polarisation) {  // S0 then S1-S3 per pixel, as the writer takes them
+    const size_t n = image.wavelengths_nm.size(), pixels = static_cast<size_t>(image.width) * image.height;
+    std::vector<float> all(pixels * 4 * n);
+    for (size_t p = 0; p < pixels; ++p) {
+      std::copy_n(image.spectral.data() + p * n, n, all.data() + p * 4 * n);
+      std::copy_n(image.stokes.data() + p * 3 * n, 3 * n, all.data() + p * 4 * n + n);
+    }
+    exr.write_rows(image.height, all.data(), image.rgb.data());
+  } else {
+    exr.write_rows(image.height, image.spectral.data(), image.rgb.data());
+  }
   exr.finish();
 }
 
@@ -278,6 +365,9 @@ RenderOutputs render_output_paths(const Scene& scene, const DisplaySettings& dis
   if (scene.output.png) out.png = dir / (scene.output.name + ".png");
   if (!display.exr_space.empty())
     out.working_exr = dir / (scene.output.name + "-" + find_working_space(display.exr_space).file_suffix + ".exr");
+  if (scene.output.polarisation && scene.output.exr) out.polarisation_exr = dir / (scene.output.name + "-polarisation.exr");
+  if (scene.output.polarisation && scene.output.polarisation_png && scene.output.png)
+    out.polarisation_png = dir / (scene.output.name + "-polarisation.png");
   return out;
 }
 
@@ -328,9 +418,12 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
     if (tile) meta.data_window = std::array<int, 4>{tile->x0, tile->x1, tile->y0, tile->y1};
     exr = std::make_unique<SpectralExrWriter>(out.exr = paths.exr, r.width(), r.height(), r.grid().nanometres(), meta);
   }
-  std::vector<float> rgb;
+  std::vector<float> rgb, stokes_y;
   if (pipeline) rgb.resize(static_cast<size_t>(r.width()) * r.height() * 3);
-  render_bands(r, exr.get(), rgb, progress, window);
+  const bool polarisation_exr = scene.output.polarisation && scene.output.exr && !tile;
+  const bool polarisation_png = scene.output.polarisation && scene.output.polarisation_png && scene.output.png;
+  if (polarisation_exr || polarisation_png) stokes_y.resize(static_cast<size_t>(r.width()) * r.height() * 3);
+  render_bands(r, exr.get(), rgb, stokes_y, progress, window);
   out.image_seconds = since(t_image);
 
   // 4. The files completed, all or nothing. Completing the EXR (its offset table, fsync, rename)
@@ -342,6 +435,7 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
   else if (exr)
     exr->finish();
   bool exr_done = exr && !committing.valid(), png_done = false, working_done = false;
+  bool polarisation_exr_done = false, polarisation_png_done = false;
   try {
     if (scene.output.png) {
       out.png = paths.png;
@@ -355,6 +449,16 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
       write_working_space_exr(out.working_exr, scene, *pipeline, space, rgb, exposure.settings, exposure.resolved.scale,
                               provenance);
       working_done = true;
+    }
+    if (polarisation_exr) {
+      out.polarisation_exr = paths.polarisation_exr;
+      write_polarisation_exr(out.polarisation_exr, scene, stokes_y, provenance);
+      polarisation_exr_done = true;
+    }
+    if (polarisation_png) {
+      out.polarisation_png = paths.polarisation_png;
+      write_polarisation_png(out.polarisation_png, scene, stokes_y, provenance);
+      polarisation_png_done = true;
     }
     if (committing.valid()) {
       committing.get();  // rethrows the EXR's error
@@ -375,6 +479,8 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
     if (exr_done) std::filesystem::remove(out.exr, ec);
     if (png_done) std::filesystem::remove(out.png, ec);
     if (working_done) std::filesystem::remove(out.working_exr, ec);
+    if (polarisation_exr_done) std::filesystem::remove(out.polarisation_exr, ec);
+    if (polarisation_png_done) std::filesystem::remove(out.polarisation_png, ec);
     throw;
   }
   out.output_seconds = since(t_output);

@@ -585,10 +585,15 @@ const std::vector<KeyDef>& registry() {
     r.push_back(bool_key("output.exr", "write the spectral OpenEXR", [](Scene& s) -> bool& { return s.output.exr; }));
     r.push_back(bool_key("output.png", "write the sRGB PNG preview", [](Scene& s) -> bool& { return s.output.png; }));
     r.push_back(bool_key("output.polarisation",
-                         "polarised sky: Stokes S1-S3 per wavelength in the spectral EXR beside S0 (vector transport "
-                         "for the air; aerosols scatter as non-polarising; needs render.ms_angular_degree >= 2 with "
-                         "multiple scattering)",
+                         "polarised sky: Stokes S1-S3 per wavelength in the spectral EXR beside S0, and "
+                         "<name>-polarisation.exr with the luminance-weighted Y, DoLP and AoLP (vector transport for "
+                         "the air, aerosols as unit scattering matrices; every pixel marched: several times slower; "
+                         "needs render.ms_angular_degree >= 2 with multiple scattering)",
                          [](Scene& s) -> bool& { return s.output.polarisation; }));
+    r.push_back(bool_key("output.polarisation_png",
+                         "with output.polarisation and output.png: also <name>-polarisation.png, the angle of linear "
+                         "polarisation as hue (a colour wheel over 180 degrees) and its degree as brightness",
+                         [](Scene& s) -> bool& { return s.output.polarisation_png; }));
     r.push_back(choice_key(
         "output.exr_compression", {"piz", "zip", "zips", "rle", "none"},
         "lossless compression of the spectral EXR: piz (wavelet, smallest and fastest to write for sky "
@@ -922,6 +927,8 @@ Scene SceneLoader::finish(SceneUse use) const {
     if (!(gr.albedo_wavelengths_nm[i] > gr.albedo_wavelengths_nm[i - 1]))
       throw InputError("ground.albedo_wavelengths_nm", format_number(gr.albedo_wavelengths_nm[i]),
                        "strictly increasing wavelengths");
+  if (s.output.polarisation_png && !s.output.polarisation)
+    throw InputError("output.polarisation_png", "true", "false unless output.polarisation = true (it draws the polarisation)");
   if (s.output.polarisation && s.render.scattering_orders >= 2 && s.render.ms_angular_degree < 2)
     throw InputError("render.ms_angular_degree", std::to_string(s.render.ms_angular_degree),
                      "2 or more with output.polarisation = true and multiple scattering (the polarisation of light "

@@ -643,7 +643,8 @@ bool SingleScattering::higher_orders_piece(const Node* nodes, int m, double os, 
   Spectrum** pass_sums[6] = {rayleigh_sums, mie_sums, q_sums, u_sums, mq_sums, mu_sums};
   for (int pass = 0; pass < (polarised ? 6 : 2); ++pass) {
     const Eigen::ArrayXXf& source_t = *pass_sources[pass];
-    const int sp = pass % 2;  // the species whose density weights the pass: Rayleigh, aerosol
+    constexpr int kSpeciesOfPass[6] = {0, 1, 0, 0, 1, 1};  // whose density weights it: Rayleigh 0, aerosol 1
+    const int sp = kSpeciesOfPass[pass];
     if (sc.by_node)
       sc.source = source_t.transpose().max(1e-30f);
     else

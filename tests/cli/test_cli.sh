@@ -148,6 +148,31 @@ PY
 # --help is something a newcomer can follow, and --help-keys documents every key with its unit.
 "$skyspec" render --help | grep -q -- "--sun-elevation" && ok || bad "render --help lacks --sun-elevation"
 "$skyspec" render --help-keys | grep -q "atmosphere.rayleigh.scale_height_m  (a number in m" && ok || bad "--help-keys"
+# Polarisation: S0-S3 per wavelength with the layout's polarisationHandedness, the Y/DoLP/AoLP EXR
+# and the colour-wheel PNG; OpenImageIO reads them; the keys that cannot go together are refused.
+expect_error polarisation_png_alone 2 "output.polarisation_png = true is not allowed" --set output.polarisation_png=true
+expect_error polarisation_isotropic 2 "render.ms_angular_degree = 0" --set output.polarisation=true --quality draft
+pol="$work/polarised"
+if "$skyspec" render -q --out "$pol" --camera equirectangular --width 32 --height 16 --lambda-min 450 --lambda-max 650 \
+    --lambda-step 100 --set output.polarisation=true --set output.polarisation_png=true >"$work/stdout" 2>"$work/stderr"; then
+  [ "$(ls "$pol" | sort | tr '\n' ' ')" = "sky-polarisation.exr sky-polarisation.png sky.exr sky.png " ] && ok \
+    || bad "polarised render: files $(ls "$pol")"
+  exrheader "$pol/sky.exr" | grep -q 'polarisationHandedness (type string): "right"' && ok || bad "polarised: no polarisationHandedness"
+  for c in S0 S1 S2 S3; do exrheader "$pol/sky.exr" | grep -q "$c.550,000000nm" && ok || bad "polarised: no $c.550 channel"; done
+  oiiotool --info -v "$pol/sky.exr" | grep -q "15 channel" && ok || bad "polarised: oiiotool does not read 15 channels"
+  /usr/bin/python3 - "$pol/sky-polarisation.exr" <<'PY' && ok || bad "polarised: Y, DoLP, AoLP read by OpenImageIO"
+import sys, OpenImageIO as oiio, numpy as np
+image = oiio.ImageInput.open(sys.argv[1])
+names = list(image.spec().channelnames)
+pixels = image.read_image(oiio.FLOAT)
+dolp, aolp = pixels[..., names.index("DoLP")], pixels[..., names.index("AoLP")]
+assert 0.0 <= dolp.min() and dolp.max() <= 1.0 and dolp.max() > 0.5, (dolp.min(), dolp.max())  # the band 90 deg from the sun
+assert -90.0 < aolp.min() and aolp.max() <= 90.0, (aolp.min(), aolp.max())
+PY
+else
+  bad "polarised render failed"; cat "$work/stderr"
+fi
+
 # docs/scene-keys.md is generated from the key registry: it must be what the program prints now.
 "$skyspec" render --help-keys=markdown | cmp -s - "$(dirname "${BASH_SOURCE[0]}")/../../docs/scene-keys.md" && ok \
   || bad "docs/scene-keys.md is stale: regenerate it with skyspec render --help-keys=markdown > docs/scene-keys.md"

@@ -111,6 +111,17 @@ BOOST_AUTO_TEST_CASE(parse_accepts_the_layouts_forms) {
                1e-6);
 }
 
+// Stokes components 1 to 3: the same names with S1-S3 (polarised files), read by
+// parse_stokes_channel_name and never taken for S0.
+BOOST_AUTO_TEST_CASE(stokes_components_have_their_own_names) {
+  BOOST_TEST(spectral_channel_name(550.0, 2) == "S2.550,000000nm");
+  const auto s3 = parse_stokes_channel_name("S3.0,55um");
+  BOOST_TEST((s3.has_value() && s3->first == 3 && std::abs(s3->second - 550.0) < 1e-9));
+  BOOST_TEST(!parse_stokes_channel_name("S4.550nm").has_value());
+  BOOST_TEST(!parse_stokes_channel_name("S1550nm").has_value());
+  BOOST_CHECK_THROW(spectral_channel_name(550.0, 4), Error);
+}
+
 BOOST_AUTO_TEST_CASE(parse_rejects_other_channels) {
   for (const char* name : {"S0.400.5nm", "R", "G", "B", "A", "T.550nm", "S1.550nm", "S3.550,0nm", "S0.nm",
                            "S0.,nm", "S0.550", "S0.550 nm", "S0.-550nm", "S0.0nm", "s0.550nm", "S0.550Nm",
@@ -220,6 +231,45 @@ BOOST_AUTO_TEST_CASE(round_trip_through_read_spectral_exr) {
   BOOST_TEST(back.string_attributes.at("skyspec:scene") == "default");
   BOOST_TEST(back.ev.has_value());
   BOOST_TEST(back.ev.value_or(0.0f) == 2.5f);
+}
+
+// A polarised file: S0-S3 at every wavelength, the layout's polarisationHandedness, and the
+// reader's S1-S3 the values written (a pixel's values: S0 at all wavelengths, then S1, S2, S3).
+BOOST_AUTO_TEST_CASE(polarised_round_trip) {
+  ScratchFolder dir;
+  const TestImage image;
+  const size_t n = image.n(), pixels = static_cast<size_t>(image.width * image.height);
+  std::vector<float> all(pixels * 4 * n), stokes(pixels * 3 * n);
+  for (size_t p = 0; p < pixels; ++p)
+    for (size_t c = 0; c < 4; ++c)
+      for (size_t i = 0; i < n; ++i) {
+        const float v = c == 0 ? image.spectral[p * n + i] : image.spectral[p * n + i] * (0.1f * c) - 0.05f;
+        all[(p * 4 + c) * n + i] = v;
+        if (c > 0) stokes[(p * 3 + c - 1) * n + i] = v;
+      }
+  SpectralExrMetadata meta = test_metadata();
+  meta.polarised = true;
+  const fs::path path = dir.path / "polarised.exr";
+  {
+    SpectralExrWriter writer(path, image.width, image.height, image.wavelengths_nm, meta);
+    writer.write_rows(image.height, all.data(), image.rgb.data());
+    writer.finish();
+  }
+  const SpectralImage back = read_spectral_exr(path);
+  BOOST_TEST(same_bits(back.spectral, image.spectral));
+  BOOST_TEST(same_bits(back.stokes, stokes));
+  BOOST_TEST(back.string_attributes.at("polarisationHandedness") == "right");
+  Imf::InputFile raw(path.c_str());
+  int count[4] = {0, 0, 0, 0};
+  for (auto it = raw.header().channels().begin(); it != raw.header().channels().end(); ++it)
+    if (const auto s = parse_stokes_channel_name(it.name())) ++count[s->first];
+  for (int c = 0; c < 4; ++c) BOOST_TEST(count[c] == static_cast<int>(n));
+  // An unpolarised file has neither.
+  const fs::path plain = dir.path / "plain.exr";
+  image.write(plain, 4, test_metadata());
+  const SpectralImage back_plain = read_spectral_exr(plain);
+  BOOST_TEST(back_plain.stokes.empty());
+  BOOST_TEST(back_plain.string_attributes.count("polarisationHandedness") == 0u);
 }
 
 BOOST_AUTO_TEST_CASE(one_band_and_row_by_row_give_the_same_pixels) {

@@ -105,6 +105,28 @@ class RenderAgainstCli(unittest.TestCase):
         rgb = img.xyz.astype(np.float64) @ m.T
         np.testing.assert_allclose(rgb, img.rgb, rtol=2e-3, atol=1e-3 * float(np.abs(img.rgb).max()))
 
+    def test_polarised_image_equals_the_exr(self):
+        # stokes (h, w, n, 4) holds the EXR's S0-S3; e1 is perpendicular to each pixel's direction.
+        import OpenImageIO as oiio
+        overrides = {"camera.width": 8, "camera.height": 4, "camera.type": "equirectangular",
+                     "spectrum.wavelengths_nm": [450, 650], "output.polarisation": True}
+        img = skyspec.render(overrides=overrides)
+        self.assertEqual(img.stokes.shape, (4, 8, 2, 4))
+        np.testing.assert_array_equal(img.stokes[..., 0], img.spectral)
+        self.assertTrue((img.stokes[..., 3] == 0).all())
+        self.assertTrue((np.hypot(img.stokes[..., 1], img.stokes[..., 2]) <= img.stokes[..., 0]).all())
+        np.testing.assert_allclose(np.einsum("hwc,hwc->hw", img.stokes_e1, img.directions), 0.0, atol=1e-12)
+        with tempfile.TemporaryDirectory() as tmp:
+            cli("render", "-q", "--out", tmp, "--no-png", "--width", "8", "--height", "4", "--camera", "equirectangular",
+                "--set", "spectrum.wavelengths_nm=[450, 650]", "--set", "output.polarisation=true")
+            exr = oiio.ImageBuf(os.path.join(tmp, "sky.exr"))
+            names = list(exr.spec().channelnames)
+            pixels = exr.get_pixels(oiio.FLOAT)
+        for i, nm in enumerate(img.wavelengths_nm):
+            for c in range(4):
+                np.testing.assert_array_equal(pixels[:, :, names.index(f"S{c}.{int(nm)},000000nm")], img.stokes[:, :, i, c])
+        self.assertIsNone(skyspec.render(overrides={"camera.width": 2, "camera.height": 2}).stokes)
+
     def test_result_writes_the_files_the_cli_writes(self):
         # write_exr / write_png of a render in memory are the CLI's files for the same scene: the same
         # pixels, PNG code values and header (scene, exposure as a double, units, envmap).

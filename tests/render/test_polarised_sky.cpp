@@ -14,6 +14,8 @@
 #include "scene_fixtures.hpp"
 #include "skyspec/camera.hpp"
 #include "skyspec/monte_carlo.hpp"
+#include "io/spectral_exr.hpp"
+#include "scratch_folder.hpp"
 #include "skyspec/render.hpp"
 
 BOOST_AUTO_TEST_SUITE(test_polarised_sky)
@@ -77,6 +79,77 @@ BOOST_AUTO_TEST_CASE(polarisation_needs_the_quadrupole) {
   });
   loader.apply_override("render.scattering_orders", "1", "--set");  // single scattering: nothing to resolve
   BOOST_CHECK_NO_THROW(loader.finish());
+}
+
+// Each pixel's Stokes frame: e1 along the image's x axis on the sky, e2 = k x e1 (k = -dir, the
+// light's direction). For the perspective and equirectangular cameras e2 is the image's up; the
+// fisheye shows the sky as seen from above (camera.hpp), a mirror image, so there e2 is the
+// image's down. docs/polarisation.md states the same.
+BOOST_AUTO_TEST_CASE(pixel_frames_follow_the_image_axes) {
+  const std::pair<const char*, double> cameras[] = {
+      {"type = \"perspective\"\nlook_at_m = [1000, 3000, 800]\nfov_deg = 60\nwidth = 40\nheight = 30\n", 1.0},
+      {"type = \"equirectangular\"\nwidth = 64\nheight = 32\n", 1.0},
+      {"type = \"fisheye\"\nwidth = 41\nheight = 41\n", -1.0}};
+  for (const auto& [camera_toml, up_sign] : cameras) {
+    const Scene scene = test::scene_with(std::string("[render]\nscattering_orders = 1\n[camera]\n") + camera_toml);
+    const SkyRenderer renderer(scene);
+    const auto camera = make_camera(scene);
+    int checked = 0;
+    for (int y = 1; y < scene.camera.height - 1; y += 3)
+      for (int x = 1; x < scene.camera.width - 1; x += 3) {
+        Vec3 dir, right, up;
+        const double px = x + 0.5, py = y + 0.5;
+        if (!camera->direction(px, py, dir) || !camera->direction(px + 0.5, py, right) ||
+            !camera->direction(px, py - 0.5, up))
+          continue;
+        const Vec3 e1 = renderer.stokes_frame_axis_of_pixel(px, py, dir), e2 = (-dir).cross(e1);
+        BOOST_TEST(std::abs(e1.dot(dir)) < 1e-12);
+        BOOST_TEST((right - dir).normalized().dot(e1) > 0.99);
+        // The orientation: the image's axes are skewed on the sky (by up to 33 degrees near the rim of
+        // the equal-area fisheye), so e2 is the image's up or down only to within that.
+        BOOST_TEST(up_sign * (up - dir).normalized().dot(e2) > 0.5,
+                   camera_toml << " at " << x << ", " << y << ": " << (up - dir).normalized().dot(e2));
+        ++checked;
+      }
+    BOOST_TEST(checked > 20);
+  }
+}
+
+// render_window_stokes: S0 is the image's radiance (which the sky-view table interpolates, within
+// 1 %), S1 and S2 are SkyRenderer::stokes in the pixel's frame, S3 is 0, the degree at most 1; and
+// an image in memory keeps S1-S3 through its spectral EXR.
+BOOST_AUTO_TEST_CASE(stokes_rows_agree_with_the_image_and_the_probe) {
+  const Scene scene = test::scene_with(
+      "[spectrum]\nwavelengths_nm = [450, 550, 650]\n[camera]\ntype = \"equirectangular\"\nwidth = 24\nheight = 12\n"
+      "[render]\ncache_tables = false\n[output]\npolarisation = true\n");
+  const SkyRenderer renderer(scene);
+  const int w = 24, h = 12, n = 3;
+  std::vector<float> stokes(static_cast<size_t>(w * h * 4 * n)), spectral(static_cast<size_t>(w * h * n)),
+      rgb(static_cast<size_t>(w * h * 3)), rgb_stokes(rgb.size());
+  renderer.render_rows(0, h, spectral.data(), rgb.data());
+  renderer.render_window_stokes(0, w, 0, h, stokes.data(), rgb_stokes.data());
+  const auto camera = make_camera(scene);
+  for (int p = 0; p < w * h; ++p) {
+    const float* v = &stokes[static_cast<size_t>(p * 4 * n)];
+    Vec3 dir;
+    BOOST_REQUIRE(camera->direction(p % w + 0.5, p / w + 0.5, dir));
+    Spectrum i, q, u;
+    renderer.stokes(dir, renderer.stokes_frame_axis_of_pixel(p % w + 0.5, p / w + 0.5, dir), i, q, u);
+    for (int k = 0; k < n; ++k) {
+      BOOST_TEST(std::abs(v[k] / spectral[static_cast<size_t>(p * n + k)] - 1.0f) < 0.01f);
+      BOOST_TEST(v[n + k] == q[k]);
+      BOOST_TEST(v[2 * n + k] == u[k]);
+      BOOST_TEST(v[3 * n + k] == 0.0f);
+      BOOST_TEST(std::hypot(v[n + k], v[2 * n + k]) <= v[k]);
+    }
+  }
+  test::ScratchFolder dir;
+  const SpectralImageBuffer image = render_to_memory(scene);
+  BOOST_TEST(image.stokes.size() == image.spectral.size() * 3);
+  write_spectral_exr(image, dir.path / "sky.exr");
+  const SpectralImage back = read_spectral_exr(dir.path / "sky.exr");
+  BOOST_TEST(back.stokes == image.stokes);
+  BOOST_TEST(back.spectral == image.spectral);
 }
 
 BOOST_AUTO_TEST_SUITE_END()
