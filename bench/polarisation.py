@@ -8,9 +8,11 @@ renderer's and the scalar reference's) misses in intensity by ignoring polarisat
         [--preset default] [--set KEY=VALUE ...] [--markdown FILE]
         [--intensity-suns 30,10,2] [--intensity-paths 100000] [--parts neutral,intensity,renderer]
 
-The third part, renderer: the renderer's polarisation (single scattering by air; the rest counted
-as unpolarised: SkyRenderer::stokes) against the vector reference's at the standard probes
-(`skyspec reference --stokes --compare`), suns of --intensity-suns, 450 and 650 nm.
+The third part, renderer: the renderer's polarisation (output.polarisation: SkyRenderer::stokes)
+against the vector reference's at the standard probes (`skyspec reference --stokes --compare`),
+suns of --intensity-suns, 450 and 650 nm: DoLP, and its intensity against the reference's I. With
+it, the neutral-point table gives the renderer's figures beside the reference's (from the same
+probes: no extra paths).
 
 For each sun it runs `skyspec reference --stokes` at probes every --step degrees along the solar and
 antisolar verticals (450 and 550 nm). In the frame of the vertical plane through the line of sight,
@@ -75,31 +77,43 @@ def main():
         anti = [(180.0, e) for e in els]
         solar = [(0.0, e) for e in els if abs(e - sun) > 3.0]
         probes = anti + solar + [(90.0, 0.5)]
-        r = run(a.skyspec, a.preset, sun, probes, a.paths, a.set)
+        r = run(a.skyspec, a.preset, sun, probes, a.paths, a.set, compare="renderer" in parts)
         for i, lam in enumerate(WAVELENGTHS):
-            def q_of(p):
-                I, Q = p["stokes"][i][0], p["stokes"][i][1]
-                return Q, p["stokes_standard_error"][i][1], I
             ps = r["probes"]
-            # Arago: along the antisolar vertical, distance above the antisolar point = el + sun.
-            arago = crossings(sorted((p["elevation_deg"] + sun, *q_of(p)[:2]) for p in ps[:len(anti)]))
-            babinet = crossings(sorted((p["elevation_deg"] - sun, *q_of(p)[:2]) for p in ps[len(anti):len(anti) + len(solar)]
-                                       if p["elevation_deg"] > sun))
-            brewster = crossings(sorted((sun - p["elevation_deg"], *q_of(p)[:2]) for p in ps[len(anti):len(anti) + len(solar)]
-                                        if p["elevation_deg"] < sun))
-            across = ps[-1]["stokes"][i]
-            dolp90 = math.hypot(across[1], across[2]) / across[0]
-            dolp_max = max(math.hypot(p["stokes"][i][1], p["stokes"][i][2]) / p["stokes"][i][0] for p in ps)
-            rows.append((sun, lam, arago, babinet, brewster, dolp90, dolp_max))
-    fmt = lambda c: "none in view" if c is None else f"{c[0]:.1f} +- {c[1]:.1f}"
+
+            def figures(key, error_key):
+                """Neutral points and DoLP from the Stokes vectors under `key` (the reference's, with their
+                standard errors, or the renderer's, exact)."""
+                def q_of(p):
+                    return p[key][i][1], p[error_key][i][1] if error_key else 0.0
+                # Arago: along the antisolar vertical, distance above the antisolar point = el + sun.
+                arago = crossings(sorted((p["elevation_deg"] + sun, *q_of(p)) for p in ps[:len(anti)]))
+                babinet = crossings(sorted((p["elevation_deg"] - sun, *q_of(p)) for p in ps[len(anti):len(anti) + len(solar)]
+                                           if p["elevation_deg"] > sun))
+                brewster = crossings(sorted((sun - p["elevation_deg"], *q_of(p)) for p in ps[len(anti):len(anti) + len(solar)]
+                                            if p["elevation_deg"] < sun))
+                across = ps[-1][key][i]
+                dolp90 = math.hypot(across[1], across[2]) / across[0]
+                dolp_max = max(math.hypot(p[key][i][1], p[key][i][2]) / p[key][i][0] for p in ps)
+                return arago, babinet, brewster, dolp90, dolp_max
+            rows.append((sun, lam, figures("stokes", "stokes_standard_error"),
+                         figures("renderer_stokes", None) if "renderer" in parts else None))
+    def fmt(c):
+        if c is None:
+            return "none in view"
+        return f"{c[0]:.1f} +- {c[1]:.1f}" if c[1] > 0 else f"{c[0]:.1f}"
+    both = any(renderer for *_, renderer in rows)
     lines = [] if not rows else ["| sun (deg) | nm | Arago above antisolar point (deg) | Babinet above sun (deg) | Brewster below sun (deg) "
              "| DoLP 90 deg from sun, horizon | DoLP max on the sun's vertical |",
              "| ---: | ---: | ---: | ---: | ---: | ---: | ---: |"]
-    for sun, lam, ar, ba, br, d90, dmax in rows:
-        lines.append(f"| {sun:g} | {lam} | {fmt(ar)} | {fmt(ba)} | {fmt(br)} | {d90:.3f} | {dmax:.3f} |")
+    for sun, lam, ref, ren in rows:
+        cells = [fmt(ref[k]) + (f" / {fmt(ren[k])}" if ren else "") for k in range(3)]
+        cells += [f"{ref[k]:.3f}" + (f" / {ren[k]:.3f}" if ren else "") for k in (3, 4)]
+        lines.append(f"| {sun:g} | {lam} | " + " | ".join(cells) + " |")
     if rows:
         lines.append("")
-        lines.append(f"preset {a.preset}, {a.paths} paths per probe, probes every {a.step:g} deg; {time.time() - t0:.0f} s")
+        lines.append(f"{'the vector reference / the renderer (output.polarisation); ' if both else ''}preset {a.preset}, "
+                     f"{a.paths} paths per probe, probes every {a.step:g} deg; {time.time() - t0:.0f} s")
     if a.intensity_suns and "intensity" in parts:
         # The standard probes (no --probe): the vector intensity against the scalar one, each from
         # its own paths, with the combined standard error.
@@ -120,19 +134,23 @@ def main():
                      f"{a.intensity_paths} paths each; {time.time() - t1:.0f} s")
     if a.intensity_suns and "renderer" in parts:
         t2 = time.time()
-        lines += ["", "| sun (deg) | probe | DoLP 450 nm: reference / renderer | DoLP 650 nm: reference / renderer |",
-                  "| ---: | --- | ---: | ---: |"]
+        lines += ["", "| sun (deg) | probe | DoLP 450 nm: reference / renderer | DoLP 650 nm: reference / renderer "
+                  "| I 450 nm: renderer - reference | I 650 nm: renderer - reference |",
+                  "| ---: | --- | ---: | ---: | ---: | ---: |"]
         for sun in [float(x) for x in a.intensity_suns.split(",")]:
             r = run(a.skyspec, a.preset, sun, [], a.paths, a.set, [450, 650], compare=True)
             for p in r["probes"]:
-                cells = []
+                cells, intensity = [], []
                 for i in range(2):
-                    s_mc, s_r = p["stokes"][i], p["renderer_stokes"][i]
+                    s_mc, s_r, e = p["stokes"][i], p["renderer_stokes"][i], p["stokes_standard_error"][i][0]
                     cells.append(f"{math.hypot(s_mc[1], s_mc[2]) / s_mc[0]:.3f} / {math.hypot(s_r[1], s_r[2]) / s_r[0]:.3f}")
+                    intensity.append(f"{100 * (s_r[0] / s_mc[0] - 1):+.2f} % ({(s_r[0] - s_mc[0]) / e:+.1f} sigma)")
+                cells += intensity
                 lines.append(f"| {sun:g} | {p['label']} | " + " | ".join(cells) + " |")
         lines.append("")
-        lines.append(f"degree of linear polarisation, the vector reference (all orders) / the renderer (single scattering "
-                     f"polarised, the rest unpolarised); preset {a.preset}, {a.paths} paths; {time.time() - t2:.0f} s")
+        lines.append(f"degree of linear polarisation, the vector reference (all orders) / the renderer (output.polarisation); "
+                     f"the renderer's intensity against the reference's I; preset {a.preset}, {a.paths} paths; "
+                     f"{time.time() - t2:.0f} s")
     text = "\n".join(lines)
     print(text)
     if a.markdown:

@@ -231,6 +231,10 @@ int run(AerialOptions& o) {
   });
   if (scene.render.path != RenderSpec::Path::Spectral)
     throw InputError("render.path", "\"rgb-fast\"", "\"spectral\" for aerial perspective");
+  if (scene.output.polarisation)
+    throw InputError("output.polarisation", "true",
+                     "false for aerial perspective (its transmittance and inscatter are not polarised; render the sky "
+                     "with skyspec render)");
   const RenderPlan plan = check_budget(scene, in, o.force);
   std::vector<NamedInput> inputs = scene_input_files(o.scene);
   inputs.push_back({"--image", o.image});

@@ -266,8 +266,8 @@ void SourceTable::source_to_degree(int max_degree, double r_m, double mu, double
                 cxz = static_cast<float>(2.0 * kx * kz);
     const float* chi2 = &moments_->rayleigh[2 * static_cast<size_t>(n_l_)];
     for (int i = 0; i < n_l_; ++i) {
-      const float b = static_cast<float>(15.0 / (8.0 * kPi)) * chi2[i];
-      rayleigh[i] -= 2.0f * b * (cxx * tensor[i] + cyy * tensor[n_l_ + i] + cxz * tensor[2 * n_l_ + i]);
+      const float mu2_coefficient = static_cast<float>(15.0 / (8.0 * kPi)) * chi2[i];
+      rayleigh[i] -= 2.0f * mu2_coefficient * (cxx * tensor[i] + cyy * tensor[n_l_ + i] + cxz * tensor[2 * n_l_ + i]);
     }
   }
 }

@@ -119,6 +119,9 @@ sum=$(md5sum <"$work/in_composite.exr")
 run_expecting_error aerial_over_input 2 "it would replace --image" "$work/none" \
   "$skyspec" aerial --image "$work/in_composite.exr" --distance 1000 --out "$work" --name in --quality draft
 [ "$(md5sum <"$work/in_composite.exr")" = "$sum" ] && ok || bad "aerial changed its input"
+run_expecting_error aerial_polarised 2 "output.polarisation = true is not allowed: false for aerial perspective" "$work/aerial-pol" \
+  "$skyspec" aerial --image "$work/in_composite.exr" --distance 1000 --out "$work/aerial-pol" --quality lean \
+  --set output.polarisation=true
 cp "$good" "$work/again.exr"
 run_expecting_error from_over_input 2 "it would replace --from" "$work/none" \
   "$skyspec" render -q --from "$work/again.exr" --out "$work" --name again

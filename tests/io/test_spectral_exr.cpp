@@ -243,7 +243,7 @@ BOOST_AUTO_TEST_CASE(polarised_round_trip) {
   for (size_t p = 0; p < pixels; ++p)
     for (size_t c = 0; c < 4; ++c)
       for (size_t i = 0; i < n; ++i) {
-        const float v = c == 0 ? image.spectral[p * n + i] : image.spectral[p * n + i] * (0.1f * c) - 0.05f;
+        const float v = c == 0 ? image.spectral[p * n + i] : image.spectral[p * n + i] * (0.1f * static_cast<float>(c)) - 0.05f;
         all[(p * 4 + c) * n + i] = v;
         if (c > 0) stokes[(p * 3 + c - 1) * n + i] = v;
       }
