@@ -53,9 +53,9 @@ class SkyRenderer {
   /// pixels, each the value render_rows gives it. Throws Error for a window outside the image.
   void render_window(int x0, int x1, int y0, int rows, float* spectral, float* rgb) const;
   /// render_window for a scene with output.polarisation (Error otherwise): each pixel's Stokes
-  /// vector per wavelength, [row][x][S0, S1, S2, S3][lambda] in `stokes`, and the RGB of S0.
-  /// Every pixel is integrated along its ray (no sky-view table), so S0 can differ from
-  /// render_window's radiance by that table's interpolation error. The Stokes frame of a pixel
+  /// vector per wavelength, [row][x][S0, S1, S2, S3][lambda] in `stokes`, and the RGB of S0. The
+  /// sky-view table, built with the higher orders' Q and U for such a scene, serves the pixels it
+  /// covers (S0 is then render_window's radiance); the others are marched. The Stokes frame of a pixel
   /// (stokes_frame_axis_of_pixel): e1 = the image's x axis at that pixel, carried onto the sky,
   /// e2 = k x e1 with k = -dir the light's direction (the spectral EXR's polarisationHandedness =
   /// "right"). S1 > 0: polarised along e1; S2 > 0: along e1 + e2. S3 (V) is 0.

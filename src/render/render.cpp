@@ -174,8 +174,10 @@ struct SkyRenderer::Impl {
       const bool below = image_sees_below_horizon();
       const auto start = std::chrono::steady_clock::now();
       try {
+        ScatteringSources table_sources = sources;
+        table_sources.polarisation = s.output.polarisation;  // then it holds Q and U too
         sky_view = std::make_unique<SkyViewTable>(
-            integrator, sources, camera->origin_m(), sun_dir,
+            integrator, table_sources, camera->origin_m(), sun_dir,
             SkyViewResolution{rows, std::max(2, rows / 2), s.render.sky_view_azimuth_samples, below},
             threads);
       } catch (const Cancelled&) {
@@ -322,8 +324,9 @@ void SkyRenderer::render_window_stokes(int x0, int x1, int y0, int rows, float* 
                 std::to_string(width()) + " x " + std::to_string(height()) + " image");
   const int w = x1 - x0, n = m.grid.size();
   const size_t stride = 4 * static_cast<size_t>(n);
-  // Every pixel is integrated along its ray with the polarised sources (the sky-view table holds
-  // no polarisation), in its own Stokes frame.
+  // Each pixel's parts from the sky-view table (built with Q and U for a polarised scene) where it
+  // covers the direction, else integrated along its ray with the polarised sources; then its
+  // Stokes vector in its own frame.
   struct Scratch {
     ScatteringWorkspace ws;
     RadianceParts parts;
@@ -347,7 +350,8 @@ void SkyRenderer::render_window_stokes(int x0, int x1, int y0, int rows, float* 
           std::fill(px, px + stride, 0.0f);
         } else {
           const Vec3 e1 = stokes_frame_axis_of_pixel(x + 0.5, y + 0.5, dir);
-          m.integrator.radiance_parts(m.camera->origin_m(), dir, m.sun_dir, sources, sc.ws, sc.parts);
+          if (!(m.sky_view && m.sky_view->lookup_polarised(dir, sc.parts)))
+            m.integrator.radiance_parts(m.camera->origin_m(), dir, m.sun_dir, sources, sc.ws, sc.parts);
           m.integrator.stokes(sc.parts, dir, m.sun_dir, e1, m.sun_irradiance, sc.ws, sc.i, sc.q, sc.u);
           std::copy(sc.i.data(), sc.i.data() + n, px);
           std::copy(sc.q.data(), sc.q.data() + n, px + n);

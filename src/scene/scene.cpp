@@ -587,7 +587,7 @@ const std::vector<KeyDef>& registry() {
     r.push_back(bool_key("output.polarisation",
                          "polarised sky: Stokes S1-S3 per wavelength in the spectral EXR beside S0, and "
                          "<name>-polarisation.exr with the luminance-weighted Y, DoLP and AoLP (vector transport for "
-                         "the air, aerosols as unit scattering matrices; every pixel marched: several times slower; "
+                         "the air, aerosols as unit scattering matrices; 1.8-3.5 times the render time, 4-5 times the EXR; "
                          "needs render.ms_angular_degree >= 2 with multiple scattering)",
                          [](Scene& s) -> bool& { return s.output.polarisation; }));
     r.push_back(bool_key("output.polarisation_png",

@@ -536,23 +536,26 @@ struct SingleScattering::RayFrame {
   Vec3 o, d, s, e1, e2;
 };
 
-// The higher orders' polarised Rayleigh source at a piece's nodes: source_q_t and source_u_t become
-// J_R + P_Q and J_R + P_U
-// (RadianceParts::polarised_q). For Rayleigh's matrix with the King factor's depolarisation, light
-// arriving with coherency matrices C(w) is scattered towards k as
+// The higher orders' polarised sources at a piece's nodes (RadianceParts::polarised_q):
+// source_q_t, source_u_t become J_R + P_Q, J_R + P_U for the air and source_mq_t, source_mu_t
+// J_M + P_M,Q, J_M + P_M,U for the aerosol. For Rayleigh's matrix with the King factor's
+// depolarisation, light arriving with coherency matrices C(w) is scattered towards k as
 //
 //   I = 2 B tr(P D P) + (A - B) tr D,   Q = 2 B (e1^T D e1 - e2^T D e2),   U = 4 B e1^T D e2,
 //
 // with D = integral C(w) dw, P = 1 - k k^T and A + B mu^2 the phase function (at one unpolarised
 // direction these are a1 and b1 of physics/scattering_matrix.hpp). The unpolarised part of D is
-// (tr T 1 - T) / 2 with T the field's second moments, whose traceless part is
-// sum_m a_2m K_m (spherical_harmonics.hpp); the scalar source J_R already holds its intensity, and
-// the polarised part D_pol (traceless) adds -2 B k^T D_pol k to it (SourceTable::source adds that
-// for polarised tables, so that the intensity is the vector one in every render). At each node the tables' local
-// frame (z up, x towards the sun's azimuth, y = z x x) is rebuilt and e1, e2, k are expressed in
-// it. J_R + P is never negative for a real field (|P| <= J_R: scattered light is at most fully
-// polarised), which lets the log-mean rule integrate it; P is the difference of two such
-// integrals. False if `higher` does not resolve the quadrupole.
+// (tr T 1 - T) / 2 with T the field's second moments, whose traceless part is sum_m a_2m K_m
+// (spherical_harmonics.hpp); the scalar source J_R already holds its intensity, and the polarised
+// part D_pol (traceless) adds -2 B k^T D_pol k to it (SourceTable::source adds that for polarised
+// tables, so that the intensity is the vector one in every render). The aerosol's unit matrix acts
+// on the polarisation's degree-2 E-mode, rebuilt from D_pol (below). At each node the tables' local
+// frame (z up, x towards the sun's azimuth, y = z x x) is rebuilt and e1, e2 are expressed in it.
+// J + P is not negative for a real field (scattered light is at most fully polarised), which lets
+// the log-mean rule integrate it; P is the difference of two such integrals. (The aerosol's source,
+// from a truncated field, is not bound to that: where J_M + P_M would go below zero the rule's
+// floor of 1e-30 clips it, an error the comparison with the reference includes.) False if
+// `higher` does not resolve the quadrupole.
 bool SingleScattering::polarised_sources(const Node* nodes, int m, const RayFrame& f, const InScatteringSource& higher,
                                          PieceScratch& sc) const {
   const Eigen::Index n = sca_rayleigh_.size();

@@ -47,18 +47,15 @@ struct IntegratorSettings {
 /// evaluated exactly afterwards.
 ///
 /// With ScatteringSources::polarisation, polarised_q and polarised_u hold the linear polarisation
-/// that the higher orders' light gets at its last scattering by air, per unit solar irradiance:
-/// the Stokes Q and U of E_sun int exp(-tau_view) beta_sca,R rho_R P(r(t), mu_s(t), d) dt, where
-/// the polarised source P of Rayleigh's scattering matrix acting on the diffuse field, taken as
-/// unpolarised, depends on the field's second moments T = int L(w) w w^T dw only:
-///
-///   P_Q = -B (e1^T T e1 - e2^T T e2),   P_U = -2 B e1^T T e2
-///
-/// (B the phase function's mu^2 coefficient; at one incident direction this is the single-scattering
-/// b1 = -B (1 - mu^2) turned into (e1, e2)). The frame is the ray's polarisation_frame(): it stays
-/// the same along the ray, so the sources of all its points add up. The polarisation the diffuse
-/// field itself carries into the last scattering is neglected (docs/validation.md measures the
-/// result against the vector Monte Carlo). Empty otherwise.
+/// of the higher orders' light, per unit solar irradiance: the Stokes Q and U of
+/// E_sun int exp(-tau_view) sum_s beta_sca,s rho_s P_s(r(t), mu_s(t), d) dt, with P_s the polarised
+/// source of species s at each point: for the air, Rayleigh's scattering matrix acting on the
+/// light arriving there, which it sees only through D = the integral of the light's coherency
+/// matrix over all directions (P_Q = 2 B (e1^T D e1 - e2^T D e2), P_U = 4 B e1^T D e2, B the phase
+/// function's mu^2 coefficient); for the aerosol, its unit matrix acting on the polarisation's
+/// quadrupole (polarised_sources has the equations; the tables give D's parts,
+/// InScatteringSource::rayleigh_moments). The frame is the ray's polarisation_frame(): it stays
+/// the same along the ray, so the sources of all its points add up. Empty otherwise.
 struct RadianceParts {
   explicit RadianceParts(int n_wavelengths = 0)
       : rayleigh(Spectrum::Zero(n_wavelengths)), mie(Spectrum::Zero(n_wavelengths)), phase_free(Spectrum::Zero(n_wavelengths)) {}

@@ -26,11 +26,12 @@ constexpr int kParts = 3;
 // are contiguous, as are the three parts of an entry: one loop over 2 x 3 x n floats per row
 // accumulates both columns' parts) by w0 and w1. kN > 0: the wavelength count known at compile
 // time, so that the loops unroll; 0: n at run time.
-template <int kN>
+// kP parts per entry: the radiance's three, or the polarised two (Q, U: signed, not clamped).
+template <int kN, int kP = kParts>
 void mix_entries(const float* rows_at, int azimuths, const double* row_w, int n_rows, float w0, float w1, int n_run,
-                 float* const parts[kParts]) {
+                 float* const parts[kP]) {
   const int n = kN > 0 ? kN : n_run;
-  const size_t entry = static_cast<size_t>(kParts) * static_cast<size_t>(n);
+  const size_t entry = static_cast<size_t>(kP) * static_cast<size_t>(n);
   const size_t stride = static_cast<size_t>(azimuths) * entry;
   // On the stack for up to 42 wavelengths (2 x 3 x 42 floats), per thread beyond.
   constexpr size_t kStackFloats = 256;
@@ -55,13 +56,18 @@ void mix_entries(const float* rows_at, int azimuths, const double* row_w, int n_
       for (size_t k = 0; k < 2 * entry; ++k) acc[k] += vi * e[k];
     }
   }
-  // A cubic may undershoot where a part falls steeply to 0 (the planet's shadow); light is not negative.
-  for (int p = 0; p < kParts; ++p) {
+  // A cubic may undershoot where a part falls steeply to 0 (the planet's shadow); light is not
+  // negative (Q and U may be).
+  for (int p = 0; p < kP; ++p) {
     const float* a = acc + static_cast<size_t>(p) * n;
     const float* b = a + entry;
-    for (int l = 0; l < n; ++l) parts[p][l] = std::max(0.0f, w0 * a[l] + w1 * b[l]);
+    if (kP == kParts)
+      for (int l = 0; l < n; ++l) parts[p][l] = std::max(0.0f, w0 * a[l] + w1 * b[l]);
+    else
+      for (int l = 0; l < n; ++l) parts[p][l] = w0 * a[l] + w1 * b[l];
   }
 }
+constexpr int kPolarisedParts = 2;
 
 }  // namespace
 
@@ -189,6 +195,12 @@ SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringS
   const size_t stride = static_cast<size_t>(res_.azimuths) * kParts * static_cast<size_t>(n_);
   sky_.assign(static_cast<size_t>(res_.sky_rows) * stride, 0.0f);
   if (res_.ground_side) ground_.assign(static_cast<size_t>(res_.ground_rows) * stride, 0.0f);
+  polarised_ = sources.polarisation;
+  const size_t polarised_stride = static_cast<size_t>(res_.azimuths) * kPolarisedParts * static_cast<size_t>(n_);
+  if (polarised_) {
+    polarised_sky_.assign(static_cast<size_t>(res_.sky_rows) * polarised_stride, 0.0f);
+    if (res_.ground_side) polarised_ground_.assign(static_cast<size_t>(res_.ground_rows) * polarised_stride, 0.0f);
+  }
   ScatteringSources src = sources;
   src.transmittance = nullptr;
   src.max_distance_m = std::numeric_limits<double>::infinity();
@@ -221,6 +233,12 @@ SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringS
           std::copy(p.rayleigh.data(), p.rayleigh.data() + n, entry);
           std::copy(p.mie.data(), p.mie.data() + n, entry + n);
           std::copy(p.phase_free.data(), p.phase_free.data() + n, entry + 2 * n);
+          if (polarised_) {  // Q and U of the higher orders in the ray's polarisation_frame
+            float* q = (sky_side ? polarised_sky_ : polarised_ground_).data() + row * polarised_stride +
+                       static_cast<size_t>(column) * kPolarisedParts * static_cast<size_t>(n);
+            std::copy(p.polarised_q.data(), p.polarised_q.data() + n, q);
+            std::copy(p.polarised_u.data(), p.polarised_u.data() + n, q + n);
+          }
         }
       }
     });
@@ -273,9 +291,10 @@ void SkyViewTable::lookup_many(int count, const Vec3* dirs, float* out, bool* fo
   }
 }
 
-bool SkyViewTable::interpolate(double theta, double phi, float* rayleigh, float* mie, float* phase_free) const {
+bool SkyViewTable::weights(double theta, double phi, Weights& w) const {
   const bool sky_side = theta < horizon_zenith_rad_;
   if (!sky_side && !res_.ground_side) return false;
+  w.sky_side = sky_side;
 
   // The row pair around theta (placement_of says where to look; rounding is corrected by
   // comparing with the rows' own angles), weighted linearly in the interpolation variable.
@@ -297,7 +316,9 @@ bool SkyViewTable::interpolate(double theta, double phi, float* rayleigh, float*
   // Lagrange weights: products of (key - x_j) over j != i, times 1 / prod (x_i - x_j), which
   // depends only on the rows and is kept per row pair (sky_inv_den_, ground_inv_den_).
   const double* inv_den = (sky_side ? sky_inv_den_ : ground_inv_den_).data() + 4 * static_cast<size_t>(r0);
-  double row_w[4];
+  double* row_w = w.row_w;
+  w.first_row = first_row;
+  w.n_rows = n_rows;
   if (n_rows == 4) {  // the common case, written out (the same products as the loop below)
     const double d0 = key - xs[0], d1 = key - xs[1], d2 = key - xs[2], d3 = key - xs[3];
     row_w[0] = d1 * d2 * d3 * inv_den[0];
@@ -318,15 +339,49 @@ bool SkyViewTable::interpolate(double theta, double phi, float* rayleigh, float*
   const int c0 = std::min(static_cast<int>(f), m - 2);
   const double column_w[2] = {1.0 - (f - c0), f - c0};
 
-  const float w0 = static_cast<float>(column_w[0]), w1 = static_cast<float>(column_w[1]);
-  const float* rows_at = (sky_side ? sky_ : ground_).data() +
-                         static_cast<size_t>(first_row) * static_cast<size_t>(m) * kParts * static_cast<size_t>(n_) +
-                         static_cast<size_t>(c0) * kParts * static_cast<size_t>(n_);
+  w.c0 = c0;
+  w.w0 = static_cast<float>(column_w[0]);
+  w.w1 = static_cast<float>(column_w[1]);
+  return true;
+}
+
+bool SkyViewTable::interpolate(double theta, double phi, float* rayleigh, float* mie, float* phase_free) const {
+  Weights w;
+  if (!weights(theta, phi, w)) return false;
+  const int m = res_.azimuths;
+  const float* rows_at = (w.sky_side ? sky_ : ground_).data() +
+                         static_cast<size_t>(w.first_row) * static_cast<size_t>(m) * kParts * static_cast<size_t>(n_) +
+                         static_cast<size_t>(w.c0) * kParts * static_cast<size_t>(n_);
   float* const parts[kParts] = {rayleigh, mie, phase_free};
   if (n_ == 3)  // the RGB-fast path's three wavelengths: loops of known length, unrolled
-    mix_entries<3>(rows_at, m, row_w, n_rows, w0, w1, n_, parts);
+    mix_entries<3>(rows_at, m, w.row_w, w.n_rows, w.w0, w.w1, n_, parts);
   else
-    mix_entries<0>(rows_at, m, row_w, n_rows, w0, w1, n_, parts);
+    mix_entries<0>(rows_at, m, w.row_w, w.n_rows, w.w0, w.w1, n_, parts);
+  return true;
+}
+
+bool SkyViewTable::lookup_polarised(const Vec3& dir, RadianceParts& out) const {
+  if (!polarised_) return false;
+  double theta, phi;
+  angles_of(dir, theta, phi);
+  theta = refined_zenith(dir, theta);
+  const int n = n_;
+  out.rayleigh.resize(n);
+  out.mie.resize(n);
+  out.phase_free.resize(n);
+  out.polarised_q.resize(n);
+  out.polarised_u.resize(n);
+  if (!interpolate(theta, phi, out.rayleigh.data(), out.mie.data(), out.phase_free.data())) return false;
+  Weights w;
+  weights(theta, phi, w);
+  const int m = res_.azimuths;
+  const float* rows_at = (w.sky_side ? polarised_sky_ : polarised_ground_).data() +
+                         static_cast<size_t>(w.first_row) * static_cast<size_t>(m) * kPolarisedParts * static_cast<size_t>(n) +
+                         static_cast<size_t>(w.c0) * kPolarisedParts * static_cast<size_t>(n);
+  float* const parts[kPolarisedParts] = {out.polarised_q.data(), out.polarised_u.data()};
+  mix_entries<0, kPolarisedParts>(rows_at, m, w.row_w, w.n_rows, w.w0, w.w1, n, parts);
+  // The table holds the side towards +across; the mirror image's frame has e2 reversed, so U changes sign.
+  if (dir.dot(across_) < 0.0) out.polarised_u = -out.polarised_u;
   return true;
 }
 

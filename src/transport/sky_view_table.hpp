@@ -51,6 +51,12 @@ class SkyViewTable {
   /// vectorises): direction k's parts go to out + 3 n k (Rayleigh, Mie, phase-free, n floats
   /// each, n the wavelengths), found[k] is lookup()'s answer. The same values as lookup().
   void lookup_many(int count, const Vec3* dirs, float* out, bool* found) const;
+  /// lookup() and, for a table built with ScatteringSources::polarisation, the higher orders'
+  /// polarised_q and polarised_u too (in the direction's polarisation_frame; the table holds the
+  /// side of the sun's vertical plane towards +across, and U changes sign on the other). False for
+  /// a table without polarisation.
+  bool lookup_polarised(const Vec3& dir, RadianceParts& out) const;
+  bool polarised() const { return polarised_; }
   /// The zenith angle of the horizon seen from the table's point (> pi/2 above the ground).
   double horizon_zenith_rad() const { return horizon_zenith_rad_; }
 
@@ -74,6 +80,15 @@ class SkyViewTable {
   void angles_of(const Vec3& dir, double& theta, double& phi) const;
   double refined_zenith(const Vec3& dir, double theta) const;
   bool interpolate(double theta, double phi, float* rayleigh, float* mie, float* phase_free) const;
+  // The rows and columns around (theta, phi) and their weights (interpolate's; false where the
+  // table has no side for theta).
+  struct Weights {
+    bool sky_side = true;
+    int first_row = 0, n_rows = 0, c0 = 0;
+    double row_w[4] = {0, 0, 0, 0};
+    float w0 = 0, w1 = 0;
+  };
+  bool weights(double theta, double phi, Weights& w) const;
 
   SkyViewResolution res_;
   int n_ = 0;  // wavelengths
@@ -84,6 +99,9 @@ class SkyViewTable {
   std::vector<double> sky_inv_den_, ground_inv_den_;  // per row pair: its rows' Lagrange denominators (4 each)
   // [side][row][column][part][lambda], part = rayleigh, mie, phase_free.
   std::vector<float> sky_, ground_;
+  // With polarisation: [side][row][column][Q, U][lambda].
+  bool polarised_ = false;
+  std::vector<float> polarised_sky_, polarised_ground_;
 };
 
 }  // namespace skyspec
