@@ -160,19 +160,16 @@ BOOST_AUTO_TEST_CASE(stokes_rows_agree_with_the_image_and_the_probe) {
 // differences are there; the message gives the figures docs/polarisation.md quotes.
 BOOST_AUTO_TEST_CASE(sky_view_table_keeps_the_polarisation) {
   for (double sun : {30.0, 5.0}) {
-    char toml[400];
-    std::snprintf(toml, sizeof toml,
-                  "[sun]\nelevation_deg = %g\n[spectrum]\nwavelengths_nm = [450, 550, 650]\n[camera]\n"
-                  "type = \"equirectangular\"\nwidth = 128\nheight = 64\n[render]\ncache_tables = false\n"
-                  "sky_view_table = %s\n[output]\npolarisation = true\n",
-                  sun, "true");
-    const Scene with_table = test::scene_with(toml);
-    std::snprintf(toml, sizeof toml,
-                  "[sun]\nelevation_deg = %g\n[spectrum]\nwavelengths_nm = [450, 550, 650]\n[camera]\n"
-                  "type = \"equirectangular\"\nwidth = 128\nheight = 64\n[render]\ncache_tables = false\n"
-                  "sky_view_table = %s\n[output]\npolarisation = true\n",
-                  sun, "false");
-    const Scene marched = test::scene_with(toml);
+    const auto panorama = [sun](bool sky_view_table) {
+      char toml[400];
+      std::snprintf(toml, sizeof toml,
+                    "[sun]\nelevation_deg = %g\n[spectrum]\nwavelengths_nm = [450, 550, 650]\n[camera]\n"
+                    "type = \"equirectangular\"\nwidth = 128\nheight = 64\n[render]\ncache_tables = false\n"
+                    "sky_view_table = %s\n[output]\npolarisation = true\n",
+                    sun, sky_view_table ? "true" : "false");
+      return test::scene_with(toml);
+    };
+    const Scene with_table = panorama(true), marched = panorama(false);
     const SpectralImageBuffer a = render_to_memory(with_table), b = render_to_memory(marched);
     const size_t n = 3;
     std::vector<double> differences;
