@@ -298,7 +298,8 @@ Command add_reference_command(CLI::App& app) {
       "across and away from it. --compare adds the renderer's radiance (and irradiance) and their\n"
       "difference in percent and in standard errors (docs/validation.md). --stokes adds each probe's\n"
       "Stokes vector in the frame of the vertical through the line of sight (Q > 0: polarised in that\n"
-      "plane; U > 0: at 45 deg from it towards the observer's left).");
+      "plane; U > 0: at 45 deg from it towards the observer's left); with --compare, beside the\n"
+      "renderer's, rendered with output.polarisation (docs/polarisation.md).");
   o->scene.flags = spectrum_flags();
   append_flags(o->scene.flags, sun_flags());
   o->scene.flags.push_back({"--position", "camera.position_m", "observer east,north,height in m", {}, true});
