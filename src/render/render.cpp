@@ -254,7 +254,8 @@ void SkyRenderer::stokes(const Vec3& dir, const Vec3& e1, Spectrum& i, Spectrum&
   thread_local std::optional<ScatteringWorkspace> ws;
   if (!ws || ws->view_tau.size() != n) ws.emplace(n);
   const Vec3 d = dir.normalized();
-  // Integrated along the ray (not looked up in the sky-view table, which holds no polarisation).
+  // Integrated along the ray, not interpolated from the sky-view table (as the image's pixels are):
+  // the probe of `skyspec reference --stokes --compare`.
   RadianceParts parts(n);
   ScatteringSources sources = m.sources;
   sources.polarisation = true;
