@@ -217,9 +217,10 @@ std::string format_table(const ReferenceResult& r, const Deterministic* det, con
            "intensity (the Monte Carlo column is scalar); degree and angle of linear polarisation, the angle from "
            "the vertical towards the observer's left (at the zenith from north); aerosols neither polarise nor "
            "depolarise in this model."
-        << (det_stokes ? " The renderer runs with output.polarisation = true (vector transport for the air; the "
-                         "light its aerosols scatter after the first order counts as unpolarised): its intensity is "
-                         "compared with I as well as with the scalar Monte Carlo."
+        << (det_stokes ? " The renderer runs with output.polarisation = true (vector transport for the air; aerosols "
+                         "carry the polarisation of light scattered more than once as far as its quadrupole; with the "
+                         "isotropic tables of --quality draft only its single scattering is polarised): its intensity "
+                         "is compared with I as well as with the scalar Monte Carlo."
                        : "")
         << "\n";
   }
