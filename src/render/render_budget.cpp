@@ -222,7 +222,10 @@ double measure_render_seconds(const SkyRenderer& renderer, const RenderPlan& pla
   // over the image by the R2 low-discrepancy sequence (Roberts 2018). CPU time of the thread: what the work costs,
   // whatever else the machine is doing.
   const auto camera = make_camera(renderer.scene());
-  const bool polarised = renderer.scene().output.polarisation;  // every pixel marched with its Stokes vector
+  // A polarised render's pixels come from the sky-view table as well where there is one (the
+  // bound times the look-up); without one each is a polarised march, which the bound then times.
+  const bool polarised = renderer.scene().output.polarisation;
+  const bool polarised_march = polarised && renderer.sky_view_table_seconds() == 0.0;
   Spectrum spectrum, q, u;
   const double a1 = 0.7548776662466927, a2 = 0.5698402909980532;
   const auto start = std::chrono::steady_clock::now();
@@ -233,7 +236,7 @@ double measure_render_seconds(const SkyRenderer& renderer, const RenderPlan& pla
     Vec3 dir;
     const double x = std::fmod(0.5 + a1 * k, 1.0) * w, y = std::fmod(0.5 + a2 * k, 1.0) * h;
     if (camera->direction(x, y, dir)) {
-      if (polarised)
+      if (polarised_march)
         renderer.stokes(dir, renderer.stokes_frame_axis_of_pixel(x, y, dir), spectrum, q, u);
       else
         spectrum = renderer.radiance(dir);

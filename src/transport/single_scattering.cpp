@@ -482,6 +482,7 @@ struct SingleScattering::PieceScratch {
   Eigen::ArrayXXf source_q_t, source_u_t;   // J_R + P_Q, J_R + P_U (polarised_sources)
   Eigen::ArrayXXf source_mq_t, source_mu_t; // J_M + P_M,Q, J_M + P_M,U
   std::vector<float> moments;               // InScatteringSource::rayleigh_moments at one node
+  Spectrum q, u, pq, pu;                    // polarised_sources' sums at one node
   Spectrum unused[4];                       // the other species' sums of a higher-order pass
 };
 
@@ -582,35 +583,31 @@ bool SingleScattering::polarised_sources(const Node* nodes, int m, const RayFram
     x.normalize();
     const Vec3 y = z.cross(x);
     const Vec3 e(f.e1.dot(x), f.e1.dot(y), f.e1.dot(z)), g(f.e2.dot(x), f.e2.dot(y), f.e2.dot(z));
-    Spectrum q = Spectrum::Zero(n), u = Spectrum::Zero(n);
+    // The quadrupole's share, D's part -T / 2 with T = sum a_2m K_m (q, u), and the polarisation
+    // tensor's, which the aerosol's unit matrix sees too (pq, pu): the field's degree-2 E-mode,
+    // C_pol(w) = P M P - P tr(P M P) / 2 with M = 5 D_pol / (8 pi) (its integral over the sphere is
+    // 8 pi M / 5), scaled by the phase function's spin-2 moment and seen from k:
+    // Q = e1^T M e1 - e2^T M e2, U = 2 e1^T M e2.
+    Spectrum &q = sc.q, &u = sc.u, &pq = sc.pq, &pu = sc.pu;
+    q.setZero(n);
+    u.setZero(n);
+    pq.setZero(n);
+    pu.setZero(n);
     for (int j = 0; j < 3; ++j) {
-      // The quadrupole: D's part -T / 2, T = sum a_2m K_m.
       const Eigen::Matrix3d& km = K[static_cast<size_t>(j)];
       const Eigen::Map<const Spectrum> a(sc.moments.data() + static_cast<size_t>(j) * n, n);
       q += static_cast<float>(-0.5 * (e.dot(km * e) - g.dot(km * g))) * a;
       u += static_cast<float>(-e.dot(km * g)) * a;
-      // The polarisation tensor.
       const Eigen::Matrix3d& ej = E[static_cast<size_t>(j)];
       const Eigen::Map<const Spectrum> d(sc.moments.data() + static_cast<size_t>(3 + j) * n, n);
-      q += static_cast<float>(e.dot(ej * e) - g.dot(ej * g)) * d;
-      u += static_cast<float>(2.0 * e.dot(ej * g)) * d;
+      pq += static_cast<float>(e.dot(ej * e) - g.dot(ej * g)) * d;
+      pu += static_cast<float>(2.0 * e.dot(ej * g)) * d;
     }
-    const Spectrum two_b = 2.0f * rayleigh_phase_b_;
-    // The aerosol's unit matrix acting on the polarisation's quadrupole: the field's degree-2
-    // E-mode, C_pol(w) = P M P - P tr(P M P) / 2 with M = 5 D_pol / (8 pi) (its integral over the
-    // sphere is 8 pi M / 5), scaled by the phase function's spin-2 moment and seen from k:
-    // Q = e1^T M e1 - e2^T M e2, U = 2 e1^T M e2.
-    Spectrum mq = Spectrum::Zero(n), mu = Spectrum::Zero(n);
-    for (int j = 0; j < 3; ++j) {
-      const Eigen::Matrix3d& ej = E[static_cast<size_t>(j)];
-      const Eigen::Map<const Spectrum> d(sc.moments.data() + static_cast<size_t>(3 + j) * n, n);
-      mq += static_cast<float>(5.0 / (8.0 * kPi) * (e.dot(ej * e) - g.dot(ej * g))) * d;
-      mu += static_cast<float>(5.0 / (8.0 * kPi) * 2.0 * e.dot(ej * g)) * d;
-    }
-    sc.source_mq_t.col(k) = sc.source_mie_t.col(k) + mie_spin2_moment_ * mq;
-    sc.source_mu_t.col(k) = sc.source_mie_t.col(k) + mie_spin2_moment_ * mu;
-    sc.source_q_t.col(k) = sc.source_t.col(k) + two_b * q;
-    sc.source_u_t.col(k) = sc.source_t.col(k) + two_b * u;
+    constexpr float kEmode = static_cast<float>(5.0 / (8.0 * kPi));
+    sc.source_mq_t.col(k) = sc.source_mie_t.col(k) + kEmode * mie_spin2_moment_ * pq;
+    sc.source_mu_t.col(k) = sc.source_mie_t.col(k) + kEmode * mie_spin2_moment_ * pu;
+    sc.source_q_t.col(k) = sc.source_t.col(k) + 2.0f * rayleigh_phase_b_ * (q + pq);
+    sc.source_u_t.col(k) = sc.source_t.col(k) + 2.0f * rayleigh_phase_b_ * (u + pu);
   }
   return true;
 }

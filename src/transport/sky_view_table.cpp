@@ -348,6 +348,11 @@ bool SkyViewTable::weights(double theta, double phi, Weights& w) const {
 bool SkyViewTable::interpolate(double theta, double phi, float* rayleigh, float* mie, float* phase_free) const {
   Weights w;
   if (!weights(theta, phi, w)) return false;
+  mix(w, rayleigh, mie, phase_free);
+  return true;
+}
+
+void SkyViewTable::mix(const Weights& w, float* rayleigh, float* mie, float* phase_free) const {
   const int m = res_.azimuths;
   const float* rows_at = (w.sky_side ? sky_ : ground_).data() +
                          static_cast<size_t>(w.first_row) * static_cast<size_t>(m) * kParts * static_cast<size_t>(n_) +
@@ -357,7 +362,6 @@ bool SkyViewTable::interpolate(double theta, double phi, float* rayleigh, float*
     mix_entries<3>(rows_at, m, w.row_w, w.n_rows, w.w0, w.w1, n_, parts);
   else
     mix_entries<0>(rows_at, m, w.row_w, w.n_rows, w.w0, w.w1, n_, parts);
-  return true;
 }
 
 bool SkyViewTable::lookup_polarised(const Vec3& dir, RadianceParts& out) const {
@@ -371,9 +375,9 @@ bool SkyViewTable::lookup_polarised(const Vec3& dir, RadianceParts& out) const {
   out.phase_free.resize(n);
   out.polarised_q.resize(n);
   out.polarised_u.resize(n);
-  if (!interpolate(theta, phi, out.rayleigh.data(), out.mie.data(), out.phase_free.data())) return false;
   Weights w;
-  weights(theta, phi, w);
+  if (!weights(theta, phi, w)) return false;
+  mix(w, out.rayleigh.data(), out.mie.data(), out.phase_free.data());
   const int m = res_.azimuths;
   const float* rows_at = (w.sky_side ? polarised_sky_ : polarised_ground_).data() +
                          static_cast<size_t>(w.first_row) * static_cast<size_t>(m) * kPolarisedParts * static_cast<size_t>(n) +

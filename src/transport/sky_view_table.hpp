@@ -89,6 +89,8 @@ class SkyViewTable {
     float w0 = 0, w1 = 0;
   };
   bool weights(double theta, double phi, Weights& w) const;
+  // The radiance's three parts at those weights.
+  void mix(const Weights& w, float* rayleigh, float* mie, float* phase_free) const;
 
   SkyViewResolution res_;
   int n_ = 0;  // wavelengths
