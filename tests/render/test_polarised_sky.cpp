@@ -25,9 +25,10 @@ BOOST_AUTO_TEST_SUITE(test_polarised_sky)
 using namespace skyspec;
 
 namespace {
-// The two longest cases (a reference and whole panoramas, 7 and 4 s here, ten times that under
-// AddressSanitizer) are left to the release stage of scripts/test.sh, which sets this variable for
-// the sanitizer stage; the other cases run the same polarised tables and sky-view table there.
+// The two longest cases (a Monte Carlo reference and whole panoramas; their cost under the
+// sanitizers is in docs/performance.md, "Build and test times") are left to the release stage of
+// scripts/test.sh, which sets this variable for the sanitizer stage; the other cases run the same
+// polarised tables and sky-view table there.
 boost::test_tools::assertion_result not_in_sanitizer_stage(boost::unit_test::test_unit_id) {
   boost::test_tools::assertion_result result(std::getenv("SKYSPEC_SANITIZER_STAGE") == nullptr);
   result.message() << "left to the release stage (SKYSPEC_SANITIZER_STAGE is set)";
@@ -117,8 +118,8 @@ BOOST_AUTO_TEST_CASE(pixel_frames_follow_the_image_axes) {
         const Vec3 e1 = renderer.stokes_frame_axis_of_pixel(px, py, dir), e2 = (-dir).cross(e1);
         BOOST_TEST(std::abs(e1.dot(dir)) < 1e-12);
         BOOST_TEST((right - dir).normalized().dot(e1) > 0.99);
-        // The orientation: the image's axes are skewed on the sky (by up to 33 degrees near the rim of
-        // the equal-area fisheye), so e2 is the image's up or down only to within that.
+        // The orientation: the image's axes are skewed on the sky (strongly near the rim of the
+        // equal-area fisheye), so e2 is the image's up or down only to within that skew.
         BOOST_TEST(up_sign * (up - dir).normalized().dot(e2) > 0.5,
                    camera_toml << " at " << x << ", " << y << ": " << (up - dir).normalized().dot(e2));
         ++checked;
