@@ -436,8 +436,63 @@ void SingleScattering::place_nodes(const Vec3& o, const Vec3& d, const Scatterin
     }
     pc.first_node = static_cast<int>(ray.nodes.size()) - 1;
     pc.segments = segs;
-    const double dt = (pc.t1 - pc.t0) / segs;
-    for (int k = 1; k <= segs; ++k) append(k == segs ? pc.t1 : pc.t0 + dt * k);
+    thread_local std::vector<double> positions;
+    positions.resize(static_cast<size_t>(segs) + 1);
+    if (collect) {
+      piece_node_positions(o, d, pc.t0, pc.t1, segs, positions.data());
+    } else {
+      for (int k = 0; k <= segs; ++k) positions[static_cast<size_t>(k)] = pc.t0 + (pc.t1 - pc.t0) * k / segs;
+    }
+    for (int k = 1; k <= segs; ++k) append(k == segs ? pc.t1 : positions[static_cast<size_t>(k)]);
+  }
+}
+
+// Where a piece's nodes lie: uniform in s(t) = (t - t0) / (t1 - t0) + c_R(t) / c_R(t1) + c_M(t) / c_M(t1),
+// the share of the piece's length plus the shares of its Rayleigh and aerosol columns (c_s(t), the
+// column of species s from t0 to t, for each species that scatters). A ray that runs low through
+// dense air gets short segments there, where its integrand is large and its optical depth grows
+// fastest, and at least a third of the nodes stay spread over its length. The columns come from a
+// pilot of kPilotsPerSegment x segments + 1 points uniform in t, and s is inverted linearly between
+// them. Nothing here depends on the wavelengths (adding one to the grid moves no node), and the
+// sun only through the piece's ends (the shadow's edges).
+void SingleScattering::piece_node_positions(const Vec3& o, const Vec3& d, double t0, double t1, int segments,
+                                            double* t) const {
+  const double R = atm_.planet_radius_m();
+  const DensityProfile* profiles[2] = {&atm_.rayleigh().profile, &atm_.mie().profile};
+  const bool weighted[2] = {atm_.rayleigh().enabled(), atm_.mie().enabled()};
+  const int pilots = kPilotsPerSegment * segments;
+  const double dt = (t1 - t0) / pilots;
+  thread_local std::vector<double> rho[2], share;
+  for (auto* v : {&rho[0], &rho[1], &share}) v->assign(static_cast<size_t>(pilots) + 1, 0.0);
+  for (int k = 0; k <= pilots; ++k) {
+    const double alt = (o + (t0 + dt * k) * d).norm() - R;
+    for (int sp = 0; sp < 2; ++sp)
+      if (weighted[sp]) rho[sp][static_cast<size_t>(k)] = std::exp(profiles[sp]->log_relative(alt));
+  }
+  // The columns by the trapezoid rule (they only place the nodes), then each species' share.
+  double total[2] = {0.0, 0.0};
+  for (int sp = 0; sp < 2; ++sp)
+    for (int k = 1; k <= pilots; ++k) total[sp] += 0.5 * (rho[sp][static_cast<size_t>(k) - 1] + rho[sp][static_cast<size_t>(k)]);
+  double running[2] = {0.0, 0.0};
+  for (int k = 1; k <= pilots; ++k) {
+    double v = static_cast<double>(k) / pilots;
+    for (int sp = 0; sp < 2; ++sp) {
+      if (!(total[sp] > 0.0)) continue;
+      running[sp] += 0.5 * (rho[sp][static_cast<size_t>(k) - 1] + rho[sp][static_cast<size_t>(k)]);
+      v += running[sp] / total[sp];
+    }
+    share[static_cast<size_t>(k)] = v;
+  }
+  const double end = share[static_cast<size_t>(pilots)];
+  t[0] = t0;
+  t[segments] = t1;
+  int j = 0;
+  for (int k = 1; k < segments; ++k) {
+    const double target = end * k / segments;
+    while (j + 1 < pilots && share[static_cast<size_t>(j) + 1] < target) ++j;
+    const double a = share[static_cast<size_t>(j)], b = share[static_cast<size_t>(j) + 1];
+    const double f = b > a ? std::clamp((target - a) / (b - a), 0.0, 1.0) : 0.0;
+    t[k] = t0 + dt * (j + f);
   }
 }
 

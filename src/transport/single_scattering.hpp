@@ -218,6 +218,8 @@ class SingleScattering {
   struct Ray;
   bool trace(const Vec3& o, const Vec3& d, const Vec3& s, const ScatteringSources& sources, Ray& ray) const;
   void place_nodes(const Vec3& o, const Vec3& d, const ScatteringSources& sources, Ray& ray) const;
+  void piece_node_positions(const Vec3& o, const Vec3& d, double t0, double t1, int segments, double* t) const;
+  static constexpr int kPilotsPerSegment = 2;  ///< density samples per segment that place the nodes
   void integrate(const Ray& ray, const Vec3& o, const Vec3& d, const Vec3& s, const ScatteringSources& sources,
                  ScatteringWorkspace& ws, RadianceParts& parts) const;
   // integrate's steps, one piece of a ray at a time (PieceScratch: per-thread arrays).
