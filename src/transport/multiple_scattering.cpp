@@ -54,10 +54,23 @@ void gauss_legendre(int n, double a, double b, std::vector<double>& nodes, std::
 
 namespace {
 constexpr int kMaxHarmonics = 91;  // degree 12
-// mu_s = u / 2 + u |u| / 2 for u in [-1, 1]: samples twice as dense at the horizon as uniform.
-double mu_from_u(double u) { return 0.5 * u + 0.5 * u * std::abs(u); }
+// The sun-angle columns are uniform in u in [0, 1] with mu_s = c + w sinh(a + u (b - a)), a and b
+// the values of asinh((mu_s - c) / w) at mu_s = -1 and 1 (c = SourceTable::kSunColumnCentre,
+// w = kSunColumnWidth): the spacing grows as sqrt(w^2 + (mu_s - c)^2), finest just below the
+// horizon, where the sources fall by orders of magnitude from column to column as the planet's
+// shadow rises through the air, and coarsest at the zenith and at night, where they change
+// slowly or not at all.
+struct SunColumnMap {
+  static constexpr double c = SourceTable::kSunColumnCentre, w = SourceTable::kSunColumnWidth;
+  double a = std::asinh((-1.0 - c) / w);
+  double b = std::asinh((1.0 - c) / w);
+};
+const SunColumnMap kSunColumns;
+double mu_from_u(double u) {
+  return SunColumnMap::c + SunColumnMap::w * std::sinh(kSunColumns.a + u * (kSunColumns.b - kSunColumns.a));
+}
 double u_from_mu(double mu) {
-  return mu >= 0.0 ? -0.5 + std::sqrt(0.25 + 2.0 * mu) : 0.5 - std::sqrt(0.25 - 2.0 * mu);
+  return (std::asinh((mu - SunColumnMap::c) / SunColumnMap::w) - kSunColumns.a) / (kSunColumns.b - kSunColumns.a);
 }
 }  // namespace
 
@@ -115,7 +128,11 @@ double SourceTable::row_coordinate_of_altitude(double h) const {
 
 double SourceTable::altitude_m(int ih) const { return altitude_of_row_coordinate(static_cast<double>(ih) / (n_h_ - 1)); }
 
-double SourceTable::mu_sun(int imu) const { return mu_from_u(-1.0 + 2.0 * imu / (n_mu_ - 1)); }
+double SourceTable::mu_sun(int imu) const {
+  if (imu == 0) return -1.0;  // the end columns exactly (sinh(asinh(x)) is x to rounding)
+  if (imu == n_mu_ - 1) return 1.0;
+  return mu_from_u(static_cast<double>(imu) / (n_mu_ - 1));
+}
 
 bool SourceTable::steep_pair(int ih, int imu) const {
   using Map = Eigen::Map<const Eigen::ArrayXf>;
@@ -157,7 +174,7 @@ SourceTable::Blend SourceTable::blend(double r_m, double mu_s) const {
   if (!prepared_) throw std::logic_error("SourceTable::source: the table was not prepared after it was written");
   const double h = std::clamp(r_m - R_, 0.0, Rt_ - R_);
   const double fh = row_coordinate_of_altitude(h) * (n_h_ - 1);
-  const double fm = (u_from_mu(std::clamp(mu_s, -1.0, 1.0)) + 1.0) * 0.5 * (n_mu_ - 1);
+  const double fm = std::clamp(u_from_mu(mu_s), 0.0, 1.0) * (n_mu_ - 1);
   const int ih = std::min(static_cast<int>(fh), n_h_ - 2), im = std::min(static_cast<int>(fm), n_mu_ - 2);
   const float ah = static_cast<float>(fh - ih), am = static_cast<float>(fm - im);
   Blend w{ih, im, &j_[index(ih, im)], &j_[index(ih, im + 1)], &j_[index(ih + 1, im)], &j_[index(ih + 1, im + 1)],
@@ -300,7 +317,7 @@ bool SourceTable::rayleigh_moments(double r_m, double mu, float* out) const {
 }
 
 void SourceTable::ground_irradiance(double mu, float* out) const {
-  const double fm = (u_from_mu(std::clamp(mu, -1.0, 1.0)) + 1.0) * 0.5 * (n_mu_ - 1);
+  const double fm = std::clamp(u_from_mu(mu), 0.0, 1.0) * (n_mu_ - 1);
   const int im = std::min(static_cast<int>(fm), n_mu_ - 2);
   const float am = static_cast<float>(fm - im);
   const float* a = g_at(im);
@@ -530,7 +547,7 @@ std::uint64_t ScatteringOrders::table_bytes(const MultipleScatteringSettings& st
 
 int ScatteringOrders::degree_of_order(int angular_degree, int k) {
   if (angular_degree < 2) return angular_degree;
-  return std::max(2, angular_degree - 2 * (k - 2));
+  return std::max(2, angular_degree - (k - 2));
 }
 
 DirectionQuadrature ScatteringOrders::quadrature_of_order(int angular_degree, int k, int refinement) {

@@ -106,6 +106,11 @@ class SourceTable : public InScatteringSource {
   /// h(x) = H (exp(x ln(1 + h_top / H)) - 1) for x in [0, 1], H = kRowAltitudeScale_m, and its inverse.
   double altitude_of_row_coordinate(double x) const;
   double row_coordinate_of_altitude(double altitude_m) const;
+  /// The sun-angle columns' spacing (multiple_scattering.cpp, mu_from_u): finest at the cosine
+  /// kSunColumnCentre (the sun just below the horizon), growing as sqrt(width^2 + (mu_s - centre)^2).
+  static constexpr double kSunColumnCentre = -0.02;
+  static constexpr double kSunColumnWidth = 0.08;
+  /// Column i's sun zenith cosine, from -1 (i = 0) to 1 (the last).
   double mu_sun(int i_sun) const;
   int altitude_count() const { return n_h_; }
   int sun_count() const { return n_mu_; }
@@ -193,7 +198,7 @@ class ScatteringOrders : public InScatteringSource {
   }
 
   int highest_order() const { return settings_.orders; }
-  /// The degree of order k's table: angular_degree for order 2, two less per order after it, but
+  /// The degree of order k's table: angular_degree for order 2, one less per order after it, but
   /// never below 2 (Rayleigh's degree) unless angular_degree is below 2.
   static int degree_of_order(int angular_degree, int k);
   /// The directions order k's table is integrated over, for a table of degree d: Gauss-Legendre
