@@ -59,8 +59,7 @@ fi
 
 # Time-lapse: frames with one exposure, --resume keeps finished frames (small scattering-order
 # tables with a single table order, render.scattering_orders = 2: the frames' files are checked
-# here, not their physics; under the sanitizers
-# the tables' build is most of this test's time).
+# here, not their physics; under the sanitizers the tables' build is most of this test's time).
 tl="$work/tl"
 small_tables=(--set render.ms_altitude_samples=8 --set render.ms_sun_samples=24 --set render.scattering_orders=2)
 if "$skyspec" timelapse -q --latitude 48.14 --longitude 11.58 --start 2026-06-21T20:00:00+02:00 \
