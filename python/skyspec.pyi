@@ -112,6 +112,18 @@ def render(
 ) -> RenderResult:
     """Render a scene into memory; no files are written until you ask (RenderResult.write_exr)."""
 
+def aerial_perspective(
+    depth: Any,
+    *,
+    depth_is: str = "distance",
+    preset: str = "default",
+    scene_file: Optional[str] = None,
+    scene_toml: Optional[str] = None,
+    overrides: Optional[Dict[str, Any]] = None,
+) -> Dict[str, Any]:
+    """Aerial perspective for a (height, width) depth pass in metres (depth_is="z": along the view
+    axis): transmittance and inscatter (h, w, n), their RGB (h, w, 3), wavelengths_nm, scene_toml."""
+
 def monte_carlo(
     preset: str = "default",
     *,

@@ -9,19 +9,21 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <iomanip>
 #include <memory>
 #include <utility>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
-#include "base/text_format.hpp"
-#include "colour/display_pipeline.hpp"
+#include "skyspec/aerial_perspective.hpp"
 #include "skyspec/camera.hpp"
 #include "skyspec/coefficient_report.hpp"
 #include "skyspec/colour.hpp"
+#include "skyspec/display.hpp"
 #include "skyspec/error.hpp"
-#include "skyspec/monte_carlo.hpp"
+#include "skyspec/monte_carlo_reference.hpp"
 #include "skyspec/rayleigh.hpp"
 #include "skyspec/refractive_index.hpp"
 #include "skyspec/render.hpp"
@@ -34,6 +36,13 @@ namespace py = pybind11;
 using namespace skyspec;
 
 namespace {
+
+// Numbers in messages, as the library writes them (ten significant digits).
+std::string format_number(double v) {
+  std::ostringstream s;
+  s << std::setprecision(10) << v;
+  return s.str();
+}
 
 constexpr double kPpvPerPpm = 1.0e-6;
 
@@ -314,6 +323,46 @@ RenderResult render(const std::string& preset, const std::optional<std::string>&
   return {image, xyz_of(*image)};
 }
 
+// Aerial perspective for a depth pass given as an (h, w) array: the camera's size is the array's.
+py::dict aerial_perspective_py(const py::array_t<float, py::array::c_style | py::array::forcecast>& depth,
+                               const std::string& depth_is, const std::string& preset,
+                               const std::optional<std::string>& scene_file, const std::optional<std::string>& scene_toml,
+                               const std::optional<py::dict>& overrides) {
+  if (depth.ndim() != 2 || depth.shape(0) < 1 || depth.shape(1) < 1)
+    throw InputError("depth", "an array of " + std::to_string(depth.ndim()) + " dimensions", "a 2-D (height, width) array");
+  if (depth_is != "distance" && depth_is != "z")
+    throw InputError("depth_is", "\"" + depth_is + "\"", "one of: distance (along each ray), z (along the view axis)");
+  const auto h = depth.shape(0), w = depth.shape(1);
+  SceneLoader loader(preset);
+  if (scene_file) loader.apply_file(*scene_file);
+  if (scene_toml) loader.apply_toml(*scene_toml, "scene_toml");
+  if (overrides) apply_overrides(loader, *overrides, "");
+  loader.apply_override("camera.width", std::to_string(w), "depth's width");
+  loader.apply_override("camera.height", std::to_string(h), "depth's height");
+  const Scene scene = loader.finish();
+  std::vector<float> values(depth.data(), depth.data() + depth.size());
+  AerialPerspectiveImage ap;
+  {
+    py::gil_scoped_release release;
+    if (depth_is == "z") values = ray_distances_from_z(scene, values, "depth");
+    ap = aerial_perspective(scene, values, {}, {}, "depth");
+  }
+  const auto n = static_cast<py::ssize_t>(ap.wavelengths_nm.size());
+  auto array3 = [&](const std::vector<float>& v, py::ssize_t depth_n) {
+    py::array_t<float> a({h, w, depth_n});
+    std::copy(v.begin(), v.end(), a.mutable_data());
+    return a;
+  };
+  py::dict out;
+  out["wavelengths_nm"] = py::array_t<double>(n, ap.wavelengths_nm.data());
+  out["transmittance"] = array3(ap.transmittance, n);
+  out["inscatter"] = array3(ap.inscatter, n);
+  out["transmittance_rgb"] = array3(ap.transmittance_rgb, 3);
+  out["inscatter_rgb"] = array3(ap.inscatter_rgb, 3);
+  out["scene_toml"] = scene_to_toml(scene, SceneTomlKeys::Recorded);
+  return out;
+}
+
 // The Monte Carlo reference at probes given as (azimuth, elevation) pairs (default: the standard ones).
 py::dict monte_carlo(const std::string& preset, const std::optional<std::string>& scene_file,
                      const std::optional<std::string>& scene_toml, const std::optional<py::dict>& overrides,
@@ -407,12 +456,16 @@ std::pair<int, int> nearest_pixel(const SpectralImageBuffer& img, double azimuth
   return at;
 }
 
-// The keyword of write_png() that a display-pipeline error names by its command-line flag.
-std::string python_argument_of(const std::string& setting) {
-  for (const auto& [flag, keyword] : {std::pair<const char*, const char*>{"--display", "display"}, {"--view", "view"},
-                                      {"--look", "look"}, {"--png-bits", "bits"}, {"--ocio", "ocio"}})
-    if (setting == flag) return keyword;
-  return setting;
+// Python's words for the library's neutral setting ids (skyspec/display.hpp, skyspec/scene.hpp):
+// the keyword arguments that carry them. Scene keys are the same everywhere.
+const std::vector<std::pair<std::string, std::string>>& python_spellings() {
+  namespace d = display_setting;
+  static const std::vector<std::pair<std::string, std::string>> table = {
+      {d::kOcio, "ocio"},         {d::kDisplay, "display"}, {d::kView, "view"},
+      {d::kLook, "look"},         {d::kPngBits, "bits"},    {d::kExposureEv, "exposure_ev"},
+      {kSceneFileSetting, "scene_file"},
+  };
+  return table;
 }
 
 DisplaySettings display_settings(const std::optional<std::string>& display, const std::optional<std::string>& view,
@@ -559,12 +612,8 @@ wavelengths_nm are read-only views.)")
              const std::optional<std::string>& view, const std::optional<std::string>& look, int bits,
              const std::optional<double>& exposure_ev, const std::optional<std::string>& ocio) {
             const DisplaySettings settings = display_settings(display, view, look, bits, exposure_ev, ocio);
-            try {
-              py::gil_scoped_release release;
-              return write_display_png(*r.image, path, settings);
-            } catch (const InputError& e) {
-              throw InputError(python_argument_of(e.setting()), e.value(), e.allowed());
-            }
+            py::gil_scoped_release release;
+            return write_display_png(*r.image, path, settings);
           },
           py::arg("path"), py::kw_only(), py::arg("display") = py::none(), py::arg("view") = py::none(),
           py::arg("look") = py::none(), py::arg("bits") = 8, py::arg("exposure_ev") = py::none(),
@@ -603,7 +652,7 @@ PYBIND11_MODULE(skyspec, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const InputError& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
+      PyErr_SetString(PyExc_ValueError, e.respelled(python_spellings()).what());
     } catch (const IoError& e) {
       PyErr_SetString(PyExc_OSError, e.what());
     } catch (const Error& e) {
@@ -726,6 +775,16 @@ valid, pixel(), spectrum_at()), the sun (sun_direction, sun_azimuth_deg, sun_ele
 `skyspec render` would (write_exr(), write_png()). Example:
   img = skyspec.render(overrides={"camera.width": 64, "camera.height": 64, "sun.elevation_deg": 10})
   img.spectrum_at(azimuth_deg=0, elevation_deg=45); img.write_exr("sky.exr"))");
+
+  m.def("aerial_perspective", &aerial_perspective_py, py::arg("depth"), py::kw_only(), py::arg("depth_is") = "distance",
+        py::arg("preset") = "default", py::arg("scene_file") = py::none(), py::arg("scene_toml") = py::none(),
+        py::arg("overrides") = py::none(),
+        R"(Aerial perspective (`skyspec aerial`) for a depth pass: depth is a (height, width) array of distances in
+metres along each pixel's ray (depth_is="z": along the camera's view axis); infinity is sky. The scene's camera
+(camera.type, position, look_at, fov) must be the one the depth was rendered with; its size is the array's.
+Returns a dict: wavelengths_nm (n), transmittance and inscatter (float32 (h, w, n); inscatter in
+W m^-2 sr^-1 nm^-1), transmittance_rgb and inscatter_rgb (float32 (h, w, 3), linear Rec.709) and scene_toml.
+A surface image I becomes I * transmittance + inscatter (per wavelength, or per channel with the RGB pair).)");
 
   m.def("monte_carlo", &monte_carlo, py::arg("preset") = "default", py::kw_only(), py::arg("scene_file") = py::none(),
         py::arg("scene_toml") = py::none(), py::arg("overrides") = py::none(), py::arg("probes") = py::none(),

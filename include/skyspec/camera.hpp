@@ -12,12 +12,10 @@
 #include <optional>
 #include <string>
 
+#include "skyspec/camera_spec.hpp"
 #include "skyspec/geometry.hpp"
 
 namespace skyspec {
-
-/// Unit vector in the east-north-up frame for an azimuth and an elevation in degrees.
-Vec3 direction_from_angles(double azimuth_deg, double elevation_deg);
 
 class Camera {
  public:
@@ -71,30 +69,6 @@ class PerspectiveCamera : public Camera {
   double tan_half_fov_;
   double fov_deg_;
 };
-
-/// How a latitude-longitude panorama lays the directions out across the image: which azimuth a
-/// column shows and where pixel centres sit (docs/other-tools.md#panoramas-hdris). All three put the
-/// zenith at the top and turn clockwise seen from above (north, east, south, west) from left to
-/// right, as seen from inside the sphere.
-enum class PanoramaConvention {
-  /// skyspec's own: north at the left edge, east a quarter of the way in (azimuth = 360 u), pixel
-  /// centres at u = (i + 1/2) / width; rows from +90 down to min_elevation_deg.
-  Skyspec,
-  /// Blender/Cycles: Cycles' equirectangular mapping (kernel/camera/projection.h,
-  /// direction_to_equirectangular: u = 1/2 - atan2(y, x) / 2 pi, v = 1 - acos(z) / pi, v = 0 the
-  /// bottom row) in Blender's world frame with north on +Y, east on +X and up +Z (the Sun
-  /// Position add-on's north at north offset 0): azimuth = 360 (u - 1/4), east at the centre.
-  /// Whole sphere only.
-  Blender,
-  /// OpenEXR's lat-long map (ImfEnvmap.h, LatLongMap): longitude +pi at the first column's centre
-  /// to -pi at the last's, latitude +pi/2 at the first row's centre to -pi/2 at the last's; with
-  /// up = +Y, east = +X, north = -Z (the right-handed, -Z-forward frame of OpenGL and USD):
-  /// azimuth = pi - longitude. Whole sphere only; at least 2 x 2 pixels.
-  OpenExr,
-};
-
-/// "skyspec", "blender" or "openexr".
-const char* panorama_convention_name(PanoramaConvention c);
 
 /// Latitude-longitude panorama (the HDRI format renderers load): column -> azimuth, row ->
 /// elevation linearly from +90 (top) down to min_elevation_deg (bottom): -90 for the whole sphere

@@ -10,9 +10,9 @@
 #include <Eigen/Geometry>
 #include <array>
 
-namespace skyspec {
+#include "skyspec/vec3.hpp"
 
-using Vec3 = Eigen::Vector3d;
+namespace skyspec {
 
 /// Where a ray o + t d (|d| = 1) meets a sphere of radius r centred at the origin.
 struct SphereHit {
@@ -45,6 +45,9 @@ struct IntervalSet {
 /// of by marching light rays.
 IntervalSet lit_intervals(const Vec3& origin_m, const Vec3& dir, double t0_m, double t1_m,
                           const Vec3& sun_dir, double planet_radius_m);
+
+/// Unit vector in the east-north-up frame for an azimuth and an elevation in degrees.
+Vec3 direction_from_angles(double azimuth_deg, double elevation_deg);
 
 /// Cosine of the zenith angle of direction dir at point p (p need not be normalised).
 inline double cos_zenith(const Vec3& p, const Vec3& dir) { return p.dot(dir) / p.norm(); }

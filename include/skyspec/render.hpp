@@ -9,13 +9,11 @@
 #include <vector>
 
 #include "skyspec/camera.hpp"
+#include "skyspec/display.hpp"
 #include "skyspec/scene.hpp"
 #include "skyspec/spectrum.hpp"
 
 namespace skyspec {
-
-class ScatteringOrders;
-struct DisplaySettings;
 
 /// Called after each band of rows with (rows done, rows in total).
 using ProgressFn = std::function<void(int rows_done, int rows_total)>;
@@ -94,8 +92,6 @@ class SkyRenderer {
   const Vec3& sun_direction() const;
   double sun_angular_radius_rad() const;
   const Vec3& camera_origin_m() const;
-  /// The precomputed higher scattering orders, or null when rendering single scattering.
-  const ScatteringOrders* scattering_orders() const;
   /// Seconds spent building the sky-view table (0 without one).
   double sky_view_table_seconds() const;
 
@@ -171,6 +167,9 @@ struct RenderOutputs {
   double tables_seconds = 0.0;  ///< set-up: atmosphere, optical-depth, scattering-order and sky-view tables
   double image_seconds = 0.0;   ///< exposure metering and the image's rows (with the EXR's bands, written meanwhile)
   double output_seconds = 0.0;  ///< completing the files: the EXR's offset table, fsync and rename; PNG
+  /// Every file written (or, from render_output_paths, to be written), in a fixed order: the
+  /// spectral EXR, the PNG, the working-space EXR, the polarisation EXR and PNG.
+  std::vector<std::filesystem::path> files() const;
 };
 
 /// A tile of the image, as pbrt's pixel bounds: columns [x0, x1) and rows [y0, y1) of the camera's

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "skyspec/atmosphere.hpp"
-#include "skyspec/camera.hpp"
+#include "skyspec/camera_spec.hpp"
 #include "skyspec/geometry.hpp"
 
 namespace skyspec {
@@ -40,18 +40,6 @@ struct SunSpec {
 struct LocationSpec {
   double latitude_deg = 0.0;   ///< north positive
   double longitude_deg = 0.0;  ///< east positive
-};
-
-struct CameraSpec {
-  enum class Type { Fisheye, Perspective, Equirectangular };
-  Type type = Type::Fisheye;
-  int width = 512, height = 512;
-  Vec3 position_m = Vec3(0, 0, 1);  ///< east, north, height above sea level at the reference point
-  Vec3 look_at_m = Vec3(0, 1000, 1);
-  double fov_deg = 60.0;            ///< perspective: vertical field of view
-  double min_elevation_deg = -90.0;  ///< equirectangular: elevation of the bottom edge (0: upper hemisphere)
-  /// equirectangular: how columns and rows map to directions (skyspec, Blender/Cycles, OpenEXR).
-  PanoramaConvention panorama_convention = PanoramaConvention::Skyspec;
 };
 
 /// The ground albedo a panorama that sees below the horizon (equirectangular, min_elevation_deg <
@@ -129,6 +117,10 @@ std::vector<std::string> preset_names();
 /// its atmosphere's coefficients (skyspec coefficients: the refractive index's range).
 enum class SceneUse { Render, Atmosphere };
 
+/// The neutral id of a scene file's path, as InputErrors about the file itself name it (the CLI
+/// spells it --scene, Python scene_file).
+inline constexpr const char* kSceneFileSetting = "scene_file";
+
 /// Builds a Scene from a preset, scene files and overrides, validating as it goes.
 class SceneLoader {
  public:
@@ -142,7 +134,7 @@ class SceneLoader {
   /// applied afterwards override them. A scene of single scattering (render.scattering_orders =
   /// 1, as the seed preset) stays one: the level sets how many orders multiple scattering takes,
   /// not whether there is any. InputError naming `origin` for an unknown name.
-  void apply_quality(const std::string& name, const std::string& origin = "--quality");
+  void apply_quality(const std::string& name, const std::string& origin = "render.quality");
   /// Applies one key = value given as TOML value text, e.g. ("camera.width", "1024"); origin is
   /// the flag that supplied it, e.g. "--width".
   void apply_override(const std::string& key, const std::string& toml_value, const std::string& origin);

@@ -2,15 +2,18 @@
 // coefficient report derives, reports, errors and the version. Everything else is internal (src/).
 #pragma once
 
+#include "skyspec/aerial_perspective.hpp"
 #include "skyspec/atmosphere.hpp"
 #include "skyspec/camera.hpp"
+#include "skyspec/camera_spec.hpp"
 #include "skyspec/coefficient_report.hpp"
 #include "skyspec/colour.hpp"
 #include "skyspec/density_profile.hpp"
+#include "skyspec/display.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/geometry.hpp"
 #include "skyspec/king_factor.hpp"
-#include "skyspec/monte_carlo.hpp"
+#include "skyspec/monte_carlo_reference.hpp"
 #include "skyspec/phase_function.hpp"
 #include "skyspec/rayleigh.hpp"
 #include "skyspec/refractive_index.hpp"
@@ -20,4 +23,5 @@
 #include "skyspec/spectrum.hpp"
 #include "skyspec/standard_atmosphere.hpp"
 #include "skyspec/units.hpp"
+#include "skyspec/vec3.hpp"
 #include "skyspec/version.hpp"

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "interrupt.hpp"
+#include "setting_spellings.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/version.hpp"
 
@@ -59,7 +60,7 @@ int run_cli(int argc, const char* const* argv, CliMode mode, std::ostream& out, 
     err << "skyspec: " << e.what() << "\n";
     return e.exit_code();
   } catch (const skyspec::InputError& e) {
-    err << "skyspec: error: " << e.what() << "\n";
+    err << "skyspec: error: " << in_cli_words(e).what() << "\n";
     return kExitBadInput;
   } catch (const skyspec::IoError& e) {
     err << "skyspec: error: " << e.what() << "\n";

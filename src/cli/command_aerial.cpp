@@ -18,8 +18,9 @@
 #include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
 #include "io/exr_channels.hpp"
-#include "io/provenance.hpp"
+#include "render/scene_provenance.hpp"
 #include "physics/unmodelled_absorption.hpp"
+#include "skyspec/aerial_perspective.hpp"
 #include "skyspec/render.hpp"
 #include "render/render_budget.hpp"
 #include "io/spectral_exr.hpp"
@@ -115,111 +116,12 @@ RenderPlan check_budget(const Scene& scene, const AerialInputs& in, bool force) 
 }
 
 // Distances along each ray: the constant --distance, or the depth pass (a z depth divided by the
-// cosine between the ray and the view axis).
+// cosine between the ray and the view axis: ray_distances_from_z).
 std::vector<float> ray_distances(const AerialOptions& o, const AerialInputs& in, const Scene& scene) {
-  std::vector<float> dist(static_cast<size_t>(in.width) * in.height, static_cast<float>(o.distance_m.value_or(0.0)));
-  if (!in.depth) return dist;
-  const auto& z = in.depth->channels.at(o.depth_channel);
-  const auto camera = make_camera(scene);
-  Vec3 forward;
-  camera->direction(0.5 * in.width, 0.5 * in.height, forward);
-  for (int y = 0; y < in.height; ++y)
-    for (int x = 0; x < in.width; ++x) {
-      const size_t i = static_cast<size_t>(y) * in.width + x;
-      float d = z[i];
-      if (std::isnan(d) || d < 0.0f)
-        throw InputError("--depth", "pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") = " + std::to_string(d),
-                         "distances >= 0 (infinity for the sky)");
-      if (o.depth_is == "z" && std::isfinite(d)) {
-        Vec3 dir;
-        camera->direction(x + 0.5, y + 0.5, dir);
-        d = static_cast<float>(d / std::max(1e-6, dir.dot(forward)));
-      }
-      dist[i] = d;
-    }
-  return dist;
-}
-
-// Transmittance and inscatter per pixel and wavelength, and their RGB versions: inscatter through
-// the colour-matching functions; transmittance as the ratio of the sun's light after and before
-// the path, per Rec.709 channel (what multiplies an RGB image lit by the sun).
-struct AerialSpectra {
-  std::vector<float> trans, light, trans_rgb, light_rgb;
-};
-AerialSpectra aerial_spectra(const SkyRenderer& r, const std::vector<float>& dist, int width, int height, bool quiet) {
-  const int n = r.grid().size();
-  AerialSpectra s;
-  s.trans.resize(static_cast<size_t>(width) * height * n);
-  s.light.resize(s.trans.size());
-  ProgressBar bar("aerial perspective", quiet);
-  const int band = 16;
-  for (int y = 0; y < height; y += band) {
-    const int rows = std::min(band, height - y);
-    const size_t off = static_cast<size_t>(y) * width;
-    r.aerial_rows(y, rows, dist.data() + off, s.trans.data() + off * n, s.light.data() + off * n);
-    bar.update(y + rows, height);
-  }
-  bar.finish();
-  s.trans_rgb.resize(static_cast<size_t>(width) * height * 3);
-  s.light_rgb.resize(s.trans_rgb.size());
-  const Rgb sun_rgb = r.spectrum_to_rgb(r.sun_irradiance());
-  for (size_t i = 0; i < dist.size(); ++i) {
-    const Eigen::Map<const Spectrum> inscatter(s.light.data() + i * n, n), transmittance(s.trans.data() + i * n, n);
-    Eigen::Map<Rgb>(s.light_rgb.data() + i * 3) = r.spectrum_to_rgb(inscatter);
-    const Rgb t_rgb = r.spectrum_to_rgb(transmittance * r.sun_irradiance());
-    for (int c = 0; c < 3; ++c) s.trans_rgb[i * 3 + c] = sun_rgb[c] > 0 ? t_rgb[c] / sun_rgb[c] : 0.0f;
-  }
-  return s;
-}
-
-// Writes <name>_transmittance.exr, <name>_inscatter.exr and, with an image, <name>_composite.exr
-// (image x transmittance + inscatter; spectral when the image is).
-void write_outputs(const Scene& scene, const SkyRenderer& r, const AerialInputs& in, const AerialSpectra& s,
-                   bool quiet) {
-  const int width = in.width, height = in.height, n = r.grid().size();
-  ensure_writable_directory(scene.output.directory, "output.directory");
-  const std::filesystem::path dir(scene.output.directory);
-  SpectralExrMetadata meta;
-  meta.strings = provenance_attributes(scene, false);  // version, scene, data tables
-  meta.strings["skyspec:notModelled"] = unmodelled_absorption_note(r.grid());
-  meta.latlong_envmap = is_latlong_envmap(scene.camera);  // the depth of a whole-sphere panorama
-  auto write_spectral = [&](const std::string& suffix, const std::vector<float>& spectral,
-                            const std::vector<float>& rgb, const std::string& what) {
-    SpectralExrMetadata m = meta;
-    m.strings["skyspec:content"] = what;
-    SpectralExrWriter w(dir / (scene.output.name + suffix), width, height, r.grid().nanometres(), m);
-    w.write_rows(height, spectral.data(), rgb.data());
-    w.finish();
-    if (!quiet) std::cout << "wrote " << (dir / (scene.output.name + suffix)).string() << "\n";
-  };
-  write_spectral("_transmittance.exr", s.trans, s.trans_rgb,
-                 "aerial perspective: transmittance camera -> surface (S0 channels: unitless, per wavelength; R,G,B: "
-                 "ratio of sunlight after/before the path per Rec.709 channel)");
-  write_spectral("_inscatter.exr", s.light, s.light_rgb,
-                 "aerial perspective: light scattered into the path (S0: W m^-2 sr^-1 nm^-1; R,G,B: linear Rec.709, "
-                 "Y in cd m^-2)");
-  if (in.spectral_image) {
-    std::vector<float> comp(s.trans.size()), comp_rgb(s.trans_rgb.size());
-    for (size_t i = 0; i < comp.size(); ++i) comp[i] = in.spectral.spectral[i] * s.trans[i] + s.light[i];
-    for (size_t i = 0; i < comp_rgb.size() / 3; ++i)
-      Eigen::Map<Rgb>(comp_rgb.data() + i * 3) = r.spectrum_to_rgb(Eigen::Map<const Spectrum>(comp.data() + i * n, n));
-    write_spectral("_composite.exr", comp, comp_rgb, "aerial perspective: image x transmittance + inscatter");
-  } else if (in.image) {
-    std::vector<float> ch[3];
-    const char* names[3] = {"R", "G", "B"};
-    for (int c = 0; c < 3; ++c) {
-      const auto& src = in.image->channels.at(names[c]);
-      ch[c].resize(src.size());
-      for (size_t i = 0; i < src.size(); ++i) ch[c][i] = src[i] * s.trans_rgb[i * 3 + c] + s.light_rgb[i * 3 + c];
-    }
-    const auto path = dir / (scene.output.name + "_composite.exr");
-    write_exr_channels(path, width, height, {{"R", &ch[0]}, {"G", &ch[1]}, {"B", &ch[2]}},
-                       {{"skyspec:content", "aerial perspective: image x transmittance + inscatter (linear Rec.709)"},
-                        {kVersionAttribute, meta.strings[kVersionAttribute]},
-                        {kSceneAttribute, meta.strings[kSceneAttribute]},
-                        {kDataAttribute, meta.strings[kDataAttribute]}});
-    if (!quiet) std::cout << "wrote " << path.string() << "\n";
-  }
+  if (!in.depth) return std::vector<float>(static_cast<size_t>(in.width) * in.height, static_cast<float>(*o.distance_m));
+  const auto& depth = in.depth->channels.at(o.depth_channel);
+  if (o.depth_is == "z") return ray_distances_from_z(scene, depth, "--depth");
+  return depth;
 }
 
 int run(AerialOptions& o) {
@@ -229,12 +131,6 @@ int run(AerialOptions& o) {
     l.apply_override("camera.width", std::to_string(in.width), "the input's size");
     l.apply_override("camera.height", std::to_string(in.height), "the input's size");
   });
-  if (scene.render.path != RenderSpec::Path::Spectral)
-    throw InputError("render.path", "\"rgb-fast\"", "\"spectral\" for aerial perspective");
-  if (scene.output.polarisation)
-    throw InputError("output.polarisation", "true",
-                     "false for aerial perspective (its transmittance and inscatter are not polarised; render the sky "
-                     "with skyspec render)");
   const RenderPlan plan = check_budget(scene, in, o.force);
   std::vector<NamedInput> inputs = scene_input_files(o.scene);
   inputs.push_back({"--image", o.image});
@@ -243,18 +139,34 @@ int run(AerialOptions& o) {
     refuse_output_replacing_input(std::filesystem::path(scene.output.directory) / (scene.output.name + suffix),
                                   "--out / --name", inputs);
   const OutputLock lock(scene.output.directory, scene.output.name, "--out / --name");  // one writer per name
-  const SkyRenderer r(scene);
-  if (!o.force) {  // the time, once the renderer is built
-    RenderEstimate estimate = estimate_render(plan);
-    estimate.seconds = measure_render_seconds(r, plan);
-    refuse_if_over_budget(estimate);
-  }
-  if (in.spectral_image && in.spectral.wavelengths_nm != r.grid().nanometres())
+  if (in.spectral_image && in.spectral.wavelengths_nm != make_wavelength_grid(scene).nanometres())
     throw InputError("--image", "its " + std::to_string(in.spectral.wavelengths_nm.size()) + " wavelengths",
-                     "the scene's wavelength grid (" + r.grid().describe() + "); set --lambda-* to match");
+                     "the scene's wavelength grid (" + make_wavelength_grid(scene).describe() + "); set --lambda-* to match");
   const std::vector<float> dist = ray_distances(o, in, scene);
-  const AerialSpectra spectra = aerial_spectra(r, dist, in.width, in.height, o.quiet);
-  write_outputs(scene, r, in, spectra, o.quiet);
+  ProgressBar bar("aerial perspective", o.quiet);
+  const AerialPerspectiveImage ap = aerial_perspective(
+      scene, dist, [&bar](int done, int total) { bar.update(done, total); },
+      [&](const SkyRenderer& r) {
+        if (o.force) return;  // the time, once the renderer is built
+        RenderEstimate estimate = estimate_render(plan);
+        estimate.seconds = measure_render_seconds(r, plan);
+        refuse_if_over_budget(estimate);
+      },
+      "--depth");
+  bar.finish();
+  std::vector<std::filesystem::path> written = write_aerial_perspective(ap);
+  if (in.spectral_image) written.push_back(write_aerial_composite(ap, in.spectral.spectral, true));
+  else if (in.image) {
+    std::vector<float> rgb(static_cast<size_t>(in.width) * in.height * 3);
+    const char* names[3] = {"R", "G", "B"};
+    for (int c = 0; c < 3; ++c) {
+      const auto& src = in.image->channels.at(names[c]);
+      for (size_t i = 0; i < src.size(); ++i) rgb[i * 3 + c] = src[i];
+    }
+    written.push_back(write_aerial_composite(ap, rgb, false));
+  }
+  if (!o.quiet)
+    for (const auto& path : written) std::cout << "wrote " << path.string() << "\n";
   return kExitOk;
 }
 

@@ -112,9 +112,7 @@ std::string command_line(const CompareOptions& o) {
 
 std::string scene_summary(const Scene& s, const std::string& origin) {
   char text[256];
-  const char* camera = s.camera.type == CameraSpec::Type::Fisheye       ? "fisheye"
-                       : s.camera.type == CameraSpec::Type::Perspective ? "perspective"
-                                                                        : "equirectangular";
+  const char* camera = camera_type_name(s.camera.type);
   std::snprintf(text, sizeof text, "%s, %s %d x %d, sun elevation %.4g deg, azimuth %.4g deg, %d scattering order%s",
                 origin.c_str(), camera, s.camera.width, s.camera.height, s.sun.elevation_deg, s.sun.azimuth_deg,
                 s.render.scattering_orders, s.render.scattering_orders == 1 ? "" : "s");

@@ -8,7 +8,7 @@
 
 #include "commands.hpp"
 #include "display_options.hpp"
-#include "colour/display_conversion.hpp"
+#include "render/display_conversion.hpp"
 #include "skyspec/error.hpp"
 
 namespace skyspec::cli {

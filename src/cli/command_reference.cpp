@@ -22,7 +22,7 @@
 #include "render/irradiance.hpp"
 #include "skyspec/camera.hpp"
 #include "skyspec/error.hpp"
-#include "skyspec/monte_carlo.hpp"
+#include "skyspec/monte_carlo_reference.hpp"
 #include "skyspec/render.hpp"
 #include "skyspec/units.hpp"
 #include "skyspec/version.hpp"

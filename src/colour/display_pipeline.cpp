@@ -205,10 +205,10 @@ DisplayPipeline::DisplayPipeline(const DisplaySettings& s) : impl_(std::make_uni
 
   p.display = s.display.empty() ? c.default_display() : match_name(c.displays(), s.display);
   if (p.display.empty())
-    throw InputError("--display", "\"" + s.display + "\"", "one of the displays" + in_config + ": " + quoted_list(c.displays()));
+    throw InputError(display_setting::kDisplay, "\"" + s.display + "\"", "one of the displays" + in_config + ": " + quoted_list(c.displays()));
   p.view = s.view.empty() ? c.default_view(p.display) : match_name(c.views(p.display), s.view);
   if (p.view.empty())
-    throw InputError("--view", "\"" + s.view + "\"",
+    throw InputError(display_setting::kView, "\"" + s.view + "\"",
                      "one of the views of display \"" + p.display + "\": " + quoted_list(c.views(p.display)));
   if (!s.look.empty()) {
     p.look = match_name(c.looks(), s.look);
@@ -218,19 +218,20 @@ DisplayPipeline::DisplayPipeline(const DisplaySettings& s) : impl_(std::make_uni
       p.look = to_string(*op);
       p.tone = op;
     } else {
-      throw InputError("--look", "\"" + s.look + "\"",
+      throw InputError(display_setting::kLook, "\"" + s.look + "\"",
                        "an OCIO look" + in_config + " (" + quoted_list(c.looks()) + ") or a skyspec look (" +
                            quoted_list(tone_operator_names()) + ")");
     }
   }
   if (s.look_white && !(p.tone == ToneOperator::ReinhardExtended || p.tone == ToneOperator::ReinhardLuminance))
-    throw InputError("--look-white", std::to_string(*s.look_white), "only with --look reinhard-extended or reinhard-luminance");
+    throw InputError(display_setting::kLookWhite, std::to_string(*s.look_white),
+                     std::string("only with ") + display_setting::kLook + " reinhard-extended or reinhard-luminance");
   if (s.png_bit_depth != 8 && s.png_bit_depth != 16)
-    throw InputError("--png-bits", std::to_string(s.png_bit_depth), "8 or 16");
+    throw InputError(display_setting::kPngBits, std::to_string(s.png_bit_depth), "8 or 16");
   if (!s.exr_space.empty()) {
     const WorkingSpace& ws = find_working_space(s.exr_space);
     if (!c.impl().config->getColorSpace(ws.name.c_str()))
-      throw InputError("--exr-space", "\"" + s.exr_space + "\"",
+      throw InputError(display_setting::kExrSpace, "\"" + s.exr_space + "\"",
                        "a working space that " + c.describe() + " defines; it has " + quoted_list(c.colour_spaces()));
   }
 
@@ -251,7 +252,8 @@ DisplayPipeline::DisplayPipeline(const DisplaySettings& s) : impl_(std::make_uni
   try {
     p.processor = cpu_processor(ci.config, group);
   } catch (const OCIO::Exception& e) {
-    throw InputError("--display / --view / --look", "\"" + p.display + "\" / \"" + p.view + "\" / \"" + p.look + "\"",
+    throw InputError(std::string(display_setting::kDisplay) + " / " + display_setting::kView + " / " + display_setting::kLook,
+                     "\"" + p.display + "\" / \"" + p.view + "\" / \"" + p.look + "\"",
                      "a combination that " + c.describe() + " can build (OpenColorIO says: " + e.what() + ")");
   }
 }
@@ -324,7 +326,7 @@ std::vector<float> to_working_space(const OcioConfig& config, const std::vector<
                                     const WorkingSpace& space) {
   const auto& ci = config.impl();
   if (!ci.config->getColorSpace(space.name.c_str()))
-    throw InputError("--exr-space", "\"" + space.name + "\"",
+    throw InputError(display_setting::kExrSpace, "\"" + space.name + "\"",
                      "a working space that " + config.describe() + " defines; it has " + quoted_list(config.colour_spaces()));
   auto group = input_transform(ci);
   auto convert = OCIO::ColorSpaceTransform::Create();

@@ -20,16 +20,11 @@
 #include <vector>
 
 #include "skyspec/colour.hpp"
+#include "skyspec/display.hpp"
 #include "colour/exposure.hpp"
-#include "io/png_image.hpp"
+#include "colour/png_colour_tag.hpp"
 
 namespace skyspec {
-
-/// Where the OpenColorIO config comes from.
-struct OcioConfigSource {
-  std::string path;    ///< empty: skyspec's built-in config
-  std::string origin;  ///< what named the path, for messages, e.g. "--ocio" or "$OCIO"
-};
 
 /// A loaded OpenColorIO config and the names a user can pick from it.
 class OcioConfig {
@@ -56,22 +51,10 @@ class OcioConfig {
   std::shared_ptr<const Impl> impl_;
 };
 
-/// Everything a user picks for a displayed image.
-struct DisplaySettings {
-  OcioConfigSource config;
-  std::string display;  ///< empty: the config's default display (sRGB in skyspec's config)
-  std::string view;     ///< empty: the display's default view (Un-tone-mapped in skyspec's config)
-  std::string look;     ///< empty: none; an OCIO look of the config, else a skyspec look
-  std::optional<double> look_white;  ///< reinhard-extended / -luminance white (after exposure)
-  ExposureSettings exposure;
-  int png_bit_depth = 8;
-  std::string exr_space;  ///< non-empty: also write a scene-linear RGB EXR in this working space
-};
-
 class DisplayPipeline {
  public:
-  /// Loads the config and checks every name; InputError("--display" / "--view" / "--look" /
-  /// "--png-bits" / "--exr-space", ...) lists what is allowed.
+  /// Loads the config and checks every name; an InputError naming the setting (display.display,
+  /// display.view, display.look, display.png_bit_depth, display.exr_space, ...) lists what is allowed.
   explicit DisplayPipeline(const DisplaySettings& settings);
   ~DisplayPipeline();
   DisplayPipeline(DisplayPipeline&&) noexcept;
@@ -107,7 +90,7 @@ struct WorkingSpace {
 /// 2065-1) and Linear Rec.709 (ITU-R BT.709 primaries, D65).
 const std::vector<WorkingSpace>& working_spaces();
 /// Throws InputError(setting, name, the list) for an unknown name (case-insensitive match).
-const WorkingSpace& find_working_space(const std::string& name, const std::string& setting = "--exr-space");
+const WorkingSpace& find_working_space(const std::string& name, const std::string& setting = display_setting::kExrSpace);
 /// The skyspec:units text of an RGB EXR in `space`: what its R, G, B are (scene-linear in that
 /// space; luminance in cd/m^2 on the spectral path, the sun's units on the RGB-fast path).
 std::string working_space_units(const WorkingSpace& space, bool rgb_fast);

@@ -24,9 +24,9 @@ std::string printf_string(const char* format, double a, double b = 0, double c =
 }  // namespace
 
 double camera_ev100(double f_number, double shutter_s, double iso) {
-  require_positive(f_number, "--f-number", "a positive f-number, e.g. 8");
-  require_positive(shutter_s, "--shutter", "a positive time in seconds, e.g. 1/250 or 0.004");
-  require_positive(iso, "--iso", "a positive ISO speed, e.g. 100");
+  require_positive(f_number, display_setting::kFNumber, "a positive f-number, e.g. 8");
+  require_positive(shutter_s, display_setting::kShutter, "a positive time in seconds, e.g. 1/250 or 0.004");
+  require_positive(iso, display_setting::kIso, "a positive ISO speed, e.g. 100");
   return std::log2(f_number * f_number / shutter_s * 100.0 / iso);
 }
 
@@ -82,7 +82,7 @@ ResolvedExposure resolve_exposure(const ExposureSettings& s, double metered_scal
   switch (s.mode) {
     case ExposureSettings::Mode::Manual:
       if (!std::isfinite(s.ev) || std::abs(s.ev) > 200.0)
-        throw InputError("--exposure", format_number(s.ev), "an exposure in EV from -200 to 200");
+        throw InputError(display_setting::kExposureEv, format_number(s.ev), "an exposure in EV from -200 to 200");
       r.scale = std::exp2(s.ev);
       r.description = printf_string("manual: scale = 2^EV = %.6g (EV %.4g)", r.scale, s.ev);
       break;

@@ -22,16 +22,9 @@
 #include <utility>
 #include <vector>
 
-namespace skyspec {
+#include "skyspec/display.hpp"
 
-struct ExposureSettings {
-  enum class Mode { Automatic, Manual, Camera };
-  Mode mode = Mode::Automatic;
-  double ev = 0.0;         ///< Manual
-  double f_number = 8.0;   ///< Camera: N
-  double shutter_s = 0.01; ///< Camera: t, seconds
-  double iso = 100.0;      ///< Camera: S
-};
+namespace skyspec {
 
 /// The chosen exposure: its scale, log2(scale), and one sentence saying how it was chosen.
 struct ResolvedExposure {
@@ -44,7 +37,7 @@ struct ResolvedExposure {
 constexpr double kAutoExposureKey = 0.18;
 constexpr int kMeteringGridMax = 64;
 
-/// EV100 = log2(N^2 / t * 100 / S). Throws InputError("--f-number" / "--shutter" / "--iso", ...)
+/// EV100 = log2(N^2 / t * 100 / S). Throws InputError(display.exposure.f_number / shutter_s / iso, ...)
 /// for a non-positive or non-finite value.
 double camera_ev100(double f_number, double shutter_s, double iso);
 /// 1 / (1.2 * 2^EV100): the scale that maps the saturating luminance to 1.

@@ -60,7 +60,7 @@ double apply_tone_operator(ToneOperator op, std::vector<float>& rgb, std::option
   if (op == ToneOperator::ReinhardExtended || op == ToneOperator::ReinhardLuminance) {
     if (white) {
       if (!std::isfinite(*white) || *white <= 0.0)
-        throw InputError("--look-white", std::to_string(*white), "a positive scene-linear value");
+        throw InputError(display_setting::kLookWhite, std::to_string(*white), "a positive scene-linear value");
       w = *white;
     } else {
       w = 1.0;

@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "colour/png_colour_tag.hpp"
+
 namespace skyspec {
 
 /// Writes an 8-bit sRGB PNG from linear Rec.709 values rgb ([y][x][c], width*height*3 floats),
@@ -14,14 +16,6 @@ namespace skyspec {
 /// [0, 1]. Non-finite values are rejected with IoError. Atomic (temporary file + rename).
 void write_png_srgb8(const std::filesystem::path& path, int width, int height,
                      const std::vector<float>& linear_rgb, double scale);
-
-/// How the code values of a display-encoded PNG are to be read: which chunks say so.
-///   Srgb: the sRGB chunk with its recommended gAMA and cHRM (PNG specification 11.3.3.5);
-///   DisplayP3, Rec709, Rec2100Pq: a cICP chunk (PNG 3rd edition; ITU-T H.273 code points
-///     12/13/0/1, 1/1/0/1 and 9/16/0/1), plus cHRM and gAMA for decoders without cICP
-///     (gAMA 1/2.2 for Display P3's sRGB curve, 1/2.4 for Rec.1886; none for PQ);
-///   None: no colour chunk (the encoding is not known, e.g. a display of a user's OCIO config).
-enum class PngColourTag { None, Srgb, DisplayP3, Rec709, Rec2100Pq };
 
 /// Writes display code values ([y][x][c], width*height*3 floats, already encoded for the
 /// display; clamped to [0, 1]) as an RGB PNG of bit_depth 8 or 16, tagged as `tag`, with tEXt

@@ -18,8 +18,6 @@
 
 namespace skyspec {
 
-struct Scene;
-
 inline constexpr const char* kVersionAttribute = "skyspec:version";
 inline constexpr const char* kSceneAttribute = "skyspec:scene";
 /// The exposure's scale factor (linear RGB x scale = what the preview encodes): a double
@@ -30,17 +28,10 @@ inline constexpr const char* kDataAttribute = "skyspec:data";
 /// attribute; files before it was one hold it as text ("r g b").
 inline constexpr const char* kSunRgbAttribute = "skyspec:sunRGB";
 
-/// The embedded tables (paths below data/) a render of the scene reads: the CIE 1931 observer
-/// (spectral path), the ASTM G173 sun (sun.spectrum = "solar"), the ozone cross-sections (ozone
-/// on), the solar position tables (sun.date_time set) and, when builtin_display_config, skyspec's
-/// OpenColorIO config (a PNG or a working-space EXR through the built-in config).
-std::vector<std::string> data_tables_used(const Scene& scene, bool builtin_display_config);
-
-/// The skyspec:data text: EmbeddedTableInfo::describe() of each table, one per line.
-std::string data_tables_text(const Scene& scene, bool builtin_display_config);
-
-/// skyspec:version, skyspec:scene and skyspec:data for a render of the scene.
-std::map<std::string, std::string> provenance_attributes(const Scene& scene, bool builtin_display_config);
+/// The skyspec:data text of a render that read these embedded tables (paths below data/):
+/// EmbeddedTableInfo::describe() of each, one per line. Which tables a scene reads is the render
+/// layer's knowledge (render/scene_provenance.hpp).
+std::string data_tables_text(const std::vector<std::string>& paths);
 
 /// The provenance attributes of a file (empty strings where absent).
 struct FileProvenance {

@@ -117,8 +117,7 @@ json run_task(const JobPlan& plan, const JobTask& task, int threads) {
             if (plan.job.irradiance) irradiance = irradiance_at_camera(r);
           },
           task.tile);
-      for (const auto& p : {out.exr, out.png})
-        if (!p.empty()) written.push_back(p);
+      written = out.files();  // every output of the task, polarisation files included
       record["exposure_ev"] = out.preview_ev;
     } else {
       Scene one = scene;  // only the camera position matters

@@ -9,11 +9,6 @@
 
 namespace skyspec {
 
-Vec3 direction_from_angles(double azimuth_deg, double elevation_deg) {
-  const double az = degrees_to_radians(azimuth_deg), el = degrees_to_radians(elevation_deg);
-  return Vec3(std::cos(el) * std::sin(az), std::cos(el) * std::cos(az), std::sin(el));
-}
-
 bool FisheyeCamera::direction(double x, double y, Vec3& dir) const {
   const double u = 2.0 * x / width_ - 1.0, v = 2.0 * y / height_ - 1.0;
   const double z2 = u * u + v * v;
@@ -72,15 +67,6 @@ std::string PerspectiveCamera::describe() const {
   std::ostringstream s;
   s << "perspective, vertical field of view " << fov_deg_ << " deg, " << width_ << "x" << height_;
   return s.str();
-}
-
-const char* panorama_convention_name(PanoramaConvention c) {
-  switch (c) {
-    case PanoramaConvention::Blender: return "blender";
-    case PanoramaConvention::OpenExr: return "openexr";
-    case PanoramaConvention::Skyspec: break;
-  }
-  return "skyspec";
 }
 
 EquirectangularCamera::EquirectangularCamera(int width, int height, Vec3 origin_m, double min_elevation_deg,

@@ -1,7 +1,7 @@
 // A scene's Monte Carlo reference: the scene's atmosphere, sun and camera position handed to the
 // transport layer's path tracer, one estimate per probe and wavelength.
 
-#include "skyspec/monte_carlo.hpp"
+#include "skyspec/monte_carlo_reference.hpp"
 
 #include <chrono>
 #include <cmath>

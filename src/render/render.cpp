@@ -30,26 +30,6 @@
 
 namespace skyspec {
 
-std::unique_ptr<Camera> make_camera(const Scene& scene) {
-  const double R = scene.atmosphere.planet_radius_m;
-  auto world = [R](const Vec3& p) { return Vec3(p.x(), p.y(), R + p.z()); };
-  const auto& c = scene.camera;
-  switch (c.type) {
-    case CameraSpec::Type::Fisheye:
-      return std::make_unique<FisheyeCamera>(c.width, c.height, world(c.position_m));
-    case CameraSpec::Type::Perspective:
-      return std::make_unique<PerspectiveCamera>(c.width, c.height, world(c.position_m), world(c.look_at_m), c.fov_deg);
-    case CameraSpec::Type::Equirectangular:
-      return std::make_unique<EquirectangularCamera>(c.width, c.height, world(c.position_m), c.min_elevation_deg,
-                                                     c.panorama_convention);
-  }
-  return nullptr;
-}
-
-bool is_latlong_envmap(const CameraSpec& camera) {
-  return camera.type == CameraSpec::Type::Equirectangular && camera.min_elevation_deg == -90.0;
-}
-
 namespace {
 // render.threads, or all cores for 0.
 int thread_count(const Scene& s) {
@@ -216,7 +196,6 @@ const Spectrum& SkyRenderer::sun_irradiance() const { return impl_->sun_irradian
 const Vec3& SkyRenderer::sun_direction() const { return impl_->sun_dir; }
 const Vec3& SkyRenderer::camera_origin_m() const { return impl_->camera->origin_m(); }
 double SkyRenderer::sun_angular_radius_rad() const { return impl_->sun_radius_rad; }
-const ScatteringOrders* SkyRenderer::scattering_orders() const { return impl_->orders.get(); }
 double SkyRenderer::sky_view_table_seconds() const { return impl_->sky_view_seconds; }
 
 Spectrum SkyRenderer::transmittance(const Vec3& dir) const {

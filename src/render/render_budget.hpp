@@ -105,13 +105,15 @@ double estimate_scattering_orders_seconds(const Scene& scene);
 /// (its build time scaled by the ratio of the table sizes).
 double estimate_table_seconds(const Scene& scene, const SkyRenderer& estimate_renderer);
 
+/// The neutral id of the setting that renders anyway (the CLI's --force).
+inline constexpr const char* kForceSetting = "budget.force";
 /// Throws InputError::refused naming every limit exceeded, the estimate and `force_flag`.
-void refuse_if_over_budget(const RenderEstimate& estimate, const std::string& force_flag = "--force");
+void refuse_if_over_budget(const RenderEstimate& estimate, const std::string& force_flag = kForceSetting);
 
 /// Before a renderer is built: refuse_if_over_budget with the estimate of the scene's
 /// scattering-order tables added (estimate_scattering_orders_seconds), so that tables that would
 /// take more than a day are refused before they start.
-void refuse_if_tables_over_budget(const Scene& scene, RenderEstimate estimate, const std::string& force_flag = "--force");
+void refuse_if_tables_over_budget(const Scene& scene, RenderEstimate estimate, const std::string& force_flag = kForceSetting);
 
 /// MemAvailable of /proc/meminfo, if readable.
 std::optional<std::uint64_t> available_memory_bytes();

@@ -23,7 +23,7 @@
 #include "colour/exposure.hpp"
 #include "colour/polarisation_colour.hpp"
 #include "io/png_image.hpp"
-#include "io/provenance.hpp"
+#include "render/scene_provenance.hpp"
 #include "io/rgb_exr.hpp"
 #include "io/spectral_exr.hpp"
 #include "skyspec/error.hpp"
@@ -240,6 +240,74 @@ void write_polarisation_png(const std::filesystem::path& path, const Scene& scen
   write_png_display(path, scene.camera.width, scene.camera.height, code, 8, PngColourTag::Srgb, text);
 }
 
+// What a rendered image hands to the files written after it (every output but the streamed
+// spectral EXR).
+struct FinishedImage {
+  const Scene& scene;
+  const DisplaySettings& display;
+  const DisplayPipeline* pipeline;  ///< set when an output that needs one is asked for
+  const std::vector<float>& rgb;       ///< [y][x][c] linear Rec.709, when a pipeline is set
+  const std::vector<float>& stokes_y;  ///< [y][x][S0, S1, S2] luminance-weighted, when polarised
+  const ChosenExposure& exposure;
+  const std::map<std::string, std::string>& provenance;
+};
+
+// The outputs of a render, one row each: the one list that render_output_paths, render_scene_to_files
+// (what to write, in which order, what to remove when another fails) and RenderOutputs::files (the
+// job records) read. A new output is one row here (and its field in RenderOutputs, render.hpp).
+struct FileOutput {
+  const char* id;
+  /// Asked for by the scene and the display settings (`tile`: a tile of the image is rendered).
+  bool (*wanted)(const Scene& scene, const DisplaySettings& display, bool tile);
+  /// Its file name in output.directory.
+  std::string (*file_name)(const Scene& scene, const DisplaySettings& display);
+  std::filesystem::path RenderOutputs::*field;
+  bool needs_pipeline;         ///< encodes the image's RGB through the display pipeline
+  bool needs_stokes_luminance; ///< reads the luminance-weighted Stokes vectors
+  /// Writes the file (atomically); null for the spectral EXR, streamed while the image renders.
+  void (*write)(const FinishedImage& image, const std::filesystem::path& path);
+};
+
+const std::vector<FileOutput>& file_outputs() {
+  static const std::vector<FileOutput> outputs = {
+      {"spectral_exr", [](const Scene& s, const DisplaySettings&, bool) { return s.output.exr; },
+       [](const Scene& s, const DisplaySettings&) { return s.output.name + ".exr"; }, &RenderOutputs::exr, false,
+       false, nullptr},
+      {"png", [](const Scene& s, const DisplaySettings&, bool) { return s.output.png; },
+       [](const Scene& s, const DisplaySettings&) { return s.output.name + ".png"; }, &RenderOutputs::png, true, false,
+       [](const FinishedImage& i, const std::filesystem::path& path) {
+         write_preview_png(path, i.scene.camera.width, i.scene.camera.height, *i.pipeline, i.display, i.rgb,
+                           i.exposure.resolved, i.provenance);
+       }},
+      {"working_exr", [](const Scene&, const DisplaySettings& d, bool) { return !d.exr_space.empty(); },
+       [](const Scene& s, const DisplaySettings& d) {
+         return s.output.name + "-" + find_working_space(d.exr_space).file_suffix + ".exr";
+       },
+       &RenderOutputs::working_exr, true, false,
+       [](const FinishedImage& i, const std::filesystem::path& path) {
+         write_working_space_exr(path, i.scene, *i.pipeline, find_working_space(i.display.exr_space), i.rgb,
+                                 i.exposure.settings, i.exposure.resolved.scale, i.provenance);
+       }},
+      {"polarisation_exr",
+       [](const Scene& s, const DisplaySettings&, bool tile) { return s.output.polarisation && s.output.exr && !tile; },
+       [](const Scene& s, const DisplaySettings&) { return s.output.name + "-polarisation.exr"; },
+       &RenderOutputs::polarisation_exr, false, true,
+       [](const FinishedImage& i, const std::filesystem::path& path) {
+         write_polarisation_exr(path, i.scene, i.stokes_y, i.provenance);
+       }},
+      {"polarisation_png",
+       [](const Scene& s, const DisplaySettings&, bool) {
+         return s.output.polarisation && s.output.polarisation_png && s.output.png;
+       },
+       [](const Scene& s, const DisplaySettings&) { return s.output.name + "-polarisation.png"; },
+       &RenderOutputs::polarisation_png, false, true,
+       [](const FinishedImage& i, const std::filesystem::path& path) {
+         write_polarisation_png(path, i.scene, i.stokes_y, i.provenance);
+       }},
+  };
+  return outputs;
+}
+
 }  // namespace
 
 SpectralImageBuffer render_to_memory(const Scene& scene, const ProgressFn& progress) {
@@ -361,14 +429,16 @@ double write_display_png(const SpectralImageBuffer& image, const std::filesystem
 RenderOutputs render_output_paths(const Scene& scene, const DisplaySettings& display) {
   RenderOutputs out;
   const std::filesystem::path dir(scene.output.directory);
-  if (scene.output.exr) out.exr = dir / (scene.output.name + ".exr");
-  if (scene.output.png) out.png = dir / (scene.output.name + ".png");
-  if (!display.exr_space.empty())
-    out.working_exr = dir / (scene.output.name + "-" + find_working_space(display.exr_space).file_suffix + ".exr");
-  if (scene.output.polarisation && scene.output.exr) out.polarisation_exr = dir / (scene.output.name + "-polarisation.exr");
-  if (scene.output.polarisation && scene.output.polarisation_png && scene.output.png)
-    out.polarisation_png = dir / (scene.output.name + "-polarisation.png");
+  for (const FileOutput& o : file_outputs())
+    if (o.wanted(scene, display, false)) out.*o.field = dir / o.file_name(scene, display);
   return out;
+}
+
+std::vector<std::filesystem::path> RenderOutputs::files() const {
+  std::vector<std::filesystem::path> paths;
+  for (const FileOutput& o : file_outputs())
+    if (!(this->*o.field).empty()) paths.push_back(this->*o.field);
+  return paths;
 }
 
 RenderOutputs render_scene_to_files(const Scene& scene, const ProgressFn& progress) {
@@ -388,6 +458,13 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
   const bool working_exr = !display.exr_space.empty();
   if (!scene.output.exr && !scene.output.png && !working_exr)
     throw InputError("output.exr and output.png", "false", "at least one output to be true");
+  // The files written after the image, in the list's order.
+  std::vector<const FileOutput*> after;
+  for (const FileOutput& o : file_outputs())
+    if (o.write && o.wanted(scene, display, tile.has_value())) after.push_back(&o);
+  const auto any = [&after](bool FileOutput::*need) {
+    return std::any_of(after.begin(), after.end(), [need](const FileOutput* o) { return o->*need; });
+  };
   const PixelBounds window = tile.value_or(PixelBounds{0, scene.camera.width, 0, scene.camera.height});
   if (tile) {
     check_pixel_bounds(*tile, scene.camera, "pixel bounds");
@@ -397,7 +474,7 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
                        "EXR): merge the tiles (skyspec merge), then make the PNG with skyspec convert");
   }
   std::optional<DisplayPipeline> pipeline;
-  if (scene.output.png || working_exr) pipeline.emplace(display);
+  if (any(&FileOutput::needs_pipeline)) pipeline.emplace(display);
 
   // 2. Tables, then the caller's veto (the render budget), then the exposure.
   SkyRenderer r(scene);
@@ -420,9 +497,7 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
   }
   std::vector<float> rgb, stokes_y;
   if (pipeline) rgb.resize(static_cast<size_t>(r.width()) * r.height() * 3);
-  const bool polarisation_exr = scene.output.polarisation && scene.output.exr && !tile;
-  const bool polarisation_png = scene.output.polarisation && scene.output.polarisation_png && scene.output.png;
-  if (polarisation_exr || polarisation_png) stokes_y.resize(static_cast<size_t>(r.width()) * r.height() * 3);
+  if (any(&FileOutput::needs_stokes_luminance)) stokes_y.resize(static_cast<size_t>(r.width()) * r.height() * 3);
   render_bands(r, exr.get(), rgb, stokes_y, progress, window);
   out.image_seconds = since(t_image);
 
@@ -430,36 +505,20 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
   // waits mostly for the disk: when other files follow, it runs beside their encoding.
   const auto t_output = Clock::now();
   std::future<void> committing;
-  if (exr && (scene.output.png || working_exr))
+  if (exr && !after.empty())
     committing = std::async(std::launch::async, [&exr] { exr->finish(); });
   else if (exr)
     exr->finish();
-  bool exr_done = exr && !committing.valid(), png_done = false, working_done = false;
-  bool polarisation_exr_done = false, polarisation_png_done = false;
+  bool exr_done = exr && !committing.valid();
+  std::vector<std::filesystem::path> done;  // the files after the image that this render completed
   try {
-    if (scene.output.png) {
-      out.png = paths.png;
-      out.display = pipeline->describe();
-      write_preview_png(out.png, r.width(), r.height(), *pipeline, display, rgb, exposure.resolved, provenance);
-      png_done = true;
+    const FinishedImage image{scene, display, pipeline ? &*pipeline : nullptr, rgb, stokes_y, exposure, provenance};
+    for (const FileOutput* o : after) {
+      const std::filesystem::path& path = out.*o->field = paths.*o->field;
+      o->write(image, path);
+      done.push_back(path);
     }
-    if (working_exr) {
-      const WorkingSpace& space = find_working_space(display.exr_space);
-      out.working_exr = paths.working_exr;
-      write_working_space_exr(out.working_exr, scene, *pipeline, space, rgb, exposure.settings, exposure.resolved.scale,
-                              provenance);
-      working_done = true;
-    }
-    if (polarisation_exr) {
-      out.polarisation_exr = paths.polarisation_exr;
-      write_polarisation_exr(out.polarisation_exr, scene, stokes_y, provenance);
-      polarisation_exr_done = true;
-    }
-    if (polarisation_png) {
-      out.polarisation_png = paths.polarisation_png;
-      write_polarisation_png(out.polarisation_png, scene, stokes_y, provenance);
-      polarisation_png_done = true;
-    }
+    if (scene.output.png) out.display = pipeline->describe();
     if (committing.valid()) {
       committing.get();  // rethrows the EXR's error
       exr_done = true;
@@ -477,10 +536,7 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
     }
     std::error_code ec;
     if (exr_done) std::filesystem::remove(out.exr, ec);
-    if (png_done) std::filesystem::remove(out.png, ec);
-    if (working_done) std::filesystem::remove(out.working_exr, ec);
-    if (polarisation_exr_done) std::filesystem::remove(out.polarisation_exr, ec);
-    if (polarisation_png_done) std::filesystem::remove(out.polarisation_png, ec);
+    for (const auto& path : done) std::filesystem::remove(path, ec);
     throw;
   }
   out.output_seconds = since(t_output);

@@ -197,7 +197,7 @@ std::string tick_text(double v) {
 }  // namespace
 
 void write_delta_e_map(const std::filesystem::path& path, const SkyComparison& c, double max) {
-  if (!(max > 0.0) || !std::isfinite(max)) throw InputError("--delta-e-max", std::to_string(max), "a positive number");
+  if (!(max > 0.0) || !std::isfinite(max)) throw InputError(kDeltaEMaxSetting, std::to_string(max), "a positive number");
   const int s = enlargement(c.width, c.height), W = c.width * s, H = c.height * s;
   const int font = W >= 384 ? 2 : 1, line = 9 * font, margin = 8;
   const int bar_w = 16, bar_x = margin + W + 12, label_x = bar_x + bar_w + 6;

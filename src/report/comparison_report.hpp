@@ -33,6 +33,9 @@ std::string comparison_json(const ComparisonRun& run);
 /// sun elevation, as a standalone SVG file.
 std::string sweep_plot_svg(const std::vector<SweepPoint>& sweep);
 
+/// The neutral id of delta_e_max, as InputErrors name it (the CLI's --delta-e-max).
+inline constexpr const char* kDeltaEMaxSetting = "comparison.delta_e_max";
+
 /// The Delta E_00 map (cubehelix colour map from 0 to delta_e_max, a colour bar with ticks, pixels
 /// not compared drawn as a grey checkerboard) as an 8-bit sRGB PNG, enlarged to at least 256
 /// pixels (nearest neighbour).

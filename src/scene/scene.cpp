@@ -17,7 +17,6 @@
 
 #include <toml++/toml.h>
 
-#include "skyspec/camera.hpp"
 #include "physics/date_time.hpp"
 #include "physics/ozone.hpp"
 #include "physics/solar_spectrum.hpp"
@@ -481,17 +480,9 @@ const std::vector<KeyDef>& registry() {
                            [](Scene& s) -> double& { return s.location.longitude_deg; }));
     // camera
     r.push_back(choice_key(
-        "camera.type", {"fisheye", "perspective", "equirectangular"}, "projection",
-        [](Scene& s, const std::string& v) {
-          s.camera.type = v == "perspective" ? CameraSpec::Type::Perspective
-                          : v == "equirectangular" ? CameraSpec::Type::Equirectangular
-                                                   : CameraSpec::Type::Fisheye;
-        },
-        [](const Scene& s) {
-          return std::string(s.camera.type == CameraSpec::Type::Perspective ? "perspective"
-                             : s.camera.type == CameraSpec::Type::Equirectangular ? "equirectangular"
-                                                                                 : "fisheye");
-        }));
+        "camera.type", names_of(camera_types()), "projection",
+        [](Scene& s, const std::string& v) { s.camera.type = value_named(camera_types(), v, "camera.type"); },
+        [](const Scene& s) { return std::string(camera_type_name(s.camera.type)); }));
     r.push_back(integer_key("camera.width", 1, 65536, "image width in pixels",
                             [](Scene& s) -> int& { return s.camera.width; }));
     r.push_back(integer_key("camera.height", 1, 65536, "image height in pixels",
@@ -508,14 +499,12 @@ const std::vector<KeyDef>& registry() {
                            "hemisphere only, as sky-dome textures are)",
                            [](Scene& s) -> double& { return s.camera.min_elevation_deg; }));
     r.push_back(choice_key(
-        "camera.panorama_convention", {"skyspec", "blender", "openexr"},
+        "camera.panorama_convention", names_of(panorama_conventions()),
         "equirectangular: skyspec (north at the left edge, east a quarter in), blender (Cycles' mapping with north "
         "on Blender's +Y: east at the centre) or openexr (OpenEXR's lat-long map, up +Y, north -Z); blender and "
         "openexr need min_elevation_deg = -90 (docs/other-tools.md)",
         [](Scene& s, const std::string& v) {
-          s.camera.panorama_convention = v == "blender"   ? PanoramaConvention::Blender
-                                         : v == "openexr" ? PanoramaConvention::OpenExr
-                                                          : PanoramaConvention::Skyspec;
+          s.camera.panorama_convention = value_named(panorama_conventions(), v, "camera.panorama_convention");
         },
         [](const Scene& s) { return std::string(panorama_convention_name(s.camera.panorama_convention)); }));
     // spectrum
@@ -753,20 +742,20 @@ void SceneLoader::apply_file(const std::string& path) {
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
   if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
-    throw InputError("--scene", "\"" + path + "\"",
+    throw InputError(kSceneFileSetting, "\"" + path + "\"",
                      std::string("a TOML scene file (this is ") +
                          (std::filesystem::is_directory(status) ? "a folder" : std::filesystem::is_fifo(status) ? "a FIFO" : "not a regular file") + ")");
   std::string text;
   {
     FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) throw InputError("--scene", "\"" + path + "\"", "a readable TOML scene file (" + std::string(std::strerror(errno)) + ")");
+    if (!f) throw InputError(kSceneFileSetting, "\"" + path + "\"", "a readable TOML scene file (" + std::string(std::strerror(errno)) + ")");
     char buf[65536];
     size_t n;
     while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) {
       text.append(buf, n);
       if (text.size() > kMaxTomlBytes) {
         std::fclose(f);
-        throw InputError("--scene", "\"" + path + "\"", "a scene file of at most " + std::to_string(kMaxTomlBytes >> 20) + " MiB");
+        throw InputError(kSceneFileSetting, "\"" + path + "\"", "a scene file of at most " + std::to_string(kMaxTomlBytes >> 20) + " MiB");
       }
     }
     std::fclose(f);

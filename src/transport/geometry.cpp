@@ -3,7 +3,15 @@
 #include <algorithm>
 #include <cmath>
 
+#include "skyspec/units.hpp"
+
 namespace skyspec {
+
+Vec3 direction_from_angles(double azimuth_deg, double elevation_deg) {
+  const double az = degrees_to_radians(azimuth_deg), el = degrees_to_radians(elevation_deg);
+  return Vec3(std::cos(el) * std::sin(az), std::cos(el) * std::cos(az), std::sin(el));
+}
+
 
 SphereHit intersect_sphere(const Vec3& origin_m, const Vec3& dir, double radius_m) {
   // |o + t d|^2 = r^2  <=>  t^2 + 2 b t + c = 0, b = o.d, c = |o|^2 - r^2.

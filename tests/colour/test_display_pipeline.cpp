@@ -183,21 +183,22 @@ BOOST_AUTO_TEST_CASE(unknown_names_list_the_valid_ones) {
     pipeline("P3");
     BOOST_FAIL("no error");
   } catch (const InputError& e) {
-    BOOST_TEST(message_has(e, "--display = \"P3\" is not allowed"));
+    BOOST_TEST(message_has(e, "display.display = \"P3\" is not allowed"));
+    BOOST_TEST(e.setting() == display_setting::kDisplay);
     BOOST_TEST(message_has(e, "\"sRGB\", \"Display P3\", \"Rec.1886 Rec.709\", \"Rec.2100-PQ\""));
   }
   try {
     pipeline("sRGB", "ACES 1.1 - HDR Video (1000 nits & Rec.2020 lim)");
     BOOST_FAIL("no error");
   } catch (const InputError& e) {
-    BOOST_TEST(message_has(e, "--view"));
+    BOOST_TEST(e.setting() == display_setting::kView);
     BOOST_TEST(message_has(e, "\"Un-tone-mapped\", \"ACES 1.0 - SDR Video\", \"Raw\""));
   }
   try {
     pipeline("", "", "filmic");
     BOOST_FAIL("no error");
   } catch (const InputError& e) {
-    BOOST_TEST(message_has(e, "--look"));
+    BOOST_TEST(e.setting() == display_setting::kLook);
     BOOST_TEST(message_has(e, "\"reinhard\""));
     BOOST_TEST(message_has(e, "\"uncharted2-filmic\""));
   }

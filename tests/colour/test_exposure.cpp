@@ -36,7 +36,7 @@ BOOST_AUTO_TEST_CASE(bad_camera_settings_name_the_flag) {
     camera_ev100(8, -1, 100);
     BOOST_FAIL("no error");
   } catch (const InputError& e) {
-    BOOST_TEST(std::string(e.what()).find("--shutter") != std::string::npos);
+    BOOST_TEST(e.setting() == display_setting::kShutter);
   }
 }
 

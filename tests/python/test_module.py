@@ -171,6 +171,47 @@ class RenderAgainstCli(unittest.TestCase):
             f.write(text)
         return path
 
+    def test_aerial_perspective_equals_the_cli(self):
+        """skyspec.aerial_perspective is `skyspec aerial` without files: the same transmittance and inscatter."""
+        import OpenImageIO as oiio
+        small = ["render.table_altitude_samples=32", "render.table_zenith_samples=64"]
+        depth = np.full((6, 10), 5000.0, dtype=np.float32)
+        depth[0, :] = np.inf  # sky
+        overrides = {"camera.type": "perspective", "sun.elevation_deg": 20,
+                     "render.table_altitude_samples": 32, "render.table_zenith_samples": 64}
+        ap = skyspec.aerial_perspective(depth, overrides=overrides)
+        self.assertEqual(ap["transmittance"].shape, (6, 10, 41))
+        self.assertEqual(ap["inscatter_rgb"].shape, (6, 10, 3))
+        with tempfile.TemporaryDirectory() as tmp:
+            buf = oiio.ImageBuf(oiio.ImageSpec(10, 6, 1, oiio.FLOAT))
+            spec = buf.spec()
+            spec.channelnames = ("Z",)
+            buf = oiio.ImageBuf(spec)
+            buf.set_pixels(oiio.ROI(0, 10, 0, 6, 0, 1, 0, 1), depth.reshape(6, 10, 1))
+            buf.write(os.path.join(tmp, "depth.exr"))
+            args = ["aerial", "-q", "--depth", os.path.join(tmp, "depth.exr"), "--camera", "perspective",
+                    "--sun-elevation", "20", "--out", tmp, "--name", "ap"]
+            for s in small:
+                args += ["--set", s]
+            cli(*args)
+            for name, key in (("ap_transmittance.exr", "transmittance"), ("ap_inscatter.exr", "inscatter")):
+                exr = oiio.ImageBuf(os.path.join(tmp, name))
+                names = list(exr.spec().channelnames)
+                pixels = exr.get_pixels(oiio.FLOAT)
+                for i, nm in enumerate(ap["wavelengths_nm"]):
+                    channel = names.index(f"S0.{int(nm)},000000nm")
+                    np.testing.assert_array_equal(pixels[:, :, channel], ap[key][:, :, i], err_msg=f"{name} {nm} nm")
+        # Along the same rays, the whole way to space (or to the ground, for the rays below the horizon:
+        # rows 3-5) scatters more light in and lets less through than 5 km of it.
+        sky = skyspec.aerial_perspective(np.full((6, 10), np.inf), overrides=overrides)
+        self.assertTrue((sky["inscatter"] >= ap["inscatter"]).all())
+        self.assertTrue((sky["inscatter"][1:3] > ap["inscatter"][1:3]).all())
+        self.assertTrue((sky["transmittance"][1:3] < ap["transmittance"][1:3]).all())
+        np.testing.assert_array_equal(sky["inscatter"][0], ap["inscatter"][0])
+        with self.assertRaises(ValueError) as e:
+            skyspec.aerial_perspective(np.full((2, 2), -1.0), overrides=overrides)
+        self.assertIn("depth = pixel (0, 0)", str(e.exception))
+
     def test_result_says_where_each_pixel_looks(self):
         # Directions: unit vectors; for a Blender-layout panorama the column of azimuth A is
         # (A / 360 + 1/4) of the width (Cycles' mapping with north on +Y). The sun's vector is its
@@ -328,6 +369,8 @@ class HostileInput(unittest.TestCase):
         with self.assertRaises(ValueError) as e:
             skyspec.scene_toml(scene_file=tempfile.gettempdir())
         self.assertIn("this is a folder", str(e.exception))
+        self.assertIn("scene_file = ", str(e.exception))  # Python's word for the path, not the CLI's --scene
+        self.assertNotIn("--scene", str(e.exception))
 
     def test_wavelengths_and_altitudes_are_checked(self):
         for bad in [1e300, float("nan"), 100.0, 1700.0]:

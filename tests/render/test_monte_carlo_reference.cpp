@@ -13,7 +13,7 @@
 
 #include "scene_fixtures.hpp"
 #include "skyspec/camera.hpp"
-#include "skyspec/monte_carlo.hpp"
+#include "skyspec/monte_carlo_reference.hpp"
 #include "skyspec/render.hpp"
 
 BOOST_AUTO_TEST_SUITE(test_monte_carlo_reference)

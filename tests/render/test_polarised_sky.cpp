@@ -15,7 +15,7 @@
 
 #include "scene_fixtures.hpp"
 #include "skyspec/camera.hpp"
-#include "skyspec/monte_carlo.hpp"
+#include "skyspec/monte_carlo_reference.hpp"
 #include "io/spectral_exr.hpp"
 #include "scratch_folder.hpp"
 #include "skyspec/render.hpp"

@@ -78,7 +78,7 @@ BOOST_AUTO_TEST_CASE(limits_and_messages) {
   const std::string disk = refusal(e);
   BOOST_TEST(contains(disk, "this render would write up to 41 GB"));
   BOOST_TEST(contains(disk, "but /data has 12 GB free"));
-  BOOST_TEST(contains(disk, "(use --force to render anyway)"));
+  BOOST_TEST(contains(disk, "(use budget.force to render anyway)"));
   BOOST_TEST(!contains(disk, "memory"));
 
   e.disk_available_bytes = 50'000'000'000ull;
@@ -86,7 +86,7 @@ BOOST_AUTO_TEST_CASE(limits_and_messages) {
   e.seconds = 3.2 * 86400;
   const std::string slow = refusal(e);
   BOOST_TEST(contains(slow, "would take about 3.2 days at these settings (41 wavelengths, 64 view segments, 16384x8192"));
-  BOOST_TEST(contains(slow, "--force"));
+  BOOST_TEST(contains(slow, kForceSetting));
   e.seconds = 23.0 * 3600;
   BOOST_TEST(refusal(e).empty());
 

@@ -8,6 +8,7 @@
 #include "check_helpers.hpp"
 #include "scene_fixtures.hpp"
 #include "skyspec/error.hpp"
+#include "skyspec/render.hpp"
 #include "skyspec/scene.hpp"
 
 BOOST_AUTO_TEST_SUITE(test_scene)
@@ -311,7 +312,7 @@ BOOST_AUTO_TEST_CASE(quality_levels) {
   l.apply_override("render.view_segments", "100", "--view-segments");
   BOOST_TEST(l.finish().render.view_segments == 100);
   const std::string e = error_of([] { SceneLoader().apply_quality("ultra"); });
-  BOOST_TEST(contains(e, "--quality = \"ultra\""));
+  BOOST_TEST(contains(e, "render.quality = \"ultra\""));
   BOOST_TEST(contains(e, "one of: draft, lean, default, high, reference"));
 }
 
@@ -348,6 +349,32 @@ BOOST_AUTO_TEST_CASE(key_reference_lists_every_key_with_its_default) {
     }
   }
   BOOST_TEST(md.find("| `camera.width` | 512 |") != std::string::npos);
+}
+
+// Camera types and panorama conventions are named in one table each (camera_spec.hpp): the scene
+// key accepts exactly those names, writes them back, and every type has a camera (make_camera).
+BOOST_AUTO_TEST_CASE(every_named_camera_type_and_convention_round_trips_through_the_scene_key) {
+  BOOST_TEST(camera_types().size() == 3u);
+  for (const auto& row : camera_types()) {
+    SceneLoader l;
+    l.apply_override("camera.type", std::string("\"") + row.name + "\"", "test");
+    const Scene s = l.finish();
+    BOOST_TEST((s.camera.type == row.value));
+    BOOST_TEST(std::string(camera_type_name(s.camera.type)) == row.name);
+    BOOST_TEST(scene_to_toml(s, SceneTomlKeys::All).find(std::string("type = \"") + row.name + "\"") != std::string::npos);
+    BOOST_TEST(static_cast<bool>(make_camera(s)));
+  }
+  for (const auto& row : panorama_conventions()) {
+    BOOST_TEST((value_named(panorama_conventions(), row.name, "x") == row.value));
+    BOOST_TEST(std::string(panorama_convention_name(row.value)) == row.name);
+  }
+  try {
+    value_named(camera_types(), "orthographic", "camera.type");
+    BOOST_FAIL("no error");
+  } catch (const InputError& e) {
+    BOOST_TEST(std::string(e.what()) ==
+               "camera.type = orthographic is not allowed: one of fisheye perspective equirectangular");
+  }
 }
 
 BOOST_AUTO_TEST_SUITE_END()  // test_scene

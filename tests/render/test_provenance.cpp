@@ -5,7 +5,7 @@
 #include <string>
 
 #include "base/embedded_data.hpp"
-#include "io/provenance.hpp"
+#include "render/scene_provenance.hpp"
 #include "scene_fixtures.hpp"
 #include "skyspec/scene.hpp"
 

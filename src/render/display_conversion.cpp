@@ -1,5 +1,5 @@
 // `skyspec convert`: an existing EXR through the display pipeline.
-#include "colour/display_conversion.hpp"
+#include "render/display_conversion.hpp"
 
 #include <cmath>
 #include <cstdlib>
@@ -31,17 +31,17 @@ ConversionOutputs convert_exr_for_display(const std::filesystem::path& input, co
                                           const std::string& name, const DisplaySettings& settings,
                                           std::optional<double> manual_ev, bool png) {
   if (!png && settings.exr_space.empty())
-    throw InputError("--no-png", "given without --exr-space", "at least one output");
+    throw InputError(conversion_setting::kPng, "off", std::string("at least one output: the PNG or ") + display_setting::kExrSpace);
   if (name.empty() || name.find('/') != std::string::npos)
-    throw InputError("--name", "\"" + name + "\"", "a file name without '/'");
-  ensure_writable_directory(directory, "--out");
+    throw InputError(conversion_setting::kName, "\"" + name + "\"", "a file name without '/'");
+  ensure_writable_directory(directory, conversion_setting::kDirectory);
   const DisplayPipeline pipeline(settings);  // checks the names before reading anything
-  if (!std::filesystem::is_regular_file(input)) throw InputError("INPUT", "'" + input.string() + "'", "an existing EXR file");
-  const OutputLock lock(directory, name, "--out / --name");  // one writer per name
-  if (png) refuse_output_replacing_input(directory / (name + ".png"), "--out / --name", {{"INPUT", input}});
+  if (!std::filesystem::is_regular_file(input)) throw InputError(conversion_setting::kInput, "'" + input.string() + "'", "an existing EXR file");
+  const OutputLock lock(directory, name, conversion_setting::kOutputs);  // one writer per name
+  if (png) refuse_output_replacing_input(directory / (name + ".png"), conversion_setting::kOutputs, {{conversion_setting::kInput, input}});
   if (!settings.exr_space.empty())
     refuse_output_replacing_input(directory / (name + "-" + find_working_space(settings.exr_space).file_suffix + ".exr"),
-                                  "--out / --name", {{"INPUT", input}});
+                                  conversion_setting::kOutputs, {{conversion_setting::kInput, input}});
   const RgbExrImage image = read_rgb_exr(input);
   if (image.has_chromaticities && !is_rec709(image.chromaticities))
     throw InputError("input EXR", "'" + input.string() + "'",

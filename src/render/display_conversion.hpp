@@ -10,6 +10,16 @@
 
 namespace skyspec {
 
+/// The neutral ids of convert_exr_for_display's arguments, as its InputErrors name them (each front
+/// end respells them: the CLI's INPUT, --out, --name, --no-png).
+namespace conversion_setting {
+inline constexpr const char* kInput = "conversion.input";
+inline constexpr const char* kDirectory = "conversion.directory";
+inline constexpr const char* kName = "conversion.name";
+inline constexpr const char* kPng = "conversion.png";
+inline constexpr const char* kOutputs = "conversion.directory / conversion.name";
+}  // namespace conversion_setting
+
 struct ConversionOutputs {
   std::filesystem::path png, working_exr;  ///< empty when not written
   ResolvedExposure exposure;

@@ -1,0 +1,53 @@
+// The name tables of camera_spec.hpp: the one place a camera type or a panorama convention is named.
+#include "skyspec/camera_spec.hpp"
+
+#include <string>
+
+#include "skyspec/error.hpp"
+
+namespace skyspec {
+
+const std::vector<NamedValue<CameraSpec::Type>>& camera_types() {
+  static const std::vector<NamedValue<CameraSpec::Type>> table = {
+      {CameraSpec::Type::Fisheye, "fisheye", "upward, equal-area, 180 degrees"},
+      {CameraSpec::Type::Perspective, "perspective", "pinhole looking at camera.look_at_m"},
+      {CameraSpec::Type::Equirectangular, "equirectangular", "latitude-longitude panorama"},
+  };
+  return table;
+}
+
+const std::vector<NamedValue<PanoramaConvention>>& panorama_conventions() {
+  static const std::vector<NamedValue<PanoramaConvention>> table = {
+      {PanoramaConvention::Skyspec, "skyspec", "north at the left edge, east a quarter in"},
+      {PanoramaConvention::Blender, "blender", "Cycles' mapping with north on Blender's +Y: east at the centre"},
+      {PanoramaConvention::OpenExr, "openexr", "OpenEXR's lat-long map, up +Y, north -Z"},
+  };
+  return table;
+}
+
+namespace {
+template <typename Enum>
+const char* name_in(const std::vector<NamedValue<Enum>>& table, Enum value) {
+  for (const auto& row : table)
+    if (row.value == value) return row.name;
+  return table.front().name;  // unreachable for a value of the enum: every value has a row
+}
+}  // namespace
+
+const char* camera_type_name(CameraSpec::Type type) { return name_in(camera_types(), type); }
+const char* panorama_convention_name(PanoramaConvention c) { return name_in(panorama_conventions(), c); }
+
+template <typename Enum>
+Enum value_named(const std::vector<NamedValue<Enum>>& table, const std::string& name, const std::string& setting) {
+  for (const auto& row : table)
+    if (name == row.name) return row.value;
+  std::string allowed = "one of";
+  for (const auto& row : table) allowed += std::string(" ") + row.name;
+  throw InputError(setting, name, allowed);
+}
+template CameraSpec::Type value_named(const std::vector<NamedValue<CameraSpec::Type>>&, const std::string&,
+                                      const std::string&);
+template PanoramaConvention value_named(const std::vector<NamedValue<PanoramaConvention>>&, const std::string&,
+                                        const std::string&);
+
+}  // namespace skyspec
