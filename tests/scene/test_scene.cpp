@@ -1,6 +1,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include <algorithm>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -375,6 +376,15 @@ BOOST_AUTO_TEST_CASE(every_named_camera_type_and_convention_round_trips_through_
     BOOST_TEST(std::string(e.what()) ==
                "camera.type = orthographic is not allowed: one of fisheye perspective equirectangular");
   }
+}
+
+// A list key's bounds read "each in <unit>, ..." (they read "each n nm" when the text was cut from
+// a single number's by a fixed offset).
+BOOST_AUTO_TEST_CASE(list_keys_state_the_unit_and_bounds_of_each_value) {
+  std::map<std::string, std::string> help;
+  for (const auto& [key, doc] : scene_key_help()) help[key] = doc;
+  BOOST_TEST(contains(help.at("atmosphere.rayleigh.wavelengths_nm"), "numbers, each in nm, >= 1 and <= 100000"));
+  BOOST_TEST(contains(help.at("ground.albedo_values"), "numbers, each >= 0 and <= 1"));
 }
 
 BOOST_AUTO_TEST_SUITE_END()  // test_scene

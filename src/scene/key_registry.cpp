@@ -1,0 +1,385 @@
+// The scene key registry (key_registry.hpp): every key of a scene, its unit, range and meaning.
+// docs/scene-keys.md is generated from it (scene_keys_markdown).
+#include "scene/key_registry.hpp"
+#include "scene/key_types.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <functional>
+#include <iomanip>
+#include <limits>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "physics/date_time.hpp"
+#include "physics/ozone.hpp"
+#include "physics/solar_spectrum.hpp"
+#include "physics/solar_position.hpp"
+#include "base/embedded_data.hpp"
+#include "skyspec/error.hpp"
+#include "base/text_format.hpp"
+#include "scene/toml_limits.hpp"
+#include "skyspec/refractive_index.hpp"
+#include "skyspec/units.hpp"
+
+
+namespace skyspec::scene_keys {
+
+const std::vector<KeyDef>& registry() {
+  static const std::vector<KeyDef> keys = [] {
+    std::vector<KeyDef> r;
+    const double kMaxRadius = 1e9, kMaxLength = 1e9;
+    // planet and atmosphere
+    r.push_back(number_key("planet.radius_m", "m", {1e3, kMaxRadius}, "radius of the planet (sea level)",
+                           [](Scene& s) -> double& { return s.atmosphere.planet_radius_m; }));
+    r.push_back(number_key("atmosphere.top_altitude_m", "m", {1.0, 1e7}, "thickness of the atmosphere shell",
+                           [](Scene& s) -> double& { return s.atmosphere.top_altitude_m; }));
+    // Rayleigh
+    r.push_back(choice_key(
+        "atmosphere.rayleigh.source", {"derived", "fixed"},
+        "derived: beta = sigma(n(lambda), King factor) N; fixed: typed-in coefficients (seed preset)",
+        [](Scene& s, const std::string& v) {
+          s.atmosphere.rayleigh.source = v == "fixed" ? RayleighSpec::Source::Fixed : RayleighSpec::Source::Derived;
+        },
+        [](const Scene& s) {
+          return std::string(s.atmosphere.rayleigh.source == RayleighSpec::Source::Fixed ? "fixed" : "derived");
+        }));
+    auto profile_key = [](std::string key, std::function<ProfileKind&(Scene&)> ref, std::string help) {
+      return choice_key(
+          std::move(key), {"exponential", "us1976", "constant"}, std::move(help),
+          [ref](Scene& s, const std::string& v) {
+            ref(s) = v == "us1976" ? ProfileKind::UsStandard1976
+                                   : v == "constant" ? ProfileKind::Constant : ProfileKind::Exponential;
+          },
+          [ref](const Scene& s) { return to_string(ref(const_cast<Scene&>(s))); });
+    };
+    r.push_back(choice_key(
+        "atmosphere.rayleigh.gas", {"air", "co2"},
+        "air: Earth's dry air (refractive_index formula, co2_ppm); co2: pure carbon dioxide (Sneep & Ubachs 2005)",
+        [](Scene& s, const std::string& v) {
+          s.atmosphere.rayleigh.derivation.gas = v == "co2" ? ScatteringGas::CarbonDioxide : ScatteringGas::Air;
+        },
+        [](const Scene& s) { return to_string(s.atmosphere.rayleigh.derivation.gas); }));
+    r.push_back(profile_key("atmosphere.rayleigh.profile",
+                            [](Scene& s) -> ProfileKind& { return s.atmosphere.rayleigh.profile; },
+                            "number density profile of air"));
+    r.push_back(number_key("atmosphere.rayleigh.scale_height_m", "m", {1.0, kMaxLength, true},
+                           "scale height of the exponential profile",
+                           [](Scene& s) -> double& { return s.atmosphere.rayleigh.scale_height_m; }));
+    r.push_back(number_key("atmosphere.rayleigh.surface_pressure_Pa", "Pa", {0.0, 1e8, true},
+                           "pressure at altitude 0 (exponential/constant profiles): N(0) = P / kT",
+                           [](Scene& s) -> double& { return s.atmosphere.rayleigh.surface_pressure_Pa; }));
+    r.push_back(number_key("atmosphere.rayleigh.surface_temperature_K", "K", {1.0, 2000.0},
+                           "temperature at altitude 0 (exponential/constant profiles)",
+                           [](Scene& s) -> double& { return s.atmosphere.rayleigh.surface_temperature_K; }));
+    r.push_back(choice_key(
+        "atmosphere.rayleigh.refractive_index", {"peck-reeder", "edlen", "ciddor"},
+        "formula for n(lambda) of standard air",
+        [](Scene& s, const std::string& v) {
+          s.atmosphere.rayleigh.derivation.formula = parse_refractive_index_formula(v, "atmosphere.rayleigh.refractive_index");
+        },
+        [](const Scene& s) { return to_string(s.atmosphere.rayleigh.derivation.formula); }));
+    r.push_back(number_key("atmosphere.rayleigh.co2_ppm", "ppm", {0.0, 1e6},
+                           "CO2 mole fraction (refractive index correction, King factor)",
+                           [](Scene& s) -> double& { return s.atmosphere.rayleigh.derivation.co2_ppv; }, 1e-6));
+    r.push_back(list_key("atmosphere.rayleigh.wavelengths_nm", "nm", {1.0, 1e5}, 64,
+                         "source = fixed: wavelengths of the typed-in coefficients",
+                         [](Scene& s) -> std::vector<double>& { return s.atmosphere.rayleigh.fixed_wavelengths_nm; }));
+    r.push_back(list_key("atmosphere.rayleigh.beta_per_m", "m^-1", {0.0, 1.0}, 64,
+                         "source = fixed: scattering coefficients at altitude 0, one per wavelength",
+                         [](Scene& s) -> std::vector<double>& { return s.atmosphere.rayleigh.fixed_beta_per_m; }));
+    // Mie
+    r.push_back(bool_key("atmosphere.mie.enabled", "aerosols on or off",
+                         [](Scene& s) -> bool& { return s.atmosphere.mie.enabled; }));
+    r.push_back(profile_key("atmosphere.mie.profile", [](Scene& s) -> ProfileKind& { return s.atmosphere.mie.profile; },
+                            "aerosol density profile (us1976 is not meaningful for aerosols but allowed)"));
+    r.push_back(number_key("atmosphere.mie.scale_height_m", "m", {1.0, kMaxLength, true},
+                           "scale height of the aerosol profile",
+                           [](Scene& s) -> double& { return s.atmosphere.mie.scale_height_m; }));
+    r.push_back(number_key("atmosphere.mie.scattering_per_m", "m^-1", {0.0, 1.0},
+                           "aerosol scattering coefficient at altitude 0 and the reference wavelength",
+                           [](Scene& s) -> double& { return s.atmosphere.mie.scattering_per_m; }));
+    r.push_back(number_key("atmosphere.mie.reference_wavelength_nm", "nm", {1.0, 1e5},
+                           "wavelength at which scattering_per_m is given",
+                           [](Scene& s) -> double& { return s.atmosphere.mie.reference_wavelength_nm; }));
+    r.push_back(number_key("atmosphere.mie.angstrom_exponent", "", {-4.0, 4.0},
+                           "Angstrom exponent alpha: beta(lambda) = beta_ref (lambda / lambda_ref)^-alpha",
+                           [](Scene& s) -> double& { return s.atmosphere.mie.angstrom_exponent; }));
+    r.push_back(number_key("atmosphere.mie.extinction_to_scattering", "", {1.0, 100.0},
+                           "extinction / scattering ratio (1 = no absorption; seed: 1.1)",
+                           [](Scene& s) -> double& { return s.atmosphere.mie.extinction_to_scattering; }));
+    r.push_back(choice_key(
+        "atmosphere.mie.phase", {"cornette-shanks", "henyey-greenstein"}, "aerosol phase function",
+        [](Scene& s, const std::string& v) {
+          s.atmosphere.mie.phase.model = parse_aerosol_phase_model(v, "atmosphere.mie.phase");
+        },
+        [](const Scene& s) { return to_string(s.atmosphere.mie.phase.model); }));
+    r.push_back(number_key("atmosphere.mie.g", "", {-0.999, 0.999}, "asymmetry parameter of the phase function",
+                           [](Scene& s) -> double& { return s.atmosphere.mie.phase.g; }));
+    r.push_back(list_key("atmosphere.mie.table_wavelengths_nm", "nm", {1.0, 1e5}, 1024,
+                         "spectral aerosol tables: wavelengths (when given, the tables replace the Angstrom law, "
+                         "extinction_to_scattering and g)",
+                         [](Scene& s) -> std::vector<double>& { return s.atmosphere.mie.table_wavelengths_nm; }));
+    r.push_back(list_key("atmosphere.mie.table_extinction_efficiency", "", {0.0, 1e6}, 1024,
+                         "spectral aerosol tables: extinction efficiency Q (any scale)",
+                         [](Scene& s) -> std::vector<double>& { return s.atmosphere.mie.table_extinction_efficiency; }));
+    r.push_back(list_key("atmosphere.mie.table_single_scattering_albedo", "", {1e-6, 1.0}, 1024,
+                         "spectral aerosol tables: single-scattering albedo",
+                         [](Scene& s) -> std::vector<double>& { return s.atmosphere.mie.table_single_scattering_albedo; }));
+    r.push_back(list_key("atmosphere.mie.table_g", "", {-0.999, 0.999}, 1024,
+                         "spectral aerosol tables: asymmetry parameter",
+                         [](Scene& s) -> std::vector<double>& { return s.atmosphere.mie.table_g; }));
+    // ozone
+    r.push_back(bool_key("atmosphere.ozone.enabled", "absorbing ozone layer on or off",
+                         [](Scene& s) -> bool& { return s.atmosphere.ozone.enabled; }));
+    r.push_back(number_key("atmosphere.ozone.column_DU", "Dobson units", {0.0, 2000.0},
+                           "total ozone column (about 300 DU on Earth)",
+                           [](Scene& s) -> double& { return s.atmosphere.ozone.column_DU; }));
+    r.push_back(number_key("atmosphere.ozone.bottom_m", "m", {0.0, 1e7}, "bottom of the ozone layer (tent profile)",
+                           [](Scene& s) -> double& { return s.atmosphere.ozone.bottom_m; }));
+    r.push_back(number_key("atmosphere.ozone.peak_m", "m", {0.0, 1e7}, "altitude of the ozone maximum",
+                           [](Scene& s) -> double& { return s.atmosphere.ozone.peak_m; }));
+    r.push_back(number_key("atmosphere.ozone.top_m", "m", {0.0, 1e7}, "top of the ozone layer",
+                           [](Scene& s) -> double& { return s.atmosphere.ozone.top_m; }));
+    // ground
+    r.push_back(number_key("ground.albedo", "", {0.0, 1.0},
+                           "Lambertian albedo of the ground (0: black); unless a preset, file or flag sets a ground "
+                           "albedo, a panorama that sees below the horizon (equirectangular, min_elevation_deg < 0) "
+                           "gets " + format_number(kPanoramaGroundAlbedo) + " (pvlib's default ground albedo)",
+                           [](Scene& s) -> double& { return s.atmosphere.ground.albedo; }));
+    r.push_back(list_key("ground.albedo_wavelengths_nm", "nm", {1.0, 1e5}, 1024,
+                         "spectral albedo: wavelengths (replaces ground.albedo when not empty)",
+                         [](Scene& s) -> std::vector<double>& { return s.atmosphere.ground.albedo_wavelengths_nm; }));
+    r.push_back(list_key("ground.albedo_values", "", {0.0, 1.0}, 1024,
+                         "spectral albedo: values at ground.albedo_wavelengths_nm, linearly interpolated",
+                         [](Scene& s) -> std::vector<double>& { return s.atmosphere.ground.albedo_values; }));
+    // sun
+    r.push_back(number_key("sun.elevation_deg", "degrees", {-90.0, 90.0}, "sun elevation above the horizon",
+                           [](Scene& s) -> double& { return s.sun.elevation_deg; }));
+    r.push_back(number_key("sun.azimuth_deg", "degrees", {-360.0, 360.0}, "sun azimuth, clockwise from north",
+                           [](Scene& s) -> double& { return s.sun.azimuth_deg; }));
+    r.push_back(choice_key(
+        "sun.spectrum", {"solar", "flat"},
+        "solar: measured extraterrestrial spectrum (ASTM G173-03) at sun.distance_au; "
+        "flat: sun.spectral_irradiance at every wavelength",
+        [](Scene& s, const std::string& v) {
+          s.sun.spectrum = v == "flat" ? SunSpec::Spectrum::Flat : SunSpec::Spectrum::Solar;
+        },
+        [](const Scene& s) { return std::string(s.sun.spectrum == SunSpec::Spectrum::Flat ? "flat" : "solar"); }));
+    r.push_back(number_key("sun.spectral_irradiance", "W m^-2 nm^-1", {0.0, 1e6, true},
+                           "the flat spectrum's value (sun.spectrum = \"flat\")",
+                           [](Scene& s) -> double& { return s.sun.spectral_irradiance_W_m2_nm; }));
+    r.push_back(number_key("sun.distance_au", "au", {0.05, 100.0},
+                           "planet-sun distance: scales the solar spectrum by (1 au / d)^2 and sets the disk's size "
+                           "(Earth 0.983-1.017, Mars 1.38-1.67)",
+                           [](Scene& s) -> double& { return s.sun.distance_au; }));
+    r.push_back(bool_key("sun.disk", "draw the limb-darkened sun disk", [](Scene& s) -> bool& { return s.sun.disk; }));
+    {
+      KeyDef k;
+      k.key = "sun.date_time";
+      const std::string allowed =
+          "\"\" or an ISO 8601 date-time with UTC offset, e.g. \"2026-06-21T20:30:00+02:00\" (quoted, or unquoted as a "
+          "TOML date-time)";
+      k.doc = "(" + allowed + ") when set, the sun's position and distance are computed for this time at "
+              "location.latitude_deg / longitude_deg (NREL SPA)";
+      k.set = [k, allowed](Scene& s, const toml::node& n, const std::string& origin) {
+        if (const auto* when = n.as_date_time()) {  // a TOML offset date-time, unquoted
+          s.sun.date_time = toml_date_time_text(when->get(), k.key, node_text(n), origin);
+          return;
+        }
+        auto str = n.as_string();
+        if (!str) throw InputError(k.key, node_text(n), allowed, origin);
+        if (!str->get().empty()) {
+          try {
+            (void)parse_iso8601(str->get(), k.key);
+          } catch (const InputError& e) {
+            throw InputError(k.key, node_text(n), e.allowed(), origin);
+          }
+        }
+        s.sun.date_time = str->get();
+      };
+      k.get = [](const Scene& s) {
+        std::ostringstream o;
+        o << toml::value<std::string>(s.sun.date_time);
+        return o.str();
+      };
+      r.push_back(k);
+    }
+    r.push_back(bool_key("sun.refraction", "with sun.date_time: apparent elevation, refracted by the air",
+                         [](Scene& s) -> bool& { return s.sun.refraction; }));
+    r.push_back(number_key("location.latitude_deg", "degrees", {-90.0, 90.0}, "latitude of the reference point",
+                           [](Scene& s) -> double& { return s.location.latitude_deg; }));
+    r.push_back(number_key("location.longitude_deg", "degrees", {-180.0, 180.0},
+                           "longitude of the reference point, east positive",
+                           [](Scene& s) -> double& { return s.location.longitude_deg; }));
+    // camera
+    r.push_back(choice_key(
+        "camera.type", names_of(camera_types()), "projection",
+        [](Scene& s, const std::string& v) { s.camera.type = value_named(camera_types(), v, "camera.type"); },
+        [](const Scene& s) { return std::string(camera_type_name(s.camera.type)); }));
+    r.push_back(integer_key("camera.width", 1, 65536, "image width in pixels",
+                            [](Scene& s) -> int& { return s.camera.width; }));
+    r.push_back(integer_key("camera.height", 1, 65536, "image height in pixels",
+                            [](Scene& s) -> int& { return s.camera.height; }));
+    r.push_back(vec3_key("camera.position_m", "m", kMaxLength,
+                         "camera position [east, north, height above sea level]",
+                         [](Scene& s) -> Vec3& { return s.camera.position_m; }));
+    r.push_back(vec3_key("camera.look_at_m", "m", kMaxLength, "perspective: point the camera looks at",
+                         [](Scene& s) -> Vec3& { return s.camera.look_at_m; }));
+    r.push_back(number_key("camera.fov_deg", "degrees", {0.0, 179.0, true}, "perspective: vertical field of view",
+                           [](Scene& s) -> double& { return s.camera.fov_deg; }));
+    r.push_back(number_key("camera.min_elevation_deg", "degrees", {-90.0, 89.0},
+                           "equirectangular: elevation of the bottom edge (-90: the whole sphere; 0: the upper "
+                           "hemisphere only, as sky-dome textures are)",
+                           [](Scene& s) -> double& { return s.camera.min_elevation_deg; }));
+    r.push_back(choice_key(
+        "camera.panorama_convention", names_of(panorama_conventions()),
+        "equirectangular: skyspec (north at the left edge, east a quarter in), blender (Cycles' mapping with north "
+        "on Blender's +Y: east at the centre) or openexr (OpenEXR's lat-long map, up +Y, north -Z); blender and "
+        "openexr need min_elevation_deg = -90 (docs/other-tools.md)",
+        [](Scene& s, const std::string& v) {
+          s.camera.panorama_convention = value_named(panorama_conventions(), v, "camera.panorama_convention");
+        },
+        [](const Scene& s) { return std::string(panorama_convention_name(s.camera.panorama_convention)); }));
+    // spectrum
+    r.push_back(number_key("spectrum.min_nm", "nm", {1.0, 1e5}, "first wavelength",
+                           [](Scene& s) -> double& { return s.spectrum.min_nm; }));
+    r.push_back(number_key("spectrum.max_nm", "nm", {1.0, 1e5}, "last wavelength",
+                           [](Scene& s) -> double& { return s.spectrum.max_nm; }));
+    r.push_back(number_key("spectrum.step_nm", "nm", {1.0, 1e5}, "spacing of the wavelengths",
+                           [](Scene& s) -> double& { return s.spectrum.step_nm; }));
+    r.push_back(integer_key("spectrum.count", 0, WavelengthGrid::kMaxWavelengths,
+                            "number of evenly spread wavelengths over min..max (0: use step_nm)",
+                            [](Scene& s) -> int& { return s.spectrum.count; }));
+    r.push_back(number_key("spectrum.bandwidth_nm", "nm", {0.0, WavelengthGrid::kMaxBandwidth_nm},
+                           "each sample stands for this band around it: the solar spectrum and the ozone "
+                           "cross-sections are averaged over lambda +- bandwidth/2 at every sample, whatever the "
+                           "other samples are (0: taken at the sample wavelength)",
+                           [](Scene& s) -> double& { return s.spectrum.bandwidth_nm; }));
+    r.push_back(list_key("spectrum.wavelengths_nm", "nm", {1.0, 1e5}, WavelengthGrid::kMaxWavelengths,
+                         "explicit wavelengths (replaces min/max/step when not empty)",
+                         [](Scene& s) -> std::vector<double>& { return s.spectrum.wavelengths_nm; }));
+    // render
+    r.push_back(choice_key(
+        "render.path", {"spectral", "rgb-fast"},
+        "spectral: spectrum -> CIE XYZ -> RGB; rgb-fast: 3 wavelengths read directly as linear Rec.709",
+        [](Scene& s, const std::string& v) {
+          s.render.path = v == "rgb-fast" ? RenderSpec::Path::RgbFast : RenderSpec::Path::Spectral;
+        },
+        [](const Scene& s) { return std::string(s.render.path == RenderSpec::Path::RgbFast ? "rgb-fast" : "spectral"); }));
+    r.push_back(integer_key("render.view_segments", 1, 4096, "quadrature segments along each view ray",
+                            [](Scene& s) -> int& { return s.render.view_segments; }));
+    r.push_back(integer_key("render.table_altitude_samples", 8, 4096, "sun optical-depth table: altitudes",
+                            [](Scene& s) -> int& { return s.render.table_altitude_samples; }));
+    r.push_back(integer_key("render.table_zenith_samples", 8, 8192, "sun optical-depth table: zenith cosines",
+                            [](Scene& s) -> int& { return s.render.table_zenith_samples; }));
+    r.push_back(integer_key("render.threads", 0, 1024, "worker threads (0: all cores)",
+                            [](Scene& s) -> int& { return s.render.threads; }));
+    r.push_back(integer_key("render.scattering_orders", 1, 50,
+                            "highest scattering order (1: single scattering; >= 2 adds precomputed orders)",
+                            [](Scene& s) -> int& { return s.render.scattering_orders; }));
+    r.push_back(integer_key("render.ms_altitude_samples", 4, 512, "multiple-scattering tables: altitudes",
+                            [](Scene& s) -> int& { return s.render.ms_altitude_samples; }));
+    r.push_back(integer_key("render.ms_sun_samples", 4, 1024, "multiple-scattering tables: sun zenith cosines",
+                            [](Scene& s) -> int& { return s.render.ms_sun_samples; }));
+    r.push_back(integer_key("render.ms_angular_degree", 0, 12,
+                            "multiple-scattering tables: spherical-harmonic degree of the scattered light "
+                            "(0: isotropic; 2: Rayleigh exact; more: the aerosol's forward scattering)",
+                            [](Scene& s) -> int& { return s.render.ms_angular_degree; }));
+    r.push_back(bool_key("render.cache_tables",
+                         "keep multiple-scattering tables on disk ($SKYSPEC_CACHE_DIR, $XDG_CACHE_HOME/skyspec or "
+                         "~/.cache/skyspec) and reuse them for the same atmosphere",
+                         [](Scene& s) -> bool& { return s.render.cache_tables; }));
+    r.push_back(bool_key("render.sky_view_table",
+                         "interpolate the image from a table of marched view directions where the camera is "
+                         "inside the atmosphere (false: march a ray for every pixel)",
+                         [](Scene& s) -> bool& { return s.render.sky_view_table; }));
+    r.push_back(integer_key("render.sky_view_zenith_samples", 8, 4096,
+                            "sky-view table: rows from the horizon to the zenith (half as many below it)",
+                            [](Scene& s) -> int& { return s.render.sky_view_zenith_samples; }));
+    r.push_back(integer_key("render.sky_view_azimuth_samples", 4, 4096,
+                            "sky-view table: columns from towards the sun to away from it",
+                            [](Scene& s) -> int& { return s.render.sky_view_azimuth_samples; }));
+    // output
+    r.push_back(text_key("output.directory", "folder for the output files",
+                         [](Scene& s) -> std::string& { return s.output.directory; }, false));
+    r.push_back(text_key("output.name", "base name of the output files (<name>.exr, <name>.png)",
+                         [](Scene& s) -> std::string& { return s.output.name; }, true));
+    r.push_back(bool_key("output.exr", "write the spectral OpenEXR", [](Scene& s) -> bool& { return s.output.exr; }));
+    r.push_back(bool_key("output.png", "write the sRGB PNG preview", [](Scene& s) -> bool& { return s.output.png; }));
+    r.push_back(bool_key("output.polarisation",
+                         "polarised sky: Stokes S1-S3 per wavelength in the spectral EXR beside S0, and "
+                         "<name>-polarisation.exr with the luminance-weighted Y, DoLP and AoLP (vector transport for "
+                         "the air, aerosols as unit scattering matrices; 1.8-3.5 times the render time, 4-5 times the EXR; "
+                         "needs render.ms_angular_degree >= 2 with multiple scattering)",
+                         [](Scene& s) -> bool& { return s.output.polarisation; }));
+    r.push_back(bool_key("output.polarisation_png",
+                         "with output.polarisation and output.png: also <name>-polarisation.png, the angle of linear "
+                         "polarisation as hue (a colour wheel over 180 degrees) and its degree as brightness",
+                         [](Scene& s) -> bool& { return s.output.polarisation_png; }));
+    r.push_back(choice_key(
+        "output.exr_compression", {"piz", "zip", "zips", "rle", "none"},
+        "lossless compression of the spectral EXR: piz (wavelet, smallest and fastest to write for sky "
+        "images), zip (16 rows per block), zips (1 row), rle, none",
+        [](Scene& s, const std::string& v) { s.output.exr_compression = v; },
+        [](const Scene& s) { return s.output.exr_compression; }));
+    r.push_back(choice_key(
+        "output.exr_spectral_type", {"float", "half"},
+        "pixel type of the spectral EXR's S0 channels: float (32 bits, exact) or half (16 bits: half the data, a "
+        "relative error of at most 2^-11 from 6.1e-5 up, values above 65504 refused; R, G, B stay float)",
+        [](Scene& s, const std::string& v) { s.output.exr_spectral_type = v; },
+        [](const Scene& s) { return s.output.exr_spectral_type; }));
+    {
+      KeyDef k;
+      k.key = "output.exposure_ev";
+      const std::string allowed = "a number of stops from -64 to 64";
+      k.doc = "(" + allowed + ") preview exposure: pixel values are multiplied by 2^EV (automatic when absent)";
+      k.set = [k, allowed](Scene& s, const toml::node& n, const std::string& origin) {
+        const double v = get_number(k, n, origin, allowed);
+        if (!std::isfinite(v) || v < -64 || v > 64) throw InputError(k.key, node_text(n), allowed, origin);
+        s.output.exposure_ev = v;
+      };
+      k.get = [](const Scene& s) { return s.output.exposure_ev ? exact_number(*s.output.exposure_ev) : std::string(); };
+      r.push_back(k);
+    }
+    return r;
+  }();
+  return keys;
+}
+
+const KeyDef* find_key(const std::string& key) {
+  for (const auto& k : registry())
+    if (k.key == key) return &k;
+  return nullptr;
+}
+
+[[noreturn]] void unknown_key(const std::string& key, const std::string& origin) {
+  std::string best;
+  size_t best_d = std::numeric_limits<size_t>::max();
+  for (const auto& k : registry()) {
+    // Compare with the full key and with its last component (a key in the wrong table).
+    const size_t d = edit_distance(key, k.key);
+    const std::string leaf = k.key.substr(k.key.rfind('.') + 1);
+    const std::string key_leaf = key.substr(key.rfind('.') + 1);
+    const size_t d2 = key_leaf == leaf ? 1 : d;
+    if (std::min(d, d2) < best_d) {
+      best_d = std::min(d, d2);
+      best = k.key;
+    }
+  }
+  std::string hint;
+  if (best_d <= std::max<size_t>(3, key.size() / 3)) hint += " (did you mean \"" + best + "\"?)";
+  hint += "; `skyspec render --help-keys` lists the known keys";
+  throw InputError::unknown_key(key, hint, origin);
+}
+
+}  // namespace skyspec::scene_keys

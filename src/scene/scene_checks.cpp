@@ -1,0 +1,119 @@
+// Whole-scene checks (scene_checks.hpp) and check_spectral_range (scene.hpp).
+#include "scene/scene_checks.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <functional>
+#include <iomanip>
+#include <limits>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "physics/date_time.hpp"
+#include "physics/ozone.hpp"
+#include "physics/solar_spectrum.hpp"
+#include "physics/solar_position.hpp"
+#include "base/embedded_data.hpp"
+#include "skyspec/error.hpp"
+#include "base/text_format.hpp"
+#include "scene/toml_limits.hpp"
+#include "skyspec/refractive_index.hpp"
+#include "skyspec/units.hpp"
+
+
+namespace skyspec {
+
+// The Blender and OpenEXR lat-long conventions map the whole image to the whole sphere.
+void check_panorama(const CameraSpec& c) {
+  if (c.panorama_convention == PanoramaConvention::Skyspec) return;
+  const std::string name = panorama_convention_name(c.panorama_convention);
+  if (c.min_elevation_deg != -90.0)
+    throw InputError("camera.min_elevation_deg", format_number(c.min_elevation_deg),
+                     "-90 with camera.panorama_convention = \"" + name +
+                         "\" (its lat-long map covers the whole sphere; a partial panorama takes the skyspec convention)");
+  if (c.panorama_convention == PanoramaConvention::OpenExr && (c.width < 2 || c.height < 2))
+    throw InputError("camera.width x camera.height", std::to_string(c.width) + "x" + std::to_string(c.height),
+                     "at least 2x2 pixels with camera.panorama_convention = \"openexr\" (its first and last pixel "
+                     "centres are the poles and the seam)");
+}
+
+bool sees_below_horizon_as_panorama(const CameraSpec& c) {
+  return c.type == CameraSpec::Type::Equirectangular && c.min_elevation_deg < 0.0;
+}
+
+bool ground_albedo_given(const std::set<std::string>& given) {
+  for (const char* key : {"ground.albedo", "ground.albedo_wavelengths_nm", "ground.albedo_values"})
+    if (given.count(key)) return true;
+  return false;
+}
+
+namespace {
+// The wavelengths a spectral render can take: where every built-in table the scene uses is
+// defined. Colour (XYZ, RGB, PNG) integrates over the grid's overlap with the CIE colour-matching
+// functions (360-830 nm), so it sets no limit here.
+struct SpectralLimit {
+  double min_nm, max_nm;
+  std::string reason;
+};
+// The refractive index of air bounds any derivation of air's Rayleigh coefficients.
+std::optional<SpectralLimit> refractive_index_limit(const Scene& s) {
+  if (s.atmosphere.rayleigh.source != RayleighSpec::Source::Derived ||
+      s.atmosphere.rayleigh.derivation.gas != ScatteringGas::Air)
+    return std::nullopt;
+  const RefractiveIndexValidity v = validity(s.atmosphere.rayleigh.derivation.formula);
+  return SpectralLimit{v.min_nm, v.max_nm, "the refractive index of air: " + v.reason};
+}
+std::vector<SpectralLimit> spectral_limits(const Scene& s) {
+  std::vector<SpectralLimit> limits;
+  if (const auto air = refractive_index_limit(s)) limits.push_back(*air);
+  if (s.sun.spectrum == SunSpec::Spectrum::Solar) {
+    const TabulatedSpectrum& sun = solar_irradiance_table();
+    limits.push_back({sun.min_nm(), sun.max_nm(), "the extraterrestrial solar spectrum (ASTM G173-03, sun.spectrum = \"solar\")"});
+  }
+  const OzoneSpec& o3 = s.atmosphere.ozone;
+  if (o3.enabled && o3.cross_section_m2.empty()) {
+    const TabulatedSpectrum& table = ozone_cross_section_table();
+    limits.push_back({table.min_nm(), table.max_nm(),
+                      "the built-in ozone cross-sections (laboratory data at 233 K; ozone.enabled = true)"});
+  }
+  return limits;
+}
+
+void check_limits(const WavelengthGrid& grid, const std::vector<SpectralLimit>& limits, const std::string& what) {
+  double lo = 0.0, hi = std::numeric_limits<double>::infinity();
+  std::string lo_reason, hi_reason;
+  for (const SpectralLimit& l : limits) {
+    if (l.min_nm > lo) lo = l.min_nm, lo_reason = l.reason;
+    if (l.max_nm < hi) hi = l.max_nm, hi_reason = l.reason;
+  }
+  if (grid.min_nm() >= lo && grid.max_nm() <= hi) return;
+  if (lo_reason == hi_reason)
+    throw InputError("spectrum", grid.describe(),
+                     "wavelengths from " + format_number(lo) + " to " + format_number(hi) + " nm" + what + ": " + lo_reason);
+  throw InputError("spectrum", grid.describe(),
+                   "wavelengths from " + format_number(lo) + " nm (" + lo_reason + ") to " + format_number(hi) + " nm (" +
+                       hi_reason + ")" + what);
+}
+
+}  // namespace
+
+void check_refractive_index_range(const Scene& s, const WavelengthGrid& grid) {
+  if (const auto air = refractive_index_limit(s)) check_limits(grid, {*air}, "");
+}
+
+void check_spectral_range(const Scene& s, const WavelengthGrid& grid) {
+  if (grid.size() < 2)
+    throw InputError("spectrum", grid.describe(), "at least 2 wavelengths when render.path = \"spectral\"");
+  check_limits(grid, spectral_limits(s), " when render.path = \"spectral\"");
+}
+
+}  // namespace skyspec
