@@ -87,7 +87,7 @@ std::string scene_keys_markdown() {
   const Scene defaults = default_scene();
   std::ostringstream out;
   out << "# Scene keys\n\n"
-      << "Generated from the key registry (src/scene/scene.cpp) by `skyspec render --help-keys=markdown`;\n"
+      << "Generated from the key registry (src/scene/key_registry.cpp) by `skyspec render --help-keys=markdown`;\n"
       << "do not edit by hand. A scene file (TOML) or `--set KEY=VALUE` sets these; the default is the\n"
       << "built-in default scene (data/scenes/default.toml, equal to `Scene{}`). Values outside the allowed\n"
       << "range are refused with a message naming the key.\n\n"

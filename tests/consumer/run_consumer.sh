@@ -19,4 +19,4 @@ for private in single_scattering.hpp spectral_exr.hpp embedded_data.hpp; do
 done
 cmake -S "$here" -B "$work/build" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$work/build" >/dev/null
-"$work/build/consumer"
+"$work/build/consumer" "$work"
