@@ -26,6 +26,13 @@ struct SphereHit {
 /// perpendicular to d, and the roots with the cancellation-free quadratic formula.
 SphereHit intersect_sphere(const Vec3& origin_m, const Vec3& dir, double radius_m);
 
+/// Distance along the ray o + t d (|d| = 1) to where it enters the ball |p| <= radius_m: t_near
+/// where the sphere is ahead; 0 for an origin inside, and for an origin on the sphere (a camera at
+/// height 0: |o| = R to the last bit) that points below the horizontal, which enters at once
+/// (intersect_sphere's t_near is then 0 or a rounding error either side of it); +infinity where
+/// the ray never enters.
+double sphere_entry_distance(const Vec3& origin_m, const Vec3& dir, double radius_m);
+
 /// Parameter interval [t0, t1] along a ray, in metres.
 struct Interval {
   double t0_m = 0.0, t1_m = 0.0;

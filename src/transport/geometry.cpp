@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "skyspec/units.hpp"
 
@@ -38,6 +39,16 @@ SphereHit intersect_sphere(const Vec3& origin_m, const Vec3& dir, double radius_
   h.t_near_m = t0;
   h.t_far_m = t1;
   return h;
+}
+
+double sphere_entry_distance(const Vec3& origin_m, const Vec3& dir, double radius_m) {
+  if (origin_m.norm() < radius_m) return 0.0;
+  const SphereHit h = intersect_sphere(origin_m, dir, radius_m);
+  if (!h.hit) return std::numeric_limits<double>::infinity();
+  if (h.t_near_m > 0.0) return h.t_near_m;
+  // t_near <= 0: the origin is on the sphere, to rounding (outside it, both roots share a sign).
+  if (h.t_far_m > 0.0 && origin_m.dot(dir) < 0.0) return 0.0;
+  return std::numeric_limits<double>::infinity();
 }
 
 IntervalSet lit_intervals(const Vec3& origin_m, const Vec3& dir, double t0_m, double t1_m,

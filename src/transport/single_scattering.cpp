@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "skyspec/atmosphere.hpp"
 #include "transport/optical_depth.hpp"
@@ -191,8 +192,7 @@ void accumulate_piece_by_wavelength(const NodeArray& tau, const NodeArray& trans
 void SingleScattering::transmittance_to_space(const Vec3& o, const Vec3& d, Spectrum& out) const {
   const double R = atm_.planet_radius_m(), Rt = atm_.top_radius_m();
   out.setOnes();
-  const SphereHit ground = intersect_sphere(o, d, R);
-  if (o.norm() < R || (ground.hit && ground.t_near_m > 0.0)) {
+  if (sphere_entry_distance(o, d, R) < std::numeric_limits<double>::infinity()) {  // the ground is in the way
     out.setZero();
     return;
   }
@@ -336,14 +336,22 @@ bool SingleScattering::trace(const Vec3& o, const Vec3& d, const Vec3& s, const 
   const double t_begin = std::max(0.0, top.t_near_m);
   double t_end = top.t_far_m;
   bool hits_ground = false;
-  const SphereHit ground = intersect_sphere(o, d, R);
-  if (ground.hit && ground.t_near_m > 0.0 && ground.t_near_m < t_end) {
-    t_end = ground.t_near_m;
+  const double t_ground = sphere_entry_distance(o, d, R);
+  if (t_ground < t_end) {
+    t_end = t_ground;
     hits_ground = true;
   }
   if (sources.max_distance_m < t_end) {
     t_end = sources.max_distance_m;
     hits_ground = false;
+  }
+  if (hits_ground && t_end == 0.0 && t_begin == 0.0) {
+    // A camera on the ground (height 0) looking below the horizontal: the ground at the camera,
+    // with no air in front of it. No pieces; the one node is the ground point (place_nodes,
+    // integrate: only the ground's reflection).
+    ray.t_begin = ray.t_end = 0.0;
+    ray.hits_ground = true;
+    return true;
   }
   if (!(t_end > t_begin)) return false;
   ray.t_begin = t_begin;

@@ -15,6 +15,7 @@
 
 #include "scene_fixtures.hpp"
 #include "skyspec/camera.hpp"
+#include "skyspec/error.hpp"
 #include "skyspec/monte_carlo_reference.hpp"
 #include "io/spectral_exr.hpp"
 #include "scratch_folder.hpp"
