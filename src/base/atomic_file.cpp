@@ -57,9 +57,35 @@ void fsync_path(const fs::path& path, int flags, const char* what) {
 
 }  // namespace
 
+std::string file_kind(const fs::path& path) {
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) != 0) return errno == ENOENT ? "missing" : "unreadable";
+  if (S_ISREG(st.st_mode)) return "a regular file";
+  if (S_ISLNK(st.st_mode)) return "a symbolic link";
+  if (S_ISDIR(st.st_mode)) return "a folder";
+  if (S_ISCHR(st.st_mode)) return "a character device";
+  if (S_ISBLK(st.st_mode)) return "a block device";
+  if (S_ISFIFO(st.st_mode)) return "a FIFO";
+  if (S_ISSOCK(st.st_mode)) return "a socket";
+  return "not a regular file";
+}
+
+void refuse_to_replace_non_regular(const fs::path& path) {
+  const std::string kind = file_kind(path);
+  if (kind == "missing" || kind == "a regular file") return;
+  throw IoError("refusing to write '" + path.string() + "': it is " + kind +
+                "; skyspec creates and replaces only regular files (name a new file or a regular one)");
+}
+
+bool is_regular_input(const fs::path& path) {
+  std::error_code ec;
+  return fs::is_regular_file(path, ec);
+}
+
 AtomicOutputFile::AtomicOutputFile(fs::path final_path) : final_(std::move(final_path)) {
   if (final_.empty() || !final_.has_filename())
     throw IoError("cannot write to '" + final_.string() + "': not a file name");
+  refuse_to_replace_non_regular(final_);
   // Reserve the temporary name with O_EXCL so that two writers can never share it; the caller's
   // library then truncates and fills it.
   constexpr int kAttempts = 16;
@@ -84,6 +110,7 @@ AtomicOutputFile::~AtomicOutputFile() {
 void AtomicOutputFile::commit() {
   if (committed_) throw IoError("'" + final_.string() + "' was already committed");
   fsync_path(tmp_, O_WRONLY, "file");
+  refuse_to_replace_non_regular(final_);  // again: it may have appeared while the file was written
   if (::rename(tmp_.c_str(), final_.c_str()) != 0)
     throw io_error("cannot rename '" + tmp_.string() + "' to", final_, errno);
   committed_ = true;

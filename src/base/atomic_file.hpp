@@ -31,6 +31,19 @@ class AtomicOutputFile {
   bool committed_ = false;
 };
 
+/// What kind of file system entry `path` is, without following a symbolic link at its end:
+/// "missing", "a regular file", "a symbolic link", "a folder", "a character device", "a block
+/// device", "a FIFO", "a socket".
+std::string file_kind(const std::filesystem::path& path);
+/// Throws IoError naming the path and its kind unless it is missing or a regular file: skyspec
+/// creates and replaces only regular files, never a symbolic link (nor what it points to), a
+/// device such as /dev/null or /dev/stdout, a FIFO or a folder. AtomicOutputFile checks its final
+/// path with it before writing and again before the rename.
+void refuse_to_replace_non_regular(const std::filesystem::path& path);
+/// Whether `path` is a regular file (following links): the only kind skyspec reads as a data file
+/// (a FIFO or a device named like one would block the reader or feed it anything).
+bool is_regular_input(const std::filesystem::path& path);
+
 /// Writes `bytes` to `path` through an AtomicOutputFile: the file appears complete or not at all.
 /// Throws IoError naming the file.
 void write_file_atomically(const std::filesystem::path& path, const std::string& bytes);

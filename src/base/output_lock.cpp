@@ -11,6 +11,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "base/atomic_file.hpp"
 #include "skyspec/error.hpp"
 
 namespace skyspec {
@@ -19,8 +20,20 @@ namespace fs = std::filesystem;
 OutputLock::OutputLock(const fs::path& folder, const std::string& name, const std::string& setting)
     : path_((folder.empty() ? fs::path(".") : folder) / ("." + name + ".lock")) {
   for (int attempt = 0; attempt < 100; ++attempt) {
-    fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    // Never through a symbolic link (O_NOFOLLOW: ELOOP), never anything but a regular file: a
+    // link planted in the output folder would otherwise have its target truncated.
+    fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK, 0644);
+    if (fd_ < 0 && errno == ELOOP)
+      throw IoError("refusing to use the lock file '" + path_.string() +
+                    "': it is a symbolic link; skyspec creates and replaces only regular files");
     if (fd_ < 0) throw IoError("cannot create the lock file '" + path_.string() + "': " + std::strerror(errno));
+    struct stat kind {};
+    if (::fstat(fd_, &kind) != 0 || !S_ISREG(kind.st_mode)) {
+      ::close(fd_);
+      fd_ = -1;
+      throw IoError("refusing to use the lock file '" + path_.string() + "': it is " + file_kind(path_) +
+                    ", not a regular file");
+    }
     if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
       const int error_number = errno;
       std::string holder;

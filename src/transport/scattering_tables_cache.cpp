@@ -1,5 +1,7 @@
 #include "transport/scattering_tables_cache.hpp"
 
+#include "base/atomic_file.hpp"
+
 #include <cstdlib>
 #include <iostream>
 #include <mutex>
@@ -52,7 +54,9 @@ std::shared_ptr<const ScatteringOrders> load_or_build(const SingleScattering& in
                                                       const MultipleScatteringSettings& settings, bool use_disk_cache) {
   const std::filesystem::path dir = use_disk_cache ? table_cache_directory() : std::filesystem::path();
   const std::string path = dir.empty() ? std::string() : (dir / key.file_name()).string();
-  if (!path.empty())
+  // Only a regular file is read: a FIFO or a device under the cache file's name would block the
+  // reader or feed it anything (it is then rebuilt, and replacing it is refused with a message).
+  if (!path.empty() && is_regular_input(path))
     if (auto loaded = ScatteringOrders::load(path, key.inputs, integrator.atmosphere(), settings)) return loaded;
   auto built = std::make_shared<const ScatteringOrders>(integrator, settings);
   if (!path.empty() && usable_cache_directory(dir) && !built->save(path, key.inputs))
