@@ -145,7 +145,7 @@ int run_here(const JobOptions& o, const JobPlan& plan, TaskRange range, bool col
   if (collect) {
     const JobSummary summary = collect_job(plan);
     if (!o.quiet) std::cout << summary.describe() << "\nmanifest: " << (plan.job.output_directory / "manifest.jsonl").string() << "\n";
-    return summary.failed || summary.missing ? kExitTasksFailed : kExitOk;
+    return summary.failed || summary.missing || summary.damaged ? kExitTasksFailed : kExitOk;
   }
   return failed ? kExitTasksFailed : kExitOk;
 }
@@ -223,7 +223,12 @@ int run_collect(const JobOptions& o) {
   if (summary.missing)
     std::cerr << "skyspec: " << summary.missing << " task(s) have not run: run the job (or the shard) again; finished "
               << "tasks are kept\n";
-  return summary.failed || summary.missing ? kExitTasksFailed : kExitOk;
+  if (summary.damaged) {
+    std::cerr << "skyspec: " << summary.damaged << " task record(s) are damaged or their files are gone; running the "
+              << "job again renders those tasks:\n";
+    for (const auto& d : summary.damaged_records) std::cerr << "  " << d << "\n";
+  }
+  return summary.failed || summary.missing || summary.damaged ? kExitTasksFailed : kExitOk;
 }
 
 }  // namespace

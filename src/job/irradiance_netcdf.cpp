@@ -65,6 +65,13 @@ double unix_seconds(const std::string& iso) {
 void write_irradiance_netcdf(const std::filesystem::path& path, const JobPlan& plan, int site,
                              const std::vector<const json*>& rows) {
   if (rows.empty()) return;
+  // One wavelength axis for the file: every row's grid must be the first's (records are validated
+  // per task by record_problem; a job that sweeps spectrum keys gives rows of other grids).
+  const auto& first_wl = rows.front()->at("irradiance").at("wavelengths_nm");
+  for (const json* row : rows)
+    if (row->at("irradiance").at("wavelengths_nm") != first_wl)
+      throw IoError("task " + row->value("id", std::string("?")) + " has other wavelengths than task " +
+                    rows.front()->value("id", std::string("?")) + ": one irradiance NetCDF holds one wavelength grid");
   AtomicOutputFile file(path);
   {
     NcFile nc(file.temporary_path());

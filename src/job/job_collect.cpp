@@ -119,6 +119,7 @@ std::string JobSummary::describe() const {
   std::string s = std::to_string(ok) + " task(s) done";
   if (failed) s += ", " + std::to_string(failed) + " failed";
   if (missing) s += ", " + std::to_string(missing) + " not run";
+  if (damaged) s += ", " + std::to_string(damaged) + " with a damaged record or missing files (run the job again)";
   if (frames_merged || frames_kept || frames_incomplete)
     s += "; frames: " + std::to_string(frames_merged) + " merged, " + std::to_string(frames_kept) + " already merged, " +
          std::to_string(frames_incomplete) + " waiting for strips";
@@ -134,11 +135,33 @@ JobSummary collect_job(const JobPlan& plan) {
   std::map<std::string, std::pair<int, std::vector<const json*>>> series;  // site -> (its index, its rows)
   std::vector<json> records(plan.tasks.size());
   for (const auto& task : plan.tasks) {
-    json r = read_task_record(plan, task);
+    std::string damaged;
+    json r = read_task_record(plan, task, &damaged);  // validated: records are untrusted input
+    // An ok record whose files are gone or changed size is not done either (the checksums are
+    // checked again by a resumed run; sizes here, so that collecting stays quick).
+    if (!r.is_null() && r.value("status", "") == "ok")
+      for (const auto& f : r.at("files")) {
+        std::error_code ec;
+        const auto size = std::filesystem::file_size(plan.job.output_directory / f.at("path").get<std::string>(), ec);
+        if (ec || size != f.at("bytes").get<std::uintmax_t>()) {
+          damaged = "its file " + f.at("path").get<std::string>() + (ec ? " is missing" : " is not the size recorded");
+          r = nullptr;
+          break;
+        }
+      }
     records[task.index] = r;  // read once; the tables below point into `records`
     if (r.is_null()) {
-      ++summary.missing;
-      manifest += json{{"task", task.index}, {"id", task.id()}, {"site", plan.site_name(task)}, {"status", "missing"}}.dump() + "\n";
+      json entry = {{"task", task.index}, {"id", task.id()}, {"site", plan.site_name(task)}};
+      if (damaged.empty()) {
+        ++summary.missing;
+        entry["status"] = "missing";
+      } else {
+        ++summary.damaged;
+        entry["status"] = "damaged";
+        entry["error"] = damaged;
+        if (summary.damaged_records.size() < kFailuresListed) summary.damaged_records.push_back(task.id() + ": " + damaged);
+      }
+      manifest += entry.dump() + "\n";
       continue;
     }
     manifest += r.dump() + "\n";

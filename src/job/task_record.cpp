@@ -2,7 +2,9 @@
 
 #include <unistd.h>
 
+#include <cctype>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -10,6 +12,7 @@
 #include "base/atomic_file.hpp"
 #include "base/cancellation.hpp"
 #include "base/sha256.hpp"
+#include "physics/date_time.hpp"
 #include "colour/display_pipeline.hpp"
 #include "render/irradiance.hpp"
 #include "skyspec/error.hpp"
@@ -142,19 +145,121 @@ json run_task(const JobPlan& plan, const JobTask& task, int threads) {
   return record;
 }
 
-json read_task_record(const JobPlan& plan, const JobTask& task) {
-  std::ifstream f(task_record_path(plan, task), std::ios::binary);
-  if (!f) return nullptr;
+namespace {
+
+bool is_hex_digest(const json& v) {
+  if (!v.is_string() || v.get_ref<const std::string&>().size() != 64) return false;
+  for (char c : v.get_ref<const std::string&>())
+    if (!std::isxdigit(static_cast<unsigned char>(c))) return false;
+  return true;
+}
+
+bool is_finite_number(const json& v) { return v.is_number() && std::isfinite(v.get<double>()); }
+
+// A relative path that stays inside the job's folder: not absolute, no "..", no empty name.
+bool is_path_inside_job(const json& v) {
+  if (!v.is_string() || v.get_ref<const std::string&>().empty()) return false;
+  const std::filesystem::path p(v.get_ref<const std::string&>());
+  if (p.is_absolute() || p.has_root_name() || p.has_root_directory()) return false;
+  for (const auto& part : p)
+    if (part == ".." || part.empty()) return false;
+  return true;
+}
+
+}  // namespace
+
+std::string record_problem(const JobPlan& plan, const JobTask& task, const json& r) {
+  if (!r.is_object()) return "it is not a JSON object";
+  if (!r.contains("task") || !r.at("task").is_number_integer() || r.at("task").get<long long>() != task.index)
+    return "its \"task\" is not " + std::to_string(task.index);
+  if (!r.contains("id") || !r.at("id").is_string() || r.at("id").get<std::string>() != task.id())
+    return "its \"id\" is not \"" + task.id() + "\"";
+  const std::string status = r.contains("status") && r.at("status").is_string() ? r.at("status").get<std::string>() : "";
+  if (status != "ok" && status != "failed") return "its \"status\" is neither \"ok\" nor \"failed\"";
+  if (r.contains("date_time") && !r.at("date_time").is_string()) return "its \"date_time\" is not text";
+  if (r.contains("date_time") && !r.at("date_time").get<std::string>().empty()) {
+    try {
+      parse_iso8601(r.at("date_time").get<std::string>(), "date_time");
+    } catch (const InputError& e) {
+      return "its \"date_time\" " + r.at("date_time").get<std::string>() + " is not an ISO 8601 date-time";
+    }
+  }
+  if (!r.contains("files") || !r.at("files").is_array()) return "it has no \"files\" list";
+  for (const auto& f : r.at("files")) {
+    if (!f.is_object() || !f.contains("path") || !is_path_inside_job(f.at("path")))
+      return "a file's \"path\" is not a relative path inside the job's folder";
+    if (!f.contains("bytes") || !f.at("bytes").is_number_unsigned()) return "a file's \"bytes\" is not a whole number";
+    if (!f.contains("sha256") || !is_hex_digest(f.at("sha256"))) return "a file's \"sha256\" is not 64 hex digits";
+  }
+  if (status != "ok") return "";
+  for (const char* angle : {"sun_elevation_deg", "sun_azimuth_deg"})
+    if (!r.contains(angle) || !is_finite_number(r.at(angle))) return std::string("its \"") + angle + "\" is not a finite number";
+  if (r.contains("irradiance")) {
+    const json& irr = r.at("irradiance");
+    if (!irr.is_object() || !irr.contains("wavelengths_nm") || !irr.at("wavelengths_nm").is_array())
+      return "its irradiance has no wavelengths";
+    const std::vector<double> grid = make_wavelength_grid(task_scene(plan, task)).nanometres();
+    const json& wl = irr.at("wavelengths_nm");
+    if (wl.size() != grid.size()) return "its irradiance has " + std::to_string(wl.size()) + " wavelengths, not the scene's " + std::to_string(grid.size());
+    for (std::size_t k = 0; k < wl.size(); ++k)
+      if (!is_finite_number(wl[k]) || std::abs(wl[k].get<double>() - grid[k]) > 1e-9 * grid[k])
+        return "its irradiance's wavelengths are not the scene's";
+    for (const auto& [key, value] : irr.items()) {
+      if (key == "wavelengths_nm") continue;
+      if (value.is_array()) {
+        if (value.size() != grid.size()) return "its \"" + key + "\" has " + std::to_string(value.size()) + " values for " + std::to_string(grid.size()) + " wavelengths";
+        for (const auto& v : value)
+          if (!is_finite_number(v)) return "its \"" + key + "\" has a value that is not a finite number";
+      } else if (!is_finite_number(value)) {
+        return "its \"" + key + "\" is not a finite number";
+      }
+    }
+  }
+  return "";
+}
+
+std::vector<std::string> expected_task_files(const JobPlan& plan, const JobTask& task) {
+  std::vector<std::string> files;
+  if (!plan.job.exr && !plan.job.png) return files;
+  Scene scene = task_scene(plan, task);
+  for (const auto& path : render_output_paths(scene, DisplaySettings{}).files()) {
+    if (task.tile && path.extension() != ".exr") continue;  // a tile writes its spectral EXR alone
+    if (task.tile && path.filename().string().find("-polarisation") != std::string::npos) continue;
+    files.push_back(std::filesystem::relative(path, plan.job.output_directory).generic_string());
+  }
+  return files;
+}
+
+json read_task_record(const JobPlan& plan, const JobTask& task, std::string* damaged) {
+  const auto path = task_record_path(plan, task);
+  std::error_code ec;
+  if (!std::filesystem::exists(std::filesystem::symlink_status(path, ec))) return nullptr;
+  const auto fail = [damaged](const std::string& why) {
+    if (damaged) *damaged = why;
+    return json(nullptr);
+  };
+  if (!is_regular_input(path)) return fail("its record is not a regular file");
+  std::ifstream f(path, std::ios::binary);
+  if (!f) return fail("its record cannot be read");
   std::stringstream text;
   text << f.rdbuf();
   const json j = json::parse(text.str(), nullptr, false);
-  return j.is_discarded() || !j.is_object() ? json(nullptr) : j;
+  if (j.is_discarded()) return fail("its record is not valid JSON");
+  if (const std::string problem = record_problem(plan, task, j); !problem.empty()) return fail("its record is damaged: " + problem);
+  return j;
 }
 
 bool task_done(const JobPlan& plan, const JobTask& task, std::string& why) {
-  const json r = read_task_record(plan, task);
-  if (r.is_null()) return why = "no record", false;
+  std::string damaged;
+  const json r = read_task_record(plan, task, &damaged);
+  if (r.is_null()) return why = damaged.empty() ? "no record" : damaged, false;
   if (r.value("status", "") != "ok") return why = "it failed: " + r.value("error", std::string("?")), false;
+  // Every output the task's scene asks for must be listed ("files": [] is not done).
+  for (const auto& expected : expected_task_files(plan, task)) {
+    bool listed = false;
+    for (const auto& f : r.at("files")) listed |= f.at("path").get<std::string>() == expected;
+    if (!listed) return why = "its record does not list " + expected, false;
+  }
   try {
     if (r.value("scene_sha256", "") != task_scene_digest(task_scene(plan, task)))
       return why = "its record is of another scene (the job changed)", false;

@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "job/job_plan.hpp"
 
@@ -27,8 +28,22 @@ nlohmann::json run_task(const JobPlan& plan, const JobTask& task, int threads = 
 /// Whether the task is done (see above); `why` says what is missing or wrong otherwise.
 bool task_done(const JobPlan& plan, const JobTask& task, std::string& why);
 
-/// The record a task left, or null when there is none or it is not valid JSON.
-nlohmann::json read_task_record(const JobPlan& plan, const JobTask& task);
+/// The record a task left, or null when there is none or it is not valid. Records are untrusted
+/// input (a crash, a full disk or another hand may have left anything): `damaged`, when given, says
+/// why a record that exists was not taken (record_problem, or it is not a regular file or not JSON).
+nlohmann::json read_task_record(const JobPlan& plan, const JobTask& task, std::string* damaged = nullptr);
+
+/// What is wrong with a task record read from disk, or "" when it is well formed for this task:
+/// "task" and "id" are this task's; "status" is "ok" or "failed"; every file entry has a relative
+/// "path" inside the job's folder (no "..", not absolute), whole "bytes" and a 64-digit hex
+/// "sha256"; a "date_time" reads as ISO 8601; an ok record's sun angles are finite and, with
+/// "irradiance", its wavelengths are the task scene's grid, every spectral array has one finite
+/// value per wavelength and every broadband value is finite.
+std::string record_problem(const JobPlan& plan, const JobTask& task, const nlohmann::json& record);
+
+/// The files a task's record must list to be done: its scene's render outputs, relative to the
+/// job's folder ("" when the job renders no images).
+std::vector<std::string> expected_task_files(const JobPlan& plan, const JobTask& task);
 
 /// SHA-256 of the task's scene as TOML (render.threads left out): what its files are a render of.
 std::string task_scene_digest(const Scene& scene);
