@@ -133,6 +133,19 @@ void write_file_atomically(const fs::path& path, const std::string& bytes) {
   file.commit();
 }
 
+OutputFolderGuard::OutputFolderGuard(fs::path dir, const std::string& setting) : dir_(std::move(dir)) {
+  std::error_code ec;
+  const bool existed = dir_.empty() || fs::exists(fs::symlink_status(dir_, ec));
+  ensure_writable_directory(dir_, setting);
+  created_ = !existed;
+}
+
+OutputFolderGuard::~OutputFolderGuard() {
+  if (!created_) return;
+  std::error_code ec;
+  fs::remove(dir_, ec);  // only an empty folder is removed; one with files stays as it is
+}
+
 void ensure_writable_directory(const fs::path& dir, const std::string& setting) {
   const auto refuse = [&]() {
     return InputError(setting, dir.string(), "a folder that exists or can be created and is writable");

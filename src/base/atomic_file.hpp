@@ -52,6 +52,22 @@ void write_file_atomically(const std::filesystem::path& path, const std::string&
 /// naming `setting` (e.g. "--out" or "output.directory") otherwise.
 void ensure_writable_directory(const std::filesystem::path& dir, const std::string& setting);
 
+/// A folder that a command is about to create for its outputs: made by ensure_writable_directory,
+/// removed again when the guard goes out of scope if this guard's check created it and it is still
+/// empty (a refused or failed command leaves no empty output folder behind).
+class OutputFolderGuard {
+ public:
+  /// Checks the folder as ensure_writable_directory does (InputError naming `setting`).
+  OutputFolderGuard(std::filesystem::path dir, const std::string& setting);
+  ~OutputFolderGuard();
+  OutputFolderGuard(const OutputFolderGuard&) = delete;
+  OutputFolderGuard& operator=(const OutputFolderGuard&) = delete;
+
+ private:
+  std::filesystem::path dir_;
+  bool created_ = false;
+};
+
 /// An input file of a command and the flag that named it (e.g. {"--image", "beauty.exr"}).
 struct NamedInput {
   std::string setting;

@@ -15,6 +15,7 @@ static_assert(std::atomic<int>::is_always_lock_free);
 std::string describe(int signal_number) {
   if (signal_number == SIGINT) return "SIGINT";
   if (signal_number == SIGTERM) return "SIGTERM";
+  if (signal_number == SIGHUP) return "SIGHUP";
   if (signal_number <= 0) return "a cancellation request";
   return "signal " + std::to_string(signal_number);
 }

@@ -40,7 +40,10 @@ struct JobOptions {
   bool json = false;
   int print_scene = -1;
   // run
-  std::string shard, tasks, scheduler;
+  // Optional, not empty strings: `--shard ''` (an unset variable in a Slurm array script) is an
+  // error, not "no shard", which would run every task on every node.
+  std::optional<std::string> shard, tasks;
+  std::string scheduler;
   int threads = 0, workers = 0;
   bool quiet = false, no_collect = false, stop_with_parent = false;
 };
@@ -140,8 +143,9 @@ int run_here(const JobOptions& o, const JobPlan& plan, TaskRange range, bool col
   }
   bar.finish();
   if (!o.quiet)
-    std::cout << "tasks " << range.first << "-" << range.last - 1 << ": ran " << ran << ", " << skipped
-              << " already done, " << failed << " failed\n";
+    std::cout << (range.size() > 0 ? "tasks " + std::to_string(range.first) + "-" + std::to_string(range.last - 1)
+                                    : std::string("no tasks (this shard is empty: the job has fewer tasks than shards)"))
+              << ": ran " << ran << ", " << skipped << " already done, " << failed << " failed\n";
   if (collect) {
     const JobSummary summary = collect_job(plan);
     if (!o.quiet) std::cout << summary.describe() << "\nmanifest: " << (plan.job.output_directory / "manifest.jsonl").string() << "\n";
@@ -187,9 +191,9 @@ std::string self_path() {
 int run_job(const JobOptions& o) {
   if (o.threads < 0 || o.threads > 1024) throw InputError("--threads", std::to_string(o.threads), "0 (the scene's render.threads) to 1024");
   if (o.workers < 0 || o.workers > 4096) throw InputError("--workers", std::to_string(o.workers), "0 (one per core) to 4096");
-  if (!o.shard.empty() && !o.tasks.empty())
-    throw InputError("--tasks", "\"" + o.tasks + "\"", "either --shard or --tasks, not both");
-  if (o.shard.empty() && o.tasks.empty()) {
+  if (o.shard && o.tasks)
+    throw InputError("--tasks", "\"" + *o.tasks + "\"", "either --shard or --tasks, not both");
+  if (!o.shard && !o.tasks) {
     if (o.no_collect) throw InputError("--no-collect", "(given)", "--shard or --tasks (the Dask driver always collects)");
     load_plan(o);  // a job with an error is refused here, before Python starts
     exec_driver(o);
@@ -203,9 +207,8 @@ int run_job(const JobOptions& o) {
     if (getppid() != parent) throw Interrupted(SIGTERM);
   }
   const JobPlan plan = load_plan(o);
-  if (!o.tasks.empty())
-    return run_here(o, plan, parse_task_range(o.tasks, static_cast<int>(plan.tasks.size()), "--tasks"), false);
-  const auto [i, n] = parse_shard(o.shard, "--shard");
+  if (o.tasks) return run_here(o, plan, parse_task_range(*o.tasks, static_cast<int>(plan.tasks.size()), "--tasks"), false);
+  const auto [i, n] = parse_shard(*o.shard, "--shard");
   const int rc = run_here(o, plan, plan.shard(i, n), n == 1 && !o.no_collect);
   if (n > 1 && !o.quiet) std::cout << "after the last shard: skyspec job collect " << o.job_file << "\n";
   return rc;
@@ -277,8 +280,8 @@ Command add_job_command(CLI::App& app) {
           [o, run] {  // the checks before any work (Command::validate)
             JobSpec spec = read_job_file(o->job_file);
             const JobPlan p = plan_job(spec);
-            if (run->parsed() && !o->shard.empty()) parse_shard(o->shard, "--shard");
-            if (run->parsed() && !o->tasks.empty()) parse_task_range(o->tasks, static_cast<int>(p.tasks.size()), "--tasks");
+            if (run->parsed() && o->shard) parse_shard(*o->shard, "--shard");
+            if (run->parsed() && o->tasks) parse_task_range(*o->tasks, static_cast<int>(p.tasks.size()), "--tasks");
           }};
 }
 

@@ -1,6 +1,10 @@
 // `skyspec reference`: the Monte Carlo reference radiance (all scattering orders, with standard
 // errors) in a few sky directions, optionally beside the renderer's own values.
 
+#include <algorithm>
+#include <cerrno>
+#include <cstdlib>
+#include <chrono>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -20,6 +24,7 @@
 
 #include "base/atomic_file.hpp"
 #include "render/irradiance.hpp"
+#include "render/render_budget.hpp"
 #include "skyspec/camera.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/monte_carlo_reference.hpp"
@@ -34,9 +39,9 @@ struct ReferenceOptions {
   SceneOptions scene;
   std::vector<std::string> probes;
   long long paths = 100000;
-  unsigned long long seed = 1;
+  std::string seed = "1";  ///< text: CLI11 clamps 2^64 to 2^64 - 1 without a word
   int orders = 0;
-  bool irradiance = false, compare = false, stokes = false, quiet = false;
+  bool irradiance = false, compare = false, stokes = false, quiet = false, force = false;
   std::string format = "md";
   std::string out;
 };
@@ -66,7 +71,15 @@ Checked check(const ReferenceOptions& o) {
     throw InputError("--orders", std::to_string(o.orders),
                      "0 or 1 with --compare (the renderer computes single scattering or all the orders it is set to)");
   c.settings.paths = o.paths;
-  c.settings.seed = o.seed;
+  {
+    // A whole number that fits in 64 bits, as typed: not clamped, not wrapped.
+    errno = 0;
+    char* end = nullptr;
+    const unsigned long long seed = std::strtoull(o.seed.c_str(), &end, 10);
+    if (o.seed.empty() || o.seed.find_first_not_of("0123456789") != std::string::npos || *end || errno == ERANGE)
+      throw InputError("--seed", o.seed, "a whole number from 0 to 18446744073709551615");
+    c.settings.seed = seed;
+  }
   c.settings.max_orders = o.orders;
   c.settings.diffuse_irradiance = o.irradiance;
   c.settings.stokes = o.stokes;
@@ -267,6 +280,23 @@ int run(const ReferenceOptions& o) {
     const std::filesystem::path out(o.out);
     ensure_writable_directory(out.has_parent_path() ? out.parent_path() : std::filesystem::path("."), "--out");
   }
+  // A time budget, as renders have: a pilot of 256 paths at the first probe (every wavelength, the
+  // same settings), extrapolated to every probe and the irradiance; above 24 hours refused unless
+  // --force (--paths 1e12 ran for years without a word).
+  if (!o.force) {
+    ReferenceSettings pilot = c.settings;
+    pilot.paths = std::min<long long>(o.paths, 256);
+    pilot.diffuse_irradiance = false;
+    const auto t0 = std::chrono::steady_clock::now();
+    monte_carlo_reference(c.scene, {c.probes.front()}, pilot, {});
+    const double per_path = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / pilot.paths;
+    const double seconds = per_path * static_cast<double>(o.paths) * static_cast<double>(c.probes.size() + (o.irradiance ? 1 : 0));
+    if (seconds > 86400.0)
+      throw InputError::refused("--force", "the Monte Carlo reference would take about " + format_duration(seconds) +
+                                               " at these settings (" + std::to_string(o.paths) + " paths x " +
+                                               std::to_string(c.probes.size()) + " probe(s), measured on " +
+                                               std::to_string(pilot.paths) + "); use fewer --paths, or --force");
+  }
   ReferenceResult result;
   {
     ProgressBar bar("monte carlo", o.quiet);
@@ -320,6 +350,7 @@ Command add_reference_command(CLI::App& app) {
   cmd->add_option("--format", o->format, "md (Markdown table), csv or json")->capture_default_str();
   cmd->add_option("--out", o->out, "write to this file instead of standard output");
   cmd->add_flag("-q,--quiet", o->quiet, "no progress bar");
+  cmd->add_flag("--force", o->force, "run even if the estimated time exceeds 24 hours");
   return {cmd, [o] { return run(*o); }, [o] { check(*o); }};
 }
 

@@ -96,17 +96,16 @@ int run_render(RenderOptions& o) {
     return kExitOk;
   }
   const DisplaySettings display = display_settings(o.display, exposure_flag_given(o));
-  {
-    const RenderOutputs outputs = render_output_paths(scene, display);
-    for (const auto& path : {outputs.exr, outputs.png, outputs.working_exr, outputs.polarisation_exr, outputs.polarisation_png})
-      if (!path.empty()) refuse_output_replacing_input(path, "--out / --name", scene_input_files(o.scene));
-  }
+  for (const auto& path : render_output_paths(scene, display).files())
+    refuse_output_replacing_input(path, "--out / --name", scene_input_files(o.scene));
   // Absurd requests are refused up front (render_budget.hpp): the sizes and the memory before the
   // renderer is built, the time once it is (measured on it, inside render_scene_to_files).
   const std::optional<PixelBounds> tile = tile_of(o, scene);
   RenderPlan plan = RenderPlan::for_scene(scene, !display.exr_space.empty(), display.png_bit_depth);
   if (tile) plan.width = tile->x1 - tile->x0, plan.height = tile->y1 - tile->y0;
-  if (!o.dry_run) ensure_writable_directory(scene.output.directory, "output.directory");  // its errors first
+  // Its errors first; a folder created here is removed again if the render is refused or fails.
+  std::optional<OutputFolderGuard> folder;
+  if (!o.dry_run) folder.emplace(scene.output.directory, "output.directory");
   RenderEstimate estimate = estimate_render(plan);
   if (!o.force) refuse_if_over_budget(estimate);
   std::string photometry;

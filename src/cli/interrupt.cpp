@@ -18,6 +18,9 @@ void install_interrupt_handlers() {
   action.sa_flags = SA_RESETHAND;  // a second signal gets the default action
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
+  // A dropped SSH session or a closed terminal: stop as for SIGTERM, removing the temporaries and
+  // the lock (it used to leave a 113 MB sky.exr.tmp-* and the lock behind).
+  sigaction(SIGHUP, &action, nullptr);
 }
 
 }  // namespace skyspec::cli

@@ -1,4 +1,4 @@
-// SIGINT / SIGTERM: stop the long loops instead of being killed mid-write.
+// SIGINT / SIGTERM / SIGHUP: stop the long loops instead of being killed mid-write.
 //
 // The default action of both signals ends the process without unwinding the stack, so the atomic
 // writers' temporary files ("<name>.tmp-...") would be left behind. install_interrupt_handlers()
@@ -16,7 +16,7 @@ namespace skyspec::cli {
 
 using Interrupted = skyspec::Cancelled;
 
-/// Installs the SIGINT and SIGTERM handlers (once, before running a command).
+/// Installs the SIGINT, SIGTERM and SIGHUP handlers (once, before running a command).
 void install_interrupt_handlers();
 /// Throws Interrupted if a signal was received.
 inline void throw_if_interrupted() { skyspec::throw_if_cancelled(); }

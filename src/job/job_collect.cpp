@@ -7,6 +7,7 @@
 #include "base/atomic_file.hpp"
 #include "base/sha256.hpp"
 #include "io/exr_merge.hpp"
+#include "base/output_lock.hpp"
 #include "job/irradiance_netcdf.hpp"
 #include "job/task_record.hpp"
 #include "skyspec/error.hpp"
@@ -187,6 +188,9 @@ JobSummary collect_job(const JobPlan& plan) {
   }
   const auto& out = plan.job.output_directory;
   std::filesystem::create_directories(out);
+  // Temporaries of the manifest, tables and frames that a killed collect left (their process gone).
+  remove_stale_temporaries(out, "");
+  remove_stale_temporaries(out / "frames", "");
   write_text_atomically(out / "manifest.jsonl", manifest);
   if (plan.job.tile_rows > 0) {
     std::string frames;

@@ -66,13 +66,16 @@ ConversionOutputs convert_exr_for_display(const std::filesystem::path& input, co
     recorded_text = t->second;
   }
   if (exposure.mode == ExposureSettings::Mode::Automatic && recorded) {
+    // Untrusted: the same range as a manual exposure (EV -200 to 200), so that a crafted 1e308 or
+    // 5e-324 cannot make an all-black or all-white picture without a word.
     const double scale = *recorded;
-    if (!(scale > 0.0) || !std::isfinite(scale))
-      throw IoError("EXR '" + input.string() + "': skyspec:exposureScale \"" + recorded_text + "\" is not a positive number");
+    if (!(scale >= std::exp2(-200.0) && scale <= std::exp2(200.0)))
+      throw IoError("EXR '" + input.string() + "': skyspec:exposureScale \"" + recorded_text +
+                    "\" is not an exposure scale from 2^-200 to 2^200 (EV -200 to 200); give --exposure to choose one");
     out.exposure = resolve_exposure(exposure, scale);
-    const auto text = image.strings.find("skyspec:exposure");
-    out.exposure.description =
-        "recorded in the file: " + (text != image.strings.end() ? text->second : "scale " + recorded_text);
+    // What is applied is the number, whatever the file's text says.
+    out.exposure.description = "recorded in the file: scale = " + format_number(scale) + " (EV " +
+                               format_number(std::log2(scale)) + ")";
   } else {
     out.exposure = resolve_exposure(exposure, exposure.mode == ExposureSettings::Mode::Automatic
                                                   ? metered_exposure_scale(image.rgb, image.width, image.height)

@@ -454,6 +454,10 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
   ensure_writable_directory(scene.output.directory, "output.directory");
   const RenderOutputs paths = render_output_paths(scene, display);
   const OutputLock lock(scene.output.directory, scene.output.name, "output.name");  // one writer per name
+  // Holding the name's lock: the temporaries of its files that a killed run left (SIGKILL, power)
+  // are removed, where the process in their name no longer runs.
+  remove_stale_temporaries(scene.output.directory, scene.output.name + ".");
+  remove_stale_temporaries(scene.output.directory, scene.output.name + "-");
   RenderOutputs out;
   const bool working_exr = !display.exr_space.empty();
   if (!scene.output.exr && !scene.output.png && !working_exr)

@@ -178,7 +178,11 @@ KeyDef text_key(std::string key, std::string help, std::function<std::string&(Sc
   KeyDef k;
   k.key = std::move(key);
   k.text = true;
-  const std::string allowed = file_name_only ? "a non-empty file name without '/' (letters, digits, '-', '_', '.')"
+  // A file name leaves room for what is added to it: "-polarisation.exr" and a temporary's
+  // ".tmp-<pid>-<64 bits in hex>" within the 255 bytes most file systems allow.
+  constexpr std::size_t kMaxFileName = 200;
+  const std::string allowed = file_name_only ? "a non-empty file name of at most " + std::to_string(kMaxFileName) +
+                                                   " characters without '/' (letters, digits, '-', '_', '.')"
                                              : "a non-empty path";
   k.doc = "(" + allowed + ") " + help;
   k.set = [k, allowed, ref, file_name_only](Scene& s, const toml::node& n, const std::string& origin) {
@@ -186,7 +190,7 @@ KeyDef text_key(std::string key, std::string help, std::function<std::string&(Sc
     if (!str || str->get().empty()) throw InputError(k.key, node_text(n), allowed, origin);
     if (file_name_only) {
       const std::string& v = str->get();
-      const bool ok = v != "." && v != ".." && std::all_of(v.begin(), v.end(), [](char c) {
+      const bool ok = v != "." && v != ".." && v.size() <= kMaxFileName && std::all_of(v.begin(), v.end(), [](char c) {
                         return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.';
                       });
       if (!ok) throw InputError(k.key, node_text(n), allowed, origin);

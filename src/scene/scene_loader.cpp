@@ -44,7 +44,9 @@ void apply_table(Scene& scene, const toml::table& tbl, const std::string& prefix
                  std::set<std::string>& applied) {
   for (const auto& [k, node] : tbl) {
     const std::string key = prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
-    if (auto sub = node.as_table()) {
+    // A table where the registry has a value ([sun] elevation_deg = {a = 1}) is that key's wrong
+    // value, not an unknown key (it said: did you mean "sun.elevation_deg"?).
+    if (auto sub = node.as_table(); sub && !find_key(key)) {
       // A table is a group of keys, unless the registry has no key below it.
       bool any = false;
       for (const auto& def : registry())
@@ -243,6 +245,12 @@ Scene SceneLoader::finish(SceneUse use) const {
                      "scattered more than once comes from its field's quadrupole; the draft quality's 0 has none)");
   // Grid and colour path.
   const WavelengthGrid grid = make_wavelength_grid(s);
+  // Every sample's band lambda +- bandwidth/2 must stay above 0 nm (1000 nm around 380 nm reached
+  // -120 nm, and the tables were averaged over it without a word).
+  if (grid.size() > 0 && grid.bandwidth_nm() / 2 >= grid.nanometres().front())
+    throw InputError("spectrum.bandwidth_nm", format_number(grid.bandwidth_nm()),
+                     "less than twice the shortest wavelength (" + format_number(grid.nanometres().front()) +
+                         " nm), so that no band reaches 0 nm");
   if (s.render.path == RenderSpec::Path::RgbFast) {
     const bool ok = grid.size() == 3 && grid.index_of(440) >= 0 && grid.index_of(550) >= 0 && grid.index_of(680) >= 0;
     if (!ok)

@@ -4,6 +4,7 @@
 The attacks of issue 19 on skyspec's EXR readers, reproducible without an EXR library:
 
   craft_exr.py IN OUT set-string NAME TEXT     replace (or add) string attribute NAME, offsets fixed
+  craft_exr.py IN OUT set-double NAME VALUE    replace (or add) double attribute NAME, offsets fixed
   craft_exr.py IN OUT declare-size NAME BYTES  attribute NAME declares BYTES (the data stays short)
   craft_exr.py IN OUT window W H               the dataWindow says W x H pixels (the chunks do not)
   craft_exr.py IN OUT channel-type NAME TYPE   channel NAME relabelled as TYPE (0 UINT, 1 HALF, 2 FLOAT)
@@ -68,6 +69,15 @@ def main(argv):
                 break
         else:
             attrs.append([name, "string", text])
+        out = relayout(data, attrs)
+    elif what == "set-double":
+        name, value = argv[4], struct.pack("<d", float(argv[5]))
+        for a in attrs:
+            if a[0] == name:
+                a[1], a[2] = "double", value
+                break
+        else:
+            attrs.append([name, "double", value])
         out = relayout(data, attrs)
     elif what == "declare-size":
         name, size = argv[4], int(argv[5])

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Faults: a full disk, a failing flush, a taken output name and SIGINT / SIGTERM during a render.
+# Faults: a full disk, a failing flush, a taken output name and SIGINT / SIGTERM / SIGHUP during a render.
 # Each must end with a non-zero exit, a clear message, and no partial or temporary file
 # ("<name>.tmp-...") in the output folder.
 # The full-disk case mounts a 64 KiB tmpfs and needs root (CAP_SYS_ADMIN); without it that case
@@ -59,7 +59,8 @@ taken_name() {
     >"$work/stdout" 2>"$work/stderr"
   local rc=$?
   if [ "$rc" != 3 ]; then bad "$name: exit $rc, expected 3"; cat "$work/stderr"; return; fi
-  grep -q "cannot rename .* Is a directory" "$work/stderr" && ok || { bad "$name: message missing"; cat "$work/stderr"; }
+  # Refused before anything is written (it used to fail at the rename: "cannot rename ... Is a directory").
+  grep -q "refusing to write '.*$taken': it is a folder" "$work/stderr" && ok || { bad "$name: message missing"; cat "$work/stderr"; }
   if [ "$(ls -A "$out")" != "$taken" ] || [ -n "$(ls -A "$out/$taken")" ]; then
     bad "$name: the folder holds: $(ls -A "$out")"
   else
@@ -93,5 +94,7 @@ render_and_signal() {
 }
 render_and_signal sigint INT 130
 render_and_signal sigterm TERM 143
+# A dropped SSH session (issue 42, item 10): SIGHUP stops like SIGTERM, temporaries and lock removed.
+render_and_signal sighup HUP 129
 
 finish faults

@@ -76,4 +76,49 @@ else
   echo "SKIP stdout: no /dev/full"
 fi
 
+# 10. Temporaries a killed run left (its process gone: pid 999999999 is above any pid_max) are
+# removed by the next render of that name, holding its lock; another name's are left alone.
+mkdir -p "$work/stale"
+touch "$work/stale/sky.exr.tmp-999999999-0123abcd" "$work/stale/sky-polarisation.exr.tmp-999999999-1" \
+      "$work/stale/other.exr.tmp-999999999-2"
+"$skyspec" render -q --out "$work/stale" "${small[@]}" 2>"$work/stderr" || bad "stale: render failed: $(cat "$work/stderr")"
+[ "$(ls -A "$work/stale" | sort | tr '\n' ' ')" = "other.exr.tmp-999999999-2 sky.exr sky.png " ] && ok \
+  || bad "stale temporaries: $(ls -A "$work/stale" | tr '\n' ' ')"
+
+# 12. A --name too long for the file system is refused up front, naming --name (it failed late,
+# exit 3, with 245-300 characters).
+long=$(printf 'n%.0s' $(seq 250))
+run_expecting_error long_name 2 "--name: output.name = \"$long\" is not allowed: a non-empty file name of at most 200" \
+  "$work/long" "$skyspec" render -q --out "$work/long" --name "$long" "${small[@]}"
+
+# 22. A budget refusal leaves no empty output folder behind (the folder did not exist before).
+run_expecting_error refused_folder 2 "would take about" "$work/none" \
+  "$skyspec" render -q --out "$work/refused/deep" --camera equirectangular --width 16384 --height 16384 \
+  --view-segments 4096 --threads 1 --no-exr --set render.sky_view_table=false --set render.scattering_orders=1
+[ ! -e "$work/refused/deep" ] && ok || bad "refused_folder: $work/refused/deep was left behind"
+
+# 11. convert trusts no crafted skyspec:exposureScale: 1e308 and 5e-324 are refused, naming it
+# (they made an all-black PNG, exit 0); a sane one is applied and quoted as the number.
+craft="${SKYSPEC_PYTHON:-/usr/bin/python3} $(dirname "${BASH_SOURCE[0]}")/craft_exr.py"
+for bad_scale in 1e308 5e-324; do
+  $craft "$work/stale/sky.exr" "$work/crafted.exr" set-double skyspec:exposureScale "$bad_scale"
+  run_expecting_error "scale_$bad_scale" 3 "is not an exposure scale from 2^-200 to 2^200" "$work/conv-$bad_scale" \
+    "$skyspec" convert "$work/crafted.exr" --out "$work/conv-$bad_scale"
+done
+$craft "$work/stale/sky.exr" "$work/crafted.exr" set-double skyspec:exposureScale 0.25
+$craft "$work/crafted.exr" "$work/crafted2.exr" set-string skyspec:exposure "made up"
+"$skyspec" convert "$work/crafted2.exr" --out "$work/conv-ok" >"$work/stdout" 2>&1
+grep -q "recorded in the file: scale = 0.25 (EV -2)" "$work/stdout" && ok || bad "scale 0.25: $(cat "$work/stdout")"
+
+# 19. merge --out naming a folder is refused before merging (exit 2, naming --out).
+mkdir -p "$work/merge-dir"
+run_expecting_error merge_into_folder 2 "--out = '$work/merge-dir' is not allowed" "$work/none" \
+  "$skyspec" merge "$work/stale/sky.exr" --out "$work/merge-dir"
+
+# 13. The Monte Carlo reference has a time budget: 1e12 paths per probe are refused up front.
+run_expecting_error reference_budget 2 "the Monte Carlo reference would take about" "$work/none" \
+  timeout 60 "$skyspec" reference --paths 1000000000000 --quality draft
+grep -qF "use fewer --paths, or --force" "$work/stderr" && ok || bad "reference_budget: $(cat "$work/stderr")"
+run_expecting_error reference_seed 2 "--seed" "$work/none" "$skyspec" reference --seed 18446744073709551616 --paths 2
+
 finish files_not_ours

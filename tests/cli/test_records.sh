@@ -64,6 +64,13 @@ for edit in 'r["task"] = -1' 'r["task"] = 1e300' 'r["id"] = "t0,00008"' 'r["date
   restore
 done
 
+# 15. An empty --shard or --tasks (an unset variable in a Slurm array script) is an error, not the
+# whole job on every node; an empty shard says so instead of "tasks 0--1".
+run_expecting_error empty_shard 2 '--shard = "" is not allowed' "$work/none" "$skyspec" job run "${job[@]}" --shard ''
+run_expecting_error empty_tasks 2 '--tasks = "" is not allowed' "$work/none" "$skyspec" job run "${job[@]}" --tasks ''
+"$skyspec" job run "${job[@]}" --shard 1/13 --no-collect >"$work/stdout" 2>&1
+grep -q "^no tasks (this shard is empty" "$work/stdout" && ok || bad "empty shard: $(cat "$work/stdout")"
+
 # The pristine records collect cleanly again (the checks refuse only what is wrong).
 "$skyspec" job collect "${job[@]}" --quiet 2>"$work/stderr" && ok || bad "pristine records: $(cat "$work/stderr")"
 

@@ -387,4 +387,29 @@ BOOST_AUTO_TEST_CASE(list_keys_state_the_unit_and_bounds_of_each_value) {
   BOOST_TEST(contains(help.at("ground.albedo_values"), "numbers, each >= 0 and <= 1"));
 }
 
+// A table where a key wants a value is that key's wrong value (issue 42, item 18: it suggested
+// the key itself as "did you mean").
+BOOST_AUTO_TEST_CASE(a_table_for_a_value_is_that_keys_error) {
+  const std::string e = error_of([] {
+    SceneLoader l;
+    l.apply_toml("[sun]\nelevation_deg = {a = 1}\n", "t.toml");
+  });
+  BOOST_TEST(contains(e, "sun.elevation_deg = "));
+  BOOST_TEST(contains(e, "is not allowed: a number in degrees"));
+  BOOST_TEST(!contains(e, "did you mean"));
+}
+
+// No sample's band reaches 0 nm (issue 42, item 20: 1000 nm around 380 nm was accepted).
+BOOST_AUTO_TEST_CASE(a_band_below_zero_nm_is_refused) {
+  const std::string e = error_of([] {
+    SceneLoader l;
+    l.apply_override("spectrum.bandwidth_nm", "1000", "--set spectrum.bandwidth_nm");
+    l.finish();
+  });
+  BOOST_TEST(contains(e, "spectrum.bandwidth_nm = 1000 is not allowed: less than twice the shortest wavelength (380 nm)"));
+  SceneLoader ok;
+  ok.apply_override("spectrum.bandwidth_nm", "700", "--set spectrum.bandwidth_nm");
+  BOOST_TEST(ok.finish().spectrum.bandwidth_nm == 700.0);
+}
+
 BOOST_AUTO_TEST_SUITE_END()  // test_scene
