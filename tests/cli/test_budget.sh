@@ -57,4 +57,25 @@ grep -q "^estimate: outputs up to [0-9.]* kB .* (41 wavelengths, 64 view segment
   || { bad "--dry-run printed: $(cat "$work/stdout")"; }
 [ ! -e "$work/dry" ] && ok || bad "--dry-run wrote $(ls -A "$work/dry")"
 
+# --- estimates against reality (issue 42, item 7: memory was 2.6x too low for a large PNG) --------
+# A 2500 x 2500 render, PNG only, then EXR only: the measured peak memory (GNU time's maximum
+# resident set) within 1.5x of the estimate either way, the wall time within 3x.
+if [ -x /usr/bin/time ]; then
+  for outputs in --no-exr --no-png; do
+    args=(--width 2500 --height 2500 --quality draft $small "$outputs")
+    "$skyspec" render --dry-run --out "$work/real" "${args[@]}" >"$work/stdout" 2>&1
+    est_mb=$(sed -n 's/.*peak memory about \([0-9.]*\) MB.*/\1/p' "$work/stdout")
+    est_s=$(sed -n 's/.*about \([0-9.]*\) s of rendering.*/\1/p' "$work/stdout")
+    /usr/bin/time -f "%M %e" -o "$work/time" "$skyspec" render -q --out "$work/real" "${args[@]}" 2>/dev/null
+    read -r peak_kb wall_s <"$work/time"
+    awk -v e="$est_mb" -v m="$peak_kb" 'BEGIN { r = e * 1e6 / (m * 1024); exit !(r > 1 / 1.5 && r < 1.5) }' && ok \
+      || bad "memory $outputs: estimated $est_mb MB, measured $((peak_kb / 1024)) MB"
+    awk -v e="$est_s" -v m="$wall_s" 'BEGIN { r = e / m; exit !(e != "" && r > 1 / 3 && r < 3) }' && ok \
+      || bad "time $outputs: estimated ${est_s:-?} s, measured $wall_s s"
+    rm -rf "$work/real"
+  done
+else
+  echo "SKIP estimates: no /usr/bin/time (GNU time)"
+fi
+
 finish budget
