@@ -22,8 +22,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <filesystem>
 #include <string>
@@ -43,11 +43,14 @@ int main(int argc, char** argv) {
     const Imath::Box2i dw = in.header().dataWindow();
     const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
     std::vector<std::string> names;
-    for (auto it = in.header().channels().begin(); it != in.header().channels().end(); ++it) names.emplace_back(it.name());
+    for (auto it = in.header().channels().begin(); it != in.header().channels().end(); ++it)
+      names.emplace_back(it.name());
     std::vector<std::vector<float>> pixels(names.size(), std::vector<float>(static_cast<size_t>(w) * h));
     Imf::FrameBuffer fb;
     for (size_t c = 0; c < names.size(); ++c)
-      fb.insert(names[c], Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(pixels[c].data()) - (dw.min.x + dw.min.y * static_cast<size_t>(w)) * sizeof(float),
+      fb.insert(names[c], Imf::Slice(Imf::FLOAT,
+                                     reinterpret_cast<char*>(pixels[c].data()) -
+                                         (dw.min.x + dw.min.y * static_cast<size_t>(w)) * sizeof(float),
                                      sizeof(float), sizeof(float) * static_cast<size_t>(w)));
     in.setFrameBuffer(fb);
     in.readPixels(dw.min.y, dw.max.y);
@@ -57,8 +60,11 @@ int main(int argc, char** argv) {
       const char* name;
       Imf::Compression compression;
     };
-    const Codec codecs[] = {{"none", Imf::NO_COMPRESSION}, {"rle", Imf::RLE_COMPRESSION}, {"zips", Imf::ZIPS_COMPRESSION},
-                            {"zip", Imf::ZIP_COMPRESSION}, {"piz", Imf::PIZ_COMPRESSION}};
+    const Codec codecs[] = {{"none", Imf::NO_COMPRESSION},
+                            {"rle", Imf::RLE_COMPRESSION},
+                            {"zips", Imf::ZIPS_COMPRESSION},
+                            {"zip", Imf::ZIP_COMPRESSION},
+                            {"piz", Imf::PIZ_COMPRESSION}};
     for (const int threads : {1, 2}) {
       Imf::setGlobalThreadCount(threads);
       for (const Codec& codec : codecs) {

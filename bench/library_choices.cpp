@@ -57,8 +57,9 @@ int main(int argc, char** argv) {
     worst_lcms = std::fmax(worst_lcms, std::fabs(cmsCIE2000DeltaE(&a, &b, 1, 1, 1) - r[7]));
     worst_ours = std::fmax(worst_ours, std::fabs(skyspec::ciede2000({r[1], r[2], r[3]}, {r[4], r[5], r[6]}) - r[7]));
   }
-  std::printf("CIEDE2000, Sharma et al. 2005's %zu pairs: largest |Little CMS - published| %.2e, |skyspec - published| %.2e\n",
-              rows.size(), worst_lcms, worst_ours);
+  std::printf(
+      "CIEDE2000, Sharma et al. 2005's %zu pairs: largest |Little CMS - published| %.2e, |skyspec - published| %.2e\n",
+      rows.size(), worst_lcms, worst_ours);
   // 2. A million random Lab pairs and XYZ colours: how far apart the two are.
   std::mt19937 g(1);
   std::uniform_real_distribution<double> L(0, 100), ab(-100, 100), xyz(-0.2, 3.0);
@@ -78,8 +79,9 @@ int main(int argc, char** argv) {
     cmsCIELab lab;
     cmsXYZ2Lab(&white, &lab, &c);
     const double fx = lab_f(c.X / white.X), fy = lab_f(c.Y / white.Y), fz = lab_f(c.Z / white.Z);
-    worst_lab = std::fmax(worst_lab, std::fmax(std::fabs(116 * fy - 16 - lab.L),
-                                               std::fmax(std::fabs(500 * (fx - fy) - lab.a), std::fabs(200 * (fy - fz) - lab.b))));
+    worst_lab = std::fmax(worst_lab,
+                          std::fmax(std::fabs(116 * fy - 16 - lab.L),
+                                    std::fmax(std::fabs(500 * (fx - fy) - lab.a), std::fabs(200 * (fy - fz) - lab.b))));
   }
   std::printf("1e6 random pairs: largest |Little CMS - skyspec| Delta E00 %.2e; 1e6 XYZ in [-0.2, 3]: Lab %.2e\n",
               worst_de, worst_lab);
@@ -88,7 +90,8 @@ int main(int argc, char** argv) {
   const auto t0 = std::chrono::steady_clock::now();
   for (size_t i = 0; i < A.size(); ++i) sum_lcms += cmsCIE2000DeltaE(&A[i], &B[i], 1, 1, 1);
   const auto t1 = std::chrono::steady_clock::now();
-  for (size_t i = 0; i < A.size(); ++i) sum_ours += skyspec::ciede2000({A[i].L, A[i].a, A[i].b}, {B[i].L, B[i].a, B[i].b});
+  for (size_t i = 0; i < A.size(); ++i)
+    sum_ours += skyspec::ciede2000({A[i].L, A[i].a, A[i].b}, {B[i].L, B[i].a, B[i].b});
   const auto t2 = std::chrono::steady_clock::now();
   std::printf("1e6 Delta E00, one thread: Little CMS %.0f ms, skyspec %.0f ms (sums %.6f, %.6f)\n", millis(t0, t1),
               millis(t1, t2), sum_lcms, sum_ours);

@@ -11,10 +11,10 @@
 #include <cmath>
 #include <iomanip>
 #include <memory>
-#include <utility>
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "skyspec/aerial_perspective.hpp"
@@ -52,11 +52,20 @@ std::string toml_string(const std::string& s) {
   std::string out = "\"";
   for (char ch : s) {
     switch (ch) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\t': out += "\\t"; break;
-      default: out += ch;
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      default:
+        out += ch;
     }
   }
   return out + "\"";
@@ -67,7 +76,8 @@ std::string toml_value(const py::handle& v, const std::string& key) {
   if (py::isinstance<py::bool_>(v)) return v.cast<bool>() ? "true" : "false";
   if (py::isinstance<py::str>(v)) return toml_string(v.cast<std::string>());
   if (py::isinstance<py::int_>(v)) return py::str(v).cast<std::string>();
-  const bool is_sequence = py::isinstance<py::sequence>(v) || (py::isinstance<py::array>(v) && py::hasattr(v, "__len__"));
+  const bool is_sequence =
+      py::isinstance<py::sequence>(v) || (py::isinstance<py::array>(v) && py::hasattr(v, "__len__"));
   if (!is_sequence && py::hasattr(v, "__float__")) {  // float, NumPy scalars
     PyObject* as_float = PyNumber_Float(v.ptr());
     if (!as_float) throw py::error_already_set();
@@ -154,7 +164,8 @@ CoefficientReport make_report(const py::object& wavelengths, const std::string& 
                               const std::optional<std::string>& refractive_index, std::optional<double> co2_ppm) {
   Scene scene = load_scene(preset, scene_file, scene_toml, overrides);
   if (refractive_index)
-    scene.atmosphere.rayleigh.derivation.formula = parse_refractive_index_formula(*refractive_index, "refractive_index");
+    scene.atmosphere.rayleigh.derivation.formula =
+        parse_refractive_index_formula(*refractive_index, "refractive_index");
   if (co2_ppm) {
     if (!(*co2_ppm >= 0.0 && *co2_ppm <= 1e6)) throw InputError("co2_ppm", std::to_string(*co2_ppm), "0 to 1e6 ppm");
     scene.atmosphere.rayleigh.derivation.co2_ppv = *co2_ppm * kPpvPerPpm;
@@ -164,7 +175,8 @@ CoefficientReport make_report(const py::object& wavelengths, const std::string& 
                      "both pressure_Pa and temperature_K, or neither");
   CoefficientReportRequest req;
   req.atmosphere = scene.atmosphere;
-  req.wavelengths_nm = wavelengths.is_none() ? make_wavelength_grid(scene).nanometres() : numbers_arg(wavelengths, "wavelengths_nm");
+  req.wavelengths_nm =
+      wavelengths.is_none() ? make_wavelength_grid(scene).nanometres() : numbers_arg(wavelengths, "wavelengths_nm");
   req.altitudes_m = numbers_arg(altitudes, "altitudes_m");
   if (pressure_Pa) req.conditions = AirConditions{*pressure_Pa, *temperature_K};
   req.latitude_deg = latitude_deg;
@@ -201,14 +213,22 @@ py::dict derive(const py::object& wavelengths_nm, const std::string& preset,
   }
   d["altitude_m"] = array1(alts);
   d["number_density_per_m3"] = array1(dens);
-  d["rayleigh_scattering_per_m"] = array2(r.levels, n, [](const ReportLevel& l) -> const auto& { return l.rayleigh_scattering_per_m; });
-  d["rayleigh_optical_depth"] = array2(r.levels, n, [](const ReportLevel& l) -> const auto& { return l.rayleigh_optical_depth; });
-  d["mie_scattering_per_m"] = array2(r.levels, n, [](const ReportLevel& l) -> const auto& { return l.mie_scattering_per_m; });
-  d["mie_extinction_per_m"] = array2(r.levels, n, [](const ReportLevel& l) -> const auto& { return l.mie_extinction_per_m; });
-  d["mie_optical_depth"] = array2(r.levels, n, [](const ReportLevel& l) -> const auto& { return l.mie_optical_depth; });
-  d["ozone_absorption_per_m"] = array2(r.levels, n, [](const ReportLevel& l) -> const auto& { return l.ozone_absorption_per_m; });
-  d["ozone_optical_depth"] = array2(r.levels, n, [](const ReportLevel& l) -> const auto& { return l.ozone_optical_depth; });
-  d["total_optical_depth"] = array2(r.levels, n, [](const ReportLevel& l) -> const auto& { return l.total_optical_depth; });
+  d["rayleigh_scattering_per_m"] = array2(
+      r.levels, n, [](const ReportLevel& l) -> const auto& { return l.rayleigh_scattering_per_m; });
+  d["rayleigh_optical_depth"] = array2(
+      r.levels, n, [](const ReportLevel& l) -> const auto& { return l.rayleigh_optical_depth; });
+  d["mie_scattering_per_m"] = array2(
+      r.levels, n, [](const ReportLevel& l) -> const auto& { return l.mie_scattering_per_m; });
+  d["mie_extinction_per_m"] = array2(
+      r.levels, n, [](const ReportLevel& l) -> const auto& { return l.mie_extinction_per_m; });
+  d["mie_optical_depth"] = array2(
+      r.levels, n, [](const ReportLevel& l) -> const auto& { return l.mie_optical_depth; });
+  d["ozone_absorption_per_m"] = array2(
+      r.levels, n, [](const ReportLevel& l) -> const auto& { return l.ozone_absorption_per_m; });
+  d["ozone_optical_depth"] = array2(
+      r.levels, n, [](const ReportLevel& l) -> const auto& { return l.ozone_optical_depth; });
+  d["total_optical_depth"] = array2(
+      r.levels, n, [](const ReportLevel& l) -> const auto& { return l.total_optical_depth; });
   if (r.conditions) {
     const auto& c = *r.conditions;
     d["conditions_pressure_Pa"] = c.air.pressure_Pa;
@@ -326,10 +346,11 @@ RenderResult render(const std::string& preset, const std::optional<std::string>&
 // Aerial perspective for a depth pass given as an (h, w) array: the camera's size is the array's.
 py::dict aerial_perspective_py(const py::array_t<float, py::array::c_style | py::array::forcecast>& depth,
                                const std::string& depth_is, const std::string& preset,
-                               const std::optional<std::string>& scene_file, const std::optional<std::string>& scene_toml,
-                               const std::optional<py::dict>& overrides) {
+                               const std::optional<std::string>& scene_file,
+                               const std::optional<std::string>& scene_toml, const std::optional<py::dict>& overrides) {
   if (depth.ndim() != 2 || depth.shape(0) < 1 || depth.shape(1) < 1)
-    throw InputError("depth", "an array of " + std::to_string(depth.ndim()) + " dimensions", "a 2-D (height, width) array");
+    throw InputError("depth", "an array of " + std::to_string(depth.ndim()) + " dimensions",
+                     "a 2-D (height, width) array");
   if (depth_is != "distance" && depth_is != "z")
     throw InputError("depth_is", "\"" + depth_is + "\"", "one of: distance (along each ray), z (along the view axis)");
   const auto h = depth.shape(0), w = depth.shape(1);
@@ -436,7 +457,8 @@ py::dict monte_carlo(const std::string& preset, const std::optional<std::string>
 
 // The pixel whose view direction is nearest (azimuth, elevation): (row, column).
 std::pair<int, int> nearest_pixel(const SpectralImageBuffer& img, double azimuth_deg, double elevation_deg) {
-  if (!std::isfinite(azimuth_deg)) throw InputError("azimuth_deg", format_number(azimuth_deg), "a finite number of degrees");
+  if (!std::isfinite(azimuth_deg))
+    throw InputError("azimuth_deg", format_number(azimuth_deg), "a finite number of degrees");
   if (!(elevation_deg >= -90.0 && elevation_deg <= 90.0))
     throw InputError("elevation_deg", format_number(elevation_deg), "-90 to 90 degrees");
   const Vec3 want = direction_from_angles(azimuth_deg, elevation_deg);
@@ -452,7 +474,8 @@ std::pair<int, int> nearest_pixel(const SpectralImageBuffer& img, double azimuth
         at = {y, x};
       }
     }
-  if (at.first < 0) throw InputError("azimuth_deg, elevation_deg", "any direction", "an image with pixels that look somewhere");
+  if (at.first < 0)
+    throw InputError("azimuth_deg, elevation_deg", "any direction", "an image with pixels that look somewhere");
   return at;
 }
 
@@ -461,16 +484,20 @@ std::pair<int, int> nearest_pixel(const SpectralImageBuffer& img, double azimuth
 const std::vector<std::pair<std::string, std::string>>& python_spellings() {
   namespace d = display_setting;
   static const std::vector<std::pair<std::string, std::string>> table = {
-      {d::kOcio, "ocio"},         {d::kDisplay, "display"}, {d::kView, "view"},
-      {d::kLook, "look"},         {d::kPngBits, "bits"},    {d::kExposureEv, "exposure_ev"},
+      {d::kOcio, "ocio"},
+      {d::kDisplay, "display"},
+      {d::kView, "view"},
+      {d::kLook, "look"},
+      {d::kPngBits, "bits"},
+      {d::kExposureEv, "exposure_ev"},
       {kSceneFileSetting, "scene_file"},
   };
   return table;
 }
 
 DisplaySettings display_settings(const std::optional<std::string>& display, const std::optional<std::string>& view,
-                                 const std::optional<std::string>& look, int bits, const std::optional<double>& exposure_ev,
-                                 const std::optional<std::string>& ocio) {
+                                 const std::optional<std::string>& look, int bits,
+                                 const std::optional<double>& exposure_ev, const std::optional<std::string>& ocio) {
   DisplaySettings d;
   if (ocio) d.config = {*ocio, "ocio"};
   if (display) d.display = *display;
@@ -478,7 +505,8 @@ DisplaySettings display_settings(const std::optional<std::string>& display, cons
   if (look) d.look = *look;
   d.png_bit_depth = bits;
   if (exposure_ev) {
-    if (!std::isfinite(*exposure_ev)) throw InputError("exposure_ev", format_number(*exposure_ev), "a finite number of stops");
+    if (!std::isfinite(*exposure_ev))
+      throw InputError("exposure_ev", format_number(*exposure_ev), "a finite number of stops");
     d.exposure.mode = ExposureSettings::Mode::Manual;
     d.exposure.ev = *exposure_ev;
   }
@@ -486,7 +514,8 @@ DisplaySettings display_settings(const std::optional<std::string>& display, cons
 }
 
 void bind_render_result(py::module_& m) {
-  py::class_<RenderResult>(m, "RenderResult", R"(A sky rendered into memory, with what it shows (skyspec.render() makes it).
+  py::class_<RenderResult>(m, "RenderResult",
+                           R"(A sky rendered into memory, with what it shows (skyspec.render() makes it).
 
 Arrays (row 0 is the top of the image, as in the EXR; h x w pixels, n wavelengths):
   spectral        float32 (h, w, n): spectral radiance, W m^-2 sr^-1 nm^-1 (absolute with sun.spectrum =
@@ -501,84 +530,123 @@ Arrays (row 0 is the top of the image, as in the EXR; h x w pixels, n wavelength
                   in each pixel's frame: e1 = stokes_e1 (float64 (h, w, 3)), e2 = k x e1, k = -direction
 spectral and rgb are writable views of the result (write_exr/write_png write what they hold); directions and
 wavelengths_nm are read-only views.)")
-      .def_property_readonly("spectral", [](const RenderResult& r) {
-        auto& i = *r.image;
-        return view_of<float>(r.image, {i.height, i.width, static_cast<py::ssize_t>(i.wavelengths_nm.size())}, i.spectral.data());
-      }, "float32 (h, w, n): spectral radiance, W m^-2 sr^-1 nm^-1")
-      .def_property_readonly("stokes", [](const RenderResult& r) -> py::object {
-        // A copy: S0 is spectral, S1-S3 are kept apart in the image.
-        const auto& i = *r.image;
-        if (i.stokes.empty()) return py::none();
-        const size_t n = i.wavelengths_nm.size(), pixels = static_cast<size_t>(i.width) * static_cast<size_t>(i.height);
-        py::array_t<float> out({static_cast<py::ssize_t>(i.height), static_cast<py::ssize_t>(i.width),
-                                static_cast<py::ssize_t>(n), py::ssize_t{4}});
-        float* o = out.mutable_data();
-        for (size_t p = 0; p < pixels; ++p)
-          for (size_t k = 0; k < n; ++k) {
-            float* v = o + (p * n + k) * 4;
-            v[0] = i.spectral[p * n + k];
-            for (size_t c = 0; c < 3; ++c) v[c + 1] = i.stokes[(p * 3 + c) * n + k];
-          }
-        return out;
-      }, "float32 (h, w, n, 4): the Stokes vector [S0, S1, S2, S3] per pixel and wavelength (S0 = spectral) in\n"
-         "each pixel's frame (stokes_e1), with output.polarisation; None otherwise")
-      .def_property_readonly("stokes_e1", [](const RenderResult& r) -> py::object {
-        const auto& i = *r.image;
-        if (i.stokes.empty()) return py::none();
-        const auto camera = make_camera(i.scene);
-        py::array_t<double> out({static_cast<py::ssize_t>(i.height), static_cast<py::ssize_t>(i.width), py::ssize_t{3}});
-        double* o = out.mutable_data();
-        for (int y = 0; y < i.height; ++y)
-          for (int x = 0; x < i.width; ++x) {
-            Vec3 d, e1 = Vec3::Zero();
-            if (camera->direction(x + 0.5, y + 0.5, d)) e1 = stokes_frame_axis_of_pixel(*camera, x + 0.5, y + 0.5, d);
-            std::copy(e1.data(), e1.data() + 3, o + (static_cast<size_t>(y) * i.width + x) * 3);
-          }
-        return out;
-      }, "float64 (h, w, 3): e1 of each pixel's Stokes frame, east-north-up (the image's x axis on the sky; e2 =\n"
-         "k x e1 with k = -direction, the light's direction); (0, 0, 0) where no direction; None without polarisation")
-      .def_property_readonly("wavelengths_nm", [](const RenderResult& r) {
-        return view_of<double>(r.image, {static_cast<py::ssize_t>(r.image->wavelengths_nm.size())},
-                               r.image->wavelengths_nm.data(), false);
-      }, "float64 (n,): the wavelengths, nm")
+      .def_property_readonly(
+          "spectral",
+          [](const RenderResult& r) {
+            auto& i = *r.image;
+            return view_of<float>(r.image, {i.height, i.width, static_cast<py::ssize_t>(i.wavelengths_nm.size())},
+                                  i.spectral.data());
+          },
+          "float32 (h, w, n): spectral radiance, W m^-2 sr^-1 nm^-1")
+      .def_property_readonly(
+          "stokes",
+          [](const RenderResult& r) -> py::object {
+            // A copy: S0 is spectral, S1-S3 are kept apart in the image.
+            const auto& i = *r.image;
+            if (i.stokes.empty()) return py::none();
+            const size_t n = i.wavelengths_nm.size(),
+                         pixels = static_cast<size_t>(i.width) * static_cast<size_t>(i.height);
+            py::array_t<float> out({static_cast<py::ssize_t>(i.height), static_cast<py::ssize_t>(i.width),
+                                    static_cast<py::ssize_t>(n), py::ssize_t{4}});
+            float* o = out.mutable_data();
+            for (size_t p = 0; p < pixels; ++p)
+              for (size_t k = 0; k < n; ++k) {
+                float* v = o + (p * n + k) * 4;
+                v[0] = i.spectral[p * n + k];
+                for (size_t c = 0; c < 3; ++c) v[c + 1] = i.stokes[(p * 3 + c) * n + k];
+              }
+            return out;
+          },
+          "float32 (h, w, n, 4): the Stokes vector [S0, S1, S2, S3] per pixel and wavelength (S0 = spectral) in\n"
+          "each pixel's frame (stokes_e1), with output.polarisation; None otherwise")
+      .def_property_readonly(
+          "stokes_e1",
+          [](const RenderResult& r) -> py::object {
+            const auto& i = *r.image;
+            if (i.stokes.empty()) return py::none();
+            const auto camera = make_camera(i.scene);
+            py::array_t<double> out(
+                {static_cast<py::ssize_t>(i.height), static_cast<py::ssize_t>(i.width), py::ssize_t{3}});
+            double* o = out.mutable_data();
+            for (int y = 0; y < i.height; ++y)
+              for (int x = 0; x < i.width; ++x) {
+                Vec3 d, e1 = Vec3::Zero();
+                if (camera->direction(x + 0.5, y + 0.5, d))
+                  e1 = stokes_frame_axis_of_pixel(*camera, x + 0.5, y + 0.5, d);
+                std::copy(e1.data(), e1.data() + 3, o + (static_cast<size_t>(y) * i.width + x) * 3);
+              }
+            return out;
+          },
+          "float64 (h, w, 3): e1 of each pixel's Stokes frame, east-north-up (the image's x axis on the sky; e2 =\n"
+          "k x e1 with k = -direction, the light's direction); (0, 0, 0) where no direction; None without polarisation")
+      .def_property_readonly(
+          "wavelengths_nm",
+          [](const RenderResult& r) {
+            return view_of<double>(r.image, {static_cast<py::ssize_t>(r.image->wavelengths_nm.size())},
+                                   r.image->wavelengths_nm.data(), false);
+          },
+          "float64 (n,): the wavelengths, nm")
       .def_readonly("xyz", &RenderResult::xyz, "float32 (h, w, 3): CIE 1931 XYZ, Y in cd m^-2")
-      .def_property_readonly("rgb", [](const RenderResult& r) {
-        return view_of<float>(r.image, {r.image->height, r.image->width, 3}, r.image->rgb.data());
-      }, "float32 (h, w, 3): linear Rec.709 (D65), the EXR's R, G, B")
-      .def_property_readonly("directions", [](const RenderResult& r) {
-        return view_of<double>(r.image, {r.image->height, r.image->width, 3}, r.image->directions.data(), false);
-      }, "float64 (h, w, 3): unit view direction of each pixel's centre, east-north-up; (0, 0, 0) where none")
-      .def_property_readonly("valid", [](const RenderResult& r) {
-        const auto& i = *r.image;
-        py::array_t<bool> valid({static_cast<py::ssize_t>(i.height), static_cast<py::ssize_t>(i.width)});
-        bool* out = valid.mutable_data();
-        for (size_t p = 0; p < static_cast<size_t>(i.width) * static_cast<size_t>(i.height); ++p)
-          out[p] = i.directions[p * 3] != 0.0 || i.directions[p * 3 + 1] != 0.0 || i.directions[p * 3 + 2] != 0.0;
-        return valid;
-      }, "bool (h, w): whether the pixel has a view direction")
-      .def_property_readonly("width", [](const RenderResult& r) { return r.image->width; }, "pixels")
-      .def_property_readonly("height", [](const RenderResult& r) { return r.image->height; }, "pixels")
-      .def_property_readonly("sun_direction", [](const RenderResult& r) {
-        const Vec3& s = r.image->sun_direction;
-        return array1({s.x(), s.y(), s.z()});
-      }, "float64 (3,): unit vector towards the sun's centre, east-north-up (the frame of directions)")
-      .def_property_readonly("sun_azimuth_deg", [](const RenderResult& r) { return r.image->scene.sun.azimuth_deg; },
-                             "the sun's azimuth, degrees clockwise from north (computed for sun.date_time when set)")
-      .def_property_readonly("sun_elevation_deg", [](const RenderResult& r) { return r.image->scene.sun.elevation_deg; },
-                             "the sun's elevation above the horizon, degrees")
-      .def_property_readonly("exposure_scale", [](const RenderResult& r) { return preview_exposure(*r.image).scale; },
-                             "the factor the preview applies to rgb (the EXR's skyspec:exposureScale): output.exposure_ev when\n"
-                             "the scene sets it, else the automatic one (log-average luminance -> 0.18)")
-      .def_property_readonly("exposure_ev", [](const RenderResult& r) { return std::log2(preview_exposure(*r.image).scale); },
-                             "log2(exposure_scale)")
-      .def_property_readonly("exposure", [](const RenderResult& r) { return preview_exposure(*r.image).description; },
-                             "how the exposure was chosen, in words (the EXR's skyspec:exposure)")
-      .def_property_readonly("scene_toml", [](const RenderResult& r) { return scene_to_toml(r.image->scene); },
-                             "the effective scene as TOML, every key (the EXR's skyspec:scene; render(scene_toml=...) again\n"
-                             "gives the same image)")
-      .def_property_readonly("scene", [](const RenderResult& r) {
-        return py::module_::import("tomllib").attr("loads")(scene_to_toml(r.image->scene));
-      }, "the effective scene as a nested dict (scene_toml read with tomllib)")
+      .def_property_readonly(
+          "rgb",
+          [](const RenderResult& r) {
+            return view_of<float>(r.image, {r.image->height, r.image->width, 3}, r.image->rgb.data());
+          },
+          "float32 (h, w, 3): linear Rec.709 (D65), the EXR's R, G, B")
+      .def_property_readonly(
+          "directions",
+          [](const RenderResult& r) {
+            return view_of<double>(r.image, {r.image->height, r.image->width, 3}, r.image->directions.data(), false);
+          },
+          "float64 (h, w, 3): unit view direction of each pixel's centre, east-north-up; (0, 0, 0) where none")
+      .def_property_readonly(
+          "valid",
+          [](const RenderResult& r) {
+            const auto& i = *r.image;
+            py::array_t<bool> valid({static_cast<py::ssize_t>(i.height), static_cast<py::ssize_t>(i.width)});
+            bool* out = valid.mutable_data();
+            for (size_t p = 0; p < static_cast<size_t>(i.width) * static_cast<size_t>(i.height); ++p)
+              out[p] = i.directions[p * 3] != 0.0 || i.directions[p * 3 + 1] != 0.0 || i.directions[p * 3 + 2] != 0.0;
+            return valid;
+          },
+          "bool (h, w): whether the pixel has a view direction")
+      .def_property_readonly(
+          "width", [](const RenderResult& r) { return r.image->width; }, "pixels")
+      .def_property_readonly(
+          "height", [](const RenderResult& r) { return r.image->height; }, "pixels")
+      .def_property_readonly(
+          "sun_direction",
+          [](const RenderResult& r) {
+            const Vec3& s = r.image->sun_direction;
+            return array1({s.x(), s.y(), s.z()});
+          },
+          "float64 (3,): unit vector towards the sun's centre, east-north-up (the frame of directions)")
+      .def_property_readonly(
+          "sun_azimuth_deg", [](const RenderResult& r) { return r.image->scene.sun.azimuth_deg; },
+          "the sun's azimuth, degrees clockwise from north (computed for sun.date_time when set)")
+      .def_property_readonly(
+          "sun_elevation_deg", [](const RenderResult& r) { return r.image->scene.sun.elevation_deg; },
+          "the sun's elevation above the horizon, degrees")
+      .def_property_readonly(
+          "exposure_scale", [](const RenderResult& r) { return preview_exposure(*r.image).scale; },
+          "the factor the preview applies to rgb (the EXR's skyspec:exposureScale): output.exposure_ev when\n"
+          "the scene sets it, else the automatic one (log-average luminance -> 0.18)")
+      .def_property_readonly(
+          "exposure_ev", [](const RenderResult& r) { return std::log2(preview_exposure(*r.image).scale); },
+          "log2(exposure_scale)")
+      .def_property_readonly(
+          "exposure", [](const RenderResult& r) { return preview_exposure(*r.image).description; },
+          "how the exposure was chosen, in words (the EXR's skyspec:exposure)")
+      .def_property_readonly(
+          "scene_toml", [](const RenderResult& r) { return scene_to_toml(r.image->scene); },
+          "the effective scene as TOML, every key (the EXR's skyspec:scene; render(scene_toml=...) again\n"
+          "gives the same image)")
+      .def_property_readonly(
+          "scene",
+          [](const RenderResult& r) {
+            return py::module_::import("tomllib").attr("loads")(scene_to_toml(r.image->scene));
+          },
+          "the effective scene as a nested dict (scene_toml read with tomllib)")
       .def(
           "pixel",
           [](const RenderResult& r, double azimuth_deg, double elevation_deg) {
@@ -706,9 +774,9 @@ Also the strings refractive_index, rayleigh_source and the float co2_ppm.
 Example: skyspec.derive(pressure_Pa=25000, temperature_K=220)["conditions_rayleigh_scattering_per_m"])";
   m.def("derive", &derive, py::arg("wavelengths_nm") = py::none(), py::kw_only(), py::arg("preset") = "default",
         py::arg("scene_file") = py::none(), py::arg("scene_toml") = py::none(), py::arg("overrides") = py::none(),
-        py::arg("altitudes_m") = 0.0, py::arg("pressure_Pa") = py::none(),
-        py::arg("temperature_K") = py::none(), py::arg("latitude_deg") = 45.0, py::arg("refractive_index") = py::none(),
-        py::arg("co2_ppm") = py::none(), derive_doc);
+        py::arg("altitudes_m") = 0.0, py::arg("pressure_Pa") = py::none(), py::arg("temperature_K") = py::none(),
+        py::arg("latitude_deg") = 45.0, py::arg("refractive_index") = py::none(), py::arg("co2_ppm") = py::none(),
+        derive_doc);
 
   m.def(
       "coefficient_report",
@@ -724,9 +792,8 @@ Example: skyspec.derive(pressure_Pa=25000, temperature_K=220)["conditions_raylei
       },
       py::arg("format") = "md", py::kw_only(), py::arg("wavelengths_nm") = py::none(), py::arg("preset") = "default",
       py::arg("scene_file") = py::none(), py::arg("scene_toml") = py::none(), py::arg("overrides") = py::none(),
-      py::arg("altitudes_m") = 0.0, py::arg("pressure_Pa") = py::none(),
-      py::arg("temperature_K") = py::none(), py::arg("latitude_deg") = 45.0, py::arg("refractive_index") = py::none(),
-      py::arg("co2_ppm") = py::none(),
+      py::arg("altitudes_m") = 0.0, py::arg("pressure_Pa") = py::none(), py::arg("temperature_K") = py::none(),
+      py::arg("latitude_deg") = 45.0, py::arg("refractive_index") = py::none(), py::arg("co2_ppm") = py::none(),
       "The coefficient derivation report as text: format 'md', 'csv', 'json' or 'html' (the output of\n"
       "`skyspec coefficients`); the other arguments are those of derive().");
 
@@ -746,7 +813,8 @@ Example: skyspec.derive(pressure_Pa=25000, temperature_K=220)["conditions_raylei
         in.formula = parse_refractive_index_formula(refractive_index, "refractive_index");
         // One CO2 default everywhere: the scenes' (420 ppm, present-day air).
         in.co2_ppv = co2_ppm ? *co2_ppm * kPpvPerPpm : default_scene().atmosphere.rayleigh.derivation.co2_ppv;
-        if (co2_ppm && !(*co2_ppm >= 0.0 && *co2_ppm <= 1e6)) throw InputError("co2_ppm", format_number(*co2_ppm), "0 to 1e6 ppm");
+        if (co2_ppm && !(*co2_ppm >= 0.0 && *co2_ppm <= 1e6))
+          throw InputError("co2_ppm", format_number(*co2_ppm), "0 to 1e6 ppm");
         std::vector<double> s;
         const RefractiveIndexValidity valid = validity(in.formula);
         for (double l : numbers_arg(wavelengths_nm, "wavelengths_nm")) {
@@ -761,7 +829,8 @@ Example: skyspec.derive(pressure_Pa=25000, temperature_K=220)["conditions_raylei
       },
       py::arg("wavelengths_nm"), py::arg("refractive_index") = "peck-reeder", py::arg("co2_ppm") = py::none(),
       "Rayleigh cross-section of dry air per molecule, m^2 (Bodhaine et al. 1999 eq. 2), at each wavelength (nm;\n"
-      "a number or a list/array, 230-1690 nm: the refractive index formula's range), with co2_ppm of CO2 (default: the scenes' 420 ppm; Bodhaine's\n"
+      "a number or a list/array, 230-1690 nm: the refractive index formula's range), with co2_ppm of CO2 (default: the "
+      "scenes' 420 ppm; Bodhaine's\n"
       "tables are at 360).");
 
   bind_render_result(m);

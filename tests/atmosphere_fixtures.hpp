@@ -40,7 +40,9 @@ inline AtmosphereSpec simple_atmosphere(ProfileKind profile, double top_m, const
 struct IntegratorChain {
   IntegratorChain(const AtmosphereSpec& spec, const std::vector<double>& nm, SunColumnTable::Resolution resolution,
                   int view_segments)
-      : atm(spec, WavelengthGrid::from_list(nm)), table(atm, resolution), columns(table),
+      : atm(spec, WavelengthGrid::from_list(nm)),
+        table(atm, resolution),
+        columns(table),
         integrator(atm, columns, {view_segments}) {}
   AtmosphereModel atm;
   SunColumnTable table;

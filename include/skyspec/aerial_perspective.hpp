@@ -22,15 +22,15 @@ namespace skyspec {
 struct AerialPerspectiveImage {
   int width = 0, height = 0;
   std::vector<double> wavelengths_nm;
-  std::vector<float> transmittance;      ///< [y][x][lambda], unitless
-  std::vector<float> inscatter;          ///< [y][x][lambda], W m^-2 sr^-1 nm^-1
+  std::vector<float> transmittance;  ///< [y][x][lambda], unitless
+  std::vector<float> inscatter;      ///< [y][x][lambda], W m^-2 sr^-1 nm^-1
   /// [y][x][c]: the ratio of the sun's light after and before the path, per Rec.709 channel (what
   /// multiplies an RGB image lit by the sun).
   std::vector<float> transmittance_rgb;
-  std::vector<float> inscatter_rgb;      ///< [y][x][c], linear Rec.709, Y in cd m^-2
+  std::vector<float> inscatter_rgb;  ///< [y][x][c], linear Rec.709, Y in cd m^-2
   /// The scene's colour conversion: linear Rec.709 channel c of a spectrum s is (rgb_rows[c] * s).sum().
   std::array<Spectrum, 3> rgb_rows;
-  Scene scene;                           ///< the effective scene
+  Scene scene;  ///< the effective scene
 };
 
 /// Distances along each ray from a z depth (along the camera's view axis, the image centre's ray):

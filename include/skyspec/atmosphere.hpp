@@ -26,14 +26,15 @@ struct RayleighSpec {
   enum class Source { Derived, Fixed };
   Source source = Source::Derived;
   ProfileKind profile = ProfileKind::UsStandard1976;
-  double scale_height_m = 8000.0;            ///< exponential profile
-  double surface_pressure_Pa = 101325.0;     ///< exponential/constant profile: N(0) = P / (k T)
+  double scale_height_m = 8000.0;         ///< exponential profile
+  double surface_pressure_Pa = 101325.0;  ///< exponential/constant profile: N(0) = P / (k T)
   double surface_temperature_K = 288.15;
   /// Refractive index formula and CO2 (420 ppm, present-day air; the derivation's own default is
   /// Bodhaine et al.'s 360 ppm, at which their tables are computed).
-  RayleighDerivationInput derivation{ScatteringGas::Air, RefractiveIndexFormula::PeckReeder1972, 420 * 1e-6};  // as the reader stores 420 ppm
-  std::vector<double> fixed_wavelengths_nm;  ///< Fixed source
-  std::vector<double> fixed_beta_per_m;      ///< Fixed source, at altitude 0
+  RayleighDerivationInput derivation{ScatteringGas::Air, RefractiveIndexFormula::PeckReeder1972,
+                                     420 * 1e-6};  // as the reader stores 420 ppm
+  std::vector<double> fixed_wavelengths_nm;        ///< Fixed source
+  std::vector<double> fixed_beta_per_m;            ///< Fixed source, at altitude 0
 };
 
 struct MieSpec {
@@ -69,7 +70,7 @@ struct OzoneSpec {
 
 /// The planet's surface: Lambertian, with a constant or a spectral albedo.
 struct GroundSpec {
-  double albedo = 0.0;                   ///< used when albedo_values is empty
+  double albedo = 0.0;                                       ///< used when albedo_values is empty
   std::vector<double> albedo_wavelengths_nm, albedo_values;  ///< spectral albedo, linearly interpolated
 };
 

@@ -41,7 +41,7 @@ struct CameraSpec {
   int width = 512, height = 512;
   Vec3 position_m = Vec3(0, 0, 1);  ///< east, north, height above sea level at the reference point
   Vec3 look_at_m = Vec3(0, 1000, 1);
-  double fov_deg = 60.0;            ///< perspective: vertical field of view
+  double fov_deg = 60.0;             ///< perspective: vertical field of view
   double min_elevation_deg = -90.0;  ///< equirectangular: elevation of the bottom edge (0: upper hemisphere)
   /// equirectangular: how columns and rows map to directions (skyspec, Blender/Cycles, OpenEXR).
   PanoramaConvention panorama_convention = PanoramaConvention::Skyspec;

@@ -37,22 +37,22 @@ struct CoefficientReportRequest {
 /// One altitude of the scene's atmosphere.
 struct ReportLevel {
   double altitude_m = 0.0;
-  double rayleigh_number_density_per_m3 = 0.0;  ///< 0 when the coefficients are typed in
+  double rayleigh_number_density_per_m3 = 0.0;       ///< 0 when the coefficients are typed in
   std::optional<double> temperature_K, pressure_Pa;  ///< when the profile defines them
   std::string number_density_origin;
   std::vector<double> rayleigh_scattering_per_m;  ///< beta_R(lambda, z)
   std::vector<double> rayleigh_optical_depth;     ///< vertical, z -> top of the atmosphere
   std::vector<double> mie_scattering_per_m, mie_extinction_per_m, mie_optical_depth;
   std::vector<double> ozone_absorption_per_m, ozone_optical_depth;  ///< zeros without ozone
-  std::vector<double> total_optical_depth;        ///< extinction of every species, z -> top
+  std::vector<double> total_optical_depth;                          ///< extinction of every species, z -> top
 };
 
 /// The (P, T) state of AirConditions.
 struct ReportConditions {
   AirConditions air;
-  double number_density_per_m3 = 0.0;  ///< P / (k T)
-  double density_ratio = 0.0;          ///< N / N_s
-  std::vector<double> refractivity;    ///< (n - 1) at (P, T) = (n_s - 1) N / N_s (Lorentz-Lorenz)
+  double number_density_per_m3 = 0.0;             ///< P / (k T)
+  double density_ratio = 0.0;                     ///< N / N_s
+  std::vector<double> refractivity;               ///< (n - 1) at (P, T) = (n_s - 1) N / N_s (Lorentz-Lorenz)
   std::vector<double> rayleigh_scattering_per_m;  ///< sigma N
   /// Hydrostatic column above the level where the pressure is P (Bodhaine eq. 9), with g taken at
   /// the mass-weighted altitude of the column above the U.S. Standard Atmosphere 1976 altitude of
@@ -76,7 +76,7 @@ struct ReferenceComparison {
   std::string method;      ///< how the skyspec column was computed
   std::vector<Row> rows;
   double max_abs_difference_percent = 0.0;
-  std::string explanation; ///< plain language: where and why the numbers differ
+  std::string explanation;  ///< plain language: where and why the numbers differ
 };
 
 /// A formula as written in the report.

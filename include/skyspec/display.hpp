@@ -20,10 +20,10 @@ namespace skyspec {
 struct ExposureSettings {
   enum class Mode { Automatic, Manual, Camera };
   Mode mode = Mode::Automatic;
-  double ev = 0.0;         ///< Manual
-  double f_number = 8.0;   ///< Camera: N
-  double shutter_s = 0.01; ///< Camera: t, seconds
-  double iso = 100.0;      ///< Camera: S
+  double ev = 0.0;          ///< Manual
+  double f_number = 8.0;    ///< Camera: N
+  double shutter_s = 0.01;  ///< Camera: t, seconds
+  double iso = 100.0;       ///< Camera: S
 };
 
 /// Where the OpenColorIO config comes from.
@@ -35,9 +35,9 @@ struct OcioConfigSource {
 /// Everything a user picks for a displayed image.
 struct DisplaySettings {
   OcioConfigSource config;
-  std::string display;  ///< empty: the config's default display (sRGB in skyspec's config)
-  std::string view;     ///< empty: the display's default view (Un-tone-mapped in skyspec's config)
-  std::string look;     ///< empty: none; an OCIO look of the config, else a skyspec look
+  std::string display;               ///< empty: the config's default display (sRGB in skyspec's config)
+  std::string view;                  ///< empty: the display's default view (Un-tone-mapped in skyspec's config)
+  std::string look;                  ///< empty: none; an OCIO look of the config, else a skyspec look
   std::optional<double> look_white;  ///< reinhard-extended / -luminance white (after exposure)
   ExposureSettings exposure;
   int png_bit_depth = 8;

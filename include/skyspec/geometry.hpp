@@ -50,8 +50,8 @@ struct IntervalSet {
 /// p.s < 0 and |p - (p.s) s| < R, for sun direction s). A point lies in this shadow exactly when
 /// the ray from it towards the sun hits the planet, so the boundary is found in closed form instead
 /// of by marching light rays.
-IntervalSet lit_intervals(const Vec3& origin_m, const Vec3& dir, double t0_m, double t1_m,
-                          const Vec3& sun_dir, double planet_radius_m);
+IntervalSet lit_intervals(const Vec3& origin_m, const Vec3& dir, double t0_m, double t1_m, const Vec3& sun_dir,
+                          double planet_radius_m);
 
 /// Unit vector in the east-north-up frame for an azimuth and an elevation in degrees.
 Vec3 direction_from_angles(double azimuth_deg, double elevation_deg);

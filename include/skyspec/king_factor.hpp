@@ -6,10 +6,10 @@
 namespace skyspec {
 
 /// Bates 1984 fits, lambda in nm (the formulas take micrometres internally).
-double king_factor_n2(double lambda_nm);   ///< 1.034 + 3.17e-4 / lambda_um^2
-double king_factor_o2(double lambda_nm);   ///< 1.096 + 1.385e-3 / lambda_um^2 + 1.448e-4 / lambda_um^4
-constexpr double kKingFactorAr = 1.00;     ///< argon: monatomic, no depolarisation
-constexpr double kKingFactorCO2 = 1.15;    ///< Bates 1984 / Bodhaine et al. 1999
+double king_factor_n2(double lambda_nm);  ///< 1.034 + 3.17e-4 / lambda_um^2
+double king_factor_o2(double lambda_nm);  ///< 1.096 + 1.385e-3 / lambda_um^2 + 1.448e-4 / lambda_um^4
+constexpr double kKingFactorAr = 1.00;    ///< argon: monatomic, no depolarisation
+constexpr double kKingFactorCO2 = 1.15;   ///< Bates 1984 / Bodhaine et al. 1999
 
 /// Air mix of Bodhaine et al. 1999 eq. (23): volume-weighted mean of N2 78.084 %, O2 20.946 %,
 /// Ar 0.934 % and CO2 (co2_ppv parts per volume, 3.6e-4 for 360 ppm).

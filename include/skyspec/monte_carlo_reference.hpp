@@ -29,7 +29,7 @@ struct ReferenceProbe {
 struct ReferenceSettings {
   std::int64_t paths = 100000;  ///< per probe and wavelength
   std::uint64_t seed = 1;
-  int max_orders = 0;           ///< 0: all orders; 1: single scattering (air and ground); k: up to k events
+  int max_orders = 0;               ///< 0: all orders; 1: single scattering (air and ground); k: up to k events
   bool diffuse_irradiance = false;  ///< also the diffuse horizontal irradiance at the camera
   /// Also the Stokes vector of each probe (vector transport; as many paths again): see
   /// ReferenceResult::stokes.
@@ -49,9 +49,9 @@ struct ReferenceResult {
   /// of sight, pointing up (Q > 0: light polarised in that vertical plane), e2 = k x e1 with k the
   /// light's direction (towards the observer), which is the observer's left; the angle of
   /// polarisation 1/2 atan2(U, Q) counts from the vertical towards the left, counterclockwise as
-  /// the observer sees it. At the zenith (and nadir) e1 points north. I includes polarisation's coupling into intensity, which `radiance`
-  /// (scalar transport, as in the renderer) leaves out. Aerosols neither polarise nor depolarise
-  /// (physics/scattering_matrix.hpp); the ground depolarises.
+  /// the observer sees it. At the zenith (and nadir) e1 points north. I includes polarisation's coupling into
+  /// intensity, which `radiance` (scalar transport, as in the renderer) leaves out. Aerosols neither polarise nor
+  /// depolarise (physics/scattering_matrix.hpp); the ground depolarises.
   std::vector<std::vector<std::array<double, 4>>> stokes, stokes_standard_error;
   ReferenceSettings settings;
   double seconds = 0.0;

@@ -29,12 +29,12 @@ struct RayleighDerivationInput {
 /// them, the tests check them).
 struct RayleighDerivationStep {
   double lambda_nm;
-  double refractivity_ref;         ///< (n - 1) from the formula at its own CO2
-  double refractivity;             ///< (n - 1) corrected to the requested CO2 (= n_s - 1)
-  double king_factor;              ///< F_air
-  double king_n2, king_o2;         ///< component King factors (air; 0 for CO2)
-  double number_density_per_m3;    ///< N_s the index is paired with
-  double cross_section_m2;         ///< sigma
+  double refractivity_ref;       ///< (n - 1) from the formula at its own CO2
+  double refractivity;           ///< (n - 1) corrected to the requested CO2 (= n_s - 1)
+  double king_factor;            ///< F_air
+  double king_n2, king_o2;       ///< component King factors (air; 0 for CO2)
+  double number_density_per_m3;  ///< N_s the index is paired with
+  double cross_section_m2;       ///< sigma
 };
 
 /// Derive sigma(lambda) for each wavelength (nm).
@@ -59,7 +59,7 @@ double mass_weighted_column_altitude_m(double station_altitude_m);
 /// Vertical Rayleigh optical depth of the whole air column above a station (station altitude in m)
 /// from the hydrostatic relation, Bodhaine eq. (9): tau = sigma P N_A / (m_a g), with g taken at
 /// the column's mass-weighted altitude. Reproduces Bodhaine's Table 3 (0.09707 at 550 nm).
-double rayleigh_optical_depth_hydrostatic(double cross_section_m2, double surface_pressure_Pa,
-                                          double latitude_deg, double altitude_m, double co2_ppv);
+double rayleigh_optical_depth_hydrostatic(double cross_section_m2, double surface_pressure_Pa, double latitude_deg,
+                                          double altitude_m, double co2_ppv);
 
 }  // namespace skyspec

@@ -115,7 +115,7 @@ struct SpectralImageBuffer {
   /// polarised components in the units of spectral, in each pixel's frame
   /// (SkyRenderer::render_window_stokes); spectral is then S0.
   std::vector<float> stokes;
-  Scene scene;                  ///< the effective scene it is a render of
+  Scene scene;  ///< the effective scene it is a render of
   /// [y][x][3]: the unit view direction through each pixel's centre, in the east-north-up frame of
   /// the scene's reference point (x east, y north, z up; camera.hpp); (0, 0, 0) where the camera
   /// has none (outside the fisheye's circle).
@@ -153,16 +153,16 @@ double write_display_png(const SpectralImageBuffer& image, const std::filesystem
                          const DisplaySettings& display);
 
 struct RenderOutputs {
-  std::filesystem::path exr, png;  ///< empty when not written
+  std::filesystem::path exr, png;     ///< empty when not written
   std::filesystem::path working_exr;  ///< the RGB EXR in DisplaySettings::exr_space, if asked for
   /// output.polarisation: <name>-polarisation.exr (Y, DoLP, AoLP; not for a tile) and, with
   /// output.polarisation_png, <name>-polarisation.png.
   std::filesystem::path polarisation_exr, polarisation_png;
-  double preview_scale = 1.0;      ///< the exposure: factor applied to linear RGB before display
-  double preview_ev = 0.0;         ///< log2(preview_scale)
-  std::string exposure;            ///< how the exposure was chosen (also in the files' headers)
-  std::string display;             ///< the display pipeline used for the PNG
-  double seconds = 0.0;            ///< wall time of the whole call
+  double preview_scale = 1.0;  ///< the exposure: factor applied to linear RGB before display
+  double preview_ev = 0.0;     ///< log2(preview_scale)
+  std::string exposure;        ///< how the exposure was chosen (also in the files' headers)
+  std::string display;         ///< the display pipeline used for the PNG
+  double seconds = 0.0;        ///< wall time of the whole call
   // Where it went (wall time; the rest is what `prepared` does, such as the render-budget sample):
   double tables_seconds = 0.0;  ///< set-up: atmosphere, optical-depth, scattering-order and sky-view tables
   double image_seconds = 0.0;   ///< exposure metering and the image's rows (with the EXR's bands, written meanwhile)
@@ -198,12 +198,11 @@ using PreparedFn = std::function<void(const SkyRenderer& renderer)>;
 /// With `tile`, only those pixels are rendered, into a spectral EXR whose data window is the tile
 /// and whose header is the whole render's (the same exposure, metered on the whole image); the
 /// scene must ask for the spectral EXR alone (InputError otherwise).
-RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& display,
-                                    const ProgressFn& progress = {}, const PreparedFn& prepared = {},
+RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& display, const ProgressFn& progress = {},
+                                    const PreparedFn& prepared = {},
                                     const std::optional<PixelBounds>& tile = std::nullopt);
 /// The files render_scene_to_files writes for these settings: exr, png and working_exr set (empty
 /// where not asked for), nothing rendered. Unknown working spaces throw InputError.
 RenderOutputs render_output_paths(const Scene& scene, const DisplaySettings& display);
-
 
 }  // namespace skyspec

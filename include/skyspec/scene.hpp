@@ -28,7 +28,7 @@ struct SunSpec {
   /// The flat spectrum's value, W m^-2 nm^-1.
   double spectral_irradiance_W_m2_nm = 1.0;
   double distance_au = 1.0;  ///< planet-sun distance
-  bool disk = true;  ///< draw the limb-darkened sun disk
+  bool disk = true;          ///< draw the limb-darkened sun disk
   /// When not empty, an ISO 8601 date-time with UTC offset ("2026-06-21T20:30:00+02:00"): the
   /// sun's elevation, azimuth and distance are computed for it at the location (NREL SPA),
   /// replacing elevation_deg, azimuth_deg and distance_au (the Earth-Sun distance: Earth only).
@@ -51,7 +51,7 @@ inline constexpr double kPanoramaGroundAlbedo = 0.25;
 
 struct SpectrumSpec {
   double min_nm = 380.0, max_nm = 780.0, step_nm = 10.0;
-  int count = 0;  ///< when > 0: this many samples evenly over [min_nm, max_nm] (replaces step_nm)
+  int count = 0;                       ///< when > 0: this many samples evenly over [min_nm, max_nm] (replaces step_nm)
   std::vector<double> wavelengths_nm;  ///< explicit list; overrides min/max/step when non-empty
   /// The band each sample stands for (WavelengthGrid::bandwidth_nm).
   double bandwidth_nm = WavelengthGrid::kDefaultBandwidth_nm;
@@ -77,8 +77,8 @@ struct RenderSpec {
   /// Interpolate images from a table of the sky over view directions (sky_view_table.hpp) rather
   /// than march a ray per pixel; used where it applies (a camera inside the atmosphere).
   bool sky_view_table = true;
-  int sky_view_zenith_samples = 128;   ///< rows from the horizon to the zenith (half as many below)
-  int sky_view_azimuth_samples = 64;   ///< columns from towards the sun to away from it
+  int sky_view_zenith_samples = 128;  ///< rows from the horizon to the zenith (half as many below)
+  int sky_view_azimuth_samples = 64;  ///< columns from towards the sun to away from it
 };
 
 struct OutputSpec {

@@ -65,9 +65,9 @@ PixelGeometry pixel_geometry(const Scene& scene, const RegionSettings& regions =
 /// An image to compare: skyspec's R, G, B and its sun.
 struct SkyImage {
   int width = 0, height = 0;
-  std::vector<float> rgb;  ///< linear Rec.709 as skyspec writes it ([y][x][c])
+  std::vector<float> rgb;                             ///< linear Rec.709 as skyspec writes it ([y][x][c])
   Eigen::Vector3d sun_rgb = Eigen::Vector3d::Ones();  ///< the sun's irradiance through the same conversion
-  std::string path;   ///< "spectral" or "rgb-fast"
+  std::string path;                                   ///< "spectral" or "rgb-fast"
   std::string label;  ///< for reports, e.g. "spectral (41 samples, 380-780 nm, 10 nm step)"
 };
 

@@ -37,8 +37,7 @@ fs::path folder_of(const fs::path& file) {
 fs::path temporary_name_beside(const fs::path& final_path) {
   static thread_local std::mt19937_64 random_bits{std::random_device{}()};
   std::ostringstream name;
-  name << final_path.filename().string() << ".tmp-" << ::getpid() << "-" << std::hex
-       << random_bits();
+  name << final_path.filename().string() << ".tmp-" << ::getpid() << "-" << std::hex << random_bits();
   return folder_of(final_path) / name.str();
 }
 
@@ -97,8 +96,7 @@ AtomicOutputFile::AtomicOutputFile(fs::path final_path) : final_(std::move(final
       tmp_ = candidate;
       return;
     }
-    if (errno != EEXIST)
-      throw io_error("cannot create a file in folder", folder_of(final_), errno);
+    if (errno != EEXIST) throw io_error("cannot create a file in folder", folder_of(final_), errno);
   }
   throw io_error("cannot find a free temporary name in folder", folder_of(final_), EEXIST);
 }
@@ -169,13 +167,14 @@ void refuse_output_replacing_input(const fs::path& output, const std::string& ou
     std::error_code ec;
     bool same = fs::exists(output, ec) && fs::exists(in.path, ec) && fs::equivalent(output, in.path, ec);
     if (!same) {
-      const fs::path a = fs::weakly_canonical(fs::absolute(output, ec), ec), b = fs::weakly_canonical(fs::absolute(in.path, ec), ec);
+      const fs::path a = fs::weakly_canonical(fs::absolute(output, ec), ec),
+                     b = fs::weakly_canonical(fs::absolute(in.path, ec), ec);
       same = !a.empty() && a == b;
     }
     if (same)
       throw InputError(output_setting, "\"" + output.string() + "\"",
-                       "an output that is not one of the inputs (it would replace " + in.setting + " " + in.path.string() +
-                           "); choose another --out or --name");
+                       "an output that is not one of the inputs (it would replace " + in.setting + " " +
+                           in.path.string() + "); choose another --out or --name");
   }
 }
 

@@ -28,7 +28,8 @@ std::string respell(const std::string& text, const std::vector<std::pair<std::st
         if (id.empty() || text.compare(i, id.size(), id) != 0) continue;
         const size_t end = i + id.size();
         const bool ends_word =
-            end == text.size() || (!id_char(text[end]) && !(text[end] == '.' && end + 1 < text.size() && id_char(text[end + 1])));
+            end == text.size() ||
+            (!id_char(text[end]) && !(text[end] == '.' && end + 1 < text.size() && id_char(text[end + 1])));
         if (ends_word && (!best || id.size() > best->first.size())) best = &s;
       }
     }

@@ -36,7 +36,7 @@ inline double fast_atan2(double y, double x) {
   const double ax = std::abs(x), ay = std::abs(y);
   const double hi = ax > ay ? ax : ay, lo = ax > ay ? ay : ax;
   double t = atan_unit(lo / (hi > 0.0 ? hi : 1.0));  // (0, 0): 0
-  t = ay > ax ? kHalfPi - t : t;  // |y| > |x|: atan(|y|/|x|) = pi/2 - atan(|x|/|y|)
+  t = ay > ax ? kHalfPi - t : t;                     // |y| > |x|: atan(|y|/|x|) = pi/2 - atan(|x|/|y|)
   t = x < 0.0 ? kPi - t : t;
   return y < 0.0 ? -t : t;
 }

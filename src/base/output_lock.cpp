@@ -40,14 +40,17 @@ OutputLock::OutputLock(const fs::path& folder, const std::string& name, const st
       if (error_number == EWOULDBLOCK) std::getline(std::ifstream(path_), holder);
       ::close(fd_);
       fd_ = -1;
-      if (error_number != EWOULDBLOCK) throw IoError("cannot lock '" + path_.string() + "': " + std::strerror(error_number));
-      throw InputError::refused(setting, "another skyspec run" + (holder.empty() ? std::string() : " (process " + holder + ")") +
+      if (error_number != EWOULDBLOCK)
+        throw IoError("cannot lock '" + path_.string() + "': " + std::strerror(error_number));
+      throw InputError::refused(setting, "another skyspec run" +
+                                             (holder.empty() ? std::string() : " (process " + holder + ")") +
                                              " is writing the outputs named \"" + name + "\" in " + folder.string() +
                                              "; wait for it to finish or choose another --out or --name");
     }
     // Locked: but if the holder before us removed the file meanwhile, ours is no longer the file
     // at that path and a third run could lock a new one. Then start again.
-    struct stat held {}, named {};
+    struct stat held {
+    }, named{};
     if (::fstat(fd_, &held) == 0 && ::stat(path_.c_str(), &named) == 0 && held.st_dev == named.st_dev &&
         held.st_ino == named.st_ino) {
       // The process id, for the message of a run that finds the lock taken; not writing it is harmless.
@@ -70,7 +73,8 @@ OutputLock::~OutputLock() {
 int remove_stale_temporaries(const fs::path& folder, const std::string& prefix) {
   int removed = 0;
   std::error_code ec;
-  for (fs::directory_iterator it(folder.empty() ? fs::path(".") : folder, ec), end; !ec && it != end; it.increment(ec)) {
+  for (fs::directory_iterator it(folder.empty() ? fs::path(".") : folder, ec), end; !ec && it != end;
+       it.increment(ec)) {
     const std::string file = it->path().filename().string();
     if (file.rfind(prefix, 0) != 0) continue;
     const std::size_t tmp = file.rfind(".tmp-");

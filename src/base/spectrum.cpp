@@ -4,8 +4,8 @@
 #include <cmath>
 #include <sstream>
 
-#include "skyspec/error.hpp"
 #include "base/text_format.hpp"
+#include "skyspec/error.hpp"
 
 namespace skyspec {
 namespace {
@@ -30,9 +30,9 @@ WavelengthGrid WavelengthGrid::uniform(double min_nm, double max_nm, double step
     throw InputError("spectrum.step_nm", format_number(step_nm),
                      "a step that divides max_nm - min_nm (" + format_number(max_nm - min_nm) + " nm) evenly");
   if (whole + 1 > kMaxWavelengths)
-    throw InputError("spectrum.step_nm", format_number(step_nm),
-                     "at most " + std::to_string(kMaxWavelengths) + " samples (this gives " +
-                         format_number(whole + 1) + ")");
+    throw InputError(
+        "spectrum.step_nm", format_number(step_nm),
+        "at most " + std::to_string(kMaxWavelengths) + " samples (this gives " + format_number(whole + 1) + ")");
   std::vector<double> nm(static_cast<size_t>(whole) + 1);
   for (size_t i = 0; i < nm.size(); ++i) nm[i] = min_nm + step_nm * static_cast<double>(i);
   nm.back() = max_nm;
@@ -43,13 +43,11 @@ WavelengthGrid WavelengthGrid::with_count(double min_nm, double max_nm, int coun
   check_range("spectrum.min_nm", min_nm);
   check_range("spectrum.max_nm", max_nm);
   if (count < 1 || count > kMaxWavelengths)
-    throw InputError("spectrum.count", std::to_string(count),
-                     "1 to " + std::to_string(kMaxWavelengths) + " samples");
+    throw InputError("spectrum.count", std::to_string(count), "1 to " + std::to_string(kMaxWavelengths) + " samples");
   if (max_nm < min_nm)
     throw InputError("spectrum.max_nm", format_number(max_nm), ">= spectrum.min_nm (" + format_number(min_nm) + ")");
   if (count == 1) {
-    if (max_nm != min_nm)
-      throw InputError("spectrum.count", "1", "at least 2 when spectrum.max_nm > spectrum.min_nm");
+    if (max_nm != min_nm) throw InputError("spectrum.count", "1", "at least 2 when spectrum.max_nm > spectrum.min_nm");
     return WavelengthGrid({min_nm});
   }
   if (max_nm == min_nm)

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <sstream>
 
-#include "skyspec/error.hpp"
 #include "base/text_format.hpp"
+#include "skyspec/error.hpp"
 
 namespace skyspec {
 
@@ -16,8 +16,8 @@ void check_increasing(const std::string& name, const std::vector<double>& nm) {
   for (size_t i = 0; i < nm.size(); ++i) {
     if (!std::isfinite(nm[i])) throw Error(name + ": wavelength " + std::to_string(i) + " is not finite");
     if (i > 0 && !(nm[i] > nm[i - 1]))
-      throw Error(name + ": wavelengths must increase (" + format_number(nm[i]) + " after " +
-                  format_number(nm[i - 1]) + ")");
+      throw Error(name + ": wavelengths must increase (" + format_number(nm[i]) + " after " + format_number(nm[i - 1]) +
+                  ")");
   }
 }
 
@@ -35,8 +35,8 @@ TabulatedSpectrum::TabulatedSpectrum(std::string name, Kind kind, std::vector<do
   cumulative_.assign(nm_.size(), 0.0);
   for (size_t i = 1; i < nm_.size(); ++i) {
     const double width_nm = nm_[i] - nm_[i - 1];
-    const double piece = kind_ == Kind::Samples ? 0.5 * (values_[i - 1] + values_[i]) * width_nm
-                                                : values_[i - 1] * width_nm;
+    const double piece =
+        kind_ == Kind::Samples ? 0.5 * (values_[i - 1] + values_[i]) * width_nm : values_[i - 1] * width_nm;
     cumulative_[i] = cumulative_[i - 1] + piece;
   }
 }

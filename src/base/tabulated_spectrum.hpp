@@ -37,8 +37,7 @@ class TabulatedSpectrum {
   static TabulatedSpectrum samples(std::string name, std::vector<double> nm, std::vector<double> values);
   /// f = values[i] on [edges_nm[i], edges_nm[i + 1]); edges strictly increasing,
   /// values.size() + 1 == edges_nm.size(). Throws Error on malformed input.
-  static TabulatedSpectrum bin_averages(std::string name, std::vector<double> edges_nm,
-                                        std::vector<double> values);
+  static TabulatedSpectrum bin_averages(std::string name, std::vector<double> edges_nm, std::vector<double> values);
 
   const std::string& name() const { return name_; }
   Kind kind() const { return kind_; }

@@ -32,7 +32,8 @@ inline std::string format_fixed(double v, int decimals) {
 
 /// Text for a cell of a Markdown table: '|' escaped as "\\|".
 inline std::string markdown_cell(std::string text) {
-  for (std::size_t at = text.find('|'); at != std::string::npos; at = text.find('|', at + 2)) text.replace(at, 1, "\\|");
+  for (std::size_t at = text.find('|'); at != std::string::npos; at = text.find('|', at + 2))
+    text.replace(at, 1, "\\|");
   return text;
 }
 

@@ -13,7 +13,8 @@ namespace skyspec {
 
 class ZeroedFloats {
  public:
-  explicit ZeroedFloats(std::size_t n = 0) : p_(n ? static_cast<float*>(std::calloc(n, sizeof(float))) : nullptr), n_(n) {
+  explicit ZeroedFloats(std::size_t n = 0)
+      : p_(n ? static_cast<float*>(std::calloc(n, sizeof(float))) : nullptr), n_(n) {
     if (n && !p_) throw std::bad_alloc();
   }
   float* data() { return p_.get(); }

@@ -17,15 +17,9 @@ CliApp::CliApp()
   app.set_version_flag("--version", std::string("skyspec ") + skyspec::version_string());
   app.require_subcommand(1);
   commands = {
-      add_render_command(app),
-      add_convert_command(app),
-      add_compare_command(app),
-      add_irradiance_command(app),
-      add_timelapse_command(app),
-      add_aerial_command(app),
-      add_coefficients_command(app),
-      add_job_command(app),
-      add_merge_command(app),
+      add_render_command(app),       add_convert_command(app),   add_compare_command(app),
+      add_irradiance_command(app),   add_timelapse_command(app), add_aerial_command(app),
+      add_coefficients_command(app), add_job_command(app),       add_merge_command(app),
       add_reference_command(app),
   };
 }

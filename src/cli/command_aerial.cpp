@@ -10,20 +10,20 @@
 #include <string>
 #include <vector>
 
-#include "commands.hpp"
-#include "progress.hpp"
-#include "scene_options.hpp"
 #include "base/atomic_file.hpp"
 #include "base/output_lock.hpp"
+#include "commands.hpp"
+#include "io/exr_channels.hpp"
+#include "io/spectral_exr.hpp"
+#include "physics/unmodelled_absorption.hpp"
+#include "progress.hpp"
+#include "render/render_budget.hpp"
+#include "render/scene_provenance.hpp"
+#include "scene_options.hpp"
+#include "skyspec/aerial_perspective.hpp"
 #include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
-#include "io/exr_channels.hpp"
-#include "render/scene_provenance.hpp"
-#include "physics/unmodelled_absorption.hpp"
-#include "skyspec/aerial_perspective.hpp"
 #include "skyspec/render.hpp"
-#include "render/render_budget.hpp"
-#include "io/spectral_exr.hpp"
 #include "skyspec/units.hpp"
 
 namespace skyspec::cli {
@@ -59,7 +59,8 @@ void check_options(const AerialOptions& o) {
     throw InputError("--depth / --distance", o.depth.empty() ? "(neither)" : "(both)",
                      "exactly one: a depth EXR (--depth FILE) or a constant distance in metres (--distance M)");
   if (o.depth_is != "distance" && o.depth_is != "z")
-    throw InputError("--depth-is", "\"" + o.depth_is + "\"", "one of: distance (along each ray), z (along the view axis)");
+    throw InputError("--depth-is", "\"" + o.depth_is + "\"",
+                     "one of: distance (along each ray), z (along the view axis)");
   if (o.distance_m && !(*o.distance_m > 0.0 && std::isfinite(*o.distance_m)))
     throw InputError("--distance", std::to_string(*o.distance_m), "a distance in metres > 0");
 }
@@ -71,17 +72,19 @@ AerialInputs read_inputs(const AerialOptions& o) {
   if (!o.image.empty()) {
     for (const auto& name : exr_channel_names(o.image))
       if (parse_spectral_channel_name(name)) in.spectral_image = true;
-    if (in.spectral_image) in.spectral = read_spectral_exr(o.image);
-    else in.image = read_exr_channels(o.image, {"R", "G", "B"});
+    if (in.spectral_image)
+      in.spectral = read_spectral_exr(o.image);
+    else
+      in.image = read_exr_channels(o.image, {"R", "G", "B"});
   }
   auto take_size = [&](int w, int h, const std::string& what) {
     if (in.width == 0) {
       in.width = w;
       in.height = h;
     } else if (w != in.width || h != in.height) {
-      throw InputError(what, std::to_string(w) + "x" + std::to_string(h),
-                       "the same size as the other input (" + std::to_string(in.width) + "x" +
-                           std::to_string(in.height) + ")");
+      throw InputError(
+          what, std::to_string(w) + "x" + std::to_string(h),
+          "the same size as the other input (" + std::to_string(in.width) + "x" + std::to_string(in.height) + ")");
     }
   };
   if (in.depth) take_size(in.depth->width, in.depth->height, "--depth");
@@ -100,11 +103,13 @@ RenderPlan check_budget(const Scene& scene, const AerialInputs& in, bool force) 
   plan.png = false;
   const double n_lambda = plan.wavelengths;
   const int w = in.width, h = in.height;
-  plan.extra_output_bytes = in.spectral_image ? 2 * spectral_exr_bytes(w, h, plan.wavelengths)
-                                              : spectral_exr_bytes(w, h, plan.wavelengths) +
-                                                    (in.image ? rgb_exr_bytes(w, h) : 0);
+  plan.extra_output_bytes = in.spectral_image
+                                ? 2 * spectral_exr_bytes(w, h, plan.wavelengths)
+                                : spectral_exr_bytes(w, h, plan.wavelengths) + (in.image ? rgb_exr_bytes(w, h) : 0);
   plan.extra_bytes_per_pixel = 4 + 2 * 4 * n_lambda + 2 * 12 +
-                               (in.spectral_image ? 2 * (4 * n_lambda + 12) : in.image ? 2 * 12 : 0) +
+                               (in.spectral_image ? 2 * (4 * n_lambda + 12)
+                                : in.image        ? 2 * 12
+                                                  : 0) +
                                (in.depth ? 4 : 0);
   ensure_writable_directory(scene.output.directory, "output.directory");  // its errors first
   if (!force) {
@@ -118,7 +123,8 @@ RenderPlan check_budget(const Scene& scene, const AerialInputs& in, bool force) 
 // Distances along each ray: the constant --distance, or the depth pass (a z depth divided by the
 // cosine between the ray and the view axis: ray_distances_from_z).
 std::vector<float> ray_distances(const AerialOptions& o, const AerialInputs& in, const Scene& scene) {
-  if (!in.depth) return std::vector<float>(static_cast<size_t>(in.width) * in.height, static_cast<float>(*o.distance_m));
+  if (!in.depth)
+    return std::vector<float>(static_cast<size_t>(in.width) * in.height, static_cast<float>(*o.distance_m));
   const auto& depth = in.depth->channels.at(o.depth_channel);
   if (o.depth_is == "z") return ray_distances_from_z(scene, depth, "--depth");
   return depth;
@@ -140,8 +146,9 @@ int run(AerialOptions& o) {
                                   "--out / --name", inputs);
   const OutputLock lock(scene.output.directory, scene.output.name, "--out / --name");  // one writer per name
   if (in.spectral_image && in.spectral.wavelengths_nm != make_wavelength_grid(scene).nanometres())
-    throw InputError("--image", "its " + std::to_string(in.spectral.wavelengths_nm.size()) + " wavelengths",
-                     "the scene's wavelength grid (" + make_wavelength_grid(scene).describe() + "); set --lambda-* to match");
+    throw InputError(
+        "--image", "its " + std::to_string(in.spectral.wavelengths_nm.size()) + " wavelengths",
+        "the scene's wavelength grid (" + make_wavelength_grid(scene).describe() + "); set --lambda-* to match");
   const std::vector<float> dist = ray_distances(o, in, scene);
   ProgressBar bar("aerial perspective", o.quiet);
   const AerialPerspectiveImage ap = aerial_perspective(
@@ -155,7 +162,8 @@ int run(AerialOptions& o) {
       "--depth");
   bar.finish();
   std::vector<std::filesystem::path> written = write_aerial_perspective(ap);
-  if (in.spectral_image) written.push_back(write_aerial_composite(ap, in.spectral.spectral, true));
+  if (in.spectral_image)
+    written.push_back(write_aerial_composite(ap, in.spectral.spectral, true));
   else if (in.image) {
     std::vector<float> rgb(static_cast<size_t>(in.width) * in.height * 3);
     const char* names[3] = {"R", "G", "B"};
@@ -174,7 +182,8 @@ int run(AerialOptions& o) {
 
 Command add_aerial_command(CLI::App& app) {
   auto o = std::make_shared<AerialOptions>();
-  auto* cmd = app.add_subcommand("aerial", "Aerial perspective: transmittance and in-scattered light for an image with depth");
+  auto* cmd =
+      app.add_subcommand("aerial", "Aerial perspective: transmittance and in-scattered light for an image with depth");
   cmd->footer(
       "Example:\n"
       "  skyspec aerial --image beauty.exr --depth depth.exr --camera perspective --position 0,0,2 \\\n"
@@ -187,7 +196,8 @@ Command add_aerial_command(CLI::App& app) {
   cmd->add_option("--image", o->image, "the scene's image: linear Rec.709 R,G,B or spectral S0 channels");
   cmd->add_option("--depth", o->depth, "EXR with the depth pass");
   cmd->add_option("--depth-channel", o->depth_channel, "channel of the depth pass")->capture_default_str();
-  cmd->add_option("--depth-is", o->depth_is, "distance (along each ray) or z (along the view axis)")->capture_default_str();
+  cmd->add_option("--depth-is", o->depth_is, "distance (along each ray) or z (along the view axis)")
+      ->capture_default_str();
   cmd->add_option("--distance", o->distance_m, "instead of a depth pass: one distance in metres for every pixel");
   cmd->add_flag("-q,--quiet", o->quiet, "no progress bar and no summary");
   cmd->add_flag("--force", o->force,

@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
+#include "base/atomic_file.hpp"
 #include "commands.hpp"
 #include "scene_options.hpp"
-#include "base/atomic_file.hpp"
 #include "skyspec/coefficient_report.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/scene.hpp"
@@ -34,7 +34,8 @@ struct CoefficientOptions {
 
 std::vector<KeyFlag> coefficient_flags() {
   std::vector<KeyFlag> flags = spectrum_flags();
-  flags.push_back({"--refractive-index", "atmosphere.rayleigh.refractive_index", "peck-reeder, edlen or ciddor", {}, false});
+  flags.push_back(
+      {"--refractive-index", "atmosphere.rayleigh.refractive_index", "peck-reeder, edlen or ciddor", {}, false});
   flags.push_back({"--co2-ppm", "atmosphere.rayleigh.co2_ppm", "CO2 content, ppm", {}, false});
   return flags;
 }
@@ -65,11 +66,12 @@ bool parse_with_unit(const std::string& text, const std::vector<UnitFactor>& uni
 }
 
 double parse_pressure_Pa(const std::string& text) {
-  static const std::vector<UnitFactor> units = {{"Pa", 1.0, 0.0},     {"hPa", 100.0, 0.0},   {"kPa", 1000.0, 0.0},
-                                                {"mbar", 100.0, 0.0}, {"bar", 1.0e5, 0.0},   {"atm", 101325.0, 0.0}};
+  static const std::vector<UnitFactor> units = {{"Pa", 1.0, 0.0},     {"hPa", 100.0, 0.0}, {"kPa", 1000.0, 0.0},
+                                                {"mbar", 100.0, 0.0}, {"bar", 1.0e5, 0.0}, {"atm", 101325.0, 0.0}};
   double p = 0.0;
   if (!parse_with_unit(text, units, p))
-    throw InputError("--pressure", "\"" + text + "\"", "a pressure with its unit, e.g. 250hPa, 25000Pa or 1atm (Pa, hPa, kPa, mbar, bar, atm)");
+    throw InputError("--pressure", "\"" + text + "\"",
+                     "a pressure with its unit, e.g. 250hPa, 25000Pa or 1atm (Pa, hPa, kPa, mbar, bar, atm)");
   if (p <= 0.0 || p > 1e8) throw InputError("--pressure", "\"" + text + "\"", "a pressure above 0 and up to 1e8 Pa");
   return p;
 }
@@ -78,8 +80,10 @@ double parse_temperature_K(const std::string& text) {
   static const std::vector<UnitFactor> units = {{"K", 1.0, 0.0}, {"C", 1.0, 273.15}, {"degC", 1.0, 273.15}};
   double t = 0.0;
   if (!parse_with_unit(text, units, t))
-    throw InputError("--temperature", "\"" + text + "\"", "a temperature with its unit, e.g. 220K or -53.15C (K, C, degC)");
-  if (t <= 0.0 || t > 1e4) throw InputError("--temperature", "\"" + text + "\"", "a temperature above 0 K and up to 10000 K");
+    throw InputError("--temperature", "\"" + text + "\"",
+                     "a temperature with its unit, e.g. 220K or -53.15C (K, C, degC)");
+  if (t <= 0.0 || t > 1e4)
+    throw InputError("--temperature", "\"" + text + "\"", "a temperature above 0 K and up to 10000 K");
   return t;
 }
 
@@ -87,8 +91,10 @@ std::vector<double> parse_altitudes_m(const std::string& text, double top_m) {
   std::vector<double> out;
   std::stringstream in(text);
   std::string item;
-  const std::string allowed = "comma-separated altitudes in metres from 0 up to (not including) the top of the "
-                              "atmosphere (atmosphere.top_altitude_m = " + std::to_string(static_cast<long long>(top_m)) + ")";
+  const std::string allowed =
+      "comma-separated altitudes in metres from 0 up to (not including) the top of the "
+      "atmosphere (atmosphere.top_altitude_m = " +
+      std::to_string(static_cast<long long>(top_m)) + ")";
   while (std::getline(in, item, ',')) {
     size_t used = 0;
     double z = 0.0;

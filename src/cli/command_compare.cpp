@@ -11,12 +11,12 @@
 #include <string>
 #include <vector>
 
+#include "base/atomic_file.hpp"
 #include "commands.hpp"
 #include "display_options.hpp"
 #include "progress.hpp"
-#include "scene_options.hpp"
-#include "base/atomic_file.hpp"
 #include "report/comparison_report.hpp"
+#include "scene_options.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/sky_comparison.hpp"
 
@@ -27,9 +27,9 @@ std::vector<KeyFlag> compare_flags() {
   std::vector<KeyFlag> flags = camera_flags(true);
   append_flags(flags, sun_flags());
   append_flags(flags, {
-      {"--view-segments", "render.view_segments", "quadrature segments per view ray", {}, false},
-      {"--threads", "render.threads", "worker threads (0: all cores)", {}, false},
-  });
+                          {"--view-segments", "render.view_segments", "quadrature segments per view ray", {}, false},
+                          {"--threads", "render.threads", "worker threads (0: all cores)", {}, false},
+                      });
   return flags;
 }
 
@@ -121,7 +121,8 @@ std::string scene_summary(const Scene& s, const std::string& origin) {
 
 void check_regions(const RegionSettings& r) {
   const auto check = [](double v, const char* flag) {
-    if (!std::isfinite(v) || v < 0 || v > 90) throw InputError(flag, std::to_string(v), "an angle from 0 to 90 degrees");
+    if (!std::isfinite(v) || v < 0 || v > 90)
+      throw InputError(flag, std::to_string(v), "an angle from 0 to 90 degrees");
   };
   check(r.near_sun_deg, "--near-sun-deg");
   check(r.horizon_deg, "--horizon-deg");
@@ -142,7 +143,8 @@ int run_compare(const CompareOptions& o) {
     throw InputError("--name", "\"" + o.name + "\"", "a file name without '/'");
   if (!o.exrs.empty() && o.exrs.size() != 2)
     throw InputError("EXR files", std::to_string(o.exrs.size()) + " given", "none (render the scene twice) or two");
-  if (!o.exrs.empty() && !o.sweep.empty()) throw InputError("--sweep", o.sweep, "only when rendering a scene, not with two EXR files");
+  if (!o.exrs.empty() && !o.sweep.empty())
+    throw InputError("--sweep", o.sweep, "only when rendering a scene, not with two EXR files");
   const std::vector<double> elevations = o.sweep.empty() ? std::vector<double>{} : parse_sweep(o.sweep);
   const DisplayPipeline pipeline(display_settings(o.display));  // names checked before any work
   ensure_writable_directory(o.out, "--out");
@@ -178,20 +180,22 @@ int run_compare(const CompareOptions& o) {
     scene = load_scene(o.scene);
     if (!o.keep_sun_disk) {
       scene.sun.disk = false;
-      run.notes.push_back("The sun's disk is not drawn (sun.disk = false; --keep-sun-disk draws it): the comparison is "
-                          "about the sky, including the aureole.");
+      run.notes.push_back(
+          "The sun's disk is not drawn (sun.disk = false; --keep-sun-disk draws it): the comparison is "
+          "about the sky, including the aureole.");
     }
     const bool scene_is_fast = scene.render.path == RenderSpec::Path::RgbFast;
     std::string note;
     const Scene spectral = scene_is_fast ? spectral_twin(scene, &note) : scene;
     const Scene fast = scene_is_fast ? scene : rgb_fast_twin(scene);
     if (!note.empty()) run.notes.push_back(note);
-    run.notes.push_back(scene_is_fast ? "The scene is RGB-fast; its spectral twin has the same atmosphere, sun and camera on "
-                                        "380-780 nm in 10 nm steps."
-                                      : "The scene is spectral; its RGB-fast twin has the same atmosphere, sun and camera on "
-                                        "440, 550 and 680 nm.");
-    const std::string origin = o.scene.scene_file.empty() ? "preset " + o.scene.preset
-                                                           : o.scene.scene_file + " over preset " + o.scene.preset;
+    run.notes.push_back(scene_is_fast
+                            ? "The scene is RGB-fast; its spectral twin has the same atmosphere, sun and camera on "
+                              "380-780 nm in 10 nm steps."
+                            : "The scene is spectral; its RGB-fast twin has the same atmosphere, sun and camera on "
+                              "440, 550 and 680 nm.");
+    const std::string origin =
+        o.scene.scene_file.empty() ? "preset " + o.scene.preset : o.scene.scene_file + " over preset " + o.scene.preset;
     run.scene_summary = scene_summary(scene, origin);
     const int renders = 2 * (1 + static_cast<int>(elevations.size()));
     int finished = 0;
@@ -223,7 +227,10 @@ int run_compare(const CompareOptions& o) {
   if (!run.sweep.empty()) run.sweep_plot_file = o.name + kSweepPlotSuffix;
   std::vector<std::filesystem::path> written;
   try {
-    const auto keep = [&](const std::filesystem::path& p) { written.push_back(p); return p; };
+    const auto keep = [&](const std::filesystem::path& p) {
+      written.push_back(p);
+      return p;
+    };
     write_delta_e_map(keep(dir / run.delta_e_map_file), run.comparison, run.delta_e_max);
     write_side_by_side(keep(dir / run.side_by_side_file), run.comparison, pipeline, "SPECTRAL", "RGB-FAST");
     if (!run.sweep.empty()) write_text_file(keep(dir / run.sweep_plot_file), sweep_plot_svg(run.sweep));
@@ -236,10 +243,11 @@ int run_compare(const CompareOptions& o) {
   }
   if (!o.quiet) {
     const auto& d = run.comparison.all.delta_e;
-    std::printf("Delta E 2000 (%zu sky pixels, sun %.4g deg): mean %.2f, median %.2f, p95 %.2f, max %.2f; "
-                "above 1: %.1f %%, 2: %.1f %%, 5: %.1f %%\n",
-                d.pixels, run.sun_elevation_deg, d.mean, d.median, d.p95, d.max, 100 * d.share_above_1,
-                100 * d.share_above_2, 100 * d.share_above_5);
+    std::printf(
+        "Delta E 2000 (%zu sky pixels, sun %.4g deg): mean %.2f, median %.2f, p95 %.2f, max %.2f; "
+        "above 1: %.1f %%, 2: %.1f %%, 5: %.1f %%\n",
+        d.pixels, run.sun_elevation_deg, d.mean, d.median, d.p95, d.max, 100 * d.share_above_1, 100 * d.share_above_2,
+        100 * d.share_above_5);
     for (const auto& p : written) std::cout << "wrote " << p.string() << "\n";
   }
   return kExitOk;
@@ -249,7 +257,8 @@ int run_compare(const CompareOptions& o) {
 
 Command add_compare_command(CLI::App& app) {
   auto opts = std::make_shared<CompareOptions>();
-  auto* compare = app.add_subcommand("compare", "Compare the RGB-fast sky with the spectral one: Delta E report, map, plot");
+  auto* compare =
+      app.add_subcommand("compare", "Compare the RGB-fast sky with the spectral one: Delta E report, map, plot");
   compare->footer(
       "Examples:\n"
       "  skyspec compare --width 128 --height 128                     # default scene vs its RGB-fast twin\n"
@@ -264,9 +273,13 @@ Command add_compare_command(CLI::App& app) {
   compare->add_option("--out", opts->out, "output folder (created if missing)")->capture_default_str();
   compare->add_option("--name", opts->name, "base name of the outputs")->capture_default_str();
   compare->add_option("--sweep", opts->sweep, "also compare over sun elevations: START:STOP:STEP or a,b,c (degrees)");
-  compare->add_option("--near-sun-deg", opts->regions.near_sun_deg, "region 'near the sun': angular distance below this")->capture_default_str();
-  compare->add_option("--horizon-deg", opts->regions.horizon_deg, "region 'horizon band': elevation below this")->capture_default_str();
-  compare->add_option("--zenith-deg", opts->regions.zenith_deg, "region 'zenith': zenith angle below this")->capture_default_str();
+  compare
+      ->add_option("--near-sun-deg", opts->regions.near_sun_deg, "region 'near the sun': angular distance below this")
+      ->capture_default_str();
+  compare->add_option("--horizon-deg", opts->regions.horizon_deg, "region 'horizon band': elevation below this")
+      ->capture_default_str();
+  compare->add_option("--zenith-deg", opts->regions.zenith_deg, "region 'zenith': zenith angle below this")
+      ->capture_default_str();
   compare->add_option("--delta-e-max", opts->delta_e_max, "top of the Delta E map's colour bar")->capture_default_str();
   compare->add_flag("--keep-sun-disk", opts->keep_sun_disk, "draw the sun's disk (default: off, the sky is compared)");
   compare->add_flag("-q,--quiet", opts->quiet, "no progress bar and no summary");

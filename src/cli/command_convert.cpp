@@ -25,7 +25,8 @@ int run_convert(const ConvertOptions& o) {
   if (list_displays_if_asked(o.display)) return kExitOk;
   if (o.input.empty()) throw InputError("INPUT", "(missing)", "a skyspec EXR to convert, e.g. skyspec-out/sky.exr");
   const std::filesystem::path input(o.input);
-  const std::filesystem::path dir = o.out.empty() ? (input.has_parent_path() ? input.parent_path() : ".") : std::filesystem::path(o.out);
+  const std::filesystem::path dir =
+      o.out.empty() ? (input.has_parent_path() ? input.parent_path() : ".") : std::filesystem::path(o.out);
   const std::string name = o.name.empty() ? input.stem().string() : o.name;
   const auto out = convert_exr_for_display(input, dir, name, display_settings(o.display, o.exposure_ev.has_value()),
                                            o.exposure_ev, !o.no_png);
@@ -42,12 +43,14 @@ int run_convert(const ConvertOptions& o) {
 
 Command add_convert_command(CLI::App& app) {
   auto opts = std::make_shared<ConvertOptions>();
-  auto* convert = app.add_subcommand("convert", "Apply the display pipeline to an existing skyspec EXR (no re-rendering)");
+  auto* convert =
+      app.add_subcommand("convert", "Apply the display pipeline to an existing skyspec EXR (no re-rendering)");
   convert->footer(
       "Examples:\n"
       "  skyspec convert skyspec-out/sky.exr --display \"Display P3\" --name sky-p3\n"
       "  skyspec convert skyspec-out/sky.exr --view \"ACES 1.0 - SDR Video\" --name sky-aces\n"
-      "  skyspec convert skyspec-out/sky.exr --display Rec.2100-PQ --view \"ACES 1.1 - HDR Video (1000 nits & Rec.2020 lim)\" --png-bits 16 --name sky-pq\n"
+      "  skyspec convert skyspec-out/sky.exr --display Rec.2100-PQ --view \"ACES 1.1 - HDR Video (1000 nits & Rec.2020 "
+      "lim)\" --png-bits 16 --name sky-pq\n"
       "  skyspec convert skyspec-out/sky.exr --no-png --exr-space ACEScg   # -> sky-acescg.exr\n"
       "The exposure recorded by `skyspec render` is used unless --exposure or a camera exposure is given.");
   convert->add_option("INPUT", opts->input, "a skyspec EXR (its R, G, B: linear Rec.709)");

@@ -8,13 +8,13 @@
 #include <string>
 #include <vector>
 
-#include "commands.hpp"
-#include "text_output.hpp"
-#include "scene_options.hpp"
 #include "base/atomic_file.hpp"
-#include "skyspec/error.hpp"
+#include "commands.hpp"
 #include "render/irradiance.hpp"
+#include "scene_options.hpp"
+#include "skyspec/error.hpp"
 #include "skyspec/render.hpp"
+#include "text_output.hpp"
 
 namespace skyspec::cli {
 namespace {
@@ -34,7 +34,8 @@ std::vector<double> parse_elevations(const std::string& text) {
     char* end = nullptr;
     const double x = std::strtod(item.c_str(), &end);
     if (item.empty() || *end != '\0' || !(x >= -90.0 && x <= 90.0))
-      throw InputError("--sun-elevations", "\"" + item + "\"", "comma-separated angles in degrees, each from -90 to 90");
+      throw InputError("--sun-elevations", "\"" + item + "\"",
+                       "comma-separated angles in degrees, each from -90 to 90");
     v.push_back(x);
   }
   if (v.empty()) throw InputError("--sun-elevations", "\"\"", "at least one angle in degrees");
@@ -42,8 +43,7 @@ std::vector<double> parse_elevations(const std::string& text) {
 }
 
 int run(IrradianceOptions& o) {
-  if (o.format != "md" && o.format != "csv")
-    throw InputError("--format", "\"" + o.format + "\"", "one of: md, csv");
+  if (o.format != "md" && o.format != "csv") throw InputError("--format", "\"" + o.format + "\"", "one of: md, csv");
   Scene base = load_scene(o.scene, [](SceneLoader& l) {
     // Only the camera position matters; a 1x1 image keeps the set-up cheap.
     l.apply_override("camera.width", "1", "irradiance");
@@ -68,8 +68,10 @@ int run(IrradianceOptions& o) {
   const auto cct_text = [&](const std::optional<ColourTemperature>& c, bool with_duv) {
     if (!c) return std::string(o.format == "md" ? "-" : (with_duv ? "," : ""));
     char buf[64];
-    if (with_duv) std::snprintf(buf, sizeof buf, "%.1f,%.5f", c->cct_K, c->duv);
-    else std::snprintf(buf, sizeof buf, "%.0f", c->cct_K);
+    if (with_duv)
+      std::snprintf(buf, sizeof buf, "%.1f,%.5f", c->cct_K, c->duv);
+    else
+      std::snprintf(buf, sizeof buf, "%.0f", c->cct_K);
     return std::string(buf);
   };
   for (double el : elevations) {
@@ -91,7 +93,8 @@ int run(IrradianceOptions& o) {
          << cct_text(rep.diffuse_horizontal_cct, !md) << (md ? " |\n" : "\n");
   }
   if (o.format == "md")
-    text << "\nBroadband W/m2 over " << make_wavelength_grid(base).min_nm() << "-" << make_wavelength_grid(base).max_nm()
+    text << "\nBroadband W/m2 over " << make_wavelength_grid(base).min_nm() << "-"
+         << make_wavelength_grid(base).max_nm()
          << " nm; lux = 683 lm/W x y-bar-weighted integral; CCT: correlated colour temperature (CIE 015, nearest "
             "Planckian chromaticity in the CIE 1960 UCS diagram; - where the light has none).\n";
   print_or_write(text.str(), o.out);
@@ -102,9 +105,9 @@ int run(IrradianceOptions& o) {
 
 Command add_irradiance_command(CLI::App& app) {
   auto o = std::make_shared<IrradianceOptions>();
-  auto* cmd = app.add_subcommand(
-      "irradiance",
-      "Direct and diffuse irradiance (W/m2), illuminance (lux) and colour temperature on a horizontal surface at the camera");
+  auto* cmd = app.add_subcommand("irradiance",
+                                 "Direct and diffuse irradiance (W/m2), illuminance (lux) and colour temperature on a "
+                                 "horizontal surface at the camera");
   cmd->footer(
       "Example:\n"
       "  skyspec irradiance --sun-elevations 5,10,20,30,45,60,90\n"
@@ -115,7 +118,8 @@ Command add_irradiance_command(CLI::App& app) {
   o->scene.flags.push_back({"--sun-azimuth", "sun.azimuth_deg", "sun azimuth, degrees", {}, false});
   add_scene_options(*cmd, o->scene);
   add_quality_option(*cmd, o->scene);
-  cmd->add_option("--sun-elevations", o->elevations, "comma-separated sun elevations in degrees (default: the scene's)");
+  cmd->add_option("--sun-elevations", o->elevations,
+                  "comma-separated sun elevations in degrees (default: the scene's)");
   cmd->add_option("--format", o->format, "md (Markdown table) or csv")->capture_default_str();
   cmd->add_option("--out", o->out, "write to this file instead of standard output");
   return {cmd, [o] { return run(*o); },

@@ -144,11 +144,13 @@ int run_here(const JobOptions& o, const JobPlan& plan, TaskRange range, bool col
   bar.finish();
   if (!o.quiet)
     std::cout << (range.size() > 0 ? "tasks " + std::to_string(range.first) + "-" + std::to_string(range.last - 1)
-                                    : std::string("no tasks (this shard is empty: the job has fewer tasks than shards)"))
+                                   : std::string("no tasks (this shard is empty: the job has fewer tasks than shards)"))
               << ": ran " << ran << ", " << skipped << " already done, " << failed << " failed\n";
   if (collect) {
     const JobSummary summary = collect_job(plan);
-    if (!o.quiet) std::cout << summary.describe() << "\nmanifest: " << (plan.job.output_directory / "manifest.jsonl").string() << "\n";
+    if (!o.quiet)
+      std::cout << summary.describe() << "\nmanifest: " << (plan.job.output_directory / "manifest.jsonl").string()
+                << "\n";
     return summary.failed || summary.missing || summary.damaged ? kExitTasksFailed : kExitOk;
   }
   return failed ? kExitTasksFailed : kExitOk;
@@ -189,16 +191,19 @@ std::string self_path() {
 }
 
 int run_job(const JobOptions& o) {
-  if (o.threads < 0 || o.threads > 1024) throw InputError("--threads", std::to_string(o.threads), "0 (the scene's render.threads) to 1024");
-  if (o.workers < 0 || o.workers > 4096) throw InputError("--workers", std::to_string(o.workers), "0 (one per core) to 4096");
-  if (o.shard && o.tasks)
-    throw InputError("--tasks", "\"" + *o.tasks + "\"", "either --shard or --tasks, not both");
+  if (o.threads < 0 || o.threads > 1024)
+    throw InputError("--threads", std::to_string(o.threads), "0 (the scene's render.threads) to 1024");
+  if (o.workers < 0 || o.workers > 4096)
+    throw InputError("--workers", std::to_string(o.workers), "0 (one per core) to 4096");
+  if (o.shard && o.tasks) throw InputError("--tasks", "\"" + *o.tasks + "\"", "either --shard or --tasks, not both");
   if (!o.shard && !o.tasks) {
-    if (o.no_collect) throw InputError("--no-collect", "(given)", "--shard or --tasks (the Dask driver always collects)");
+    if (o.no_collect)
+      throw InputError("--no-collect", "(given)", "--shard or --tasks (the Dask driver always collects)");
     load_plan(o);  // a job with an error is refused here, before Python starts
     exec_driver(o);
   }
-  if (!o.scheduler.empty()) throw InputError("--scheduler", o.scheduler, "no --shard or --tasks (they run here, without Dask)");
+  if (!o.scheduler.empty())
+    throw InputError("--scheduler", o.scheduler, "no --shard or --tasks (they run here, without Dask)");
   if (o.workers > 0)
     throw InputError("--workers", std::to_string(o.workers), "no --shard or --tasks (they run here, in this process)");
   if (o.stop_with_parent) {  // a driver's child: SIGTERM (a clean stop) when the worker that started it dies
@@ -207,7 +212,8 @@ int run_job(const JobOptions& o) {
     if (getppid() != parent) throw Interrupted(SIGTERM);
   }
   const JobPlan plan = load_plan(o);
-  if (o.tasks) return run_here(o, plan, parse_task_range(*o.tasks, static_cast<int>(plan.tasks.size()), "--tasks"), false);
+  if (o.tasks)
+    return run_here(o, plan, parse_task_range(*o.tasks, static_cast<int>(plan.tasks.size()), "--tasks"), false);
   const auto [i, n] = parse_shard(*o.shard, "--shard");
   const int rc = run_here(o, plan, plan.shard(i, n), n == 1 && !o.no_collect);
   if (n > 1 && !o.quiet) std::cout << "after the last shard: skyspec job collect " << o.job_file << "\n";
@@ -220,7 +226,8 @@ int run_collect(const JobOptions& o) {
   if (stale > 0 && !o.quiet) std::cout << "removed " << stale << " temporary file(s) of killed tasks\n";
   const JobSummary summary = collect_job(plan);
   if (!o.quiet) {
-    std::cout << summary.describe() << "\nmanifest: " << (plan.job.output_directory / "manifest.jsonl").string() << "\n";
+    std::cout << summary.describe() << "\nmanifest: " << (plan.job.output_directory / "manifest.jsonl").string()
+              << "\n";
     for (const auto& t : summary.tables) std::cout << "table: " << t.string() << "\n";
   }
   if (summary.missing)
@@ -267,7 +274,8 @@ Command add_job_command(CLI::App& app) {
   run->add_flag("--stop-with-parent", o->stop_with_parent,
                 "stop (as on SIGTERM) when the process that started this one ends (for drivers such as Dask's)");
   run->add_flag("-q,--quiet", o->quiet, "no progress bar and no summary");
-  auto* collect = cmd->add_subcommand("collect", "Write the manifest and the irradiance tables from the tasks' records");
+  auto* collect =
+      cmd->add_subcommand("collect", "Write the manifest and the irradiance tables from the tasks' records");
   common(collect);
   collect->add_flag("-q,--quiet", o->quiet, "no summary");
   return {cmd,

@@ -51,14 +51,16 @@ Command add_merge_command(CLI::App& app) {
   cmd->footer(
       "Example:\n"
       "  skyspec render --camera equirectangular --width 8192 --height 4096 --pixel-bounds 0,8192,0,2048 --out top\n"
-      "  skyspec render --camera equirectangular --width 8192 --height 4096 --pixel-bounds 0,8192,2048,4096 --out bottom\n"
+      "  skyspec render --camera equirectangular --width 8192 --height 4096 --pixel-bounds 0,8192,2048,4096 --out "
+      "bottom\n"
       "  skyspec merge top/sky.exr bottom/sky.exr --out pano.exr\n"
       "The tiles must be of one render (same scene, size and settings) and cover the image exactly once; the\n"
       "result is byte for byte the EXR of the whole render. Memory: a band of scanlines, not the image.");
   cmd->add_option("TILES", o->tiles, "the tile EXRs")->required();
   cmd->add_option("--out", o->out, "the merged spectral EXR")->required();
   cmd->add_flag("-q,--quiet", o->quiet, "no progress bar and no summary");
-  return {cmd, [o] { return run_merge(*o); }, [o] {
+  return {cmd, [o] { return run_merge(*o); },
+          [o] {
             if (o->out.empty()) throw InputError("--out", "(missing)", "the merged EXR's path");
           }};
 }

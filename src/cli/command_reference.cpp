@@ -2,12 +2,12 @@
 // errors) in a few sky directions, optionally beside the renderer's own values.
 
 #include <algorithm>
-#include <cerrno>
-#include <cstdlib>
-#include <chrono>
 #include <array>
+#include <cerrno>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -16,11 +16,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include <filesystem>
 #include "commands.hpp"
-#include "text_output.hpp"
 #include "progress.hpp"
 #include "scene_options.hpp"
-#include <filesystem>
+#include "text_output.hpp"
 
 #include "base/atomic_file.hpp"
 #include "render/irradiance.hpp"
@@ -102,7 +102,8 @@ Deterministic render_probes(Scene scene, const Checked& c, int orders) {
     scene.output.polarisation = true;
   const SkyRenderer renderer(scene);
   Deterministic d;
-  for (const auto& p : c.probes) d.radiance.push_back(renderer.radiance(direction_from_angles(p.azimuth_deg, p.elevation_deg)));
+  for (const auto& p : c.probes)
+    d.radiance.push_back(renderer.radiance(direction_from_angles(p.azimuth_deg, p.elevation_deg)));
   if (c.settings.stokes)
     for (const auto& p : c.probes) {
       const Vec3 dir = direction_from_angles(p.azimuth_deg, p.elevation_deg);
@@ -163,8 +164,10 @@ std::string format_table(const ReferenceResult& r, const Deterministic* det, con
                  const std::array<double, 4>* sv, const std::array<double, 4>* sv_error,
                  const std::array<double, 4>* renderer_sv) {
     const bool relative = mc > 0.0 && se > 0.0;
-    std::vector<std::string> cells = {md ? markdown_cell(label) : csv_quoted(label), num(md ? "%.2f" : "%.6g", az),
-                                      num(md ? "%.2f" : "%.6g", el), num("%g", r.wavelengths_nm[i]),
+    std::vector<std::string> cells = {md ? markdown_cell(label) : csv_quoted(label),
+                                      num(md ? "%.2f" : "%.6g", az),
+                                      num(md ? "%.2f" : "%.6g", el),
+                                      num("%g", r.wavelengths_nm[i]),
                                       num(md ? "%.6g" : "%.9g", mc),
                                       md ? (relative ? num("%.3f", 100.0 * se / mc) : "") : num("%.9g", se)};
     if (det) {
@@ -206,9 +209,10 @@ std::string format_table(const ReferenceResult& r, const Deterministic* det, con
       << (stokes ? ",stokes_i,stokes_q,stokes_u,stokes_v,stokes_i_error,stokes_q_error,stokes_u_error,stokes_v_error,"
                    "degree_of_linear_polarisation,angle_of_linear_polarisation_deg"
                  : "")
-      << (det_stokes ? ",renderer_minus_stokes_i_percent,renderer_minus_stokes_i_sigma,renderer_stokes_q,renderer_stokes_u,"
-                       "renderer_degree_of_linear_polarisation"
-                     : "")
+      << (det_stokes
+              ? ",renderer_minus_stokes_i_percent,renderer_minus_stokes_i_sigma,renderer_stokes_q,renderer_stokes_u,"
+                "renderer_degree_of_linear_polarisation"
+              : "")
       << "\n";
   }
   for (size_t k = 0; k < r.probes.size(); ++k)
@@ -223,7 +227,8 @@ std::string format_table(const ReferenceResult& r, const Deterministic* det, con
   if (format == "md") {
     t << "\nRadiance in W m^-2 sr^-1 nm^-1 (irradiance in W m^-2 nm^-1), sun at elevation " << scene.sun.elevation_deg
       << " deg, azimuth " << scene.sun.azimuth_deg << " deg; " << r.settings.paths << " paths per value, seed "
-      << r.settings.seed << ", " << (r.settings.max_orders == 0 ? std::string("all orders") : std::to_string(r.settings.max_orders) + " order(s)")
+      << r.settings.seed << ", "
+      << (r.settings.max_orders == 0 ? std::string("all orders") : std::to_string(r.settings.max_orders) + " order(s)")
       << "; " << r.seconds << " s.\n";
     if (stokes)
       t << "Polarisation (vector transport, the same number of paths): I with polarisation's coupling into "
@@ -258,7 +263,8 @@ std::string format_json(const ReferenceResult& r, const Deterministic* det, cons
                      {"elevation_deg", r.probes[k].elevation_deg},
                      {"radiance", r.radiance[k]},
                      {"standard_error", r.radiance_standard_error[k]}};
-    if (det) p["renderer"] = std::vector<double>(det->radiance[k].data(), det->radiance[k].data() + det->radiance[k].size());
+    if (det)
+      p["renderer"] = std::vector<double>(det->radiance[k].data(), det->radiance[k].data() + det->radiance[k].size());
     if (!r.stokes.empty()) {
       p["stokes"] = r.stokes[k];
       p["stokes_standard_error"] = r.stokes_standard_error[k];
@@ -269,7 +275,9 @@ std::string format_json(const ReferenceResult& r, const Deterministic* det, cons
   if (!r.diffuse_horizontal.empty()) {
     j["diffuse_horizontal"] = {{"irradiance", r.diffuse_horizontal},
                                {"standard_error", r.diffuse_horizontal_standard_error}};
-    if (det) j["diffuse_horizontal"]["renderer"] = std::vector<double>(det->diffuse.data(), det->diffuse.data() + det->diffuse.size());
+    if (det)
+      j["diffuse_horizontal"]["renderer"] =
+          std::vector<double>(det->diffuse.data(), det->diffuse.data() + det->diffuse.size());
   }
   return j.dump(1) + "\n";
 }
@@ -290,7 +298,8 @@ int run(const ReferenceOptions& o) {
     const auto t0 = std::chrono::steady_clock::now();
     monte_carlo_reference(c.scene, {c.probes.front()}, pilot, {});
     const double per_path = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / pilot.paths;
-    const double seconds = per_path * static_cast<double>(o.paths) * static_cast<double>(c.probes.size() + (o.irradiance ? 1 : 0));
+    const double seconds =
+        per_path * static_cast<double>(o.paths) * static_cast<double>(c.probes.size() + (o.irradiance ? 1 : 0));
     if (seconds > 86400.0)
       throw InputError::refused("--force", "the Monte Carlo reference would take about " + format_duration(seconds) +
                                                " at these settings (" + std::to_string(o.paths) + " paths x " +
@@ -300,7 +309,8 @@ int run(const ReferenceOptions& o) {
   ReferenceResult result;
   {
     ProgressBar bar("monte carlo", o.quiet);
-    result = monte_carlo_reference(c.scene, c.probes, c.settings, [&bar](int done, int total) { bar.update(done, total); });
+    result =
+        monte_carlo_reference(c.scene, c.probes, c.settings, [&bar](int done, int total) { bar.update(done, total); });
     bar.finish();
   }
   std::unique_ptr<Deterministic> det;

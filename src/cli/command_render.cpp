@@ -7,15 +7,15 @@
 #include <string>
 #include <vector>
 
+#include "base/atomic_file.hpp"
 #include "commands.hpp"
 #include "display_options.hpp"
 #include "progress.hpp"
-#include "scene_options.hpp"
-#include "base/atomic_file.hpp"
-#include "skyspec/error.hpp"
 #include "render/irradiance.hpp"
-#include "skyspec/render.hpp"
 #include "render/render_budget.hpp"
+#include "scene_options.hpp"
+#include "skyspec/error.hpp"
+#include "skyspec/render.hpp"
 #include "skyspec/scene.hpp"
 
 namespace skyspec::cli {
@@ -26,12 +26,13 @@ std::vector<KeyFlag> render_flags() {
   append_flags(flags, camera_flags(true));
   append_flags(flags, sun_flags());
   append_flags(flags, spectrum_flags());
-  append_flags(flags, {
-      {"--path", "render.path", "spectral or rgb-fast", {}, false},
-      {"--view-segments", "render.view_segments", "quadrature segments per view ray", {}, false},
-      {"--threads", "render.threads", "worker threads (0: all cores)", {}, false},
-      {"--exposure", "output.exposure_ev", "preview exposure in EV (default: automatic)", {}, false},
-  });
+  append_flags(flags,
+               {
+                   {"--path", "render.path", "spectral or rgb-fast", {}, false},
+                   {"--view-segments", "render.view_segments", "quadrature segments per view ray", {}, false},
+                   {"--threads", "render.threads", "worker threads (0: all cores)", {}, false},
+                   {"--exposure", "output.exposure_ev", "preview exposure in EV (default: automatic)", {}, false},
+               });
   return flags;
 }
 
@@ -75,7 +76,8 @@ std::string photometry_line(const SkyRenderer& r) {
   const double zenith_cd_m2 = 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
   const IrradianceReport e = irradiance_at_camera(r, 16, 32);
   char buf[256];
-  std::snprintf(buf, sizeof buf, "luminance at the zenith %.4g cd/m2; at the camera, horizontal: direct %.4g lx, diffuse %.4g lx",
+  std::snprintf(buf, sizeof buf,
+                "luminance at the zenith %.4g cd/m2; at the camera, horizontal: direct %.4g lx, diffuse %.4g lx",
                 zenith_cd_m2, e.direct_horizontal_lux, e.diffuse_horizontal_lux);
   return buf;
 }
@@ -126,15 +128,17 @@ int run_render(RenderOptions& o) {
   if (!o.force) refuse_if_tables_over_budget(scene, estimate);
   const auto prepared = [&](const SkyRenderer& r) {
     measure(r);
-    if (!o.quiet && scene.render.path == RenderSpec::Path::Spectral && r.grid().size() >= 2) photometry = photometry_line(r);
+    if (!o.quiet && scene.render.path == RenderSpec::Path::Spectral && r.grid().size() >= 2)
+      photometry = photometry_line(r);
   };
   ProgressBar bar("rendering", o.quiet);
-  const auto out = render_scene_to_files(scene, display, [&](int done, int total) { bar.update(done, total); },
-                                         prepared, tile);
+  const auto out = render_scene_to_files(
+      scene, display, [&](int done, int total) { bar.update(done, total); }, prepared, tile);
   bar.finish();
   if (!o.quiet) {
     if (!out.exr.empty()) std::cout << "wrote " << out.exr.string() << "\n";
-    if (!out.png.empty()) std::cout << "wrote " << out.png.string() << " (preview exposure " << out.preview_ev << " EV)\n";
+    if (!out.png.empty())
+      std::cout << "wrote " << out.png.string() << " (preview exposure " << out.preview_ev << " EV)\n";
     if (!out.working_exr.empty()) std::cout << "wrote " << out.working_exr.string() << "\n";
     if (!out.polarisation_exr.empty()) std::cout << "wrote " << out.polarisation_exr.string() << "\n";
     if (!out.polarisation_png.empty()) std::cout << "wrote " << out.polarisation_png.string() << "\n";
@@ -168,7 +172,8 @@ Command add_render_command(CLI::App& app) {
       "  skyspec render --camera equirectangular --width 4096 --height 2048 --panorama-convention blender \\\n"
       "                 --exr-space \"Linear Rec.709\"     # an HDRI for Blender (docs/other-tools.md)\n"
       "  skyspec render --display \"Display P3\"            # the PNG for a Display P3 screen\n"
-      "  skyspec render --display Rec.2100-PQ --view \"ACES 1.1 - HDR Video (1000 nits & Rec.2020 lim)\" --png-bits 16\n"
+      "  skyspec render --display Rec.2100-PQ --view \"ACES 1.1 - HDR Video (1000 nits & Rec.2020 lim)\" --png-bits "
+      "16\n"
       "  skyspec render --shutter 1/250 --f-number 8 --iso 100   # physical camera exposure\n"
       "  skyspec render --list-displays                  # displays, views and looks of the OCIO config\n"
       "  skyspec render --from skyspec-out/sky.exr --out again   # the scene recorded in an EXR, rendered again\n"
@@ -179,9 +184,10 @@ Command add_render_command(CLI::App& app) {
   render->add_flag("--no-exr", opts->no_exr, "do not write the spectral EXR");
   render->add_flag("--no-png", opts->no_png, "do not write the PNG preview");
   render->add_flag("-q,--quiet", opts->quiet, "no progress bar and no summary");
-  render->add_flag("--help-keys{text}", opts->help_keys,
-                   "list every scene key with its unit and range, then exit; --help-keys=markdown prints the "
-                   "table of docs/scene-keys.md")
+  render
+      ->add_flag("--help-keys{text}", opts->help_keys,
+                 "list every scene key with its unit and range, then exit; --help-keys=markdown prints the "
+                 "table of docs/scene-keys.md")
       ->check(CLI::IsMember({"text", "markdown"}));
   render->add_flag("--print-scene", opts->print_scene, "print the effective scene as TOML, then exit");
   render->add_flag("--force", opts->force,

@@ -10,22 +10,22 @@
 #include <string>
 #include <vector>
 
-#include "commands.hpp"
-#include "progress.hpp"
-#include "scene_options.hpp"
-#include "physics/date_time.hpp"
-#include "colour/display_pipeline.hpp"
 #include "base/atomic_file.hpp"
 #include "base/output_lock.hpp"
+#include "colour/display_pipeline.hpp"
+#include "colour/exposure.hpp"
+#include "commands.hpp"
+#include "io/exr_input.hpp"
 #include "io/png_image.hpp"
 #include "io/provenance.hpp"
-#include "io/exr_input.hpp"
-#include "skyspec/error.hpp"
-#include "colour/exposure.hpp"
-#include "skyspec/render.hpp"
-#include "render/render_budget.hpp"
-#include "physics/solar_position.hpp"
 #include "job/job_plan.hpp"
+#include "physics/date_time.hpp"
+#include "physics/solar_position.hpp"
+#include "progress.hpp"
+#include "render/render_budget.hpp"
+#include "scene_options.hpp"
+#include "skyspec/error.hpp"
+#include "skyspec/render.hpp"
 
 namespace skyspec::cli {
 namespace {
@@ -35,12 +35,14 @@ constexpr int kMaxFrames = 100000;
 std::vector<KeyFlag> timelapse_flags() {
   std::vector<KeyFlag> flags = output_flags();
   append_flags(flags, camera_flags(true));
-  append_flags(flags, {
-      {"--latitude", "location.latitude_deg", "latitude, degrees north", {}, false},
-      {"--longitude", "location.longitude_deg", "longitude, degrees east", {}, false},
-      {"--threads", "render.threads", "worker threads (0: all cores)", {}, false},
-      {"--exposure", "output.exposure_ev", "exposure in EV for every frame (default: metered once)", {}, false},
-  });
+  append_flags(
+      flags,
+      {
+          {"--latitude", "location.latitude_deg", "latitude, degrees north", {}, false},
+          {"--longitude", "location.longitude_deg", "longitude, degrees east", {}, false},
+          {"--threads", "render.threads", "worker threads (0: all cores)", {}, false},
+          {"--exposure", "output.exposure_ev", "exposure in EV for every frame (default: metered once)", {}, false},
+      });
   append_flags(flags, spectrum_flags());
   return flags;
 }
@@ -158,8 +160,8 @@ int run(TimelapseOptions& o) {
     std::snprintf(buf, sizeof buf, "%.6f", ev);
     ev_text = buf;
     if (!o.quiet)
-      std::cout << "exposure " << ev_text << " EV for every frame (metered on frame " << brightest << ", sun "
-                << best << " deg)\n";
+      std::cout << "exposure " << ev_text << " EV for every frame (metered on frame " << brightest << ", sun " << best
+                << " deg)\n";
   }
 
   if (o.resume) {  // temporary files of a run that was killed (SIGKILL leaves them)
@@ -193,9 +195,10 @@ int run(TimelapseOptions& o) {
   }
   bar.finish();
   if (!o.quiet)
-    std::cout << "wrote " << written << " frame(s)" << (skipped ? ", kept " + std::to_string(skipped) + " finished" : "")
-              << (replaced ? ", replaced " + std::to_string(replaced) + " damaged or foreign" : "")
-              << " in " << first.output.directory << "\n";
+    std::cout << "wrote " << written << " frame(s)"
+              << (skipped ? ", kept " + std::to_string(skipped) + " finished" : "")
+              << (replaced ? ", replaced " + std::to_string(replaced) + " damaged or foreign" : "") << " in "
+              << first.output.directory << "\n";
   return kExitOk;
 }
 

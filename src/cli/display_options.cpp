@@ -10,13 +10,19 @@ namespace skyspec::cli {
 
 void add_display_options(CLI::App& app, DisplayOptions& o, DisplayOptionSet which) {
   const std::string group = "Display pipeline (OpenColorIO)";
-  app.add_option("--ocio", o.ocio, "OpenColorIO config file (default: $OCIO, else skyspec's built-in config)")->group(group);
-  app.add_option("--display", o.display, "display: sRGB (default), \"Display P3\", \"Rec.1886 Rec.709\", Rec.2100-PQ")->group(group);
+  app.add_option("--ocio", o.ocio, "OpenColorIO config file (default: $OCIO, else skyspec's built-in config)")
+      ->group(group);
+  app.add_option("--display", o.display, "display: sRGB (default), \"Display P3\", \"Rec.1886 Rec.709\", Rec.2100-PQ")
+      ->group(group);
   app.add_option("--view", o.view, "view, e.g. Un-tone-mapped (default), \"ACES 1.0 - SDR Video\"")->group(group);
-  app.add_option("--look", o.look, "look: an OCIO look (reinhard) or a skyspec look (reinhard-extended, "
-                                   "reinhard-luminance, uncharted2-filmic, aces-approx)")->group(group);
-  app.add_option("--look-white", o.look_white, "reinhard-extended/-luminance: the exposed value that maps to 1 "
-                                               "(default: the image's largest luminance)")->group(group);
+  app.add_option("--look", o.look,
+                 "look: an OCIO look (reinhard) or a skyspec look (reinhard-extended, "
+                 "reinhard-luminance, uncharted2-filmic, aces-approx)")
+      ->group(group);
+  app.add_option("--look-white", o.look_white,
+                 "reinhard-extended/-luminance: the exposed value that maps to 1 "
+                 "(default: the image's largest luminance)")
+      ->group(group);
   if (which.camera) {
     app.add_option("--iso", o.iso, "camera exposure: ISO speed (default 100)")->group(group);
     app.add_option("--shutter", o.shutter, "camera exposure: shutter time in s, e.g. 1/250")->group(group);
@@ -24,12 +30,16 @@ void add_display_options(CLI::App& app, DisplayOptions& o, DisplayOptionSet whic
   }
   app.add_option("--png-bits", o.png_bits, "PNG bits per channel: 8 or 16")->capture_default_str()->group(group);
   if (which.exr_space)
-    app.add_option("--exr-space", o.exr_space, "also write a scene-linear RGB EXR in ACEScg, ACES2065-1 or \"Linear Rec.709\"")->group(group);
+    app.add_option("--exr-space", o.exr_space,
+                   "also write a scene-linear RGB EXR in ACEScg, ACES2065-1 or \"Linear Rec.709\"")
+        ->group(group);
   app.add_flag("--list-displays", o.list, "list the config's displays, views and looks, then exit")->group(group);
 }
 
 double parse_shutter_s(const std::string& text) {
-  const auto fail = [&]() { return InputError("--shutter", "\"" + text + "\"", "a time in seconds, e.g. 1/250 or 0.004"); };
+  const auto fail = [&]() {
+    return InputError("--shutter", "\"" + text + "\"", "a time in seconds, e.g. 1/250 or 0.004");
+  };
   const auto number = [&](const std::string& s) {
     char* end = nullptr;
     const double v = std::strtod(s.c_str(), &end);

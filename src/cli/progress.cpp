@@ -18,9 +18,12 @@ ProgressBar::~ProgressBar() {
 namespace {
 std::string format_seconds(double s) {
   char buf[32];
-  if (s < 60) std::snprintf(buf, sizeof buf, "%4.1fs", s);
-  else if (s < 3600) std::snprintf(buf, sizeof buf, "%dm%02ds", static_cast<int>(s) / 60, static_cast<int>(s) % 60);
-  else std::snprintf(buf, sizeof buf, "%dh%02dm", static_cast<int>(s) / 3600, (static_cast<int>(s) / 60) % 60);
+  if (s < 60)
+    std::snprintf(buf, sizeof buf, "%4.1fs", s);
+  else if (s < 3600)
+    std::snprintf(buf, sizeof buf, "%dm%02ds", static_cast<int>(s) / 60, static_cast<int>(s) % 60);
+  else
+    std::snprintf(buf, sizeof buf, "%dh%02dm", static_cast<int>(s) / 3600, (static_cast<int>(s) / 60) % 60);
   return buf;
 }
 }  // namespace
@@ -39,7 +42,8 @@ void ProgressBar::update(int done, int total) {
   bar.append(static_cast<size_t>(width - filled), '.');
   std::string eta = done > 0 && done < total ? "ETA " + format_seconds(elapsed / frac - elapsed)
                                              : "elapsed " + format_seconds(elapsed);
-  std::fprintf(stderr, "\r%s [%s] %3d%%  %s   ", label_.c_str(), bar.c_str(), static_cast<int>(frac * 100), eta.c_str());
+  std::fprintf(stderr, "\r%s [%s] %3d%%  %s   ", label_.c_str(), bar.c_str(), static_cast<int>(frac * 100),
+               eta.c_str());
   std::fflush(stderr);
 }
 

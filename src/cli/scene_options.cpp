@@ -2,8 +2,8 @@
 
 #include <iostream>
 
-#include "skyspec/error.hpp"
 #include "io/provenance.hpp"
+#include "skyspec/error.hpp"
 #include "skyspec/version.hpp"
 
 namespace skyspec::cli {
@@ -27,13 +27,16 @@ std::vector<KeyFlag> camera_flags(bool size) {
     flags.push_back({"--height", "camera.height", "image height in pixels", {}, false});
   }
   append_flags(flags, {
-      {"--camera", "camera.type", "fisheye, perspective or equirectangular", {}, false},
-      {"--position", "camera.position_m", "camera position east,north,height in m", {}, true},
-      {"--look-at", "camera.look_at_m", "perspective: target east,north,height in m", {}, true},
-      {"--fov", "camera.fov_deg", "perspective: vertical field of view, degrees", {}, false},
-      {"--panorama-convention", "camera.panorama_convention",
-       "equirectangular: skyspec, blender (Cycles, north on +Y) or openexr (lat-long envmap)", {}, false},
-  });
+                          {"--camera", "camera.type", "fisheye, perspective or equirectangular", {}, false},
+                          {"--position", "camera.position_m", "camera position east,north,height in m", {}, true},
+                          {"--look-at", "camera.look_at_m", "perspective: target east,north,height in m", {}, true},
+                          {"--fov", "camera.fov_deg", "perspective: vertical field of view, degrees", {}, false},
+                          {"--panorama-convention",
+                           "camera.panorama_convention",
+                           "equirectangular: skyspec, blender (Cycles, north on +Y) or openexr (lat-long envmap)",
+                           {},
+                           false},
+                      });
   return flags;
 }
 
@@ -122,7 +125,8 @@ Scene load_scene(const SceneOptions& o, const std::function<void(SceneLoader&)>&
     // --name and --set choose as they do for any scene.
     const Scene preset = SceneLoader(o.preset).finish();
     loader.apply_toml(*o.from_scene, "--from " + o.from_file);
-    loader.apply_override("output.directory", preset.output.directory, "--from (its recorded output.directory is not used)");
+    loader.apply_override("output.directory", preset.output.directory,
+                          "--from (its recorded output.directory is not used)");
     loader.apply_override("output.name", preset.output.name, "--from (its recorded output.name is not used)");
   }
   if (!o.quality.empty()) loader.apply_quality(o.quality, "--quality");

@@ -27,7 +27,9 @@ struct SceneOptions {
   SceneOptions() = default;
   SceneOptions(std::string preset_name, std::string file, std::vector<std::string> set_values,
                std::vector<KeyFlag> key_flags)
-      : preset(std::move(preset_name)), scene_file(std::move(file)), sets(std::move(set_values)),
+      : preset(std::move(preset_name)),
+        scene_file(std::move(file)),
+        sets(std::move(set_values)),
         flags(std::move(key_flags)) {}
   std::string preset = "default", scene_file;
   std::vector<std::string> sets;

@@ -8,9 +8,9 @@
 #include <string>
 #include <string_view>
 
+#include "base/csv_table.hpp"
 #include "base/embedded_data.hpp"
 #include "skyspec/error.hpp"
-#include "base/csv_table.hpp"
 
 namespace skyspec {
 namespace {
@@ -47,8 +47,7 @@ Eigen::Vector3d cmf_at(const CmfTable& t, double lambda_nm) {
   if (i == t.nm.size()) i = t.nm.size() - 1;  // lambda == last point
   const size_t j = i - 1;
   const double f = (lambda_nm - t.nm[j]) / (t.nm[i] - t.nm[j]);
-  return {t.x[j] + f * (t.x[i] - t.x[j]), t.y[j] + f * (t.y[i] - t.y[j]),
-          t.z[j] + f * (t.z[i] - t.z[j])};
+  return {t.x[j] + f * (t.x[i] - t.x[j]), t.y[j] + f * (t.y[i] - t.y[j]), t.z[j] + f * (t.z[i] - t.z[j])};
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -144,8 +143,7 @@ Eigen::Matrix3d linear_rec709_to_xyz() {
 Eigen::Matrix3d xyz_to_linear_rec709() { return linear_rec709_to_xyz().inverse(); }
 
 Chromaticities rec709_chromaticities() {
-  return Chromaticities{{kRed[0], kRed[1]}, {kGreen[0], kGreen[1]}, {kBlue[0], kBlue[1]},
-                        {kD65[0], kD65[1]}};
+  return Chromaticities{{kRed[0], kRed[1]}, {kGreen[0], kGreen[1]}, {kBlue[0], kBlue[1]}, {kD65[0], kD65[1]}};
 }
 
 // IEC 61966-2-1:1999 section 4.1 (encoding): V = 12.92 L for L <= 0.0031308, otherwise

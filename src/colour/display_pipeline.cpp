@@ -12,8 +12,8 @@
 #include <system_error>
 
 #include "base/embedded_data.hpp"
-#include "skyspec/error.hpp"
 #include "colour/tone_mapping.hpp"
+#include "skyspec/error.hpp"
 
 namespace OCIO = OCIO_NAMESPACE;
 
@@ -73,7 +73,8 @@ OcioConfig::OcioConfig(const OcioConfigSource& source) {
   if (!source.path.empty() && !std::filesystem::is_regular_file(source.path, ec))
     throw InputError(setting, "'" + source.path + "'",
                      std::string("a readable, valid OpenColorIO 2.1 config file (") +
-                         (std::filesystem::exists(source.path, ec) ? "this is not a regular file" : "no such file") + ")");
+                         (std::filesystem::exists(source.path, ec) ? "this is not a regular file" : "no such file") +
+                         ")");
   try {
     if (source.path.empty()) {
       std::istringstream text{std::string(embedded_file(kBuiltinConfig))};
@@ -137,7 +138,8 @@ std::vector<std::string> OcioConfig::looks() const {
 
 std::vector<std::string> OcioConfig::colour_spaces() const {
   std::vector<std::string> names;
-  for (int i = 0; i < impl_->config->getNumColorSpaces(); ++i) names.emplace_back(impl_->config->getColorSpaceNameByIndex(i));
+  for (int i = 0; i < impl_->config->getNumColorSpaces(); ++i)
+    names.emplace_back(impl_->config->getColorSpaceNameByIndex(i));
   return names;
 }
 
@@ -205,7 +207,8 @@ DisplayPipeline::DisplayPipeline(const DisplaySettings& s) : impl_(std::make_uni
 
   p.display = s.display.empty() ? c.default_display() : match_name(c.displays(), s.display);
   if (p.display.empty())
-    throw InputError(display_setting::kDisplay, "\"" + s.display + "\"", "one of the displays" + in_config + ": " + quoted_list(c.displays()));
+    throw InputError(display_setting::kDisplay, "\"" + s.display + "\"",
+                     "one of the displays" + in_config + ": " + quoted_list(c.displays()));
   p.view = s.view.empty() ? c.default_view(p.display) : match_name(c.views(p.display), s.view);
   if (p.view.empty())
     throw InputError(display_setting::kView, "\"" + s.view + "\"",
@@ -252,9 +255,10 @@ DisplayPipeline::DisplayPipeline(const DisplaySettings& s) : impl_(std::make_uni
   try {
     p.processor = cpu_processor(ci.config, group);
   } catch (const OCIO::Exception& e) {
-    throw InputError(std::string(display_setting::kDisplay) + " / " + display_setting::kView + " / " + display_setting::kLook,
-                     "\"" + p.display + "\" / \"" + p.view + "\" / \"" + p.look + "\"",
-                     "a combination that " + c.describe() + " can build (OpenColorIO says: " + e.what() + ")");
+    throw InputError(
+        std::string(display_setting::kDisplay) + " / " + display_setting::kView + " / " + display_setting::kLook,
+        "\"" + p.display + "\" / \"" + p.view + "\" / \"" + p.look + "\"",
+        "a combination that " + c.describe() + " can build (OpenColorIO says: " + e.what() + ")");
   }
 }
 
@@ -326,8 +330,9 @@ std::vector<float> to_working_space(const OcioConfig& config, const std::vector<
                                     const WorkingSpace& space) {
   const auto& ci = config.impl();
   if (!ci.config->getColorSpace(space.name.c_str()))
-    throw InputError(display_setting::kExrSpace, "\"" + space.name + "\"",
-                     "a working space that " + config.describe() + " defines; it has " + quoted_list(config.colour_spaces()));
+    throw InputError(
+        display_setting::kExrSpace, "\"" + space.name + "\"",
+        "a working space that " + config.describe() + " defines; it has " + quoted_list(config.colour_spaces()));
   auto group = input_transform(ci);
   auto convert = OCIO::ColorSpaceTransform::Create();
   convert->setSrc(ci.input_space.c_str());
@@ -350,7 +355,8 @@ std::string describe_displays_and_looks(const OcioConfig& config) {
   out << "\nLooks (--look):\n";
   for (const auto& l : config.looks()) out << "  " << l << "  (OCIO look of the config)\n";
   for (const auto& l : tone_operator_names())
-    if (match_name(config.looks(), l).empty()) out << "  " << l << "  (skyspec look, C++, before the OCIO display transform)\n";
+    if (match_name(config.looks(), l).empty())
+      out << "  " << l << "  (skyspec look, C++, before the OCIO display transform)\n";
   out << "\nScene-linear working spaces for --exr-space:\n";
   for (const auto& s : working_spaces()) out << "  " << s.name << "\n";
   return out.str();

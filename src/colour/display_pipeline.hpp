@@ -19,10 +19,10 @@
 #include <string>
 #include <vector>
 
-#include "skyspec/colour.hpp"
-#include "skyspec/display.hpp"
 #include "colour/exposure.hpp"
 #include "colour/png_colour_tag.hpp"
+#include "skyspec/colour.hpp"
+#include "skyspec/display.hpp"
 
 namespace skyspec {
 
@@ -90,7 +90,8 @@ struct WorkingSpace {
 /// 2065-1) and Linear Rec.709 (ITU-R BT.709 primaries, D65).
 const std::vector<WorkingSpace>& working_spaces();
 /// Throws InputError(setting, name, the list) for an unknown name (case-insensitive match).
-const WorkingSpace& find_working_space(const std::string& name, const std::string& setting = display_setting::kExrSpace);
+const WorkingSpace& find_working_space(const std::string& name,
+                                       const std::string& setting = display_setting::kExrSpace);
 /// The skyspec:units text of an RGB EXR in `space`: what its R, G, B are (scene-linear in that
 /// space; luminance in cd/m^2 on the spectral path, the sun's units on the RGB-fast path).
 std::string working_space_units(const WorkingSpace& space, bool rgb_fast);

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "skyspec/error.hpp"
 #include "base/text_format.hpp"
+#include "skyspec/error.hpp"
 
 namespace skyspec {
 namespace {
@@ -98,9 +98,9 @@ ResolvedExposure resolve_exposure(const ExposureSettings& s, double metered_scal
       if (!std::isfinite(metered_scale) || metered_scale <= 0.0)
         throw Error("internal error: the metered exposure is not a positive number");
       r.scale = metered_scale;
-      r.description = printf_string(
-          "automatic: log-average luminance of the metered pixels -> 0.18, scale = %.6g (EV %.4g)", r.scale,
-          std::log2(r.scale));
+      r.description =
+          printf_string("automatic: log-average luminance of the metered pixels -> 0.18, scale = %.6g (EV %.4g)",
+                        r.scale, std::log2(r.scale));
       break;
   }
   r.ev = std::log2(r.scale);

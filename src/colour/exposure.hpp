@@ -44,9 +44,7 @@ double camera_ev100(double f_number, double shutter_s, double iso);
 double camera_exposure_scale(double f_number, double shutter_s, double iso);
 
 /// Luminance of a linear Rec.709 triple.
-inline double rec709_luminance(const float* rgb) {
-  return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
-}
+inline double rec709_luminance(const float* rgb) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
 
 /// The metered pixels (x, y) of a width x height image: every k-th column and row, k =
 /// ceil(max(width, height) / 64), starting at k / 2 (all pixels when both sides are <= 64).

@@ -25,12 +25,24 @@ std::array<float, 3> polarisation_colour(const LinearPolarisation& p) {
   const double rising = v * f, falling = v * (1.0 - f);
   double r = 0, g = 0, b = 0;
   switch (sector) {
-    case 0: r = v, g = rising, b = 0; break;
-    case 1: r = falling, g = v, b = 0; break;
-    case 2: r = 0, g = v, b = rising; break;
-    case 3: r = 0, g = falling, b = v; break;
-    case 4: r = rising, g = 0, b = v; break;
-    default: r = v, g = 0, b = falling; break;
+    case 0:
+      r = v, g = rising, b = 0;
+      break;
+    case 1:
+      r = falling, g = v, b = 0;
+      break;
+    case 2:
+      r = 0, g = v, b = rising;
+      break;
+    case 3:
+      r = 0, g = falling, b = v;
+      break;
+    case 4:
+      r = rising, g = 0, b = v;
+      break;
+    default:
+      r = v, g = 0, b = falling;
+      break;
   }
   return {static_cast<float>(r), static_cast<float>(g), static_cast<float>(b)};
 }

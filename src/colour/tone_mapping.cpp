@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "skyspec/error.hpp"
 #include "colour/exposure.hpp"
+#include "skyspec/error.hpp"
 
 namespace skyspec {
 
@@ -71,16 +71,25 @@ double apply_tone_operator(ToneOperator op, std::vector<float>& rgb, std::option
     for (float& v : rgb) v = static_cast<float>(f(static_cast<double>(v)));
   };
   switch (op) {
-    case ToneOperator::Reinhard: per_channel(reinhard); break;
-    case ToneOperator::ReinhardExtended: per_channel([w](double c) { return reinhard_extended(c, w); }); break;
-    case ToneOperator::Uncharted2Filmic: per_channel(uncharted2_filmic); break;
-    case ToneOperator::AcesApprox: per_channel(aces_approx_narkowicz); break;
+    case ToneOperator::Reinhard:
+      per_channel(reinhard);
+      break;
+    case ToneOperator::ReinhardExtended:
+      per_channel([w](double c) { return reinhard_extended(c, w); });
+      break;
+    case ToneOperator::Uncharted2Filmic:
+      per_channel(uncharted2_filmic);
+      break;
+    case ToneOperator::AcesApprox:
+      per_channel(aces_approx_narkowicz);
+      break;
     case ToneOperator::ReinhardLuminance:
       for (size_t i = 0; i + 2 < rgb.size(); i += 3) {
         const double y = rec709_luminance(&rgb[i]);
         if (y <= 0.0) continue;
         const double ratio = reinhard_extended(y, w) / y;
-        for (int c = 0; c < 3; ++c) rgb[i + static_cast<size_t>(c)] = static_cast<float>(rgb[i + static_cast<size_t>(c)] * ratio);
+        for (int c = 0; c < 3; ++c)
+          rgb[i + static_cast<size_t>(c)] = static_cast<float>(rgb[i + static_cast<size_t>(c)] * ratio);
       }
       break;
   }

@@ -12,8 +12,8 @@
 #include <exception>
 
 #include "base/atomic_file.hpp"
-#include "skyspec/colour.hpp"
 #include "io/exr_open.hpp"
+#include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
 
 namespace skyspec {
@@ -71,7 +71,8 @@ void write_exr_channels(const std::filesystem::path& path, int width, int height
     if (data->size() != static_cast<size_t>(width) * height)
       throw IoError("internal error: channel " + name + " has the wrong size for " + path.string());
     for (float v : *data)
-      if (!std::isfinite(v)) throw IoError("refusing to write a non-finite value into " + name + " of " + path.string());
+      if (!std::isfinite(v))
+        throw IoError("refusing to write a non-finite value into " + name + " of " + path.string());
   }
   AtomicOutputFile file(path);
   try {

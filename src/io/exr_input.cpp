@@ -38,13 +38,17 @@ struct PartHeader {
 int lines_per_chunk(int compression) {
   switch (compression) {
     case Imf::ZIP_COMPRESSION:
-    case Imf::PXR24_COMPRESSION: return 16;
+    case Imf::PXR24_COMPRESSION:
+      return 16;
     case Imf::PIZ_COMPRESSION:
     case Imf::B44_COMPRESSION:
     case Imf::B44A_COMPRESSION:
-    case Imf::DWAA_COMPRESSION: return 32;
-    case Imf::DWAB_COMPRESSION: return 256;
-    default: return 1;  // none, RLE, ZIPS
+    case Imf::DWAA_COMPRESSION:
+      return 32;
+    case Imf::DWAB_COMPRESSION:
+      return 256;
+    default:
+      return 1;  // none, RLE, ZIPS
   }
 }
 
@@ -76,10 +80,12 @@ class HeaderWalker {
       pos_ += 4;
       if (size >= 0 && static_cast<std::uint64_t>(size) <= file_size - std::min<std::uint64_t>(file_size, pos_) &&
           pos_ + static_cast<std::size_t>(size) > data_.size())
-        fail("attribute \"" + attribute + "\" of " + std::to_string(size) + " bytes ends beyond the first MiB of the file, "
+        fail("attribute \"" + attribute + "\" of " + std::to_string(size) +
+             " bytes ends beyond the first MiB of the file, "
              "where skyspec expects the whole header");
       if (size < 0 || static_cast<std::uint64_t>(size) > file_size - std::min<std::uint64_t>(file_size, pos_))
-        fail("attribute \"" + attribute + "\" declares " + std::to_string(size) + " bytes, more than the file holds after it (" +
+        fail("attribute \"" + attribute + "\" declares " + std::to_string(size) +
+             " bytes, more than the file holds after it (" +
              std::to_string(file_size - std::min<std::uint64_t>(file_size, pos_)) + " bytes)");
       const unsigned char* v = bytes(pos_);
       if (attribute == "dataWindow" && type == "box2i" && size == 16) {
@@ -128,11 +134,15 @@ class HeaderWalker {
 
 double exr_max_compression_ratio(int compression) {
   switch (compression) {
-    case Imf::NO_COMPRESSION: return 1.0;
-    case Imf::RLE_COMPRESSION: return 64.0;
+    case Imf::NO_COMPRESSION:
+      return 1.0;
+    case Imf::RLE_COMPRESSION:
+      return 64.0;
     case Imf::ZIPS_COMPRESSION:
-    case Imf::ZIP_COMPRESSION: return 1100.0;
-    default: return 4096.0;  // PIZ, PXR24, B44(A), DWAA/B: generous
+    case Imf::ZIP_COMPRESSION:
+      return 1100.0;
+    default:
+      return 4096.0;  // PIZ, PXR24, B44(A), DWAA/B: generous
   }
 }
 
@@ -141,8 +151,8 @@ void check_exr_declared_sizes(const fs::path& path) {
   const auto status = fs::status(path, ec);
   if (ec || !fs::exists(status)) throw IoError("cannot read " + path.string() + " as OpenEXR: it does not exist");
   if (!fs::is_regular_file(status))
-    throw IoError("cannot read " + path.string() + " as OpenEXR: " +
-                  (fs::is_directory(status) ? "it is a folder" : "it is not a regular file"));
+    throw IoError("cannot read " + path.string() +
+                  " as OpenEXR: " + (fs::is_directory(status) ? "it is a folder" : "it is not a regular file"));
   const std::uint64_t file_size = fs::file_size(path, ec);
   std::ifstream in(path, std::ios::binary);
   if (ec || !in) throw IoError("cannot read " + path.string() + " as OpenEXR: cannot open it");
@@ -160,7 +170,9 @@ void check_exr_declared_sizes(const fs::path& path) {
   // ones from the chunks' own declared sizes.
   if (single_tiled || multipart || (flags & 0x800))
     throw IoError("cannot read " + path.string() + ": it is a " +
-                  (multipart ? "multi-part" : (flags & 0x800) ? "deep" : "tiled") +
+                  (multipart         ? "multi-part"
+                   : (flags & 0x800) ? "deep"
+                                     : "tiled") +
                   " OpenEXR file; skyspec reads single-part scan-line images (convert with "
                   "`oiiotool IN.exr --scanline -o OUT.exr`)");
   HeaderWalker walker(path, head);
@@ -174,12 +186,14 @@ void check_exr_declared_sizes(const fs::path& path) {
   const long double decoded = width * height * static_cast<long double>(p.bytes_per_pixel);
   const long double bound = static_cast<long double>(file_size) * exr_max_compression_ratio(p.compression) + 65536.0L;
   if (decoded > bound)
-    walker.fail("it declares " + std::to_string(static_cast<long long>(width)) + " x " + std::to_string(static_cast<long long>(height)) +
-                " pixels (" + std::to_string(static_cast<long long>(decoded / 1e6L)) + " MB decoded) but holds only " +
+    walker.fail("it declares " + std::to_string(static_cast<long long>(width)) + " x " +
+                std::to_string(static_cast<long long>(height)) + " pixels (" +
+                std::to_string(static_cast<long long>(decoded / 1e6L)) + " MB decoded) but holds only " +
                 std::to_string(file_size) + " bytes, which that compression cannot expand to more than " +
                 std::to_string(static_cast<long long>(bound / 1e6L)) + " MB");
   // Every chunk's offset, and the data size the chunk declares, must lie inside the file.
-  const std::uint64_t chunks = static_cast<std::uint64_t>((height + lines_per_chunk(p.compression) - 1) / lines_per_chunk(p.compression));
+  const std::uint64_t chunks =
+      static_cast<std::uint64_t>((height + lines_per_chunk(p.compression) - 1) / lines_per_chunk(p.compression));
   if (header_end + 8 * chunks > file_size)
     walker.fail("its offset table of " + std::to_string(chunks) + " chunks is longer than the file");
   std::string table(static_cast<std::size_t>(8 * chunks), '\0');
@@ -193,8 +207,10 @@ void check_exr_declared_sizes(const fs::path& path) {
     // 0 marks a chunk never written: the writer did not finish. OpenEXR would rebuild the table
     // by walking the chunks, believing each one's declared size; such a file is refused.
     if (offset == 0)
-      walker.fail("its offset table is incomplete (chunk " + std::to_string(c) + " was never written: the file was not finished)");
-    if (offset < static_cast<std::int64_t>(header_end + 8 * chunks) || static_cast<std::uint64_t>(offset) + 8 > file_size)
+      walker.fail("its offset table is incomplete (chunk " + std::to_string(c) +
+                  " was never written: the file was not finished)");
+    if (offset < static_cast<std::int64_t>(header_end + 8 * chunks) ||
+        static_cast<std::uint64_t>(offset) + 8 > file_size)
       walker.fail("chunk " + std::to_string(c) + " of its offset table points outside the file");
     // The chunk starts with its first line's y and the size of its data (int32 each); OpenEXR
     // allocates that size before reading, so it must fit in the file.
@@ -230,8 +246,10 @@ void verify_exr_pixels(const fs::path& path) {
       std::size_t c = 0;
       for (auto it = file->header().channels().begin(); it != file->header().channels().end(); ++it, ++c) {
         char* origin = reinterpret_cast<char*>(band.data() + c * width);
-        const std::ptrdiff_t x_stride = sizeof(float), y_stride = static_cast<std::ptrdiff_t>(channels * width * sizeof(float));
-        char* base = origin - static_cast<std::ptrdiff_t>(window.min.x) * x_stride - static_cast<std::ptrdiff_t>(y0) * y_stride;
+        const std::ptrdiff_t x_stride = sizeof(float),
+                             y_stride = static_cast<std::ptrdiff_t>(channels * width * sizeof(float));
+        char* base =
+            origin - static_cast<std::ptrdiff_t>(window.min.x) * x_stride - static_cast<std::ptrdiff_t>(y0) * y_stride;
         frame.insert(it.name(), Imf::Slice(Imf::FLOAT, base, x_stride, static_cast<std::size_t>(y_stride)));
       }
       file->setFrameBuffer(frame);
@@ -244,10 +262,12 @@ void verify_exr_pixels(const fs::path& path) {
   }
 }
 
-void require_float_channels(const Imf::Header& header, const std::vector<std::string>& names, const std::string& where) {
+void require_float_channels(const Imf::Header& header, const std::vector<std::string>& names,
+                            const std::string& where) {
   for (const auto& name : names)
     if (const Imf::Channel* c = header.channels().findChannel(name); c && c->type == Imf::UINT)
-      throw IoError(where + "channel " + name + " holds UINT samples (integers: an id or a mask); skyspec reads HALF or FLOAT");
+      throw IoError(where + "channel " + name +
+                    " holds UINT samples (integers: an id or a mask); skyspec reads HALF or FLOAT");
 }
 
 }  // namespace skyspec

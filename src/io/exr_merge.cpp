@@ -48,7 +48,8 @@ struct Tile {
 
 // Throws unless `h` is a tile of the same image as `first`: every attribute but the data window
 // the same, with the same value.
-void require_same_image(const Imf::Header& first, const Imf::Header& h, const fs::path& path, const fs::path& first_path) {
+void require_same_image(const Imf::Header& first, const Imf::Header& h, const fs::path& path,
+                        const fs::path& first_path) {
   const auto refuse = [&](const std::string& why) {
     throw InputError("TILES", "\"" + path.string() + "\"",
                      "tiles of one image (as the first, " + first_path.string() + "): " + why);
@@ -62,7 +63,8 @@ void require_same_image(const Imf::Header& first, const Imf::Header& h, const fs
       refuse("its " + name + " differs");
   }
   for (auto it = h.begin(); it != h.end(); ++it)
-    if (first.find(it.name()) == first.end()) refuse(std::string("it has an attribute the first has not: ") + it.name());
+    if (first.find(it.name()) == first.end())
+      refuse(std::string("it has an attribute the first has not: ") + it.name());
 }
 
 int block_rows(Imf::Compression c) {
@@ -98,8 +100,10 @@ MergeSummary merge_spectral_exr_tiles(const std::vector<fs::path>& paths, const 
       std::vector<std::string> names;
       for (auto c = h.channels().begin(); c != h.channels().end(); ++c) names.emplace_back(c.name());
       require_float_channels(h, names, "tile '" + p.string() + "': ");
-      if (!header) header = std::make_unique<Imf::Header>(h);
-      else require_same_image(*header, h, p, paths.front());
+      if (!header)
+        header = std::make_unique<Imf::Header>(h);
+      else
+        require_same_image(*header, h, p, paths.front());
       tiles.push_back({p, h.dataWindow()});
     }
   } catch (const Error&) {
@@ -112,28 +116,31 @@ MergeSummary merge_spectral_exr_tiles(const std::vector<fs::path>& paths, const 
   // before anything is allocated for it.
   if (display.max.x - display.min.x + 1 > 65536 || display.max.y - display.min.y + 1 > 65536 ||
       display.max.x < display.min.x || display.max.y < display.min.y)
-    throw InputError("TILES", "\"" + paths.front().string() + "\"",
-                     "tiles of an image of at most 65536 x 65536 pixels (its display window is " + box_text(display) + ")");
+    throw InputError(
+        "TILES", "\"" + paths.front().string() + "\"",
+        "tiles of an image of at most 65536 x 65536 pixels (its display window is " + box_text(display) + ")");
   long long covered = 0;
   for (std::size_t i = 0; i < tiles.size(); ++i) {
     const Box& a = tiles[i].window;
     if (a.min.x < display.min.x || a.min.y < display.min.y || a.max.x > display.max.x || a.max.y > display.max.y)
-      throw InputError("TILES", "\"" + tiles[i].path.string() + "\"",
-                       "a tile inside the display window (" + box_text(display) + "); its data window is " + box_text(a));
+      throw InputError(
+          "TILES", "\"" + tiles[i].path.string() + "\"",
+          "a tile inside the display window (" + box_text(display) + "); its data window is " + box_text(a));
     for (std::size_t j = 0; j < i; ++j) {
       const Box& b = tiles[j].window;
       if (a.min.x <= b.max.x && b.min.x <= a.max.x && a.min.y <= b.max.y && b.min.y <= a.max.y)
-        throw InputError("TILES", "\"" + tiles[i].path.string() + "\"",
-                         "tiles that do not overlap: it and " + tiles[j].path.string() + " both hold pixels of " +
-                             box_text(Box(IMATH_NAMESPACE::V2i(std::max(a.min.x, b.min.x), std::max(a.min.y, b.min.y)),
-                                          IMATH_NAMESPACE::V2i(std::min(a.max.x, b.max.x), std::min(a.max.y, b.max.y)))));
+        throw InputError(
+            "TILES", "\"" + tiles[i].path.string() + "\"",
+            "tiles that do not overlap: it and " + tiles[j].path.string() + " both hold pixels of " +
+                box_text(Box(IMATH_NAMESPACE::V2i(std::max(a.min.x, b.min.x), std::max(a.min.y, b.min.y)),
+                             IMATH_NAMESPACE::V2i(std::min(a.max.x, b.max.x), std::min(a.max.y, b.max.y)))));
     }
     covered += area(a);
   }
   if (covered != area(display))
     throw InputError("TILES", std::to_string(tiles.size()) + " tile(s)",
-                     "tiles that cover the whole image (" + box_text(display) + "): " +
-                         std::to_string(area(display) - covered) + " pixel(s) are in no tile");
+                     "tiles that cover the whole image (" + box_text(display) +
+                         "): " + std::to_string(area(display) - covered) + " pixel(s) are in no tile");
 
   // 2. The output: the tiles' header with the whole image as data window, a band at a time.
   header->dataWindow() = display;

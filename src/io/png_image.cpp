@@ -39,8 +39,8 @@ void on_png_warning(png_structp, png_const_charp) {}  // warnings do not make th
 /// Linear value -> 8-bit sRGB code: round(255 * srgb_encode(clamp(linear, 0, 1))).
 }  // namespace
 
-void write_png_srgb8(const std::filesystem::path& path, int width, int height,
-                     const std::vector<float>& linear_rgb, double scale) {
+void write_png_srgb8(const std::filesystem::path& path, int width, int height, const std::vector<float>& linear_rgb,
+                     double scale) {
   const std::string where = "PNG '" + path.string() + "': ";
   if (!std::isfinite(scale)) throw IoError(where + "non-finite exposure scale");
   // sRGB code values; non-finite input is rejected here because srgb_encode maps NaN to 0.
@@ -129,21 +129,20 @@ bool encode_display_png(FILE* out, const DisplayPngLayout& layout, const png_byt
 
 }  // namespace
 
-void write_png_display(const std::filesystem::path& path, int width, int height,
-                       const std::vector<float>& code_values, int bit_depth, PngColourTag tag,
-                       const std::vector<std::pair<std::string, std::string>>& text) {
+void write_png_display(const std::filesystem::path& path, int width, int height, const std::vector<float>& code_values,
+                       int bit_depth, PngColourTag tag, const std::vector<std::pair<std::string, std::string>>& text) {
   const std::string where = "PNG '" + path.string() + "': ";
   if (width <= 0 || height <= 0)
-    throw IoError(where + "image size " + std::to_string(width) + " x " + std::to_string(height) +
-                  " must be positive");
+    throw IoError(where + "image size " + std::to_string(width) + " x " + std::to_string(height) + " must be positive");
   if (bit_depth != 8 && bit_depth != 16)
     throw IoError(where + "bit depth " + std::to_string(bit_depth) + " is not 8 or 16");
   const size_t values = static_cast<size_t>(width) * static_cast<size_t>(height) * 3;
   if (code_values.size() != values)
-    throw IoError(where + std::to_string(code_values.size()) + " values given for " + std::to_string(width) +
-                  " x " + std::to_string(height) + " RGB pixels");
+    throw IoError(where + std::to_string(code_values.size()) + " values given for " + std::to_string(width) + " x " +
+                  std::to_string(height) + " RGB pixels");
   for (const auto& [key, value] : text)
-    if (key.empty() || key.size() > 79) throw IoError(where + "text keyword '" + key + "' must have 1 to 79 characters");
+    if (key.empty() || key.size() > 79)
+      throw IoError(where + "text keyword '" + key + "' must have 1 to 79 characters");
 
   // Quantise everything first: a bad value leaves no file behind.
   const size_t bytes_per_sample = static_cast<size_t>(bit_depth / 8);

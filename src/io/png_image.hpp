@@ -14,14 +14,14 @@ namespace skyspec {
 /// Writes an 8-bit sRGB PNG from linear Rec.709 values rgb ([y][x][c], width*height*3 floats),
 /// each multiplied by `scale` before encoding with the sRGB transfer function and clamping to
 /// [0, 1]. Non-finite values are rejected with IoError. Atomic (temporary file + rename).
-void write_png_srgb8(const std::filesystem::path& path, int width, int height,
-                     const std::vector<float>& linear_rgb, double scale);
+void write_png_srgb8(const std::filesystem::path& path, int width, int height, const std::vector<float>& linear_rgb,
+                     double scale);
 
 /// Writes display code values ([y][x][c], width*height*3 floats, already encoded for the
 /// display; clamped to [0, 1]) as an RGB PNG of bit_depth 8 or 16, tagged as `tag`, with tEXt
 /// chunks `text` (keyword, value). Non-finite values are rejected with IoError. Atomic.
-void write_png_display(const std::filesystem::path& path, int width, int height,
-                       const std::vector<float>& code_values, int bit_depth, PngColourTag tag,
+void write_png_display(const std::filesystem::path& path, int width, int height, const std::vector<float>& code_values,
+                       int bit_depth, PngColourTag tag,
                        const std::vector<std::pair<std::string, std::string>>& text = {});
 
 /// Reads a PNG completely (every row decoded: libpng checks each chunk's CRC and the image

@@ -7,8 +7,8 @@
 #include <exception>
 
 #include "base/embedded_data.hpp"
-#include "skyspec/error.hpp"
 #include "io/exr_open.hpp"
+#include "skyspec/error.hpp"
 
 namespace skyspec {
 

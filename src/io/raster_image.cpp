@@ -108,7 +108,8 @@ int Canvas::text(int x0, int y0, const std::string& s, Rgb c, int scale) {
     if (it != font().end())
       for (int row = 0; row < 7; ++row)
         for (int col = 0; col < 5; ++col)
-          if (it->second[static_cast<size_t>(row)][col] == '#') fill_rect(x + col * scale, y0 + row * scale, scale, scale, c);
+          if (it->second[static_cast<size_t>(row)][col] == '#')
+            fill_rect(x + col * scale, y0 + row * scale, scale, scale, c);
     x += 6 * scale;
   }
   return x - x0 - scale;

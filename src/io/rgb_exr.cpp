@@ -11,8 +11,8 @@
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 #include <ImfStandardAttributes.h>
-#include <ImfVecAttribute.h>
 #include <ImfStringAttribute.h>
+#include <ImfVecAttribute.h>
 
 #include <cerrno>
 #include <cmath>
@@ -21,9 +21,9 @@
 #include <exception>
 
 #include "base/atomic_file.hpp"
-#include "skyspec/error.hpp"
 #include "io/exr_open.hpp"
 #include "io/exr_streams.hpp"
+#include "skyspec/error.hpp"
 
 namespace skyspec {
 namespace {
@@ -64,8 +64,9 @@ void write_channels(const std::filesystem::path& path, const std::string& where,
     Imf::FrameBuffer frame;
     const size_t x_stride = k * sizeof(float), y_stride = static_cast<size_t>(width) * x_stride;
     for (size_t ch = 0; ch < k; ++ch)
-      frame.insert(names[ch], Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(values.data() + ch)),
-                                         x_stride, y_stride));
+      frame.insert(names[ch],
+                   Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(values.data() + ch)),
+                              x_stride, y_stride));
     Imf::OutputFile out(memory, header);
     out.setFrameBuffer(frame);
     out.writePixels(height);
@@ -133,9 +134,12 @@ RgbExrImage read_rgb_exr(const std::filesystem::path& path) {
     put(image.chromaticities.blue, chroma.blue);
     put(image.chromaticities.white, chroma.white);
     for (auto it = header.begin(); it != header.end(); ++it) {
-      if (const auto* text = dynamic_cast<const Imf::StringAttribute*>(&it.attribute())) image.strings[it.name()] = text->value();
-      if (const auto* number = dynamic_cast<const Imf::FloatAttribute*>(&it.attribute())) image.floats[it.name()] = number->value();
-      if (const auto* number = dynamic_cast<const Imf::DoubleAttribute*>(&it.attribute())) image.doubles[it.name()] = number->value();
+      if (const auto* text = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
+        image.strings[it.name()] = text->value();
+      if (const auto* number = dynamic_cast<const Imf::FloatAttribute*>(&it.attribute()))
+        image.floats[it.name()] = number->value();
+      if (const auto* number = dynamic_cast<const Imf::DoubleAttribute*>(&it.attribute()))
+        image.doubles[it.name()] = number->value();
       if (const auto* v = dynamic_cast<const Imf::V3dAttribute*>(&it.attribute()))
         image.vectors[it.name()] = {v->value().x, v->value().y, v->value().z};
       if (const auto* v = dynamic_cast<const Imf::V3fAttribute*>(&it.attribute()))

@@ -21,8 +21,8 @@ namespace skyspec {
 /// envmap = latlong (ZIP compression). Non-finite values are rejected with IoError; atomic.
 void write_rgb_exr(const std::filesystem::path& path, int width, int height, const std::vector<float>& rgb,
                    const Chromaticities& chromaticities, const std::map<std::string, std::string>& strings = {},
-                   const std::map<std::string, float>& floats = {},
-                   const std::map<std::string, double>& doubles = {}, bool latlong_envmap = false);
+                   const std::map<std::string, float>& floats = {}, const std::map<std::string, double>& doubles = {},
+                   bool latlong_envmap = false);
 
 /// Float channels `names` ([y][x][channel] in `values`) with extra string attributes and the
 /// latlong envmap attribute when asked (ZIP compression); no chromaticities (the channels are not
@@ -40,7 +40,7 @@ struct RgbExrImage {
   std::map<std::string, float> floats;
   std::map<std::string, double> doubles;
   std::map<std::string, std::array<double, 3>> vectors;  ///< v3f and v3d attributes
-  bool latlong_envmap = false;  ///< the file has envmap = latlong
+  bool latlong_envmap = false;                           ///< the file has envmap = latlong
 };
 /// Reads R, G, B (and the attributes) of any OpenEXR file; throws IoError naming the file.
 RgbExrImage read_rgb_exr(const std::filesystem::path& path);

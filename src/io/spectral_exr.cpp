@@ -2,10 +2,8 @@
 #include "io/spectral_exr.hpp"
 
 #include <ImfChannelList.h>
-#include <half.h>
 #include <ImfChromaticities.h>
 #include <ImfDoubleAttribute.h>
-#include <ImfVecAttribute.h>
 #include <ImfFloatAttribute.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
@@ -15,6 +13,8 @@
 #include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
 #include <ImfThreading.h>
+#include <ImfVecAttribute.h>
+#include <half.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -38,11 +38,11 @@
 
 #include "base/atomic_file.hpp"
 #include "base/text_format.hpp"
-#include "skyspec/colour.hpp"
-#include "skyspec/error.hpp"
-#include "io/spectral_exr_encode.hpp"
 #include "io/exr_open.hpp"
 #include "io/exr_streams.hpp"
+#include "io/spectral_exr_encode.hpp"
+#include "skyspec/colour.hpp"
+#include "skyspec/error.hpp"
 
 namespace skyspec {
 namespace fs = std::filesystem;
@@ -63,12 +63,29 @@ double power_of_ten(int exponent) {
 
 /// Decimal exponent of an SI prefix ("" -> 0, "n" -> -9, "u" or "µ" -> -6, "da" -> 1, ...).
 std::optional<int> si_prefix_exponent(const std::string& prefix) {
-  static const std::pair<const char*, int> kPrefixes[] = {
-      {"", 0},    {"Y", 24},   {"Z", 21},          {"E", 18},          {"P", 15},   {"T", 12},
-      {"G", 9},   {"M", 6},    {"k", 3},           {"h", 2},           {"da", 1},   {"d", -1},
-      {"c", -2},  {"m", -3},   {"u", -6},          {"\xC2\xB5", -6} /* U+00B5 micro sign */,
-      {"\xCE\xBC", -6} /* U+03BC mu */,            {"n", -9},          {"p", -12},  {"f", -15},
-      {"a", -18}, {"z", -21},  {"y", -24}};
+  static const std::pair<const char*, int> kPrefixes[] = {{"", 0},
+                                                          {"Y", 24},
+                                                          {"Z", 21},
+                                                          {"E", 18},
+                                                          {"P", 15},
+                                                          {"T", 12},
+                                                          {"G", 9},
+                                                          {"M", 6},
+                                                          {"k", 3},
+                                                          {"h", 2},
+                                                          {"da", 1},
+                                                          {"d", -1},
+                                                          {"c", -2},
+                                                          {"m", -3},
+                                                          {"u", -6},
+                                                          {"\xC2\xB5", -6} /* U+00B5 micro sign */,
+                                                          {"\xCE\xBC", -6} /* U+03BC mu */,
+                                                          {"n", -9},
+                                                          {"p", -12},
+                                                          {"f", -15},
+                                                          {"a", -18},
+                                                          {"z", -21},
+                                                          {"y", -24}};
   for (const auto& [name, exponent] : kPrefixes)
     if (prefix == name) return exponent;
   return std::nullopt;
@@ -206,10 +223,10 @@ struct SpectralExrWriter::Impl {
   // Declaration order matters: the OutputFile is destroyed first (it still writes through the
   // stream), then the stream closes, then the AtomicOutputFile removes an uncommitted file.
   fs::path final_path;
-  int width = 0, height = 0, rows_written = 0;  // of the data window
-  int x0 = 0, y0 = 0;                           // the data window's first pixel
-  std::vector<std::string> channel_names;  // spectral channels in the caller's order
-  bool half = false;                        // S0 channels stored as half
+  int width = 0, height = 0, rows_written = 0;   // of the data window
+  int x0 = 0, y0 = 0;                            // the data window's first pixel
+  std::vector<std::string> channel_names;        // spectral channels in the caller's order
+  bool half = false;                             // S0 channels stored as half
   std::vector<IMATH_NAMESPACE::half> half_band;  // a band's S0 values converted, when half
   AtomicOutputFile file;
   std::unique_ptr<StdioOStream> stream;
@@ -218,9 +235,7 @@ struct SpectralExrWriter::Impl {
 
   Impl(const fs::path& path, int w, int h) : final_path(path), width(w), height(h), file(path) {}
 
-  IoError error(const std::string& why) const {
-    return IoError("spectral EXR '" + final_path.string() + "': " + why);
-  }
+  IoError error(const std::string& why) const { return IoError("spectral EXR '" + final_path.string() + "': " + why); }
 };
 
 namespace {
@@ -263,7 +278,8 @@ Imf::Header spectral_header(int width, int height, const std::vector<std::string
 
   for (const auto& [key, value] : meta.strings) header.insert(key, Imf::StringAttribute(value));
   for (const auto& [key, value] : meta.doubles) header.insert(key, Imf::DoubleAttribute(value));
-  for (const auto& [key, v] : meta.vectors) header.insert(key, Imf::V3dAttribute(IMATH_NAMESPACE::V3d(v[0], v[1], v[2])));
+  for (const auto& [key, v] : meta.vectors)
+    header.insert(key, Imf::V3dAttribute(IMATH_NAMESPACE::V3d(v[0], v[1], v[2])));
   // The layout's own attributes last, so that they win over a clashing extra string.
   header.insert("spectralLayoutVersion", Imf::StringAttribute("1.0"));
   header.insert("emissiveUnits", Imf::StringAttribute("W.m^-2.sr^-1"));
@@ -287,7 +303,8 @@ int pool_threads(const Imf::Header& header, const SpectralExrMetadata& meta) {
   for (auto it = header.channels().begin(); it != header.channels().end(); ++it) ++channels;
   const size_t block_bytes = block_rows * width * channels * sizeof(float);
   const size_t by_memory = (size_t{256} << 20) / std::max<size_t>(1, 4 * block_bytes);
-  const size_t cores = meta.threads > 0 ? static_cast<size_t>(meta.threads) : std::max(1u, std::thread::hardware_concurrency());
+  const size_t cores =
+      meta.threads > 0 ? static_cast<size_t>(meta.threads) : std::max(1u, std::thread::hardware_concurrency());
   // OpenEXR's count is of pool threads besides the caller's: 0 compresses on the calling thread.
   // Uncompressed files have nothing to do in parallel: a task per scanline that only copies it
   // costs more in hand-offs between threads than the copy itself.
@@ -355,12 +372,10 @@ uint64_t detail::encode_spectral_rows(int width, int rows, const std::vector<dou
 }
 
 SpectralExrWriter::SpectralExrWriter(const fs::path& final_path, int width, int height,
-                                     const std::vector<double>& wavelengths_nm,
-                                     const SpectralExrMetadata& meta) {
+                                     const std::vector<double>& wavelengths_nm, const SpectralExrMetadata& meta) {
   const std::string where = "spectral EXR '" + final_path.string() + "': ";
   if (width <= 0 || height <= 0)
-    throw IoError(where + "image size " + std::to_string(width) + " x " + std::to_string(height) +
-                  " must be positive");
+    throw IoError(where + "image size " + std::to_string(width) + " x " + std::to_string(height) + " must be positive");
   std::vector<std::string> names = channel_names_of(wavelengths_nm, where, meta.polarised);
 
   impl_ = std::make_unique<Impl>(final_path, width, height);
@@ -389,8 +404,8 @@ void SpectralExrWriter::write_rows(int rows, const float* spectral, const float*
   Impl& w = *impl_;
   if (!w.exr) throw w.error(w.broken ? "an earlier write failed" : "write_rows after finish()");
   if (rows <= 0 || rows > w.height - w.rows_written)
-    throw w.error("cannot write " + std::to_string(rows) + " rows: " +
-                  std::to_string(w.height - w.rows_written) + " remain");
+    throw w.error("cannot write " + std::to_string(rows) + " rows: " + std::to_string(w.height - w.rows_written) +
+                  " remain");
   if (!spectral || !rgb) throw w.error("write_rows needs both spectral and RGB values");
 
   // Validate the whole band before any of it reaches the file.
@@ -398,8 +413,8 @@ void SpectralExrWriter::write_rows(int rows, const float* spectral, const float*
   const size_t pixels = static_cast<size_t>(rows) * static_cast<size_t>(w.width);
   if (const long i = first_non_finite(spectral, pixels * static_cast<size_t>(n)); i >= 0) {
     const long pixel = i / n;
-    throw w.error("non-finite spectral value at x = " + std::to_string(w.x0 + pixel % w.width) + ", y = " +
-                  std::to_string(w.y0 + w.rows_written + pixel / w.width) + ", channel " +
+    throw w.error("non-finite spectral value at x = " + std::to_string(w.x0 + pixel % w.width) +
+                  ", y = " + std::to_string(w.y0 + w.rows_written + pixel / w.width) + ", channel " +
                   w.channel_names[static_cast<size_t>(i % n)]);
   }
   if (w.half) {  // OpenEXR would store a value beyond half's range as infinity
@@ -426,7 +441,8 @@ void SpectralExrWriter::write_rows(int rows, const float* spectral, const float*
       w.exr->setFrameBuffer(
           band_frame_buffer(w.channel_names, w.x0, w.width, w.y0 + w.rows_written, rows, w.half_band.data(), rgb));
     } else {
-      w.exr->setFrameBuffer(band_frame_buffer(w.channel_names, w.x0, w.width, w.y0 + w.rows_written, rows, spectral, rgb));
+      w.exr->setFrameBuffer(
+          band_frame_buffer(w.channel_names, w.x0, w.width, w.y0 + w.rows_written, rows, spectral, rgb));
     }
     w.exr->writePixels(rows);
     w.stream->start_writeback();
@@ -442,8 +458,7 @@ void SpectralExrWriter::finish() {
   Impl& w = *impl_;
   if (!w.exr) throw w.error(w.broken ? "an earlier write failed" : "finish() called twice");
   if (w.rows_written != w.height)
-    throw w.error("only " + std::to_string(w.rows_written) + " of " + std::to_string(w.height) +
-                  " rows were written");
+    throw w.error("only " + std::to_string(w.rows_written) + " of " + std::to_string(w.height) + " rows were written");
   try {
     w.exr.reset();      // writes the scan-line offset table
     w.stream->close();  // throws if any write or flush failed
@@ -468,9 +483,7 @@ SpectralImage read_spectral_exr_unchecked(const fs::path& path) {
   SpectralImage image;
   image.width = window.max.x - window.min.x + 1;
   image.height = window.max.y - window.min.y + 1;
-  const auto fail = [&](const std::string& why) {
-    return IoError("spectral EXR '" + path.string() + "': " + why);
-  };
+  const auto fail = [&](const std::string& why) { return IoError("spectral EXR '" + path.string() + "': " + why); };
 
   // Spectral channels, ascending in wavelength; S1-S3 of a polarised file.
   std::vector<std::pair<double, std::string>> spectral_channels;
@@ -482,7 +495,8 @@ SpectralImage read_spectral_exr_unchecked(const fs::path& path) {
     if (it.channel().xSampling != 1 || it.channel().ySampling != 1)
       throw fail(std::string("channel ") + it.name() + " is subsampled (not supported)");
     if (const auto stokes = parse_stokes_channel_name(it.name())) {
-      if (it.channel().type == Imf::UINT) throw fail(std::string("channel ") + it.name() + " holds UINT samples; skyspec reads HALF or FLOAT");
+      if (it.channel().type == Imf::UINT)
+        throw fail(std::string("channel ") + it.name() + " holds UINT samples; skyspec reads HALF or FLOAT");
       if (stokes->first == 0)
         spectral_channels.emplace_back(stokes->second, it.name());
       else
@@ -515,8 +529,10 @@ SpectralImage read_spectral_exr_unchecked(const fs::path& path) {
   // S1-S3: all of them at every wavelength, or none (a file with some is not one this reads).
   if (!stokes_channels.empty()) {
     if (stokes_channels.size() != 3 * n)
-      throw fail("it has " + std::to_string(stokes_channels.size()) + " S1-S3 channels; a polarised file has S1, S2 and S3 "
-                 "at each of its " + std::to_string(n) + " wavelengths");
+      throw fail("it has " + std::to_string(stokes_channels.size()) +
+                 " S1-S3 channels; a polarised file has S1, S2 and S3 "
+                 "at each of its " +
+                 std::to_string(n) + " wavelengths");
     image.stokes.resize(pixels * 3 * n);
     for (int component = 1; component <= 3; ++component)
       for (size_t c = 0; c < n; ++c) {
@@ -524,8 +540,8 @@ SpectralImage read_spectral_exr_unchecked(const fs::path& path) {
         if (found == stokes_channels.end())
           throw fail("S" + std::to_string(component) + " is missing at " + spectral_channels[c].second);
         frame.insert(found->second,
-                     Imf::Slice::Make(Imf::FLOAT, image.stokes.data() + (component - 1) * n + c, window, 3 * n * sizeof(float),
-                                      static_cast<size_t>(image.width) * 3 * n * sizeof(float)));
+                     Imf::Slice::Make(Imf::FLOAT, image.stokes.data() + (component - 1) * n + c, window,
+                                      3 * n * sizeof(float), static_cast<size_t>(image.width) * 3 * n * sizeof(float)));
       }
   }
   in.setFrameBuffer(frame);

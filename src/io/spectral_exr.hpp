@@ -8,8 +8,8 @@
 // band, not the image. The file is written under a temporary name and renamed on finish().
 #pragma once
 
-#include <filesystem>
 #include <array>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <optional>
@@ -29,10 +29,10 @@ std::optional<double> parse_spectral_channel_name(const std::string& name);
 std::optional<std::pair<int, double>> parse_stokes_channel_name(const std::string& name);
 
 struct SpectralExrMetadata {
-  std::map<std::string, std::string> strings;  ///< extra string attributes, e.g. "skyspec:scene"
-  std::map<std::string, double> doubles;       ///< extra double attributes, e.g. "skyspec:exposureScale"
+  std::map<std::string, std::string> strings;            ///< extra string attributes, e.g. "skyspec:scene"
+  std::map<std::string, double> doubles;                 ///< extra double attributes, e.g. "skyspec:exposureScale"
   std::map<std::string, std::array<double, 3>> vectors;  ///< extra v3d attributes, e.g. "skyspec:sunRGB"
-  std::optional<float> ev;                     ///< the layout's optional EV attribute
+  std::optional<float> ev;                               ///< the layout's optional EV attribute
   /// OpenEXR's standard envmap attribute = latlong (ImfEnvmap.h): the image is a whole-sphere
   /// latitude-longitude panorama.
   bool latlong_envmap = false;
@@ -43,7 +43,7 @@ struct SpectralExrMetadata {
   /// come as S0 at all wavelengths, then S1, S2, S3), and the layout's polarisationHandedness =
   /// "right": each pixel's Stokes frame (e1, e2) has e1 x e2 = the light's direction of travel.
   bool polarised = false;
-  std::string compression = "piz";             ///< lossless: piz, zip, zips, rle or none
+  std::string compression = "piz";  ///< lossless: piz, zip, zips, rle or none
   /// A tile of the image: only pixels [x0, x1) x [y0, y1) of the width x height image are stored
   /// (the file's dataWindow; its displayWindow stays the whole image). write_rows then takes rows
   /// of x1 - x0 pixels, y1 - y0 of them. Tiles are assembled by merge_spectral_exr_tiles.
@@ -79,10 +79,10 @@ class SpectralExrWriter {
 /// A spectral EXR read back into memory (tests, `convert` and other tools).
 struct SpectralImage {
   int width = 0, height = 0;
-  std::vector<double> wavelengths_nm;   ///< ascending
-  std::vector<float> spectral;          ///< [y][x][lambda]
-  std::vector<float> rgb;               ///< [y][x][c], empty if the file has no R, G, B
-  std::vector<float> stokes;            ///< [y][x][S1..S3][lambda] of a polarised file, else empty
+  std::vector<double> wavelengths_nm;  ///< ascending
+  std::vector<float> spectral;         ///< [y][x][lambda]
+  std::vector<float> rgb;              ///< [y][x][c], empty if the file has no R, G, B
+  std::vector<float> stokes;           ///< [y][x][S1..S3][lambda] of a polarised file, else empty
   std::map<std::string, std::string> string_attributes;
   std::optional<float> ev;
 };

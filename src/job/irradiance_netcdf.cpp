@@ -44,10 +44,10 @@ class NcFile {
   void text(int var, const char* name, const std::string& value) {
     check(nc_put_att_text(id_, var, name, value.size(), value.c_str()), "write an attribute");
   }
-  void put(int var, const std::vector<double>& values) { check(nc_put_var_double(id_, var, values.data()), "write a variable"); }
-  void close() {
-    check(nc_close(std::exchange(id_, -1)), "close");
+  void put(int var, const std::vector<double>& values) {
+    check(nc_put_var_double(id_, var, values.data()), "write a variable");
   }
+  void close() { check(nc_close(std::exchange(id_, -1)), "close"); }
 
  private:
   std::filesystem::path path_;
@@ -107,7 +107,8 @@ void write_irradiance_netcdf(const std::filesystem::path& path, const JobPlan& p
     const int v_wl = nc.var("wavelength", NC_DOUBLE, {d_wl});
     nc.text(v_wl, "standard_name", "radiation_wavelength");
     nc.text(v_wl, "units", "nm");
-    const int v_lat = nc.var("lat", NC_DOUBLE, {}), v_lon = nc.var("lon", NC_DOUBLE, {}), v_alt = nc.var("altitude", NC_DOUBLE, {});
+    const int v_lat = nc.var("lat", NC_DOUBLE, {}), v_lon = nc.var("lon", NC_DOUBLE, {}),
+              v_alt = nc.var("altitude", NC_DOUBLE, {});
     nc.text(v_lat, "standard_name", "latitude");
     nc.text(v_lat, "units", "degrees_north");
     nc.text(v_lon, "standard_name", "longitude");
@@ -133,11 +134,14 @@ void write_irradiance_netcdf(const std::filesystem::path& path, const JobPlan& p
       nc.text(s.var, "coordinates", coords);
       return s;
     };
-    Series elevation = series("solar_elevation_angle", "solar_elevation_angle", "apparent solar elevation (refracted)", "degree", false);
-    Series azimuth = series("solar_azimuth_angle", "solar_azimuth_angle", "solar azimuth, clockwise from north", "degree", false);
+    Series elevation = series("solar_elevation_angle", "solar_elevation_angle", "apparent solar elevation (refracted)",
+                              "degree", false);
+    Series azimuth =
+        series("solar_azimuth_angle", "solar_azimuth_angle", "solar azimuth, clockwise from north", "degree", false);
     std::vector<Series> swept;
     for (const auto& [key, value] : params)  // in the key's unit (docs/scene-keys.md); strings as NaN
-      swept.push_back(series(key, nullptr, "scene key " + key + " (swept; its unit: docs/scene-keys.md)", nullptr, false));
+      swept.push_back(
+          series(key, nullptr, "scene key " + key + " (swept; its unit: docs/scene-keys.md)", nullptr, false));
     struct Field {
       const char* key;
       const char* name;
@@ -150,12 +154,16 @@ void write_irradiance_netcdf(const std::filesystem::path& path, const JobPlan& p
         {"direct_normal_W_m2", "direct_normal_irradiance", nullptr, "direct normal irradiance", "W m-2", false},
         {"direct_horizontal_W_m2", "direct_horizontal_irradiance", "surface_direct_downwelling_shortwave_flux_in_air",
          "direct irradiance on a horizontal surface", "W m-2", false},
-        {"diffuse_horizontal_W_m2", "diffuse_horizontal_irradiance", "surface_diffuse_downwelling_shortwave_flux_in_air",
-         "diffuse irradiance on a horizontal surface", "W m-2", false},
+        {"diffuse_horizontal_W_m2", "diffuse_horizontal_irradiance",
+         "surface_diffuse_downwelling_shortwave_flux_in_air", "diffuse irradiance on a horizontal surface", "W m-2",
+         false},
         {"direct_normal_lux", "direct_normal_illuminance", nullptr, "direct normal illuminance", "lx", false},
-        {"direct_horizontal_lux", "direct_horizontal_illuminance", nullptr, "direct illuminance on a horizontal surface", "lx", false},
-        {"diffuse_horizontal_lux", "diffuse_horizontal_illuminance", nullptr, "diffuse illuminance on a horizontal surface", "lx", false},
-        {"global_horizontal_lux", "global_horizontal_illuminance", nullptr, "global illuminance on a horizontal surface", "lx", false},
+        {"direct_horizontal_lux", "direct_horizontal_illuminance", nullptr,
+         "direct illuminance on a horizontal surface", "lx", false},
+        {"diffuse_horizontal_lux", "diffuse_horizontal_illuminance", nullptr,
+         "diffuse illuminance on a horizontal surface", "lx", false},
+        {"global_horizontal_lux", "global_horizontal_illuminance", nullptr,
+         "global illuminance on a horizontal surface", "lx", false},
         {"global_horizontal_W_m2_nm", "spectral_global_horizontal_irradiance", nullptr,
          "spectral global irradiance on a horizontal surface", "W m-2 nm-1", true},
         {"diffuse_horizontal_W_m2_nm", "spectral_diffuse_horizontal_irradiance", nullptr,
@@ -174,8 +182,9 @@ void write_irradiance_netcdf(const std::filesystem::path& path, const JobPlan& p
       azimuth.values.push_back(r->at("sun_azimuth_deg").get<double>());
       for (std::size_t p = 0; p < params.size(); ++p) {
         const json& v = r->at("parameters").at(params[p].first);
-        swept[p].values.push_back(v.is_number() ? v.get<double>() : v.is_boolean() ? (v.get<bool>() ? 1.0 : 0.0)
-                                                                                : std::numeric_limits<double>::quiet_NaN());
+        swept[p].values.push_back(v.is_number()    ? v.get<double>()
+                                  : v.is_boolean() ? (v.get<bool>() ? 1.0 : 0.0)
+                                                   : std::numeric_limits<double>::quiet_NaN());
       }
       const json& irr = r->at("irradiance");
       for (std::size_t k = 0; k < data.size(); ++k) {

@@ -5,9 +5,9 @@
 #include <map>
 
 #include "base/atomic_file.hpp"
+#include "base/output_lock.hpp"
 #include "base/sha256.hpp"
 #include "io/exr_merge.hpp"
-#include "base/output_lock.hpp"
 #include "job/irradiance_netcdf.hpp"
 #include "job/task_record.hpp"
 #include "skyspec/error.hpp"
@@ -122,8 +122,8 @@ std::string JobSummary::describe() const {
   if (missing) s += ", " + std::to_string(missing) + " not run";
   if (damaged) s += ", " + std::to_string(damaged) + " with a damaged record or missing files (run the job again)";
   if (frames_merged || frames_kept || frames_incomplete)
-    s += "; frames: " + std::to_string(frames_merged) + " merged, " + std::to_string(frames_kept) + " already merged, " +
-         std::to_string(frames_incomplete) + " waiting for strips";
+    s += "; frames: " + std::to_string(frames_merged) + " merged, " + std::to_string(frames_kept) +
+         " already merged, " + std::to_string(frames_incomplete) + " waiting for strips";
   for (const auto& f : failures) s += "\n  " + f;
   if (failed > static_cast<int>(failures.size())) s += "\n  ... (every error is in manifest.jsonl)";
   return s;
@@ -132,7 +132,7 @@ std::string JobSummary::describe() const {
 JobSummary collect_job(const JobPlan& plan) {
   JobSummary summary;
   std::string manifest;
-  std::map<std::string, std::string> tables;  // site -> CSV text
+  std::map<std::string, std::string> tables;                               // site -> CSV text
   std::map<std::string, std::pair<int, std::vector<const json*>>> series;  // site -> (its index, its rows)
   std::vector<json> records(plan.tasks.size());
   for (const auto& task : plan.tasks) {
@@ -160,7 +160,8 @@ JobSummary collect_job(const JobPlan& plan) {
         ++summary.damaged;
         entry["status"] = "damaged";
         entry["error"] = damaged;
-        if (summary.damaged_records.size() < kFailuresListed) summary.damaged_records.push_back(task.id() + ": " + damaged);
+        if (summary.damaged_records.size() < kFailuresListed)
+          summary.damaged_records.push_back(task.id() + ": " + damaged);
       }
       manifest += entry.dump() + "\n";
       continue;

@@ -21,11 +21,11 @@ namespace skyspec {
 
 struct JobSummary {
   int ok = 0, failed = 0, missing = 0;
-  int damaged = 0;  ///< records that are not valid for their task, or whose files are gone
+  int damaged = 0;                           ///< records that are not valid for their task, or whose files are gone
   std::vector<std::string> damaged_records;  ///< "t000012: <what is wrong>" for the first few
   int frames_merged = 0, frames_kept = 0, frames_incomplete = 0;  ///< job.tile_rows
-  std::vector<std::string> failures;  ///< "t000012: <error>" for the first few failed tasks
-  std::vector<std::filesystem::path> tables;  ///< the irradiance tables written
+  std::vector<std::string> failures;                              ///< "t000012: <error>" for the first few failed tasks
+  std::vector<std::filesystem::path> tables;                      ///< the irradiance tables written
   std::string describe() const;
 };
 

@@ -4,8 +4,8 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "physics/solar_position.hpp"
 #include "base/text_format.hpp"
+#include "physics/solar_position.hpp"
 #include "skyspec/error.hpp"
 
 namespace skyspec {
@@ -59,8 +59,9 @@ std::vector<JobParameters> combinations_of(const JobSpec& job) {
       for (int s = 0; s < job.random_samples; ++s) {
         JobParameters p = c;
         for (std::size_t a = 0; a < job.random_axes.size(); ++a)
-          p.emplace_back(job.random_axes[a].key,
-                         random_value(job.random_axes[a], uniform01(job.random_seed, static_cast<std::uint64_t>(s), a)));
+          p.emplace_back(
+              job.random_axes[a].key,
+              random_value(job.random_axes[a], uniform01(job.random_seed, static_cast<std::uint64_t>(s), a)));
         next.push_back(std::move(p));
       }
     combos = std::move(next);
@@ -136,7 +137,9 @@ JobPlan plan_job(const JobSpec& job) {
   const SceneLoader base = base_loader(job);
   const Scene base_scene = base.finish();
   if (job.irradiance && base_scene.render.path != RenderSpec::Path::Spectral)
-    throw InputError("job.produce", "\"irradiance\"", "a spectral scene (render.path = \"spectral\"): illuminance needs the colour-matching functions", job.file.string());
+    throw InputError("job.produce", "\"irradiance\"",
+                     "a spectral scene (render.path = \"spectral\"): illuminance needs the colour-matching functions",
+                     job.file.string());
   // Every site and every swept value, each on the base scene, through the scene's own checks.
   for (std::size_t k = 0; k < job.sites.size(); ++k) {
     SceneLoader l = base;
@@ -198,7 +201,8 @@ JobPlan plan_job(const JobSpec& job) {
       std::vector<std::optional<PixelBounds>> strips{std::nullopt};
       if (job.tile_rows > 0) {
         SceneLoader l = base;
-        for (const auto& [key, value] : plan.combinations[c]) l.apply_override(key, value, origin_in(job, "axes." + key));
+        for (const auto& [key, value] : plan.combinations[c])
+          l.apply_override(key, value, origin_in(job, "axes." + key));
         const Scene sized = l.finish();
         strips.clear();
         for (int y = 0; y < sized.camera.height; y += job.tile_rows)
@@ -208,7 +212,8 @@ JobPlan plan_job(const JobSpec& job) {
         const int first = static_cast<int>(plan.tasks.size());
         for (const auto& strip : strips) {
           if (static_cast<long long>(plan.tasks.size()) >= kMaxTasks)
-            throw InputError("job.tile_rows", std::to_string(job.tile_rows), "strips giving at most " + std::to_string(kMaxTasks) + " tasks in all", job.file.string());
+            throw InputError("job.tile_rows", std::to_string(job.tile_rows),
+                             "strips giving at most " + std::to_string(kMaxTasks) + " tasks in all", job.file.string());
           JobTask t;
           t.index = static_cast<int>(plan.tasks.size());
           t.site = job.sites.empty() ? -1 : s;
@@ -232,9 +237,11 @@ Scene task_scene(const JobPlan& plan, const JobTask& task) {
   const JobSpec& job = plan.job;
   SceneLoader l = base_loader(job);
   const Scene base = l.finish();
-  if (task.site >= 0) apply_site(l, base, job.sites[task.site], origin_in(job, "site[" + std::to_string(task.site) + "]"));
+  if (task.site >= 0)
+    apply_site(l, base, job.sites[task.site], origin_in(job, "site[" + std::to_string(task.site) + "]"));
   if (task.time) l.apply_override("sun.date_time", "\"" + to_iso8601(*task.time) + "\"", origin_in(job, "time"));
-  for (const auto& [key, value] : plan.combinations.at(task.combination)) l.apply_override(key, value, origin_in(job, "axes." + key));
+  for (const auto& [key, value] : plan.combinations.at(task.combination))
+    l.apply_override(key, value, origin_in(job, "axes." + key));
   l.apply_override("output.directory", plan.task_directory().string(), "job.output");
   l.apply_override("output.name", task.id(), "task id");
   l.apply_override("output.exr", job.exr ? "true" : "false", "job.produce");
@@ -251,7 +258,8 @@ std::pair<int, int> parse_shard(const std::string& text, const std::string& sett
   const long i = std::strtol(a.c_str(), &end, 10);
   if (a.empty() || *end) throw InputError(setting, "\"" + text + "\"", allowed);
   const long n = std::strtol(b.c_str(), &end, 10);
-  if (b.empty() || *end || n < 1 || n > 1000000 || i < 1 || i > n) throw InputError(setting, "\"" + text + "\"", allowed);
+  if (b.empty() || *end || n < 1 || n > 1000000 || i < 1 || i > n)
+    throw InputError(setting, "\"" + text + "\"", allowed);
   return {static_cast<int>(i), static_cast<int>(n)};
 }
 
@@ -263,7 +271,8 @@ TaskRange parse_task_range(const std::string& text, int count, const std::string
   const long first = std::strtol(a.c_str(), &end, 10);
   if (a.empty() || *end) throw InputError(setting, "\"" + text + "\"", allowed);
   const long last = std::strtol(b.c_str(), &end, 10);
-  if (b.empty() || *end || first < 0 || last < first || last >= count) throw InputError(setting, "\"" + text + "\"", allowed);
+  if (b.empty() || *end || first < 0 || last < first || last >= count)
+    throw InputError(setting, "\"" + text + "\"", allowed);
   return {static_cast<int>(first), static_cast<int>(last) + 1};
 }
 

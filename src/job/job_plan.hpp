@@ -20,11 +20,11 @@ using JobParameters = std::vector<std::pair<std::string, std::string>>;
 
 struct JobTask {
   int index = 0;
-  int site = -1;                 ///< into JobSpec::sites; -1: the scene's own location
-  std::optional<DateTime> time;  ///< none: the scene's own sun
-  int combination = 0;           ///< into JobPlan::combinations
-  double sun_elevation_deg = 0.0;  ///< apparent (refracted), at the site and time; the scene's without a time
-  int frame = 0;                   ///< the image it renders (or a strip of): its index among the job's frames
+  int site = -1;                    ///< into JobSpec::sites; -1: the scene's own location
+  std::optional<DateTime> time;     ///< none: the scene's own sun
+  int combination = 0;              ///< into JobPlan::combinations
+  double sun_elevation_deg = 0.0;   ///< apparent (refracted), at the site and time; the scene's without a time
+  int frame = 0;                    ///< the image it renders (or a strip of): its index among the job's frames
   std::optional<PixelBounds> tile;  ///< with job.tile_rows: the strip of the frame it renders
   /// "t000012": names the task's files.
   std::string id() const;

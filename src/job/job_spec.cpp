@@ -9,8 +9,8 @@
 #include <set>
 #include <sstream>
 
-#include "scene/toml_limits.hpp"
 #include "base/text_format.hpp"
+#include "scene/toml_limits.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/scene.hpp"
 
@@ -51,8 +51,10 @@ std::string value_text(const toml::node& n) {
     return t + "]";
   }
   std::ostringstream o;  // date-times, inline tables: TOML's own text
-  if (auto dt = n.as_date_time()) o << *dt;
-  else if (auto t = n.as_table()) o << *t;
+  if (auto dt = n.as_date_time())
+    o << *dt;
+  else if (auto t = n.as_table())
+    o << *t;
   return o.str();
 }
 
@@ -73,9 +75,12 @@ class Reader {
   }
   double number(const toml::node& n, const std::string& key, double lo, double hi) const {
     double x;
-    if (auto i = n.as_integer()) x = static_cast<double>(i->get());
-    else if (auto f = n.as_floating_point()) x = f->get();
-    else fail(key, n, "a number from " + format_exact(lo) + " to " + format_exact(hi));
+    if (auto i = n.as_integer())
+      x = static_cast<double>(i->get());
+    else if (auto f = n.as_floating_point())
+      x = f->get();
+    else
+      fail(key, n, "a number from " + format_exact(lo) + " to " + format_exact(hi));
     if (!(x >= lo && x <= hi)) fail(key, n, "a number from " + format_exact(lo) + " to " + format_exact(hi));
     return x;
   }
@@ -121,7 +126,8 @@ class Reader {
     bool known = false;
     for (const auto& [k, help] : scene_key_help())
       if (k == key) known = true;
-    if (!known) throw InputError::unknown_key(key, " (" + what + " takes scene keys: docs/scene-keys.md)", where(n, origin_));
+    if (!known)
+      throw InputError::unknown_key(key, " (" + what + " takes scene keys: docs/scene-keys.md)", where(n, origin_));
     if (job_owned_scene_key(key))
       throw InputError(what + "." + key, value_text(n),
                        "a scene key the job does not set itself (output.*, sun.date_time and location.* come from "
@@ -143,14 +149,17 @@ void flatten(const toml::table& t, const std::string& prefix, bool leaf_tables,
   for (const auto& [k, v] : t) {
     const std::string key = prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
     const auto* sub = v.as_table();
-    if (sub && !(leaf_tables && sub->is_inline())) flatten(*sub, key, leaf_tables, out);
-    else out.emplace_back(key, &v);
+    if (sub && !(leaf_tables && sub->is_inline()))
+      flatten(*sub, key, leaf_tables, out);
+    else
+      out.emplace_back(key, &v);
   }
 }
 
 void read_job_table(const Reader& r, const toml::table& t, const std::filesystem::path& base, JobSpec& job) {
-  r.only_keys(t, "job.",
-              {"name", "scene", "quality", "produce", "output", "tasks_per_chunk", "min_sun_elevation_deg", "tile_rows"});
+  r.only_keys(
+      t, "job.",
+      {"name", "scene", "quality", "produce", "output", "tasks_per_chunk", "min_sun_elevation_deg", "tile_rows"});
   if (auto n = t.get("name")) job.name = r.name(*n, "job.name");
   if (auto n = t.get("scene")) {
     const std::string s = r.text(*n, "job.scene", "a preset name or the path of a scene TOML file");
@@ -163,7 +172,8 @@ void read_job_table(const Reader& r, const toml::table& t, const std::filesystem
       if (!std::filesystem::is_regular_file(p)) {
         std::string list;
         for (const auto& name : presets) list += (list.empty() ? "" : ", ") + name;
-        r.fail("job.scene", *n, "a preset (" + list + ") or an existing scene file (relative to the job file's folder)");
+        r.fail("job.scene", *n,
+               "a preset (" + list + ") or an existing scene file (relative to the job file's folder)");
       }
       job.scene_file = std::filesystem::absolute(p).lexically_normal();
     }
@@ -182,18 +192,24 @@ void read_job_table(const Reader& r, const toml::table& t, const std::filesystem
     for (const auto& item : *a) {
       auto s = item.as_string();
       if (!s) r.fail("job.produce", item, allowed);
-      if (s->get() == "exr") job.exr = true;
-      else if (s->get() == "png") job.png = true;
-      else if (s->get() == "irradiance") job.irradiance = true;
-      else r.fail("job.produce", item, allowed);
+      if (s->get() == "exr")
+        job.exr = true;
+      else if (s->get() == "png")
+        job.png = true;
+      else if (s->get() == "irradiance")
+        job.irradiance = true;
+      else
+        r.fail("job.produce", item, allowed);
     }
   }
   if (auto n = t.get("output")) {
     std::filesystem::path p(r.text(*n, "job.output", "a folder path"));
     job.output_directory = p;
   }
-  if (auto n = t.get("tasks_per_chunk")) job.tasks_per_chunk = static_cast<int>(r.integer(*n, "job.tasks_per_chunk", 1, 100000));
-  if (auto n = t.get("min_sun_elevation_deg")) job.min_sun_elevation_deg = r.number(*n, "job.min_sun_elevation_deg", -90, 90);
+  if (auto n = t.get("tasks_per_chunk"))
+    job.tasks_per_chunk = static_cast<int>(r.integer(*n, "job.tasks_per_chunk", 1, 100000));
+  if (auto n = t.get("min_sun_elevation_deg"))
+    job.min_sun_elevation_deg = r.number(*n, "job.min_sun_elevation_deg", -90, 90);
   if (auto n = t.get("tile_rows")) {
     job.tile_rows = static_cast<int>(r.integer(*n, "job.tile_rows", 1, 65536));
     if (!t.get("produce")) job.png = job.irradiance = false, job.exr = true;  // a tiled job's default
@@ -206,7 +222,8 @@ void read_job_table(const Reader& r, const toml::table& t, const std::filesystem
 
 void read_sites(const Reader& r, const toml::node& node, JobSpec& job) {
   auto a = node.as_array();
-  if (!a || !a->is_array_of_tables() || a->empty()) r.fail("site", node, "[[site]] tables (name, latitude_deg, longitude_deg, altitude_m)");
+  if (!a || !a->is_array_of_tables() || a->empty())
+    r.fail("site", node, "[[site]] tables (name, latitude_deg, longitude_deg, altitude_m)");
   if (a->size() > kMaxSites) r.fail("site", node, "at most " + std::to_string(kMaxSites) + " sites");
   std::set<std::string> names;
   for (std::size_t k = 0; k < a->size(); ++k) {
@@ -227,10 +244,12 @@ void read_sites(const Reader& r, const toml::node& node, JobSpec& job) {
 
 void read_times(const Reader& r, const toml::node& node, JobSpec& job) {
   std::vector<const toml::table*> tables;
-  if (auto t = node.as_table()) tables.push_back(t);
+  if (auto t = node.as_table())
+    tables.push_back(t);
   else if (auto a = node.as_array(); a && a->is_array_of_tables() && !a->empty())
     for (const auto& item : *a) tables.push_back(item.as_table());
-  else r.fail("time", node, "a [time] table or [[time]] tables (start, end, step_minutes)");
+  else
+    r.fail("time", node, "a [time] table or [[time]] tables (start, end, step_minutes)");
   for (std::size_t k = 0; k < tables.size(); ++k) {
     const auto& t = *tables[k];
     const std::string p = tables.size() == 1 && node.is_table() ? "time." : "time[" + std::to_string(k) + "].";
@@ -243,8 +262,10 @@ void read_times(const Reader& r, const toml::node& node, JobSpec& job) {
       range.end = r.date_time(*n, p + "end");
       if (seconds_between(range.start, range.end) < 0) r.fail(p + "end", *n, "a date-time not before " + p + "start");
     }
-    if (auto n = t.get("step_minutes")) range.step_minutes = r.number(*n, p + "step_minutes", 1.0 / 60.0, 527040);
-    else if (t.get("end")) throw InputError(p + "step_minutes", "(missing)", "minutes between frames, with an end", where(t, r.origin()));
+    if (auto n = t.get("step_minutes"))
+      range.step_minutes = r.number(*n, p + "step_minutes", 1.0 / 60.0, 527040);
+    else if (t.get("end"))
+      throw InputError(p + "step_minutes", "(missing)", "minutes between frames, with an end", where(t, r.origin()));
     job.times.push_back(range);
   }
 }
@@ -263,12 +284,14 @@ void read_axes(const Reader& r, const toml::table& t, JobSpec& job) {
     } else if (auto range = n->as_table()) {
       r.only_keys(*range, name + ".", {"start", "stop", "count"});
       for (const char* req : {"start", "stop", "count"})
-        if (!range->get(req)) throw InputError(name + "." + req, "(missing)", "start, stop and count", where(*n, r.origin()));
+        if (!range->get(req))
+          throw InputError(name + "." + req, "(missing)", "start, stop and count", where(*n, r.origin()));
       const double a0 = r.number(*range->get("start"), name + ".start", -1e300, 1e300);
       const double a1 = r.number(*range->get("stop"), name + ".stop", -1e300, 1e300);
       const long long count = r.integer(*range->get("count"), name + ".count", 1, kMaxAxisValues);
       for (long long k = 0; k < count; ++k)
-        axis.values.push_back(format_exact(count == 1 ? a0 : a0 + (a1 - a0) * static_cast<double>(k) / static_cast<double>(count - 1)));
+        axis.values.push_back(
+            format_exact(count == 1 ? a0 : a0 + (a1 - a0) * static_cast<double>(k) / static_cast<double>(count - 1)));
     } else {
       r.fail(name, *n, "a list of values, or { start, stop, count }");
     }
@@ -278,7 +301,8 @@ void read_axes(const Reader& r, const toml::table& t, JobSpec& job) {
 
 void read_random(const Reader& r, const toml::table& t, JobSpec& job) {
   r.only_keys(t, "random.", {"seed", "samples", "axes"});
-  if (!t.get("samples")) throw InputError("random.samples", "(missing)", "the number of random samples", where(t, r.origin()));
+  if (!t.get("samples"))
+    throw InputError("random.samples", "(missing)", "the number of random samples", where(t, r.origin()));
   job.random_samples = static_cast<int>(r.integer(*t.get("samples"), "random.samples", 1, kMaxRandomSamples));
   if (auto n = t.get("seed")) job.random_seed = static_cast<std::uint64_t>(r.integer(*n, "random.seed", 0, INT64_MAX));
   auto axes = t.get("axes") ? t.get("axes")->as_table() : nullptr;
@@ -315,7 +339,8 @@ JobSpec parse_job(const std::string& text, const std::string& origin, const std:
   try {
     root = toml::parse(text, origin);
   } catch (const toml::parse_error& e) {
-    const std::string at = origin + ":" + std::to_string(e.source().begin.line) + ":" + std::to_string(e.source().begin.column);
+    const std::string at =
+        origin + ":" + std::to_string(e.source().begin.line) + ":" + std::to_string(e.source().begin.column);
     throw InputError("job file", origin, "valid TOML (" + std::string(e.description()) + ")", at);
   }
   const Reader r(origin);
@@ -347,7 +372,8 @@ JobSpec parse_job(const std::string& text, const std::string& origin, const std:
   for (const auto& a : job.axes)
     for (const auto& b : job.random_axes)
       if (a.key == b.key)
-        throw InputError("random.axes." + b.key, "(also in [axes])", "a key swept by [axes] or by [random], not both", origin);
+        throw InputError("random.axes." + b.key, "(also in [axes])", "a key swept by [axes] or by [random], not both",
+                         origin);
   if (job.min_sun_elevation_deg && job.times.empty())
     throw InputError("job.min_sun_elevation_deg", format_exact(*job.min_sun_elevation_deg),
                      "a filter on [[time]] frames: give a [[time]] range", origin);
@@ -365,7 +391,8 @@ JobSpec read_job_file(const std::filesystem::path& path) {
   char buf[65536];
   while (f.read(buf, sizeof buf) || f.gcount() > 0) {
     text.append(buf, static_cast<std::size_t>(f.gcount()));
-    if (text.size() > kMaxTomlBytes) throw InputError("JOB", "\"" + path.string() + "\"", "a job file of at most 1 MiB");
+    if (text.size() > kMaxTomlBytes)
+      throw InputError("JOB", "\"" + path.string() + "\"", "a job file of at most 1 MiB");
   }
   JobSpec job = parse_job(text, path.string(), std::filesystem::absolute(path).parent_path());
   job.file = std::filesystem::absolute(path).lexically_normal();

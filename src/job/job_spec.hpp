@@ -48,11 +48,11 @@ struct JobRandomAxis {
 struct JobSpec {
   std::filesystem::path file;  ///< the job file (absolute)
   std::string name;
-  std::string preset = "default";  ///< job.scene when it names a preset
+  std::string preset = "default";    ///< job.scene when it names a preset
   std::filesystem::path scene_file;  ///< job.scene when it names a file (absolute)
   std::string quality;
-  std::string scene_toml;  ///< the [scene] table, as TOML text applied over the preset and file
-  std::vector<JobSite> sites;  ///< empty: the scene's own location
+  std::string scene_toml;           ///< the [scene] table, as TOML text applied over the preset and file
+  std::vector<JobSite> sites;       ///< empty: the scene's own location
   std::vector<JobTimeRange> times;  ///< empty: the scene's own sun
   std::optional<double> min_sun_elevation_deg;
   std::vector<JobAxis> axes;

@@ -12,8 +12,8 @@
 #include "base/atomic_file.hpp"
 #include "base/cancellation.hpp"
 #include "base/sha256.hpp"
-#include "physics/date_time.hpp"
 #include "colour/display_pipeline.hpp"
+#include "physics/date_time.hpp"
 #include "render/irradiance.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/render.hpp"
@@ -92,14 +92,12 @@ std::string task_scene_digest(const Scene& scene) {
 
 json run_task(const JobPlan& plan, const JobTask& task, int threads) {
   const auto t0 = std::chrono::steady_clock::now();
-  json record = {{"task", task.index},
-                 {"id", task.id()},
-                 {"site", plan.site_name(task)},
-                 {"date_time", task.time ? to_iso8601(*task.time) : std::string()},
-                 {"parameters", json::object()},
-                 {"skyspec_version", version_string()},
+  json record = {{"task", task.index},           {"id", task.id()},
+                 {"site", plan.site_name(task)}, {"date_time", task.time ? to_iso8601(*task.time) : std::string()},
+                 {"parameters", json::object()}, {"skyspec_version", version_string()},
                  {"host", host_name()}};
-  for (const auto& [key, value] : plan.combinations.at(task.combination)) record["parameters"][key] = parameter_json(value);
+  for (const auto& [key, value] : plan.combinations.at(task.combination))
+    record["parameters"][key] = parameter_json(value);
   if (task.tile) {
     record["frame"] = task.frame;
     record["tile"] = {task.tile->x0, task.tile->x1, task.tile->y0, task.tile->y1};
@@ -174,7 +172,8 @@ std::string record_problem(const JobPlan& plan, const JobTask& task, const json&
     return "its \"task\" is not " + std::to_string(task.index);
   if (!r.contains("id") || !r.at("id").is_string() || r.at("id").get<std::string>() != task.id())
     return "its \"id\" is not \"" + task.id() + "\"";
-  const std::string status = r.contains("status") && r.at("status").is_string() ? r.at("status").get<std::string>() : "";
+  const std::string status =
+      r.contains("status") && r.at("status").is_string() ? r.at("status").get<std::string>() : "";
   if (status != "ok" && status != "failed") return "its \"status\" is neither \"ok\" nor \"failed\"";
   if (r.contains("date_time") && !r.at("date_time").is_string()) return "its \"date_time\" is not text";
   if (r.contains("date_time") && !r.at("date_time").get<std::string>().empty()) {
@@ -193,21 +192,26 @@ std::string record_problem(const JobPlan& plan, const JobTask& task, const json&
   }
   if (status != "ok") return "";
   for (const char* angle : {"sun_elevation_deg", "sun_azimuth_deg"})
-    if (!r.contains(angle) || !is_finite_number(r.at(angle))) return std::string("its \"") + angle + "\" is not a finite number";
+    if (!r.contains(angle) || !is_finite_number(r.at(angle)))
+      return std::string("its \"") + angle + "\" is not a finite number";
   if (r.contains("irradiance")) {
     const json& irr = r.at("irradiance");
     if (!irr.is_object() || !irr.contains("wavelengths_nm") || !irr.at("wavelengths_nm").is_array())
       return "its irradiance has no wavelengths";
     const std::vector<double> grid = make_wavelength_grid(task_scene(plan, task)).nanometres();
     const json& wl = irr.at("wavelengths_nm");
-    if (wl.size() != grid.size()) return "its irradiance has " + std::to_string(wl.size()) + " wavelengths, not the scene's " + std::to_string(grid.size());
+    if (wl.size() != grid.size())
+      return "its irradiance has " + std::to_string(wl.size()) + " wavelengths, not the scene's " +
+             std::to_string(grid.size());
     for (std::size_t k = 0; k < wl.size(); ++k)
       if (!is_finite_number(wl[k]) || std::abs(wl[k].get<double>() - grid[k]) > 1e-9 * grid[k])
         return "its irradiance's wavelengths are not the scene's";
     for (const auto& [key, value] : irr.items()) {
       if (key == "wavelengths_nm") continue;
       if (value.is_array()) {
-        if (value.size() != grid.size()) return "its \"" + key + "\" has " + std::to_string(value.size()) + " values for " + std::to_string(grid.size()) + " wavelengths";
+        if (value.size() != grid.size())
+          return "its \"" + key + "\" has " + std::to_string(value.size()) + " values for " +
+                 std::to_string(grid.size()) + " wavelengths";
         for (const auto& v : value)
           if (!is_finite_number(v)) return "its \"" + key + "\" has a value that is not a finite number";
       } else if (!is_finite_number(value)) {
@@ -245,7 +249,8 @@ json read_task_record(const JobPlan& plan, const JobTask& task, std::string* dam
   text << f.rdbuf();
   const json j = json::parse(text.str(), nullptr, false);
   if (j.is_discarded()) return fail("its record is not valid JSON");
-  if (const std::string problem = record_problem(plan, task, j); !problem.empty()) return fail("its record is damaged: " + problem);
+  if (const std::string problem = record_problem(plan, task, j); !problem.empty())
+    return fail("its record is damaged: " + problem);
   return j;
 }
 

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <sstream>
 
-#include "skyspec/error.hpp"
 #include "physics/ozone.hpp"
+#include "skyspec/error.hpp"
 #include "skyspec/phase_function.hpp"
 #include "skyspec/standard_atmosphere.hpp"
 #include "skyspec/units.hpp"
@@ -30,24 +30,29 @@ SpectrumD ozone_cross_sections_m2(const OzoneSpec& o, const WavelengthGrid& grid
 
 std::string to_string(ProfileKind k) {
   switch (k) {
-    case ProfileKind::Exponential: return "exponential";
-    case ProfileKind::UsStandard1976: return "us1976";
-    case ProfileKind::Constant: return "constant";
+    case ProfileKind::Exponential:
+      return "exponential";
+    case ProfileKind::UsStandard1976:
+      return "us1976";
+    case ProfileKind::Constant:
+      return "constant";
   }
   return "?";
 }
 
 DensityProfile make_profile(ProfileKind kind, double scale_height_m, double top_altitude_m) {
   switch (kind) {
-    case ProfileKind::Exponential: return DensityProfile::exponential(scale_height_m);
-    case ProfileKind::UsStandard1976: return DensityProfile::us_standard_1976(top_altitude_m);
-    case ProfileKind::Constant: return DensityProfile::constant();
+    case ProfileKind::Exponential:
+      return DensityProfile::exponential(scale_height_m);
+    case ProfileKind::UsStandard1976:
+      return DensityProfile::us_standard_1976(top_altitude_m);
+    case ProfileKind::Constant:
+      return DensityProfile::constant();
   }
   return DensityProfile::constant();
 }
 
-AtmosphereModel::AtmosphereModel(const AtmosphereSpec& spec, const WavelengthGrid& grid)
-    : spec_(spec), grid_(grid) {
+AtmosphereModel::AtmosphereModel(const AtmosphereSpec& spec, const WavelengthGrid& grid) : spec_(spec), grid_(grid) {
   const int n = grid.size();
   const auto& r = spec.rayleigh;
 
@@ -62,8 +67,7 @@ AtmosphereModel::AtmosphereModel(const AtmosphereSpec& spec, const WavelengthGri
       rayleigh_n0_per_m3_ = us_standard_atmosphere_1976(0.0).number_density_per_m3;
       rayleigh_n0_origin_ = "U.S. Standard Atmosphere 1976 at 0 m: N = P / (k T) = 101325 Pa / (k 288.15 K)";
     } else {
-      rayleigh_n0_per_m3_ =
-          r.surface_pressure_Pa / (constants::kBoltzmann_J_per_K * r.surface_temperature_K);
+      rayleigh_n0_per_m3_ = r.surface_pressure_Pa / (constants::kBoltzmann_J_per_K * r.surface_temperature_K);
       std::ostringstream s;
       s << "ideal gas at the surface: N = P / (k T) = " << r.surface_pressure_Pa << " Pa / (k "
         << r.surface_temperature_K << " K)";
@@ -77,8 +81,7 @@ AtmosphereModel::AtmosphereModel(const AtmosphereSpec& spec, const WavelengthGri
     }
   } else {
     if (r.fixed_wavelengths_nm.size() != r.fixed_beta_per_m.size())
-      throw InputError("atmosphere.rayleigh.beta_per_m",
-                       std::to_string(r.fixed_beta_per_m.size()) + " values",
+      throw InputError("atmosphere.rayleigh.beta_per_m", std::to_string(r.fixed_beta_per_m.size()) + " values",
                        "one value per entry of atmosphere.rayleigh.wavelengths_nm (" +
                            std::to_string(r.fixed_wavelengths_nm.size()) + ")");
     rayleigh_n0_origin_ = "not used: coefficients typed in (atmosphere.rayleigh.source = \"fixed\")";
@@ -104,14 +107,14 @@ AtmosphereModel::AtmosphereModel(const AtmosphereSpec& spec, const WavelengthGri
   mie_.scattering_per_m.resize(n);
   for (int i = 0; i < n; ++i)
     mie_.scattering_per_m[i] =
-        m.enabled ? m.scattering_per_m * std::pow(grid.nm(i) / m.reference_wavelength_nm, -m.angstrom_exponent)
-                  : 0.0;
+        m.enabled ? m.scattering_per_m * std::pow(grid.nm(i) / m.reference_wavelength_nm, -m.angstrom_exponent) : 0.0;
   mie_.extinction_per_m = mie_.scattering_per_m * m.extinction_to_scattering;
   mie_g_ = SpectrumD::Constant(n, m.phase.g);
   if (m.enabled && !m.table_wavelengths_nm.empty()) {
     const auto& x = m.table_wavelengths_nm;
     auto q_w = [&](double l) {
-      return interpolate_linear(x, m.table_extinction_efficiency, l) * interpolate_linear(x, m.table_single_scattering_albedo, l);
+      return interpolate_linear(x, m.table_extinction_efficiency, l) *
+             interpolate_linear(x, m.table_single_scattering_albedo, l);
     };
     const double anchor = q_w(m.reference_wavelength_nm);
     if (!(anchor > 0.0))
@@ -141,8 +144,8 @@ AtmosphereModel::AtmosphereModel(const AtmosphereSpec& spec, const WavelengthGri
   ground_albedo_.resize(n);
   const auto& g = spec.ground;
   for (int i = 0; i < n; ++i)
-    ground_albedo_[i] = g.albedo_values.empty() ? g.albedo
-                                                : interpolate_linear(g.albedo_wavelengths_nm, g.albedo_values, grid.nm(i));
+    ground_albedo_[i] =
+        g.albedo_values.empty() ? g.albedo : interpolate_linear(g.albedo_wavelengths_nm, g.albedo_values, grid.nm(i));
 }
 
 double interpolate_linear(const std::vector<double>& x, const std::vector<double>& y, double x0) {

@@ -11,8 +11,8 @@
 #include <cstdio>
 #include <sstream>
 
-#include "skyspec/error.hpp"
 #include "base/text_format.hpp"
+#include "skyspec/error.hpp"
 
 namespace skyspec {
 namespace {
@@ -91,7 +91,8 @@ bool is_leap_year(int year) {
 
 int days_in_month(int year, int month) {
   const auto m = static_cast<unsigned>(month);
-  if (year < 1582) return static_cast<int>(static_cast<unsigned>((julian::year{year} / julian::month{m} / julian::last).day()));
+  if (year < 1582)
+    return static_cast<int>(static_cast<unsigned>((julian::year{year} / julian::month{m} / julian::last).day()));
   return static_cast<int>(static_cast<unsigned>((date::year{year} / date::month{m} / date::last).day()));
 }
 
@@ -99,8 +100,8 @@ void validate(const DateTime& t, const std::string& setting) {
   const auto fail = [&](const std::string& why) { throw InputError(setting, to_iso8601(t), why); };
   if (t.month < 1 || t.month > 12) fail("a month from 1 to 12");
   if (t.day < 1 || t.day > days_in_month(t.year, t.month))
-    fail("a day from 1 to " + std::to_string(days_in_month(t.year, t.month)) + " in " +
-         std::to_string(t.year) + "-" + two_digits(t.month));
+    fail("a day from 1 to " + std::to_string(days_in_month(t.year, t.month)) + " in " + std::to_string(t.year) + "-" +
+         two_digits(t.month));
   if (t.year == 1582 && t.month == 10 && t.day > 4 && t.day < 15)
     fail("an existing date: 1582-10-05 to 1582-10-14 were skipped when the Gregorian calendar began");
   if (t.hour < 0 || t.hour > 23) fail("an hour from 0 to 23");
@@ -195,8 +196,8 @@ double julian_day_utc(const DateTime& t, const std::string& setting) {
     b = 2.0 - a + std::trunc(a / 4.0);
   }
   // floor rather than INT (truncation): identical for the positive arguments here (y > -4716).
-  const double jd_local = std::floor(365.25 * (y + 4716)) + std::floor(30.6001 * (m + 1)) + t.day + day_fraction +
-                          b - 1524.5;
+  const double jd_local =
+      std::floor(365.25 * (y + 4716)) + std::floor(30.6001 * (m + 1)) + t.day + day_fraction + b - 1524.5;
   return jd_local - t.utc_offset_hours / 24.0;
 }
 

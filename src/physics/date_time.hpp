@@ -17,10 +17,10 @@ namespace skyspec {
 
 struct DateTime {
   int year = 2000;
-  int month = 1;   ///< 1-12
-  int day = 1;     ///< 1-31, within the month
-  int hour = 0;    ///< 0-23
-  int minute = 0;  ///< 0-59
+  int month = 1;                  ///< 1-12
+  int day = 1;                    ///< 1-31, within the month
+  int hour = 0;                   ///< 0-23
+  int minute = 0;                 ///< 0-59
   double second = 0.0;            ///< [0, 61): 60.x is a leap second
   double utc_offset_hours = 0.0;  ///< local time minus UTC, within +-18 h (e.g. -7 for MST)
 };

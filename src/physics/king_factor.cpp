@@ -9,9 +9,9 @@
 #include <cmath>
 #include <sstream>
 
+#include "base/text_format.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/units.hpp"
-#include "base/text_format.hpp"
 
 namespace skyspec {
 namespace {
@@ -65,9 +65,8 @@ AirComposition bodhaine_air_composition(double co2_ppv) {
 // with C the CO2 content in percent by volume.
 double king_factor_air(double lambda_nm, double co2_ppv) {
   const AirComposition air = bodhaine_air_composition(co2_ppv);
-  const double weighted_sum = air.n2_percent * king_factor_n2(lambda_nm) +
-                              air.o2_percent * king_factor_o2(lambda_nm) + air.ar_percent * kKingFactorAr +
-                              air.co2_percent * kKingFactorCO2;
+  const double weighted_sum = air.n2_percent * king_factor_n2(lambda_nm) + air.o2_percent * king_factor_o2(lambda_nm) +
+                              air.ar_percent * kKingFactorAr + air.co2_percent * kKingFactorCO2;
   const double total_percent = air.n2_percent + air.o2_percent + air.ar_percent + air.co2_percent;
   return weighted_sum / total_percent;
 }

@@ -8,9 +8,9 @@
 
 #include "base/csv_table.hpp"
 #include "base/embedded_data.hpp"
+#include "base/text_format.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/units.hpp"
-#include "base/text_format.hpp"
 
 namespace skyspec {
 namespace {
@@ -26,7 +26,8 @@ struct OzoneBin {
 
 void append_bins(std::string_view file, std::vector<OzoneBin>& bins) {
   for (const CsvRow& row : parse_csv(file, embedded_file(file), {"lower_nm", "upper_nm", "cross_section_m2"}))
-    bins.push_back({csv_number(file, row, 0), csv_number(file, row, 1), csv_number(file, row, 2), file, row.line_number});
+    bins.push_back(
+        {csv_number(file, row, 0), csv_number(file, row, 1), csv_number(file, row, 2), file, row.line_number});
 }
 
 // The files' bins in wavelength order, one table: Bogumil's ultraviolet, Serdyuchenko's 360-840 nm,
@@ -34,7 +35,8 @@ void append_bins(std::string_view file, std::vector<OzoneBin>& bins) {
 TabulatedSpectrum load_ozone_table() {
   std::vector<OzoneBin> bins;
   for (std::string_view file : ozone_cross_section_files()) append_bins(file, bins);
-  std::stable_sort(bins.begin(), bins.end(), [](const OzoneBin& a, const OzoneBin& b) { return a.lower_nm < b.lower_nm; });
+  std::stable_sort(bins.begin(), bins.end(),
+                   [](const OzoneBin& a, const OzoneBin& b) { return a.lower_nm < b.lower_nm; });
   std::vector<double> edges_nm{bins.front().lower_nm}, cross_section_m2;
   for (const OzoneBin& bin : bins) {
     // Bins must be contiguous: each lower edge is the previous upper edge.
@@ -100,8 +102,9 @@ OzoneTentProfile::OzoneTentProfile(double column_DU, double bottom_m, double pea
   if (!(bottom_m >= 0.0 && bottom_m < kMaxAltitude_m))
     throw InputError("ozone.bottom_altitude_m", format_number(bottom_m), "an altitude from 0 to 100000 m");
   if (!(peak_m > bottom_m && peak_m < kMaxAltitude_m))
-    throw InputError("ozone.peak_altitude_m", format_number(peak_m),
-                     "an altitude above ozone.bottom_altitude_m (" + format_number(bottom_m) + " m) and below 100000 m");
+    throw InputError(
+        "ozone.peak_altitude_m", format_number(peak_m),
+        "an altitude above ozone.bottom_altitude_m (" + format_number(bottom_m) + " m) and below 100000 m");
   if (!(top_m > peak_m && top_m <= kMaxAltitude_m))
     throw InputError("ozone.top_altitude_m", format_number(top_m),
                      "an altitude above ozone.peak_altitude_m (" + format_number(peak_m) + " m), at most 100000 m");

@@ -30,8 +30,8 @@
 #include <string_view>
 #include <vector>
 
-#include "skyspec/spectrum.hpp"
 #include "base/tabulated_spectrum.hpp"
+#include "skyspec/spectrum.hpp"
 
 namespace skyspec {
 

@@ -9,8 +9,7 @@
 namespace skyspec {
 
 double AerosolPhase::operator()(double mu) const {
-  return model == Model::HenyeyGreenstein ? henyey_greenstein_phase(mu, g)
-                                          : cornette_shanks_phase(mu, g);
+  return model == Model::HenyeyGreenstein ? henyey_greenstein_phase(mu, g) : cornette_shanks_phase(mu, g);
 }
 
 std::string to_string(AerosolPhase::Model m) {

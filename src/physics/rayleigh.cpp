@@ -14,8 +14,8 @@
 #include <cmath>
 #include <sstream>
 
-#include "skyspec/error.hpp"
 #include "base/text_format.hpp"
+#include "skyspec/error.hpp"
 #include "skyspec/king_factor.hpp"
 #include "skyspec/units.hpp"
 
@@ -85,8 +85,8 @@ RayleighDerivationStep derive_one(double lambda_nm, const RayleighDerivationInpu
     step.king_factor = king_factor_air(lambda_nm, in.co2_ppv);
   }
   step.number_density_per_m3 = constants::kStandardNumberDensity_per_m3;
-  step.cross_section_m2 = cross_section_from_refractivity_m2(lambda_nm, step.refractivity,
-                                                             step.number_density_per_m3, step.king_factor);
+  step.cross_section_m2 =
+      cross_section_from_refractivity_m2(lambda_nm, step.refractivity, step.number_density_per_m3, step.king_factor);
   return step;
 }
 
@@ -126,8 +126,7 @@ double gravity_m_per_s2(double latitude_deg, double altitude_m) {
       (1.0 - kGravityCos2PhiCoefficient * cos_2phi + kGravityCos2PhiSquaredCoefficient * cos_2phi * cos_2phi);
   const double z_m = altitude_m;
   const double g_cm_per_s2 =
-      sea_level_cm_per_s2 -
-      (kGravityLinear_cm_per_s2_m + kGravityLinearCos2Phi_cm_per_s2_m * cos_2phi) * z_m +
+      sea_level_cm_per_s2 - (kGravityLinear_cm_per_s2_m + kGravityLinearCos2Phi_cm_per_s2_m * cos_2phi) * z_m +
       (kGravityQuadratic_cm_per_s2_m2 + kGravityQuadraticCos2Phi_cm_per_s2_m2 * cos_2phi) * z_m * z_m -
       (kGravityCubic_cm_per_s2_m3 + kGravityCubicCos2Phi_cm_per_s2_m3 * cos_2phi) * z_m * z_m * z_m;
   return g_cm_per_s2 * kMetresPerCentimetre;
@@ -141,13 +140,12 @@ double mass_weighted_column_altitude_m(double station_altitude_m) {
 // Bodhaine et al. 1999 eq. (9): tau = sigma P N_A / (m_a g). In SI: sigma m^2, P Pa, N_A mol^-1,
 // m_a kg mol^-1, g m s^-2; P / g is the column mass per area (kg m^-2), divided by m_a and times
 // N_A the column number of molecules per area (m^-2).
-double rayleigh_optical_depth_hydrostatic(double cross_section_m2, double surface_pressure_Pa,
-                                          double latitude_deg, double altitude_m, double co2_ppv) {
+double rayleigh_optical_depth_hydrostatic(double cross_section_m2, double surface_pressure_Pa, double latitude_deg,
+                                          double altitude_m, double co2_ppv) {
   if (!std::isfinite(surface_pressure_Pa) || surface_pressure_Pa < 0.0)
     throw InputError("surface_pressure_Pa", format_number(surface_pressure_Pa), "a pressure >= 0 Pa");
   const double molar_mass_kg_per_mol = mean_molecular_weight_air_g_per_mol(co2_ppv) * kKilogramsPerGram;
-  const double column_gravity_m_per_s2 =
-      gravity_m_per_s2(latitude_deg, mass_weighted_column_altitude_m(altitude_m));
+  const double column_gravity_m_per_s2 = gravity_m_per_s2(latitude_deg, mass_weighted_column_altitude_m(altitude_m));
   const double column_molecules_per_m2 =
       surface_pressure_Pa * constants::kAvogadro_per_mol / (molar_mass_kg_per_mol * column_gravity_m_per_s2);
   return cross_section_m2 * column_molecules_per_m2;

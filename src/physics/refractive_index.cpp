@@ -11,13 +11,12 @@
 #include <cmath>
 #include <sstream>
 
+#include "base/text_format.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/units.hpp"
-#include "base/text_format.hpp"
 
 namespace skyspec {
 namespace {
-
 
 /// The formulas give the refractivity in units of 1e-8: (n - 1) * 1e8.
 constexpr double kRefractivityUnit = 1.0e-8;
@@ -54,9 +53,12 @@ constexpr double kCo2RefractivitySensitivity_per_ppv = 0.54;
 
 const DispersionCoefficients& coefficients(RefractiveIndexFormula f) {
   switch (f) {
-    case RefractiveIndexFormula::PeckReeder1972: return kPeckReeder1972;
-    case RefractiveIndexFormula::Edlen1966: return kEdlen1966;
-    case RefractiveIndexFormula::Ciddor1996: return kCiddor1996;
+    case RefractiveIndexFormula::PeckReeder1972:
+      return kPeckReeder1972;
+    case RefractiveIndexFormula::Edlen1966:
+      return kEdlen1966;
+    case RefractiveIndexFormula::Ciddor1996:
+      return kCiddor1996;
   }
   return kPeckReeder1972;  // unreachable: every enumerator is handled above
 }
@@ -64,9 +66,9 @@ const DispersionCoefficients& coefficients(RefractiveIndexFormula f) {
 void check_wavelength(RefractiveIndexFormula f, double lambda_nm) {
   const RefractiveIndexValidity v = validity(f);
   if (!std::isfinite(lambda_nm) || lambda_nm < v.min_nm || lambda_nm > v.max_nm)
-    throw InputError("wavelength_nm", format_number(lambda_nm),
-                     "a wavelength from " + format_number(v.min_nm) + " to " + format_number(v.max_nm) + " nm, " +
-                         v.reason);
+    throw InputError(
+        "wavelength_nm", format_number(lambda_nm),
+        "a wavelength from " + format_number(v.min_nm) + " to " + format_number(v.max_nm) + " nm, " + v.reason);
 }
 
 /// Squared vacuum wavenumber s^2 = 1 / lambda_um^2, um^-2.
@@ -79,9 +81,12 @@ double wavenumber_squared_per_um2(double lambda_nm) {
 
 std::string to_string(RefractiveIndexFormula f) {
   switch (f) {
-    case RefractiveIndexFormula::PeckReeder1972: return "peck-reeder";
-    case RefractiveIndexFormula::Edlen1966: return "edlen";
-    case RefractiveIndexFormula::Ciddor1996: return "ciddor";
+    case RefractiveIndexFormula::PeckReeder1972:
+      return "peck-reeder";
+    case RefractiveIndexFormula::Edlen1966:
+      return "edlen";
+    case RefractiveIndexFormula::Ciddor1996:
+      return "ciddor";
   }
   return "peck-reeder";  // unreachable
 }
@@ -95,9 +100,12 @@ RefractiveIndexFormula parse_refractive_index_formula(const std::string& name, c
 
 double reference_co2_ppv(RefractiveIndexFormula f) {
   switch (f) {
-    case RefractiveIndexFormula::PeckReeder1972: return kPeckReederReferenceCo2_ppv;
-    case RefractiveIndexFormula::Edlen1966: return kEdlenReferenceCo2_ppv;
-    case RefractiveIndexFormula::Ciddor1996: return kCiddorReferenceCo2_ppv;
+    case RefractiveIndexFormula::PeckReeder1972:
+      return kPeckReederReferenceCo2_ppv;
+    case RefractiveIndexFormula::Edlen1966:
+      return kEdlenReferenceCo2_ppv;
+    case RefractiveIndexFormula::Ciddor1996:
+      return kCiddorReferenceCo2_ppv;
   }
   return kPeckReederReferenceCo2_ppv;  // unreachable
 }
@@ -133,8 +141,7 @@ double refractivity_with_co2(RefractiveIndexFormula f, double lambda_nm, double 
   if (!std::isfinite(co2_ppv) || co2_ppv < 0.0 || co2_ppv > 1.0)
     throw InputError("co2_ppv", format_number(co2_ppv), "a CO2 mole fraction from 0 to 1 (360 ppm = 3.6e-4)");
   const double co2_excess_ppv = co2_ppv - reference_co2_ppv(f);
-  return refractivity_standard_air(f, lambda_nm) *
-         (1.0 + kCo2RefractivitySensitivity_per_ppv * co2_excess_ppv);
+  return refractivity_standard_air(f, lambda_nm) * (1.0 + kCo2RefractivitySensitivity_per_ppv * co2_excess_ppv);
 }
 
 std::string describe(RefractiveIndexFormula f) {

@@ -10,9 +10,9 @@
 
 #include "base/csv_table.hpp"
 #include "base/embedded_data.hpp"
+#include "base/text_format.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/units.hpp"
-#include "base/text_format.hpp"
 
 namespace skyspec {
 namespace {
@@ -142,17 +142,14 @@ double delta_t_estimate_s(double y) {
   if (y < 1700.0) return polynomial<4>({120.0, -0.9808, -0.01532, 1.0 / 7129.0}, y - 1600.0);
   if (y < 1800.0) return polynomial<5>({8.83, 0.1603, -0.0059285, 0.00013336, -1.0 / 1174000.0}, y - 1700.0);
   if (y < 1860.0)
-    return polynomial<8>({13.72, -0.332447, 0.0068612, 0.0041116, -0.00037436, 0.0000121272, -0.0000001699,
-                          0.000000000875},
-                         y - 1800.0);
-  if (y < 1900.0)
-    return polynomial<6>({7.6, 0.5737, -0.251754, 0.01680668, -0.0004473624, 1.0 / 233174.0}, y - 1860.0);
+    return polynomial<8>(
+        {13.72, -0.332447, 0.0068612, 0.0041116, -0.00037436, 0.0000121272, -0.0000001699, 0.000000000875}, y - 1800.0);
+  if (y < 1900.0) return polynomial<6>({7.6, 0.5737, -0.251754, 0.01680668, -0.0004473624, 1.0 / 233174.0}, y - 1860.0);
   if (y < 1920.0) return polynomial<5>({-2.79, 1.494119, -0.0598939, 0.0061966, -0.000197}, y - 1900.0);
   if (y < 1941.0) return polynomial<4>({21.20, 0.84493, -0.076100, 0.0020936}, y - 1920.0);
   if (y < 1961.0) return polynomial<4>({29.07, 0.407, -1.0 / 233.0, 1.0 / 2547.0}, y - 1950.0);
   if (y < 1986.0) return polynomial<4>({45.45, 1.067, -1.0 / 260.0, -1.0 / 718.0}, y - 1975.0);
-  if (y < 2005.0)
-    return polynomial<6>({63.86, 0.3345, -0.060374, 0.0017275, 0.000651814, 0.00002373599}, y - 2000.0);
+  if (y < 2005.0) return polynomial<6>({63.86, 0.3345, -0.060374, 0.0017275, 0.000651814, 0.00002373599}, y - 2000.0);
   if (y < 2050.0) return polynomial<3>({62.92, 0.32217, 0.005589}, y - 2000.0);
   if (y < 2150.0) return parabola(y) - 0.5628 * (2150.0 - y);
   return parabola(y);
@@ -162,7 +159,8 @@ SolarPosition solar_position(const DateTime& time, const Observer& observer, con
   // --- inputs -------------------------------------------------------------------------------
   validate(time, "date_time");
   if (time.year < -2000 || time.year > 6000)
-    throw InputError("date_time", to_iso8601(time), "a year from -2000 to 6000 (the range of the Solar Position Algorithm)");
+    throw InputError("date_time", to_iso8601(time),
+                     "a year from -2000 to 6000 (the range of the Solar Position Algorithm)");
   check_range("latitude_deg", observer.latitude_deg, -90.0, 90.0, "a latitude from -90 to 90 degrees (north positive)");
   check_range("longitude_deg", observer.longitude_deg, -180.0, 180.0,
               "a longitude from -180 to 180 degrees (east positive)");
@@ -204,12 +202,11 @@ SolarPosition solar_position(const DateTime& time, const Observer& observer, con
   // --- 4. nutation (eqs. 15-22) and the obliquity of the ecliptic (eqs. 23-24) -----------------
   // Mean elongation of the moon from the sun, mean anomalies of the sun and the moon, the moon's
   // argument of latitude, longitude of the moon's ascending node: degrees.
-  const std::array<double, 5> x = {
-      polynomial<4>({297.85036, 445267.111480, -0.0019142, 1.0 / 189474.0}, jce),
-      polynomial<4>({357.52772, 35999.050340, -0.0001603, -1.0 / 300000.0}, jce),
-      polynomial<4>({134.96298, 477198.867398, 0.0086972, 1.0 / 56250.0}, jce),
-      polynomial<4>({93.27191, 483202.017538, -0.0036825, 1.0 / 327270.0}, jce),
-      polynomial<4>({125.04452, -1934.136261, 0.0020708, 1.0 / 450000.0}, jce)};
+  const std::array<double, 5> x = {polynomial<4>({297.85036, 445267.111480, -0.0019142, 1.0 / 189474.0}, jce),
+                                   polynomial<4>({357.52772, 35999.050340, -0.0001603, -1.0 / 300000.0}, jce),
+                                   polynomial<4>({134.96298, 477198.867398, 0.0086972, 1.0 / 56250.0}, jce),
+                                   polynomial<4>({93.27191, 483202.017538, -0.0036825, 1.0 / 327270.0}, jce),
+                                   polynomial<4>({125.04452, -1934.136261, 0.0020708, 1.0 / 450000.0}, jce)};
   double sum_psi = 0.0, sum_epsilon = 0.0;
   for (const NutationTerm& n : t.nutation) {
     double argument_deg = 0.0;
@@ -221,8 +218,8 @@ SolarPosition solar_position(const DateTime& time, const Observer& observer, con
   p.nutation_longitude_deg = sum_psi / 36000000.0;
   p.nutation_obliquity_deg = sum_epsilon / 36000000.0;
   const double u = jme / 10.0;
-  const double epsilon0_arcsec = polynomial<11>(
-      {84381.448, -4680.93, -1.55, 1999.25, -51.38, -249.67, -39.05, 7.12, 27.87, 5.79, 2.45}, u);
+  const double epsilon0_arcsec =
+      polynomial<11>({84381.448, -4680.93, -1.55, 1999.25, -51.38, -249.67, -39.05, 7.12, 27.87, 5.79, 2.45}, u);
   p.true_obliquity_deg = epsilon0_arcsec / 3600.0 + p.nutation_obliquity_deg;
   const double epsilon = p.true_obliquity_deg;
 
@@ -230,8 +227,8 @@ SolarPosition solar_position(const DateTime& time, const Observer& observer, con
   const double aberration_deg = -20.4898 / (3600.0 * r_au);
   p.apparent_longitude_deg = limit_degrees(theta + p.nutation_longitude_deg + aberration_deg);
   const double lambda = p.apparent_longitude_deg;
-  const double nu0 = limit_degrees(280.46061837 + 360.98564736629 * (p.julian_day - kJ2000_jd) +
-                                   0.000387933 * jc * jc - jc * jc * jc / 38710000.0);
+  const double nu0 = limit_degrees(280.46061837 + 360.98564736629 * (p.julian_day - kJ2000_jd) + 0.000387933 * jc * jc -
+                                   jc * jc * jc / 38710000.0);
   p.apparent_sidereal_time_deg = limit_degrees(nu0 + p.nutation_longitude_deg * cosd(epsilon));
 
   // --- 6. geocentric right ascension and declination (eqs. 29-30) ------------------------------

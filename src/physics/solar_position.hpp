@@ -65,31 +65,30 @@ struct SolarPosition {
   double heliocentric_latitude_deg = 0.0;   ///< B
   double earth_sun_distance_au = 0.0;       ///< R
   // Sun seen from the Earth's centre
-  double nutation_longitude_deg = 0.0;   ///< Delta psi
-  double nutation_obliquity_deg = 0.0;   ///< Delta epsilon
-  double true_obliquity_deg = 0.0;       ///< epsilon
-  double apparent_longitude_deg = 0.0;   ///< lambda, [0, 360)
+  double nutation_longitude_deg = 0.0;      ///< Delta psi
+  double nutation_obliquity_deg = 0.0;      ///< Delta epsilon
+  double true_obliquity_deg = 0.0;          ///< epsilon
+  double apparent_longitude_deg = 0.0;      ///< lambda, [0, 360)
   double apparent_sidereal_time_deg = 0.0;  ///< nu at Greenwich, [0, 360)
-  double right_ascension_deg = 0.0;      ///< alpha, [0, 360)
-  double declination_deg = 0.0;          ///< delta
-  double hour_angle_deg = 0.0;           ///< H at the observer, [0, 360)
+  double right_ascension_deg = 0.0;         ///< alpha, [0, 360)
+  double declination_deg = 0.0;             ///< delta
+  double hour_angle_deg = 0.0;              ///< H at the observer, [0, 360)
   // Sun seen from the observer
-  double topocentric_right_ascension_deg = 0.0;  ///< alpha'
-  double topocentric_declination_deg = 0.0;      ///< delta'
-  double topocentric_hour_angle_deg = 0.0;       ///< H'
+  double topocentric_right_ascension_deg = 0.0;   ///< alpha'
+  double topocentric_declination_deg = 0.0;       ///< delta'
+  double topocentric_hour_angle_deg = 0.0;        ///< H'
   double elevation_without_refraction_deg = 0.0;  ///< e0, geometric
-  double refraction_deg = 0.0;   ///< Delta e (0 with refraction off or the sun well below the horizon)
-  double elevation_deg = 0.0;    ///< e = e0 + Delta e: apparent elevation
-  double zenith_deg = 0.0;       ///< theta = 90 - e
-  double azimuth_deg = 0.0;      ///< Phi, clockwise from north (90 = east), [0, 360)
+  double refraction_deg = 0.0;                    ///< Delta e (0 with refraction off or the sun well below the horizon)
+  double elevation_deg = 0.0;                     ///< e = e0 + Delta e: apparent elevation
+  double zenith_deg = 0.0;                        ///< theta = 90 - e
+  double azimuth_deg = 0.0;                       ///< Phi, clockwise from north (90 = east), [0, 360)
 };
 
 /// The SPA for an instant and an observer. Throws InputError naming the setting ("date_time",
 /// "latitude_deg", "longitude_deg", "altitude_m", "pressure_hPa", "temperature_C",
 /// "horizon_refraction_deg", "delta_t_s", "delta_ut1_s") for values outside the ranges above or a
 /// year outside -2000..6000.
-SolarPosition solar_position(const DateTime& time, const Observer& observer,
-                             const SolarPositionOptions& options = {});
+SolarPosition solar_position(const DateTime& time, const Observer& observer, const SolarPositionOptions& options = {});
 
 /// Delta T = TT - UT1 in seconds for a decimal year (Espenak & Meeus 2006 polynomials; their
 /// long-term parabola -20 + 32 ((y - 1820) / 100)^2 before -500 and from 2150).

@@ -6,8 +6,8 @@
 
 #include "base/csv_table.hpp"
 #include "base/embedded_data.hpp"
-#include "skyspec/error.hpp"
 #include "base/text_format.hpp"
+#include "skyspec/error.hpp"
 
 namespace skyspec {
 namespace {

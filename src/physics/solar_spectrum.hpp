@@ -12,8 +12,8 @@
 // (1 AU / d)^2: +3.4 % at perihelion in early January, -3.3 % at aphelion in early July.
 #pragma once
 
-#include "skyspec/spectrum.hpp"
 #include "base/tabulated_spectrum.hpp"
+#include "skyspec/spectrum.hpp"
 
 namespace skyspec {
 
@@ -27,8 +27,7 @@ SpectrumD solar_irradiance_on_grid(const WavelengthGrid& grid, const std::string
 
 /// integral_lo^hi E(lambda) dlambda, W m^-2 at 1 AU (exact for the interpolated table).
 /// Throws InputError(setting, ...) unless 280 <= lo_nm <= hi_nm <= 4000.
-double solar_irradiance_integral_W_m2(double lo_nm, double hi_nm,
-                                      const std::string& setting = "wavelength range");
+double solar_irradiance_integral_W_m2(double lo_nm, double hi_nm, const std::string& setting = "wavelength range");
 
 /// (1 AU / d)^2: the factor that takes irradiance at 1 AU to irradiance at distance d.
 /// Throws InputError("earth_sun_distance_au", ...) unless 0.9 <= d <= 1.1.

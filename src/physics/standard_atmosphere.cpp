@@ -22,8 +22,8 @@
 #include <cstddef>
 #include <sstream>
 
-#include "skyspec/error.hpp"
 #include "base/text_format.hpp"
+#include "skyspec/error.hpp"
 #include "skyspec/units.hpp"
 
 namespace skyspec {
@@ -91,8 +91,7 @@ double layer_pressure_Pa(const LayerBase& b, double geopotential_m) {
     return b.pressure_Pa *
            std::exp(-kHydrostaticConstant_K_per_m * (geopotential_m - b.geopotential_m) / b.temperature_K);
   const double temperature_K = layer_temperature_K(b, geopotential_m);
-  return b.pressure_Pa *
-         std::pow(b.temperature_K / temperature_K, kHydrostaticConstant_K_per_m / b.lapse_rate_K_per_m);
+  return b.pressure_Pa * std::pow(b.temperature_K / temperature_K, kHydrostaticConstant_K_per_m / b.lapse_rate_K_per_m);
 }
 
 /// Base temperature and pressure of every layer, chained upwards from sea level.
@@ -127,8 +126,7 @@ const LayerBase& layer_at(double geopotential_m) {
 
 // H = r0 z / (r0 + z), both in metres (r0 = 6356.766 km, the standard's effective Earth radius).
 double geopotential_altitude_m(double geometric_altitude_m) {
-  return kEarthRadiusForGeopotential_m * geometric_altitude_m /
-         (kEarthRadiusForGeopotential_m + geometric_altitude_m);
+  return kEarthRadiusForGeopotential_m * geometric_altitude_m / (kEarthRadiusForGeopotential_m + geometric_altitude_m);
 }
 
 AtmosphereState us_standard_atmosphere_1976(double geometric_altitude_m) {

@@ -29,7 +29,8 @@ void disk_radiance_per_irradiance(const WavelengthGrid& grid, double angular_rad
   const double mu = std::sqrt(1.0 - x * x);
   for (int i = 0; i < grid.size(); ++i) {
     const double alpha = limb_darkening_exponent(grid.nm(i));
-    out[i] = static_cast<float>(disk_centre_radiance_per_irradiance(grid.nm(i), angular_radius_rad) * std::pow(mu, alpha));
+    out[i] =
+        static_cast<float>(disk_centre_radiance_per_irradiance(grid.nm(i), angular_radius_rad) * std::pow(mu, alpha));
   }
 }
 

@@ -16,7 +16,7 @@
 
 namespace skyspec {
 
-constexpr double kSolarRadius_m = 695700e3;        ///< IAU 2015 Resolution B3 nominal radius
+constexpr double kSolarRadius_m = 695700e3;            ///< IAU 2015 Resolution B3 nominal radius
 constexpr double kAstronomicalUnit_m = 149597870.7e3;  ///< IAU 2012 Resolution B2
 
 /// Angular radius of the sun, radians, at a distance in astronomical units.

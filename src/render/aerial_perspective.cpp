@@ -94,7 +94,8 @@ AerialPerspectiveImage aerial_perspective(const Scene& scene, const std::vector<
   }
   const Rgb sun_rgb = r.spectrum_to_rgb(r.sun_irradiance());
   for (size_t i = 0; i < distance_m.size(); ++i) {
-    const Eigen::Map<const Spectrum> inscatter(s.inscatter.data() + i * n, n), transmittance(s.transmittance.data() + i * n, n);
+    const Eigen::Map<const Spectrum> inscatter(s.inscatter.data() + i * n, n),
+        transmittance(s.transmittance.data() + i * n, n);
     Eigen::Map<Rgb>(s.inscatter_rgb.data() + i * 3) = r.spectrum_to_rgb(inscatter);
     const Rgb t_rgb = r.spectrum_to_rgb(transmittance * r.sun_irradiance());
     for (int c = 0; c < 3; ++c) s.transmittance_rgb[i * 3 + c] = sun_rgb[c] > 0 ? t_rgb[c] / sun_rgb[c] : 0.0f;
@@ -152,9 +153,10 @@ std::filesystem::path write_spectral(const AerialPerspectiveImage& ap, const std
 std::vector<std::filesystem::path> write_aerial_perspective(const AerialPerspectiveImage& ap) {
   ensure_writable_directory(ap.scene.output.directory, "output.directory");
   std::vector<std::filesystem::path> written;
-  written.push_back(write_spectral(ap, "_transmittance.exr", ap.transmittance, ap.transmittance_rgb,
-                 "aerial perspective: transmittance camera -> surface (S0 channels: unitless, per wavelength; R,G,B: "
-                 "ratio of sunlight after/before the path per Rec.709 channel)"));
+  written.push_back(write_spectral(
+      ap, "_transmittance.exr", ap.transmittance, ap.transmittance_rgb,
+      "aerial perspective: transmittance camera -> surface (S0 channels: unitless, per wavelength; R,G,B: "
+      "ratio of sunlight after/before the path per Rec.709 channel)"));
   written.push_back(write_spectral(ap, "_inscatter.exr", ap.inscatter, ap.inscatter_rgb,
                                    "aerial perspective: light scattered into the path (S0: W m^-2 sr^-1 nm^-1; R,G,B: "
                                    "linear Rec.709, Y in cd m^-2)"));
@@ -171,7 +173,8 @@ std::filesystem::path write_aerial_composite(const AerialPerspectiveImage& ap, c
     for (size_t i = 0; i < comp_rgb.size() / 3; ++i)
       for (int c = 0; c < 3; ++c)
         comp_rgb[i * 3 + c] = (ap.rgb_rows[c] * Eigen::Map<const Spectrum>(comp.data() + i * n, n)).sum();
-    return write_spectral(ap, "_composite.exr", comp, comp_rgb, "aerial perspective: image x transmittance + inscatter");
+    return write_spectral(ap, "_composite.exr", comp, comp_rgb,
+                          "aerial perspective: image x transmittance + inscatter");
   }
   const std::vector<float> comp = composite_rgb(ap, image);
   std::vector<float> ch[3];

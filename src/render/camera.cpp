@@ -48,7 +48,7 @@ PerspectiveCamera::PerspectiveCamera(int width, int height, Vec3 origin_m, const
                                      double vertical_fov_deg)
     : Camera(width, height, std::move(origin_m)), fov_deg_(vertical_fov_deg) {
   forward_ = (look_at_m - origin_m_).normalized();
-  Vec3 up_hint = origin_m_.normalized();  // local zenith at the camera
+  Vec3 up_hint = origin_m_.normalized();                                    // local zenith at the camera
   if (std::abs(forward_.dot(up_hint)) > 0.999999) up_hint = Vec3(0, 1, 0);  // looking straight up/down
   right_ = forward_.cross(up_hint).normalized();
   up_ = right_.cross(forward_);
@@ -75,8 +75,9 @@ EquirectangularCamera::EquirectangularCamera(int width, int height, Vec3 origin_
   if (!(min_elevation_deg >= -90.0 && min_elevation_deg < 90.0))
     throw std::invalid_argument("EquirectangularCamera: min_elevation_deg must be in [-90, 90)");
   if (convention != PanoramaConvention::Skyspec && min_elevation_deg != -90.0)
-    throw std::invalid_argument("EquirectangularCamera: the blender and openexr conventions cover the whole sphere "
-                                "(min_elevation_deg = -90)");
+    throw std::invalid_argument(
+        "EquirectangularCamera: the blender and openexr conventions cover the whole sphere "
+        "(min_elevation_deg = -90)");
   if (convention == PanoramaConvention::OpenExr && (width < 2 || height < 2))
     throw std::invalid_argument("EquirectangularCamera: the openexr convention needs at least 2 x 2 pixels");
 }
@@ -112,9 +113,12 @@ bool EquirectangularCamera::direction(double x, double y, Vec3& dir) const {
 std::string EquirectangularCamera::describe() const {
   std::ostringstream s;
   s << "equirectangular (latitude-longitude, ";
-  if (min_elevation_deg_ == -90.0) s << "full sphere";
-  else if (min_elevation_deg_ == 0.0) s << "upper hemisphere";
-  else s << "elevation 90 down to " << min_elevation_deg_ << " deg";
+  if (min_elevation_deg_ == -90.0)
+    s << "full sphere";
+  else if (min_elevation_deg_ == 0.0)
+    s << "upper hemisphere";
+  else
+    s << "elevation 90 down to " << min_elevation_deg_ << " deg";
   s << ", " << panorama_convention_name(convention_) << " convention), " << width_ << "x" << height_;
   return s.str();
 }

@@ -8,10 +8,10 @@
 #include "base/atomic_file.hpp"
 #include "base/output_lock.hpp"
 #include "base/text_format.hpp"
-#include "skyspec/error.hpp"
 #include "io/png_image.hpp"
 #include "io/provenance.hpp"
 #include "io/rgb_exr.hpp"
+#include "skyspec/error.hpp"
 #include "skyspec/version.hpp"
 
 namespace skyspec {
@@ -31,17 +31,22 @@ ConversionOutputs convert_exr_for_display(const std::filesystem::path& input, co
                                           const std::string& name, const DisplaySettings& settings,
                                           std::optional<double> manual_ev, bool png) {
   if (!png && settings.exr_space.empty())
-    throw InputError(conversion_setting::kPng, "off", std::string("at least one output: the PNG or ") + display_setting::kExrSpace);
+    throw InputError(conversion_setting::kPng, "off",
+                     std::string("at least one output: the PNG or ") + display_setting::kExrSpace);
   if (name.empty() || name.find('/') != std::string::npos)
     throw InputError(conversion_setting::kName, "\"" + name + "\"", "a file name without '/'");
   ensure_writable_directory(directory, conversion_setting::kDirectory);
   const DisplayPipeline pipeline(settings);  // checks the names before reading anything
-  if (!std::filesystem::is_regular_file(input)) throw InputError(conversion_setting::kInput, "'" + input.string() + "'", "an existing EXR file");
+  if (!std::filesystem::is_regular_file(input))
+    throw InputError(conversion_setting::kInput, "'" + input.string() + "'", "an existing EXR file");
   const OutputLock lock(directory, name, conversion_setting::kOutputs);  // one writer per name
-  if (png) refuse_output_replacing_input(directory / (name + ".png"), conversion_setting::kOutputs, {{conversion_setting::kInput, input}});
+  if (png)
+    refuse_output_replacing_input(directory / (name + ".png"), conversion_setting::kOutputs,
+                                  {{conversion_setting::kInput, input}});
   if (!settings.exr_space.empty())
-    refuse_output_replacing_input(directory / (name + "-" + find_working_space(settings.exr_space).file_suffix + ".exr"),
-                                  conversion_setting::kOutputs, {{conversion_setting::kInput, input}});
+    refuse_output_replacing_input(
+        directory / (name + "-" + find_working_space(settings.exr_space).file_suffix + ".exr"),
+        conversion_setting::kOutputs, {{conversion_setting::kInput, input}});
   const RgbExrImage image = read_rgb_exr(input);
   if (image.has_chromaticities && !is_rec709(image.chromaticities))
     throw InputError("input EXR", "'" + input.string() + "'",
@@ -74,8 +79,8 @@ ConversionOutputs convert_exr_for_display(const std::filesystem::path& input, co
                     "\" is not an exposure scale from 2^-200 to 2^200 (EV -200 to 200); give --exposure to choose one");
     out.exposure = resolve_exposure(exposure, scale);
     // What is applied is the number, whatever the file's text says.
-    out.exposure.description = "recorded in the file: scale = " + format_number(scale) + " (EV " +
-                               format_number(std::log2(scale)) + ")";
+    out.exposure.description =
+        "recorded in the file: scale = " + format_number(scale) + " (EV " + format_number(std::log2(scale)) + ")";
   } else {
     out.exposure = resolve_exposure(exposure, exposure.mode == ExposureSettings::Mode::Automatic
                                                   ? metered_exposure_scale(image.rgb, image.width, image.height)
@@ -105,9 +110,11 @@ ConversionOutputs convert_exr_for_display(const std::filesystem::path& input, co
     if (!settings.exr_space.empty()) {
       const WorkingSpace& space = find_working_space(settings.exr_space);
       out.working_exr = directory / (name + "-" + space.file_suffix + ".exr");
-      provenance["skyspec:workingSpace"] = space.name + " (scene-linear, converted by " + pipeline.config().describe() + ")";
+      provenance["skyspec:workingSpace"] =
+          space.name + " (scene-linear, converted by " + pipeline.config().describe() + ")";
       const auto path = image.strings.find("skyspec:renderPath");
-      provenance["skyspec:units"] = working_space_units(space, path != image.strings.end() && path->second == "rgb-fast");
+      provenance["skyspec:units"] =
+          working_space_units(space, path != image.strings.end() && path->second == "rgb-fast");
       write_rgb_exr(out.working_exr, image.width, image.height, to_working_space(pipeline.config(), image.rgb, space),
                     space.chromaticities, provenance, {}, {{kExposureScaleAttribute, out.exposure.scale}},
                     image.latlong_envmap);

@@ -8,8 +8,8 @@
 
 #include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
-#include "transport/multiple_scattering.hpp"
 #include "skyspec/units.hpp"
+#include "transport/multiple_scattering.hpp"
 
 namespace skyspec {
 
@@ -45,16 +45,18 @@ IrradianceReport irradiance_at_camera(const SkyRenderer& r, int zenith_nodes, in
   gauss_legendre(zenith_nodes, 0.0, 1.0, mu, w);
   std::vector<SpectrumD> rows(static_cast<size_t>(zenith_nodes), SpectrumD::Zero(n));
   tbb::task_arena arena(r.threads());
-  arena.execute([&] { tbb::parallel_for(0, zenith_nodes, [&](int i) {
-    const double m = mu[static_cast<size_t>(i)], sin_t = std::sqrt(1 - m * m);
-    for (int j = 0; j < azimuth_nodes; ++j) {
-      const double phi = 2 * kPi * (j + 0.5) / azimuth_nodes;
-      const Vec3 d = (sin_t * std::cos(phi)) * east + (sin_t * std::sin(phi)) * north + m * up;
-      const Spectrum L = r.radiance(d);
-      for (int l = 0; l < n; ++l)
-        rows[static_cast<size_t>(i)][l] += w[static_cast<size_t>(i)] * m * (2 * kPi / azimuth_nodes) * L[l];
-    }
-  }); });
+  arena.execute([&] {
+    tbb::parallel_for(0, zenith_nodes, [&](int i) {
+      const double m = mu[static_cast<size_t>(i)], sin_t = std::sqrt(1 - m * m);
+      for (int j = 0; j < azimuth_nodes; ++j) {
+        const double phi = 2 * kPi * (j + 0.5) / azimuth_nodes;
+        const Vec3 d = (sin_t * std::cos(phi)) * east + (sin_t * std::sin(phi)) * north + m * up;
+        const Spectrum L = r.radiance(d);
+        for (int l = 0; l < n; ++l)
+          rows[static_cast<size_t>(i)][l] += w[static_cast<size_t>(i)] * m * (2 * kPi / azimuth_nodes) * L[l];
+      }
+    });
+  });
   rep.diffuse_horizontal = SpectrumD::Zero(n);
   for (const auto& row : rows) rep.diffuse_horizontal += row;
 

@@ -9,10 +9,10 @@
 #include <cstring>
 
 #include "base/text_format.hpp"
+#include "render/sun_irradiance.hpp"
 #include "skyspec/atmosphere.hpp"
 #include "skyspec/camera.hpp"
 #include "skyspec/error.hpp"
-#include "render/sun_irradiance.hpp"
 #include "transport/monte_carlo.hpp"
 
 namespace skyspec {
@@ -91,9 +91,10 @@ ReferenceResult monte_carlo_reference(const Scene& scene, const std::vector<Refe
   const Vec3 up(0, 0, 1);
   // The irradiance estimate starts its paths at the observer: it must be in the air.
   if (settings.diffuse_irradiance && origin.norm() >= atmosphere.top_radius_m())
-    throw InputError("camera.position_m",
-                     "[" + format_number(p.x()) + ", " + format_number(p.y()) + ", " + format_number(p.z()) + "]",
-                     "an observer below the top of the atmosphere (atmosphere.top_altitude_m) for the diffuse irradiance");
+    throw InputError(
+        "camera.position_m",
+        "[" + format_number(p.x()) + ", " + format_number(p.y()) + ", " + format_number(p.z()) + "]",
+        "an observer below the top of the atmosphere (atmosphere.top_altitude_m) for the diffuse irradiance");
 
   ReferenceResult out;
   out.wavelengths_nm = grid.nanometres();
@@ -123,14 +124,15 @@ ReferenceResult monte_carlo_reference(const Scene& scene, const std::vector<Refe
     const double e = sun_irradiance[i];
     for (size_t k = 0; k < probes.size(); ++k) {
       const Vec3 dir = direction_from_angles(probes[k].azimuth_deg, probes[k].elevation_deg);
-      const MonteCarloValue v =
-          integrator.radiance(origin, dir, mc, stream_of(probes[k].azimuth_deg, probes[k].elevation_deg, grid.nm(i), 1));
+      const MonteCarloValue v = integrator.radiance(
+          origin, dir, mc, stream_of(probes[k].azimuth_deg, probes[k].elevation_deg, grid.nm(i), 1));
       out.radiance[k][static_cast<size_t>(i)] = e * v.mean;
       out.radiance_standard_error[k][static_cast<size_t>(i)] = e * v.standard_error;
       if (progress) progress(++done, total);
       if (settings.stokes) {
-        const MonteCarloStokes s = integrator.stokes_radiance(
-            origin, dir, stokes_frame_axis(dir), mc, stream_of(probes[k].azimuth_deg, probes[k].elevation_deg, grid.nm(i), 3));
+        const MonteCarloStokes s =
+            integrator.stokes_radiance(origin, dir, stokes_frame_axis(dir), mc,
+                                       stream_of(probes[k].azimuth_deg, probes[k].elevation_deg, grid.nm(i), 3));
         for (size_t c = 0; c < 4; ++c) {
           out.stokes[k][static_cast<size_t>(i)][c] = e * s[c].mean;
           out.stokes_standard_error[k][static_cast<size_t>(i)][c] = e * s[c].standard_error;

@@ -26,10 +26,11 @@ PixelBounds parse_pixel_bounds(const std::string& text, const std::string& setti
 
 void check_pixel_bounds(const PixelBounds& b, const CameraSpec& camera, const std::string& setting) {
   if (0 <= b.x0 && b.x0 < b.x1 && b.x1 <= camera.width && 0 <= b.y0 && b.y0 < b.y1 && b.y1 <= camera.height) return;
-  throw InputError(setting,
-                   std::to_string(b.x0) + "," + std::to_string(b.x1) + "," + std::to_string(b.y0) + "," + std::to_string(b.y1),
-                   "0 <= x0 < x1 <= " + std::to_string(camera.width) + " and 0 <= y0 < y1 <= " +
-                       std::to_string(camera.height) + " (the camera's image)");
+  throw InputError(
+      setting,
+      std::to_string(b.x0) + "," + std::to_string(b.x1) + "," + std::to_string(b.y0) + "," + std::to_string(b.y1),
+      "0 <= x0 < x1 <= " + std::to_string(camera.width) + " and 0 <= y0 < y1 <= " + std::to_string(camera.height) +
+          " (the camera's image)");
 }
 
 }  // namespace skyspec

@@ -17,16 +17,16 @@
 #include <tbb/task_arena.h>
 
 #include "base/cancellation.hpp"
+#include "physics/sun_disk.hpp"
+#include "render/scene_tables.hpp"
+#include "render/sun_irradiance.hpp"
 #include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
+#include "skyspec/units.hpp"
 #include "transport/multiple_scattering.hpp"
 #include "transport/scattering_tables_cache.hpp"
-#include "render/scene_tables.hpp"
 #include "transport/single_scattering.hpp"
 #include "transport/sky_view_table.hpp"
-#include "render/sun_irradiance.hpp"
-#include "physics/sun_disk.hpp"
-#include "skyspec/units.hpp"
 
 namespace skyspec {
 
@@ -47,7 +47,8 @@ SunColumnTable::MuBand sun_band(const Scene& s, const AtmosphereModel& atmospher
 
 // The scattering-order tables for orders 2 .. render.scattering_orders.
 std::shared_ptr<const ScatteringOrders> build_orders(const Scene& s, const SingleScattering& integrator) {
-  return scattering_orders_for(integrator, sun_table_resolution(s), multiple_scattering_settings(s), s.render.cache_tables);
+  return scattering_orders_for(integrator, sun_table_resolution(s), multiple_scattering_settings(s),
+                               s.render.cache_tables);
 }
 }  // namespace
 
@@ -66,8 +67,8 @@ struct SkyRenderer::Impl {
   Vec3 sun_dir;
   Spectrum sun_irradiance;
   double sun_radius_rad;
-  Spectrum to_rgb[3];  // spectrum -> linear Rec.709: R, G, B are the dot products with these rows
-  int rgb_index[3] = {0, 0, 0};                     // RGB-fast: indices of 680, 550, 440 nm
+  Spectrum to_rgb[3];            // spectrum -> linear Rec.709: R, G, B are the dot products with these rows
+  int rgb_index[3] = {0, 0, 0};  // RGB-fast: indices of 680, 550, 440 nm
   bool rgb_fast;
   int threads;
 
@@ -158,8 +159,7 @@ struct SkyRenderer::Impl {
         table_sources.polarisation = s.output.polarisation;  // then it holds Q and U too
         sky_view = std::make_unique<SkyViewTable>(
             integrator, table_sources, camera->origin_m(), sun_dir,
-            SkyViewResolution{rows, std::max(2, rows / 2), s.render.sky_view_azimuth_samples, below},
-            threads);
+            SkyViewResolution{rows, std::max(2, rows / 2), s.render.sky_view_azimuth_samples, below}, threads);
       } catch (const Cancelled&) {
         throw;
       } catch (const Error&) {
@@ -267,7 +267,7 @@ void SkyRenderer::aerial_rows(int y0, int rows, const float* distance_m, float* 
         }
         ScatteringSources src = m.sources;
         src.max_distance_m = std::isfinite(distance_m[idx]) ? static_cast<double>(distance_m[idx])
-                                                             : std::numeric_limits<double>::infinity();
+                                                            : std::numeric_limits<double>::infinity();
         src.transmittance = &sc.trans;
         m.integrator.radiance(m.camera->origin_m(), dir, m.sun_dir, m.sun_irradiance, src, sc.ws, sc.radiance);
         std::copy(sc.trans.data(), sc.trans.data() + n, t_px);
@@ -282,7 +282,10 @@ Vec3 stokes_frame_axis_of_pixel(const Camera& camera, double x, double y, const 
   // at the edge of a fisheye's circle), made perpendicular to the pixel's ray.
   Vec3 right, left;
   const bool has_right = camera.direction(x + 0.25, y, right), has_left = camera.direction(x - 0.25, y, left);
-  Vec3 t = has_right && has_left ? Vec3(right - left) : has_right ? Vec3(right - dir) : has_left ? Vec3(dir - left) : Vec3::Zero();
+  Vec3 t = has_right && has_left ? Vec3(right - left)
+           : has_right           ? Vec3(right - dir)
+           : has_left            ? Vec3(dir - left)
+                                 : Vec3::Zero();
   t -= t.dot(dir) * dir;
   if (t.norm() > 1e-12) return t.normalized();
   // No image x at this point (not met by skyspec's cameras at pixel centres): any perpendicular.
@@ -371,8 +374,8 @@ void SkyRenderer::render_window(int x0, int x1, int y0, int rows, float* spectra
     Vec3 dirs[kChunk];
     int pixel[kChunk];  // the chunk's pixels that have a direction
     bool found[kChunk];
-    double mu[kChunk];    // their cosines to the sun
-    float* out[kChunk];   // where their radiances go
+    double mu[kChunk];         // their cosines to the sun
+    float* out[kChunk];        // where their radiances go
     std::vector<float> parts;  // their sky-view parts, 3 n floats each
     explicit Scratch(int k) : ws(k), radiance(k), disk(k), trans(k), parts(static_cast<size_t>(3 * kChunk * k)) {}
   };
@@ -406,7 +409,8 @@ void SkyRenderer::render_window(int x0, int x1, int y0, int rows, float* spectra
           const int idx = sc.pixel[k];
           float* px = spectral + static_cast<size_t>(idx) * n;
           if (!(m.sky_view && sc.found[k])) {
-            m.integrator.radiance(m.camera->origin_m(), dir, m.sun_dir, m.sun_irradiance, m.sources, sc.ws, sc.radiance);
+            m.integrator.radiance(m.camera->origin_m(), dir, m.sun_dir, m.sun_irradiance, m.sources, sc.ws,
+                                  sc.radiance);
             std::copy(sc.radiance.data(), sc.radiance.data() + n, px);
           }
           if (m.scene.sun.disk) m.add_sun_disk(x0 + idx % w, y0 + idx / w, dir, px, sc.disk, sc.trans);

@@ -11,13 +11,13 @@
 #include <sstream>
 #include <system_error>
 
+#include "io/spectral_exr.hpp"
+#include "io/spectral_exr_encode.hpp"
+#include "render/scene_tables.hpp"
 #include "skyspec/camera.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/render.hpp"
 #include "skyspec/scene.hpp"
-#include "io/spectral_exr.hpp"
-#include "io/spectral_exr_encode.hpp"
-#include "render/scene_tables.hpp"
 #include "transport/scattering_tables_cache.hpp"
 
 namespace skyspec {
@@ -112,10 +112,11 @@ std::uint64_t RenderPlan::peak_memory_bytes() const {
   const std::uint64_t px = pixels(width, height), n = static_cast<std::uint64_t>(std::max(wavelengths, 0));
   // render_scene_to_files renders a band of rows while the one before is written: bands of about
   // 64 MiB (8 to 64 rows), two of them, and OpenEXR's buffers for one (uncompressed and compressed).
-  const std::uint64_t row_bytes =
-      static_cast<std::uint64_t>(std::max(width, 1)) * (n * static_cast<std::uint64_t>(std::max(stokes_components, 1)) + 3) * 4;
+  const std::uint64_t row_bytes = static_cast<std::uint64_t>(std::max(width, 1)) *
+                                  (n * static_cast<std::uint64_t>(std::max(stokes_components, 1)) + 3) * 4;
   const std::uint64_t band_rows = std::clamp<std::uint64_t>((std::uint64_t{64} << 20) / row_bytes, 8, 64);
-  const std::uint64_t band = std::min<std::uint64_t>(band_rows, static_cast<std::uint64_t>(std::max(height, 0))) * row_bytes;
+  const std::uint64_t band =
+      std::min<std::uint64_t>(band_rows, static_cast<std::uint64_t>(std::max(height, 0))) * row_bytes;
   std::uint64_t bytes = 2 * band + table_bytes;
   // Per pixel, as measured (docs/reliability.md, "Memory estimates": peak RSS of renders of 1500^2
   // and 3000^2 pixels; the difference over the difference in pixels): a spectral EXR alone 16.6
@@ -148,7 +149,8 @@ std::string RenderEstimate::describe() const {
   text += ", peak memory about " + format_bytes(peak_memory_bytes);
   if (memory_available_bytes) text += " (" + format_bytes(*memory_available_bytes) + " available)";
   if (seconds) text += ", about " + format_duration(*seconds) + " of rendering";
-  if (table_seconds) text += *table_seconds > 0 ? ", tables about " + format_duration(*table_seconds) : ", tables cached";
+  if (table_seconds)
+    text += *table_seconds > 0 ? ", tables about " + format_duration(*table_seconds) : ", tables cached";
   return text;
 }
 
@@ -170,7 +172,8 @@ std::vector<std::string> RenderEstimate::problems() const {
   const double tables = table_seconds.value_or(0.0);
   if (tables > kMaxSeconds)
     out.push_back("would spend about " + format_duration(tables) + " building its tables at these settings (" +
-                  std::to_string(plan.wavelengths) + " wavelengths); use fewer scattering orders, smaller tables "
+                  std::to_string(plan.wavelengths) +
+                  " wavelengths); use fewer scattering orders, smaller tables "
                   "(render.ms_altitude_samples, render.ms_sun_samples, render.sky_view_*) or fewer wavelengths");
   else if (seconds && *seconds + tables > kMaxSeconds)
     out.push_back("would take about " + format_duration(*seconds + tables) + " at these settings (" + plan.settings() +
@@ -212,7 +215,8 @@ double estimate_scattering_orders_seconds(const Scene& scene) {
 double estimate_table_seconds(const Scene& scene, const SkyRenderer& estimate_renderer) {
   const Scene& light = estimate_renderer.scene();
   const double full = static_cast<double>(scene.render.sky_view_zenith_samples) * scene.render.sky_view_azimuth_samples;
-  const double built = static_cast<double>(light.render.sky_view_zenith_samples) * light.render.sky_view_azimuth_samples;
+  const double built =
+      static_cast<double>(light.render.sky_view_zenith_samples) * light.render.sky_view_azimuth_samples;
   const double sky_view = estimate_renderer.sky_view_table_seconds() * std::max(0.0, full / built - 1.0);
   return estimate_scattering_orders_seconds(scene) + sky_view;
 }

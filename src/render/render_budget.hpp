@@ -113,7 +113,8 @@ void refuse_if_over_budget(const RenderEstimate& estimate, const std::string& fo
 /// Before a renderer is built: refuse_if_over_budget with the estimate of the scene's
 /// scattering-order tables added (estimate_scattering_orders_seconds), so that tables that would
 /// take more than a day are refused before they start.
-void refuse_if_tables_over_budget(const Scene& scene, RenderEstimate estimate, const std::string& force_flag = kForceSetting);
+void refuse_if_tables_over_budget(const Scene& scene, RenderEstimate estimate,
+                                  const std::string& force_flag = kForceSetting);
 
 /// MemAvailable of /proc/meminfo, if readable.
 std::optional<std::uint64_t> available_memory_bytes();

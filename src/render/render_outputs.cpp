@@ -16,16 +16,16 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "physics/unmodelled_absorption.hpp"
 #include "base/atomic_file.hpp"
 #include "base/output_lock.hpp"
 #include "colour/display_pipeline.hpp"
 #include "colour/exposure.hpp"
 #include "colour/polarisation_colour.hpp"
 #include "io/png_image.hpp"
-#include "render/scene_provenance.hpp"
 #include "io/rgb_exr.hpp"
 #include "io/spectral_exr.hpp"
+#include "physics/unmodelled_absorption.hpp"
+#include "render/scene_provenance.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/render.hpp"
 #include "skyspec/version.hpp"
@@ -60,7 +60,8 @@ struct ChosenExposure {
   ExposureSettings settings;
   ResolvedExposure resolved;
 };
-ChosenExposure choose_exposure(const Scene& scene, const DisplaySettings& display, const std::function<double()>& meter) {
+ChosenExposure choose_exposure(const Scene& scene, const DisplaySettings& display,
+                               const std::function<double()>& meter) {
   ChosenExposure c{display.exposure, {}};
   if (c.settings.mode == ExposureSettings::Mode::Automatic && scene.output.exposure_ev) {
     c.settings.mode = ExposureSettings::Mode::Manual;
@@ -105,8 +106,10 @@ SpectralExrMetadata spectral_exr_metadata(const Scene& scene, const std::map<std
             "Y = luminance in cd m^-2";
   if (scene.output.polarisation)
     meta.strings["skyspec:polarisation"] =
-        "S1, S2, S3 per wavelength in the units of S0: the Stokes vector in each pixel's frame, e1 = the image's x axis "
-        "carried onto the sky (perpendicular to the pixel's ray), e2 = k x e1 with k the light's direction (towards the "
+        "S1, S2, S3 per wavelength in the units of S0: the Stokes vector in each pixel's frame, e1 = the image's x "
+        "axis "
+        "carried onto the sky (perpendicular to the pixel's ray), e2 = k x e1 with k the light's direction (towards "
+        "the "
         "camera); S1 > 0 polarised along e1, S2 > 0 along e1 + e2; S3 = 0. Vector transport for the air; aerosols "
         "scatter as unit matrices; the ground depolarises (docs/polarisation.md)";
   return meta;
@@ -155,7 +158,8 @@ void render_bands(const SkyRenderer& r, SpectralExrWriter* exr, std::vector<floa
       r.render_window(x0, x0 + w, y_first + y, rows, b.spectral.get(), b.rgb.get());
     if (writing.valid()) writing.get();  // rethrows a write error
     if (exr && overlap)
-      writing = std::async(std::launch::async, [exr, &b, rows] { exr->write_rows(rows, b.spectral.get(), b.rgb.get()); });
+      writing =
+          std::async(std::launch::async, [exr, &b, rows] { exr->write_rows(rows, b.spectral.get(), b.rgb.get()); });
     else if (exr)
       exr->write_rows(rows, b.spectral.get(), b.rgb.get());
     if (!rgb.empty())
@@ -165,7 +169,8 @@ void render_bands(const SkyRenderer& r, SpectralExrWriter* exr, std::vector<floa
         const float* v = b.spectral.get() + p * static_cast<size_t>(values);
         float* out = stokes_y.data() + (static_cast<size_t>(y) * w + p) * 3;
         for (int c = 0; c < 3; ++c)
-          out[c] = static_cast<float>(rec709_luminance(r.spectrum_to_rgb(Eigen::Map<const Spectrum>(v + c * n, n)).data()));
+          out[c] =
+              static_cast<float>(rec709_luminance(r.spectrum_to_rgb(Eigen::Map<const Spectrum>(v + c * n, n)).data()));
       }
     if (progress) progress(y + rows, h);
   }
@@ -215,7 +220,8 @@ void write_polarisation_exr(const std::filesystem::path& path, const Scene& scen
     values[3 * p + 2] = static_cast<float>(lp.angle_deg);
   }
   strings["skyspec:units"] =
-      "Y: luminance of S0 (cd m^-2 on the spectral path); DoLP: degree of linear polarisation of the luminance-weighted "
+      "Y: luminance of S0 (cd m^-2 on the spectral path); DoLP: degree of linear polarisation of the "
+      "luminance-weighted "
       "Stokes vector (0 where Y = 0); AoLP: its angle in degrees, (-90, 90], from e1 (the image's x axis carried onto "
       "the sky) towards e2 = k x e1 (the spectral EXR's frames; docs/polarisation.md)";
   write_float_channels_exr(path, scene.camera.width, scene.camera.height, {"Y", "DoLP", "AoLP"}, values, strings,
@@ -227,14 +233,16 @@ void write_polarisation_png(const std::filesystem::path& path, const Scene& scen
                             const std::map<std::string, std::string>& provenance) {
   std::vector<float> code(stokes_y.size());
   for (size_t p = 0; p < stokes_y.size() / 3; ++p) {
-    const std::array<float, 3> c = polarisation_colour(linear_polarisation(stokes_y[3 * p], stokes_y[3 * p + 1], stokes_y[3 * p + 2]));
+    const std::array<float, 3> c =
+        polarisation_colour(linear_polarisation(stokes_y[3 * p], stokes_y[3 * p + 1], stokes_y[3 * p + 2]));
     std::copy(c.begin(), c.end(), code.begin() + static_cast<long>(3 * p));
   }
   const std::vector<std::pair<std::string, std::string>> text = {
       {"Software", std::string("skyspec ") + version_string()},
-      {"skyspec:polarisation", "hue: angle of linear polarisation of the luminance-weighted Stokes vector, once round the "
-                               "colour wheel over 180 degrees (red at +-90, yellow -60, green -30, cyan 0, blue 30, "
-                               "magenta 60 degrees from e1 towards e2); brightness: its degree (black 0, full 1)"},
+      {"skyspec:polarisation",
+       "hue: angle of linear polarisation of the luminance-weighted Stokes vector, once round the "
+       "colour wheel over 180 degrees (red at +-90, yellow -60, green -30, cyan 0, blue 30, "
+       "magenta 60 degrees from e1 towards e2); brightness: its degree (black 0, full 1)"},
       {kVersionAttribute, provenance.at(kVersionAttribute)},
       {kSceneAttribute, provenance.at(kSceneAttribute)}};
   write_png_display(path, scene.camera.width, scene.camera.height, code, 8, PngColourTag::Srgb, text);
@@ -245,7 +253,7 @@ void write_polarisation_png(const std::filesystem::path& path, const Scene& scen
 struct FinishedImage {
   const Scene& scene;
   const DisplaySettings& display;
-  const DisplayPipeline* pipeline;  ///< set when an output that needs one is asked for
+  const DisplayPipeline* pipeline;     ///< set when an output that needs one is asked for
   const std::vector<float>& rgb;       ///< [y][x][c] linear Rec.709, when a pipeline is set
   const std::vector<float>& stokes_y;  ///< [y][x][S0, S1, S2] luminance-weighted, when polarised
   const ChosenExposure& exposure;
@@ -262,8 +270,8 @@ struct FileOutput {
   /// Its file name in output.directory.
   std::string (*file_name)(const Scene& scene, const DisplaySettings& display);
   std::filesystem::path RenderOutputs::*field;
-  bool needs_pipeline;         ///< encodes the image's RGB through the display pipeline
-  bool needs_stokes_luminance; ///< reads the luminance-weighted Stokes vectors
+  bool needs_pipeline;          ///< encodes the image's RGB through the display pipeline
+  bool needs_stokes_luminance;  ///< reads the luminance-weighted Stokes vectors
   /// Writes the file (atomically); null for the spectral EXR, streamed while the image renders.
   void (*write)(const FinishedImage& image, const std::filesystem::path& path);
 };
@@ -271,8 +279,8 @@ struct FileOutput {
 const std::vector<FileOutput>& file_outputs() {
   static const std::vector<FileOutput> outputs = {
       {"spectral_exr", [](const Scene& s, const DisplaySettings&, bool) { return s.output.exr; },
-       [](const Scene& s, const DisplaySettings&) { return s.output.name + ".exr"; }, &RenderOutputs::exr, false,
-       false, nullptr},
+       [](const Scene& s, const DisplaySettings&) { return s.output.name + ".exr"; }, &RenderOutputs::exr, false, false,
+       nullptr},
       {"png", [](const Scene& s, const DisplaySettings&, bool) { return s.output.png; },
        [](const Scene& s, const DisplaySettings&) { return s.output.name + ".png"; }, &RenderOutputs::png, true, false,
        [](const FinishedImage& i, const std::filesystem::path& path) {
@@ -349,7 +357,8 @@ SpectralImageBuffer render_to_memory(const Scene& scene, const ProgressFn& progr
     for (int x = 0; x < img.width; ++x) {
       Vec3 d;
       if (camera->direction(x + 0.5, y + 0.5, d))
-        std::copy(d.data(), d.data() + 3, img.directions.begin() + static_cast<long>((static_cast<size_t>(y) * img.width + x) * 3));
+        std::copy(d.data(), d.data() + 3,
+                  img.directions.begin() + static_cast<long>((static_cast<size_t>(y) * img.width + x) * 3));
     }
   img.sun_direction = r.sun_direction();
   img.sun_rgb = r.spectrum_to_rgb(r.sun_irradiance());
@@ -368,7 +377,8 @@ void check_image_buffer(const SpectralImageBuffer& image, const std::filesystem:
   if (image.width != image.scene.camera.width || image.height != image.scene.camera.height ||
       image.rgb.size() != pixels * 3 || image.spectral.size() != pixels * image.wavelengths_nm.size() ||
       image.stokes.size() != (image.scene.output.polarisation ? 3 * image.spectral.size() : 0))
-    throw Error("'" + path.string() + "': the image in memory is not one render_to_memory made (its size, "
+    throw Error("'" + path.string() +
+                "': the image in memory is not one render_to_memory made (its size, "
                 "channels and scene disagree)");
   // The EXR writer checks every value it writes; a display encoding would turn a NaN into a code value.
   for (size_t i = 0; i < image.rgb.size(); ++i)
@@ -379,7 +389,9 @@ void check_image_buffer(const SpectralImageBuffer& image, const std::filesystem:
 }
 }  // namespace
 
-PreviewExposure preview_exposure(const SpectralImageBuffer& image) { return preview_exposure(image, DisplaySettings{}); }
+PreviewExposure preview_exposure(const SpectralImageBuffer& image) {
+  return preview_exposure(image, DisplaySettings{});
+}
 
 PreviewExposure preview_exposure(const SpectralImageBuffer& image, const DisplaySettings& display) {
   const ResolvedExposure e = exposure_of(image, display).resolved;
@@ -473,9 +485,10 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
   if (tile) {
     check_pixel_bounds(*tile, scene.camera, "pixel bounds");
     if (scene.output.png || working_exr || !scene.output.exr)
-      throw InputError("pixel bounds", describe(*tile),
-                       "a tile that writes only its spectral EXR (output.exr = true, output.png = false, no working-space "
-                       "EXR): merge the tiles (skyspec merge), then make the PNG with skyspec convert");
+      throw InputError(
+          "pixel bounds", describe(*tile),
+          "a tile that writes only its spectral EXR (output.exr = true, output.png = false, no working-space "
+          "EXR): merge the tiles (skyspec merge), then make the PNG with skyspec convert");
   }
   std::optional<DisplayPipeline> pipeline;
   if (any(&FileOutput::needs_pipeline)) pipeline.emplace(display);

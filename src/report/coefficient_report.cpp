@@ -19,16 +19,16 @@
 #include <optional>
 #include <sstream>
 
-#include "skyspec/error.hpp"
+#include "base/text_format.hpp"
 #include "physics/ozone.hpp"
-#include "transport/optical_depth.hpp"
 #include "report/published_references.hpp"
+#include "skyspec/error.hpp"
 #include "skyspec/refractive_index.hpp"
 #include "skyspec/scene.hpp"
 #include "skyspec/standard_atmosphere.hpp"
 #include "skyspec/units.hpp"
 #include "skyspec/version.hpp"
-#include "base/text_format.hpp"
+#include "transport/optical_depth.hpp"
 
 namespace skyspec {
 namespace {
@@ -60,7 +60,8 @@ double percent_difference(double value, double reference) { return kPercent * (v
 
 void finish_comparison(ReferenceComparison& c) {
   c.max_abs_difference_percent = 0.0;
-  for (const auto& r : c.rows) c.max_abs_difference_percent = std::max(c.max_abs_difference_percent, std::abs(r.difference_percent));
+  for (const auto& r : c.rows)
+    c.max_abs_difference_percent = std::max(c.max_abs_difference_percent, std::abs(r.difference_percent));
 }
 
 RayleighDerivationInput peck_reeder_at(double co2_ppv) {
@@ -102,28 +103,29 @@ std::vector<ReportFormula> report_formulas(const CoefficientReport& r) {
                  "n - 1 = 1.1427e3 [5799.25 / (128908.9^2 - nu^2) + 120.05 / (89223.8^2 - nu^2) + 5.3334 / "
                  "(75037.5^2 - nu^2) + 4.3244 / (67837.7^2 - nu^2) + 1.218145e-7 / (2418.136^2 - nu^2)]",
                  "nu = 1 / lambda in cm^-1", "Sneep & Ubachs 2005 eq. (13), after Bideau-Mehu et al. 1973"});
-    f.push_back({"King factor of CO2", "F(CO2) = 1.1364 + 25.3e-12 nu^2", "nu in cm^-1", "Sneep & Ubachs 2005 eq. (14)"});
+    f.push_back(
+        {"King factor of CO2", "F(CO2) = 1.1364 + 25.3e-12 nu^2", "nu in cm^-1", "Sneep & Ubachs 2005 eq. (14)"});
   }
   if (r.gas == ScatteringGas::Air) {
-  f.push_back({"refractive index of standard air, n_s", describe(r.formula),
-               "n dimensionless; lambda in micrometres", "as named; quoted by Bodhaine et al. 1999 eqs. (4)-(5)"});
-  f.push_back({"CO2 correction", "(n_s - 1)_C = (n_s - 1)_ref [1 + 0.54 (C - C_ref)]",
-               "C, C_ref: CO2 mole fractions (parts per volume)", "Bodhaine et al. 1999 eq. (19), after Edlen 1966"});
-  f.push_back({"King factor of N2", "F(N2) = 1.034 + 3.17e-4 / lambda^2", "lambda in micrometres",
-               "Bates 1984 (Planet. Space Sci. 32, 785)"});
-  f.push_back({"King factor of O2", "F(O2) = 1.096 + 1.385e-3 / lambda^2 + 1.448e-4 / lambda^4",
-               "lambda in micrometres", "Bates 1984"});
-  f.push_back({"King factor of air",
-               "F(air) = (78.084 F(N2) + 20.946 F(O2) + 0.934 F(Ar) + C F(CO2)) / (78.084 + 20.946 + 0.934 + C), "
-               "F(Ar) = 1.00, F(CO2) = 1.15",
-               "C: CO2 in percent by volume", "Bodhaine et al. 1999 eq. (23)"});
+    f.push_back({"refractive index of standard air, n_s", describe(r.formula), "n dimensionless; lambda in micrometres",
+                 "as named; quoted by Bodhaine et al. 1999 eqs. (4)-(5)"});
+    f.push_back({"CO2 correction", "(n_s - 1)_C = (n_s - 1)_ref [1 + 0.54 (C - C_ref)]",
+                 "C, C_ref: CO2 mole fractions (parts per volume)", "Bodhaine et al. 1999 eq. (19), after Edlen 1966"});
+    f.push_back({"King factor of N2", "F(N2) = 1.034 + 3.17e-4 / lambda^2", "lambda in micrometres",
+                 "Bates 1984 (Planet. Space Sci. 32, 785)"});
+    f.push_back({"King factor of O2", "F(O2) = 1.096 + 1.385e-3 / lambda^2 + 1.448e-4 / lambda^4",
+                 "lambda in micrometres", "Bates 1984"});
+    f.push_back({"King factor of air",
+                 "F(air) = (78.084 F(N2) + 20.946 F(O2) + 0.934 F(Ar) + C F(CO2)) / (78.084 + 20.946 + 0.934 + C), "
+                 "F(Ar) = 1.00, F(CO2) = 1.15",
+                 "C: CO2 in percent by volume", "Bodhaine et al. 1999 eq. (23)"});
   }
   f.push_back({"Rayleigh cross-section",
                "sigma = 24 pi^3 (n_s^2 - 1)^2 / (lambda^4 N_s^2 (n_s^2 + 2)^2) F(air), N_s = 2.546899e25 m^-3 "
                "(288.15 K, 101325 Pa)",
                "sigma in m^2, lambda in m, N_s in m^-3", "Bodhaine et al. 1999 eq. (2); Bucholtz 1995 eq. (1)"});
-  f.push_back({"number density", "N = P / (k T), k = 1.380649e-23 J/K",
-               "N in m^-3, P in Pa, T in K", "ideal gas law; U.S. Standard Atmosphere 1976 for P(z), T(z)"});
+  f.push_back({"number density", "N = P / (k T), k = 1.380649e-23 J/K", "N in m^-3, P in Pa, T in K",
+               "ideal gas law; U.S. Standard Atmosphere 1976 for P(z), T(z)"});
   f.push_back({"volume scattering coefficient", "beta_R(lambda, z) = sigma(lambda) N(z)", "beta in m^-1",
                "Bodhaine et al. 1999; Bucholtz 1995 eq. (9)"});
   f.push_back({"refractivity at other conditions", "(n - 1) = (n_s - 1) N / N_s",
@@ -131,21 +133,27 @@ std::vector<ReportFormula> report_formulas(const CoefficientReport& r) {
   f.push_back({"vertical optical depth", "tau(lambda, z) = integral from z to the top of beta_ext(lambda, z') dz'",
                "dimensionless; the engine integrates rho(z') exactly for exponential pieces (column_to_top_m)",
                "Beer-Lambert; Nishita et al. 1993"});
-  f.push_back({"hydrostatic column above a pressure level", "tau = sigma P N_A / (m_a g), m_a = 15.0556 C + 28.9595 g/mol",
+  f.push_back({"hydrostatic column above a pressure level",
+               "tau = sigma P N_A / (m_a g), m_a = 15.0556 C + 28.9595 g/mol",
                "P in Pa, m_a in kg/mol, g in m s^-2 at the column's mass-weighted altitude (List 1968)",
                "Bodhaine et al. 1999 eqs. (9)-(11), (17)"});
   if (r.ozone_enabled)
-    f.push_back({"ozone absorption", "beta_O3(lambda, z) = sigma_O3(lambda) N_peak rho_O3(z), N_peak = column / (area of the "
-                                     "profile), 1 DU = 2.6867e20 molecules m^-2",
-               "sigma_O3 in m^2 per molecule, column in Dobson units", "the scene's table, or the built-in one (233 K: Serdyuchenko et al. 2014, 360-840 nm; Bogumil et al. 2003, "
-               "230-360 and 840-1060 nm; data/ozone/)"});
+    f.push_back(
+        {"ozone absorption",
+         "beta_O3(lambda, z) = sigma_O3(lambda) N_peak rho_O3(z), N_peak = column / (area of the "
+         "profile), 1 DU = 2.6867e20 molecules m^-2",
+         "sigma_O3 in m^2 per molecule, column in Dobson units",
+         "the scene's table, or the built-in one (233 K: Serdyuchenko et al. 2014, 360-840 nm; Bogumil et al. 2003, "
+         "230-360 and 840-1060 nm; data/ozone/)"});
   if (r.mie_tabulated)
-    f.push_back({"aerosol (tabulated)", "beta_sca(lambda) = beta_ref Q(lambda) w(lambda) / (Q(lambda_ref) w(lambda_ref)), "
-                                        "beta_ext = beta_sca / w",
+    f.push_back({"aerosol (tabulated)",
+                 "beta_sca(lambda) = beta_ref Q(lambda) w(lambda) / (Q(lambda_ref) w(lambda_ref)), "
+                 "beta_ext = beta_sca / w",
                  "Q: extinction efficiency, w: single-scattering albedo", "the scene's aerosol tables"});
   else
-    f.push_back({"aerosol (Angstrom law)", "beta_M(lambda, z) = beta_ref (lambda / lambda_ref)^-alpha rho_M(z), "
-                                            "beta_ext = ratio * beta_sca",
+    f.push_back({"aerosol (Angstrom law)",
+                 "beta_M(lambda, z) = beta_ref (lambda / lambda_ref)^-alpha rho_M(z), "
+                 "beta_ext = ratio * beta_sca",
                  "beta in m^-1", "Angstrom 1929; extinction/scattering ratio as in the seed tutorial"});
   return f;
 }
@@ -171,10 +179,12 @@ std::vector<ReferenceComparison> published_comparisons() {
     c.title = "Rayleigh optical depth of the sea-level column (Bodhaine et al. 1999, Table 3)";
     c.quantity = "vertical optical depth";
     c.conditions = "sea level, 1013.25 hPa, 45 deg latitude, dry air with 360 ppm CO2";
-    c.source = "Bodhaine, Wood, Dutton & Slusser 1999, J. Atmos. Oceanic Technol. 16, 1854, Table 3 "
-               "(secondary transcription, data/reference/bodhaine1999_table3_optical_depth.csv)";
-    c.method = "sigma from Peck & Reeder (360 ppm) and Bates/Bodhaine King factors; tau = sigma P N_A / (m_a g), "
-               "g (List 1968) at the column's mass-weighted altitude 5517.56 m";
+    c.source =
+        "Bodhaine, Wood, Dutton & Slusser 1999, J. Atmos. Oceanic Technol. 16, 1854, Table 3 "
+        "(secondary transcription, data/reference/bodhaine1999_table3_optical_depth.csv)";
+    c.method =
+        "sigma from Peck & Reeder (360 ppm) and Bates/Bodhaine King factors; tau = sigma P N_A / (m_a g), "
+        "g (List 1968) at the column's mass-weighted altitude 5517.56 m";
     for (const auto& p : bodhaine1999_table3_optical_depth()) {
       const double tau = bodhaine_sea_level_tau(p.wavelength_nm);
       c.rows.push_back({p.wavelength_nm, p.value, tau, percent_difference(tau, p.value)});
@@ -194,9 +204,10 @@ std::vector<ReferenceComparison> published_comparisons() {
     c.title = "Rayleigh optical depth of the sea-level column, ultraviolet to 1 um (Bodhaine et al. 1999, eq. 30)";
     c.quantity = "vertical optical depth";
     c.conditions = "sea level, 1013.25 hPa, 45 deg latitude, dry air with 360 ppm CO2";
-    c.source = "Bodhaine et al. 1999, eq. (30): their fit to their own optical depths, tau = 0.0021520 (1.0455996 - "
-               "341.29061 l^-2 - 0.90230850 l^2) / (1 + 0.0027059889 l^-2 - 85.968563 l^2), l in um "
-               "(data/reference/bodhaine1999_fit.csv)";
+    c.source =
+        "Bodhaine et al. 1999, eq. (30): their fit to their own optical depths, tau = 0.0021520 (1.0455996 - "
+        "341.29061 l^-2 - 0.90230850 l^2) / (1 + 0.0027059889 l^-2 - 85.968563 l^2), l in um "
+        "(data/reference/bodhaine1999_fit.csv)";
     c.method = "as for Table 3 above";
     for (double l = kBodhaineFitMin_nm; l <= kBodhaineFitMax_nm + 1e-9; l += kComparisonStep_nm) {
       const double published = bodhaine1999_optical_depth_fit(l);
@@ -245,8 +256,9 @@ std::vector<ReferenceComparison> published_comparisons() {
     c.title = "King factor of standard air (Bucholtz 1995, depolarization table)";
     c.quantity = "F(air) = (6 + 3 rho) / (6 - 7 rho)";
     c.conditions = "standard air, 300 ppm CO2";
-    c.source = "Bucholtz 1995, Appl. Opt. 34, 2765: rho_n per wavelength (after Bates 1984), secondary "
-               "transcription in data/reference/bucholtz1995_depolarization.csv";
+    c.source =
+        "Bucholtz 1995, Appl. Opt. 34, 2765: rho_n per wavelength (after Bates 1984), secondary "
+        "transcription in data/reference/bucholtz1995_depolarization.csv";
     c.method = "Bodhaine eq. (23) with the Bates 1984 fits at 300 ppm CO2";
     for (const auto& p : bucholtz1995_depolarization()) {
       if (p.wavelength_nm < kComparisonMin_nm - 1e-9 || p.wavelength_nm > kComparisonMax_nm + 1e-9) continue;
@@ -258,7 +270,8 @@ std::vector<ReferenceComparison> published_comparisons() {
     c.explanation =
         "Bucholtz tabulates rho_n to 4 digits, and the same value repeats over several wavelengths (e.g. 2.786 % "
         "from 600 to 750 nm), so his F is a staircase while skyspec's follows Bates's smooth fits; the difference "
-        "(largest " + fmt("%.3f", c.max_abs_difference_percent) + " %) is that staircase, not a different physics.";
+        "(largest " +
+        fmt("%.3f", c.max_abs_difference_percent) + " %) is that staircase, not a different physics.";
     out.push_back(c);
   }
   {  // Bucholtz 1995 cross-section fit.
@@ -267,9 +280,10 @@ std::vector<ReferenceComparison> published_comparisons() {
     c.title = "Rayleigh cross-section of standard air (Bucholtz 1995, analytic fit)";
     c.quantity = "sigma, m^2";
     c.conditions = "standard air, 288.15 K, 1013.25 hPa, 300 ppm CO2";
-    c.source = "Bucholtz 1995, Appl. Opt. 34, 2765: sigma = A lambda^-(B + C lambda + D/lambda), two coefficient "
-               "sets split at 0.5 um (data/reference/bucholtz1995_cross_section_fit.csv). Bucholtz's table of "
-               "cross-sections itself was not available to transcribe; this is his fit to it";
+    c.source =
+        "Bucholtz 1995, Appl. Opt. 34, 2765: sigma = A lambda^-(B + C lambda + D/lambda), two coefficient "
+        "sets split at 0.5 um (data/reference/bucholtz1995_cross_section_fit.csv). Bucholtz's table of "
+        "cross-sections itself was not available to transcribe; this is his fit to it";
     c.method = "Peck & Reeder at 300 ppm, Bates/Bodhaine King factor, N_s = 2.546899e25 m^-3";
     for (double l = kBucholtzFitMin_nm; l <= kBucholtzFitMax_nm + 1e-9; l += kComparisonStep_nm) {
       const double published = bucholtz1995_cross_section_fit_m2(l);
@@ -281,11 +295,13 @@ std::vector<ReferenceComparison> published_comparisons() {
     const double below = bucholtz1995_cross_section_fit_m2(branch_nm);
     const double above = bucholtz1995_cross_section_fit_m2(branch_nm + 1e-9);
     c.explanation =
-        "A fit, not the table: its two branches disagree by " + fmt("%.2f", std::abs(percent_difference(above, below))) +
-        " % where they meet at " + fmt("%.0f", branch_nm) +
-        " nm, so the fit itself is no closer than about that to his table. Bucholtz also uses his own King factors (the staircase above) and pairs "
+        "A fit, not the table: its two branches disagree by " +
+        fmt("%.2f", std::abs(percent_difference(above, below))) + " % where they meet at " + fmt("%.0f", branch_nm) +
+        " nm, so the fit itself is no closer than about that to his table. Bucholtz also uses his own King factors "
+        "(the staircase above) and pairs "
         "n_s with N_s = 2.54743e25 m^-3 where skyspec uses Bodhaine's 2.546899e25 (sigma ~ 1/N_s^2 for a given "
-        "n_s: 0.04 %). The largest difference is " + fmt("%.2f", c.max_abs_difference_percent) + " %.";
+        "n_s: 0.04 %). The largest difference is " +
+        fmt("%.2f", c.max_abs_difference_percent) + " %.";
     out.push_back(c);
   }
   {  // The seed tutorial's constants against standard air.
@@ -296,17 +312,21 @@ std::vector<ReferenceComparison> published_comparisons() {
     c.id = "seed_constants";
     c.title = "The seed tutorial's sea-level coefficients vs standard air";
     c.quantity = "beta_R at sea level, m^-1";
-    c.conditions = "not stated by the tutorial (sea level); skyspec's column is standard air: 288.15 K, 101325 Pa, "
-                   "360 ppm CO2";
-    c.source = "Scratchapixel, Simulating the Colors of the Sky (after Nishita et al. 1993): typed-in constants "
-               "(data/scenes/seed.toml, atmosphere.rayleigh.beta_per_m)";
-    c.method = "beta = sigma N_s, N_s = 2.546899e25 m^-3, with Peck & Reeder at 360 ppm and the Bates/Bodhaine "
-               "King factor";
+    c.conditions =
+        "not stated by the tutorial (sea level); skyspec's column is standard air: 288.15 K, 101325 Pa, "
+        "360 ppm CO2";
+    c.source =
+        "Scratchapixel, Simulating the Colors of the Sky (after Nishita et al. 1993): typed-in constants "
+        "(data/scenes/seed.toml, atmosphere.rayleigh.beta_per_m)";
+    c.method =
+        "beta = sigma N_s, N_s = 2.546899e25 m^-3, with Peck & Reeder at 360 ppm and the Bates/Bodhaine "
+        "King factor";
     for (size_t i = 0; i < nm.size() && i < beta.size(); ++i) {
       const double b = rayleigh_cross_section_m2(nm[i], bodhaine_air) * constants::kStandardNumberDensity_per_m3;
       c.rows.push_back({nm[i], beta[i], b, percent_difference(b, beta[i])});
     }
-    std::sort(c.rows.begin(), c.rows.end(), [](const auto& a, const auto& b) { return a.wavelength_nm < b.wavelength_nm; });
+    std::sort(c.rows.begin(), c.rows.end(),
+              [](const auto& a, const auto& b) { return a.wavelength_nm < b.wavelength_nm; });
     finish_comparison(c);
     // The facts that explain the difference, measured here.
     double ratio_min = 1e300, ratio_max = 0.0, k_min = 1e300, k_max = 0.0;
@@ -328,15 +348,17 @@ std::vector<ReferenceComparison> published_comparisons() {
       slope = " Between " + fmt("%.0f", a.wavelength_nm) + " and " + fmt("%.0f", b.wavelength_nm) +
               " nm the derived beta falls as lambda^-" + fmt("%.3f", exponent) +
               " (n - 1 and the King factor both rise towards the blue); the seed's as lambda^-" +
-              fmt("%.3f", seed_exponent) + ": its three numbers follow one lambda^-4 law, beta lambda^4 = " +
-              fmt("%.4g", k_min) + " to " + fmt("%.4g", k_max) + " m^-1 um^4.";
+              fmt("%.3f", seed_exponent) +
+              ": its three numbers follow one lambda^-4 law, beta lambda^4 = " + fmt("%.4g", k_min) + " to " +
+              fmt("%.4g", k_max) + " m^-1 um^4.";
     }
     c.explanation =
         "The seed's constants are " + fmt("%.1f", (ratio_min - 1.0) * kPercent) + " to " +
         fmt("%.1f", (ratio_max - 1.0) * kPercent) +
         " % larger than the derivation for standard air. A different air density would scale all three by the "
         "same factor, but the ratio changes with wavelength, so no single pressure and temperature (no single "
-        "(n, N) pair) reproduces them; the tutorial does not say where they come from." + slope +
+        "(n, N) pair) reproduces them; the tutorial does not say where they come from." +
+        slope +
         " The graphics literature's 8 pi^3 (n^2 - 1)^2 / (3 N lambda^4) (no King factor, (n^2 + 2)^2 ~ 9) is about "
         "5 % below the derivation, so it does not explain the seed's values either; its listing also types "
         "3.8e-6 for red where the text says 5.8e-6.";
@@ -466,8 +488,9 @@ CoefficientReport make_coefficient_report(const CoefficientReportRequest& req) {
           const AtmosphereState s = us_standard_atmosphere_1976(z);
           level.temperature_K = s.temperature_K;
           level.pressure_Pa = s.pressure_Pa;
-          origin << "U.S. Standard Atmosphere 1976 at " << format_number(z) << " m: T = " << fmt("%.2f", s.temperature_K)
-                 << " K, P = " << fmt("%.6g", s.pressure_Pa) << " Pa, N = P / (k T)";
+          origin << "U.S. Standard Atmosphere 1976 at " << format_number(z)
+                 << " m: T = " << fmt("%.2f", s.temperature_K) << " K, P = " << fmt("%.6g", s.pressure_Pa)
+                 << " Pa, N = P / (k T)";
           break;
         }
         case ProfileKind::Exponential:
@@ -495,7 +518,8 @@ CoefficientReport make_coefficient_report(const CoefficientReportRequest& req) {
     rc.number_density_per_m3 = c.pressure_Pa / (constants::kBoltzmann_J_per_K * c.temperature_K);
     rc.density_ratio = rc.number_density_per_m3 / constants::kStandardNumberDensity_per_m3;
     rc.pressure_altitude_m = standard_atmosphere_pressure_altitude_m(c.pressure_Pa);
-    rc.column_gravity_m_per_s2 = gravity_m_per_s2(req.latitude_deg, mass_weighted_column_altitude_m(rc.pressure_altitude_m));
+    rc.column_gravity_m_per_s2 =
+        gravity_m_per_s2(req.latitude_deg, mass_weighted_column_altitude_m(rc.pressure_altitude_m));
     const double molar_mass_kg_per_mol = mean_molecular_weight_air_g_per_mol(r.co2_ppv) * kKilogramsPerGram;
     rc.column_molecules_per_m2 =
         c.pressure_Pa * constants::kAvogadro_per_mol / (molar_mass_kg_per_mol * rc.column_gravity_m_per_s2);
@@ -511,16 +535,19 @@ CoefficientReport make_coefficient_report(const CoefficientReportRequest& req) {
     std::string listed;
     for (double nm : ozone.missing_nm) listed += (listed.empty() ? "" : ", ") + format_number(nm);
     r.notes.push_back("Ozone: the built-in cross-sections (laboratory data at 233 K) cover " + ozone.table_range +
-                      "; at " + listed + " nm the ozone columns are n/a and tau total is that of air molecules "
+                      "; at " + listed +
+                      " nm the ozone columns are n/a and tau total is that of air molecules "
                       "and aerosols (ozone absorbs little there: about 1e-28 m^2 per molecule at 1000-1060 nm).");
   }
   if (!spec.ozone.enabled)
-    r.notes.push_back("Ozone: this atmosphere has no ozone (atmosphere.ozone.enabled = false), so the report has "
-                      "no ozone columns; the optical depths are those of air molecules and aerosols.");
+    r.notes.push_back(
+        "Ozone: this atmosphere has no ozone (atmosphere.ozone.enabled = false), so the report has "
+        "no ozone columns; the optical depths are those of air molecules and aerosols.");
   if (!r.rayleigh_derived)
-    r.notes.push_back("The Rayleigh coefficients of this atmosphere are typed in (atmosphere.rayleigh.source = "
-                      "\"fixed\"): the renderer uses them, not the derivation; the derivation is shown for "
-                      "comparison with the same refractive index formula and CO2.");
+    r.notes.push_back(
+        "The Rayleigh coefficients of this atmosphere are typed in (atmosphere.rayleigh.source = "
+        "\"fixed\"): the renderer uses them, not the derivation; the derivation is shown for "
+        "comparison with the same refractive index formula and CO2.");
   r.formulas = report_formulas(r);
   r.references = published_comparisons();
   return r;
@@ -536,20 +563,28 @@ ReportFormat parse_report_format(const std::string& name, const std::string& set
 
 std::string to_string(ReportFormat f) {
   switch (f) {
-    case ReportFormat::Markdown: return "md";
-    case ReportFormat::Csv: return "csv";
-    case ReportFormat::Json: return "json";
-    case ReportFormat::Html: return "html";
+    case ReportFormat::Markdown:
+      return "md";
+    case ReportFormat::Csv:
+      return "csv";
+    case ReportFormat::Json:
+      return "json";
+    case ReportFormat::Html:
+      return "html";
   }
   return "md";
 }
 
 std::string format_report(const CoefficientReport& report, ReportFormat format) {
   switch (format) {
-    case ReportFormat::Markdown: return report_to_markdown(report);
-    case ReportFormat::Csv: return report_to_csv(report);
-    case ReportFormat::Json: return report_to_json(report);
-    case ReportFormat::Html: return report_to_html(report);
+    case ReportFormat::Markdown:
+      return report_to_markdown(report);
+    case ReportFormat::Csv:
+      return report_to_csv(report);
+    case ReportFormat::Json:
+      return report_to_json(report);
+    case ReportFormat::Html:
+      return report_to_html(report);
   }
   return report_to_markdown(report);
 }

@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
+#include "base/text_format.hpp"
+#include "report/svg_plot.hpp"
 #include "skyspec/coefficient_report.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/units.hpp"
-#include "report/svg_plot.hpp"
-#include "base/text_format.hpp"
 
 namespace skyspec {
 namespace {
@@ -58,8 +58,8 @@ struct Block {
   enum class Kind { Heading, Paragraph, List, Table } kind;
   int level = 2;
   std::string text;
-  std::vector<std::string> items;                 ///< list items, or table headers
-  std::vector<std::vector<std::string>> rows;     ///< table rows
+  std::vector<std::string> items;              ///< list items, or table headers
+  std::vector<std::vector<std::string>> rows;  ///< table rows
 };
 
 struct Document {
@@ -86,24 +86,28 @@ Document build_document(const CoefficientReport& r) {
 
   d.heading(2, "Inputs");
   std::vector<std::string> inputs;
-  inputs.push_back("Wavelengths: " + std::to_string(r.wavelengths_nm.size()) + " from " + sig(r.wavelengths_nm.front()) +
-                   " to " + sig(r.wavelengths_nm.back()) + " nm.");
+  inputs.push_back("Wavelengths: " + std::to_string(r.wavelengths_nm.size()) + " from " +
+                   sig(r.wavelengths_nm.front()) + " to " + sig(r.wavelengths_nm.back()) + " nm.");
   if (r.gas == ScatteringGas::CarbonDioxide) {
-    inputs.push_back("Scattering gas: pure CO2 (refractive index and King factor of Sneep & Ubachs 2005; the "
-                     "refractive-index formula and the CO2 content of air do not apply).");
+    inputs.push_back(
+        "Scattering gas: pure CO2 (refractive index and King factor of Sneep & Ubachs 2005; the "
+        "refractive-index formula and the CO2 content of air do not apply).");
   } else {
     inputs.push_back("Refractive index: " + describe(r.formula) + ".");
-    inputs.push_back("CO2: " + sig(r.co2_ppv * kPpmPerPpv) + " ppm; air composition for the King factor: " +
-                     composition_text(r.composition) + ".");
+    inputs.push_back("CO2: " + sig(r.co2_ppv * kPpmPerPpv) +
+                     " ppm; air composition for the King factor: " + composition_text(r.composition) + ".");
   }
-  inputs.push_back(std::string("Rayleigh coefficients: ") +
-                   (r.rayleigh_derived ? "derived (beta = sigma N)" : "typed in (atmosphere.rayleigh.source = \"fixed\")") +
-                   "; density profile: " + r.profile_description + "; top of the atmosphere " +
-                   format_number(r.top_altitude_m) + " m.");
+  inputs.push_back(
+      std::string("Rayleigh coefficients: ") +
+      (r.rayleigh_derived ? "derived (beta = sigma N)" : "typed in (atmosphere.rayleigh.source = \"fixed\")") +
+      "; density profile: " + r.profile_description + "; top of the atmosphere " + format_number(r.top_altitude_m) +
+      " m.");
   if (r.mie_enabled && r.mie_tabulated)
     inputs.push_back("Aerosols: beta_sca = " + sig(r.mie_scattering_at_reference_per_m) + " m^-1 at " +
-                     sig(r.mie_reference_wavelength_nm) + " nm and altitude 0, spectral shape, albedo and g from the "
-                     "scene's aerosol tables; profile: " + r.mie_profile_description + ".");
+                     sig(r.mie_reference_wavelength_nm) +
+                     " nm and altitude 0, spectral shape, albedo and g from the "
+                     "scene's aerosol tables; profile: " +
+                     r.mie_profile_description + ".");
   else if (r.mie_enabled)
     inputs.push_back("Aerosols: beta_sca = " + sig(r.mie_scattering_at_reference_per_m) + " m^-1 at " +
                      sig(r.mie_reference_wavelength_nm) + " nm and altitude 0, Angstrom exponent " +
@@ -113,7 +117,8 @@ Document build_document(const CoefficientReport& r) {
     inputs.push_back("Aerosols: none (atmosphere.mie.enabled = false).");
   if (r.ozone_enabled)
     inputs.push_back("Ozone: " + sig(r.ozone_column_DU) + " DU, peak number density " +
-                     sci(r.ozone_peak_number_density_per_m3, 5) + " m^-3; profile: " + r.ozone_profile_description + ".");
+                     sci(r.ozone_peak_number_density_per_m3, 5) + " m^-3; profile: " + r.ozone_profile_description +
+                     ".");
   std::string alts;
   for (const auto& l : r.levels) alts += (alts.empty() ? "" : ", ") + altitude_label(l.altitude_m);
   inputs.push_back("Altitudes: " + alts + ".");
@@ -131,19 +136,22 @@ Document build_document(const CoefficientReport& r) {
 
   d.heading(2, "Rayleigh derivation per wavelength");
   if (r.gas == ScatteringGas::CarbonDioxide)
-    d.paragraph("Pure CO2: n_s - 1 and F(CO2) of Sneep & Ubachs 2005 at 288.15 K and 101325 Pa (the N2 and O2 "
-                "columns do not apply); sigma paired with N_s = 2.546899e25 m^-3. sigma does not depend on "
-                "pressure or temperature.");
+    d.paragraph(
+        "Pure CO2: n_s - 1 and F(CO2) of Sneep & Ubachs 2005 at 288.15 K and 101325 Pa (the N2 and O2 "
+        "columns do not apply); sigma paired with N_s = 2.546899e25 m^-3. sigma does not depend on "
+        "pressure or temperature.");
   else
     d.paragraph("n_s - 1 from " + to_string(r.formula) + " at the formula's own CO2 and corrected to " +
-                sig(r.co2_ppv * kPpmPerPpv) + " ppm; King factors of N2 and O2 (Bates 1984), Ar 1.00, CO2 1.15, and "
+                sig(r.co2_ppv * kPpmPerPpv) +
+                " ppm; King factors of N2 and O2 (Bates 1984), Ar 1.00, CO2 1.15, and "
                 "of the air mix; sigma paired with N_s = 2.546899e25 m^-3. sigma does not depend on pressure or "
                 "temperature.");
   std::vector<std::vector<std::string>> drows;
   for (const auto& s : r.derivation)
     drows.push_back({sig(s.lambda_nm), sci(s.refractivity_ref, 7), sci(s.refractivity, 7), format_fixed(s.king_n2, 5),
                      format_fixed(s.king_o2, 5), format_fixed(s.king_factor, 5), sci(s.cross_section_m2, 5)});
-  d.table({"lambda (nm)", "n_s - 1 (formula)", "n_s - 1 (CO2-corrected)", "F(N2)", "F(O2)", "F(air)", "sigma (m^2)"}, drows);
+  d.table({"lambda (nm)", "n_s - 1 (formula)", "n_s - 1 (CO2-corrected)", "F(N2)", "F(O2)", "F(air)", "sigma (m^2)"},
+          drows);
 
   d.heading(2, "Number density at each altitude");
   std::vector<std::vector<std::string>> nrows;
@@ -154,8 +162,10 @@ Document build_document(const CoefficientReport& r) {
 
   for (const auto& l : r.levels) {
     d.heading(2, "Coefficients and vertical optical depth at " + altitude_label(l.altitude_m));
-    d.paragraph("beta at this altitude (m^-1); tau: vertical optical depth from this altitude to the top of the "
-                "atmosphere (" + format_number(r.top_altitude_m) + " m), integrated through the density profiles.");
+    d.paragraph(
+        "beta at this altitude (m^-1); tau: vertical optical depth from this altitude to the top of the "
+        "atmosphere (" +
+        format_number(r.top_altitude_m) + " m), integrated through the density profiles.");
     std::vector<std::string> headers{"lambda (nm)", "beta_R (m^-1)", "tau_R"};
     if (r.mie_enabled)
       for (const char* h : {"beta_M sca (m^-1)", "beta_M ext (m^-1)", "tau_M"}) headers.push_back(h);
@@ -167,7 +177,8 @@ Document build_document(const CoefficientReport& r) {
       std::vector<std::string> row{sig(r.wavelengths_nm[i]), sci(l.rayleigh_scattering_per_m[i]),
                                    sci(l.rayleigh_optical_depth[i])};
       if (r.mie_enabled)
-        for (double v : {l.mie_scattering_per_m[i], l.mie_extinction_per_m[i], l.mie_optical_depth[i]}) row.push_back(sci(v));
+        for (double v : {l.mie_scattering_per_m[i], l.mie_extinction_per_m[i], l.mie_optical_depth[i]})
+          row.push_back(sci(v));
       if (r.ozone_enabled)
         for (double v : {r.ozone_cross_section_m2[i], l.ozone_absorption_per_m[i], l.ozone_optical_depth[i]})
           row.push_back(sci(v));
@@ -195,15 +206,17 @@ Document build_document(const CoefficientReport& r) {
   }
 
   d.heading(2, "Checked against published values");
-  d.paragraph("Each comparison is computed at the published conditions (not those of the atmosphere above). "
-              "Difference = 100 (skyspec / published - 1) %.");
+  d.paragraph(
+      "Each comparison is computed at the published conditions (not those of the atmosphere above). "
+      "Difference = 100 (skyspec / published - 1) %.");
   for (const auto& c : r.references) {
     d.heading(3, c.title);
     d.list({"Published conditions: " + c.conditions + ".", "Source: " + c.source + ".", "skyspec: " + c.method + ".",
             "Largest |difference|: " + format_fixed(c.max_abs_difference_percent, 3) + " %."});
     std::vector<std::vector<std::string>> rows;
     for (const auto& row : c.rows)
-      rows.push_back({sig(row.wavelength_nm), sig(row.published, 6), sig(row.skyspec, 6), signed_percent(row.difference_percent)});
+      rows.push_back(
+          {sig(row.wavelength_nm), sig(row.published, 6), sig(row.skyspec, 6), signed_percent(row.difference_percent)});
     d.table({"lambda (nm)", "published: " + c.quantity, "skyspec", "difference (%)"}, rows);
     d.paragraph(c.explanation);
   }
@@ -217,8 +230,12 @@ std::string render_markdown(const Document& d) {
   std::ostringstream s;
   for (const auto& b : d.blocks) {
     switch (b.kind) {
-      case Block::Kind::Heading: s << std::string(static_cast<size_t>(b.level), '#') << ' ' << b.text << "\n\n"; break;
-      case Block::Kind::Paragraph: s << b.text << "\n\n"; break;
+      case Block::Kind::Heading:
+        s << std::string(static_cast<size_t>(b.level), '#') << ' ' << b.text << "\n\n";
+        break;
+      case Block::Kind::Paragraph:
+        s << b.text << "\n\n";
+        break;
       case Block::Kind::List:
         for (const auto& item : b.items) s << "- " << item << "\n";
         s << "\n";
@@ -276,9 +293,11 @@ std::vector<std::string> plots(const CoefficientReport& r) {
     std::vector<svg::Series> s;
     size_t k = 0;
     for (const auto& l : r.levels) {
-      s.push_back({"Rayleigh, " + altitude_label(l.altitude_m), x, l.rayleigh_scattering_per_m, colour(k++), false, false});
+      s.push_back(
+          {"Rayleigh, " + altitude_label(l.altitude_m), x, l.rayleigh_scattering_per_m, colour(k++), false, false});
       if (r.mie_enabled)
-        s.push_back({"aerosol sca, " + altitude_label(l.altitude_m), x, l.mie_scattering_per_m, colour(k++), false, true});
+        s.push_back(
+            {"aerosol sca, " + altitude_label(l.altitude_m), x, l.mie_scattering_per_m, colour(k++), false, true});
     }
     if (r.conditions)
       s.push_back({"Rayleigh at " + sig(r.conditions->air.pressure_Pa / 100.0) + " hPa, " +
@@ -292,7 +311,8 @@ std::vector<std::string> plots(const CoefficientReport& r) {
       }
       s.push_back(pts);
     }
-    out.push_back(svg::line_plot({"Volume scattering coefficient beta(lambda)", "wavelength (nm)", "beta (m^-1)", true, true}, s));
+    out.push_back(svg::line_plot(
+        {"Volume scattering coefficient beta(lambda)", "wavelength (nm)", "beta (m^-1)", true, true}, s));
   }
   {
     std::vector<double> f, n2, o2;
@@ -312,13 +332,15 @@ std::vector<std::string> plots(const CoefficientReport& r) {
       }
       s.push_back(pts);
     }
-    out.push_back(svg::line_plot({"King (depolarization) factor", "wavelength (nm)", "F (dimensionless)", false, false}, s));
+    out.push_back(
+        svg::line_plot({"King (depolarization) factor", "wavelength (nm)", "F (dimensionless)", false, false}, s));
   }
   {
     std::vector<svg::Series> s;
     size_t k = 0;
     for (const auto& l : r.levels) {
-      s.push_back({"Rayleigh from " + altitude_label(l.altitude_m), x, l.rayleigh_optical_depth, colour(k++), false, false});
+      s.push_back(
+          {"Rayleigh from " + altitude_label(l.altitude_m), x, l.rayleigh_optical_depth, colour(k++), false, false});
       if (r.mie_enabled)
         s.push_back({"aerosol from " + altitude_label(l.altitude_m), x, l.mie_optical_depth, colour(k++), false, true});
       if (r.ozone_enabled)
@@ -332,9 +354,8 @@ std::vector<std::string> plots(const CoefficientReport& r) {
       }
       s.push_back(pts);
     }
-    out.push_back(svg::line_plot({"Vertical optical depth to the top of the atmosphere", "wavelength (nm)",
-                                  "optical depth", false, true},
-                                 s));
+    out.push_back(svg::line_plot(
+        {"Vertical optical depth to the top of the atmosphere", "wavelength (nm)", "optical depth", false, true}, s));
   }
   return out;
 }
@@ -361,8 +382,12 @@ std::string report_to_html(const CoefficientReport& report) {
       plots_written = true;
     }
     switch (b.kind) {
-      case Block::Kind::Heading: s << "<h" << b.level << '>' << html_inline(b.text) << "</h" << b.level << ">\n"; break;
-      case Block::Kind::Paragraph: s << "<p>" << html_inline(b.text) << "</p>\n"; break;
+      case Block::Kind::Heading:
+        s << "<h" << b.level << '>' << html_inline(b.text) << "</h" << b.level << ">\n";
+        break;
+      case Block::Kind::Paragraph:
+        s << "<p>" << html_inline(b.text) << "</p>\n";
+        break;
       case Block::Kind::List:
         s << "<ul>\n";
         for (const auto& item : b.items) s << "<li>" << html_inline(item) << "</li>\n";
@@ -387,7 +412,8 @@ std::string report_to_html(const CoefficientReport& report) {
 
 std::string report_to_csv(const CoefficientReport& r) {
   std::ostringstream s;
-  s << "# skyspec " << r.skyspec_version << " coefficient derivation report, one row per wavelength; units in the "
+  s << "# skyspec " << r.skyspec_version
+    << " coefficient derivation report, one row per wavelength; units in the "
        "column names. The comparisons with published tables are in the JSON, Markdown and HTML formats.\n";
   s << "# atmosphere: " << r.origin << "\n";
   s << "# refractive index: " << to_string(r.formula) << ", CO2 " << exact(r.co2_ppv * kPpmPerPpv) << " ppm\n";
@@ -395,9 +421,11 @@ std::string report_to_csv(const CoefficientReport& r) {
     s << "# altitude " << exact(l.altitude_m) << " m: N = " << exact(l.rayleigh_number_density_per_m3) << " m^-3 ("
       << l.number_density_origin << ")\n";
   if (r.conditions)
-    s << "# conditions: P = " << exact(r.conditions->air.pressure_Pa) << " Pa, T = " << exact(r.conditions->air.temperature_K)
+    s << "# conditions: P = " << exact(r.conditions->air.pressure_Pa)
+      << " Pa, T = " << exact(r.conditions->air.temperature_K)
       << " K, N = " << exact(r.conditions->number_density_per_m3) << " m^-3\n";
-  s << "wavelength_nm,refractivity_formula_co2,refractivity,king_factor_n2,king_factor_o2,king_factor_air,cross_section_m2";
+  s << "wavelength_nm,refractivity_formula_co2,refractivity,king_factor_n2,king_factor_o2,king_factor_air,cross_"
+       "section_m2";
   for (const auto& l : r.levels) {
     const std::string z = exact(l.altitude_m) + "m";
     s << ",rayleigh_scattering_per_m_at_" << z << ",rayleigh_optical_depth_from_" << z;
@@ -407,12 +435,14 @@ std::string report_to_csv(const CoefficientReport& r) {
     s << ",total_optical_depth_from_" << z;
   }
   if (r.ozone_enabled) s << ",ozone_cross_section_m2";
-  if (r.conditions) s << ",refractivity_at_conditions,rayleigh_scattering_per_m_at_conditions,rayleigh_optical_depth_above_conditions";
+  if (r.conditions)
+    s << ",refractivity_at_conditions,rayleigh_scattering_per_m_at_conditions,rayleigh_optical_depth_above_conditions";
   s << "\n";
   for (size_t i = 0; i < r.wavelengths_nm.size(); ++i) {
     const auto& st = r.derivation[i];
     s << exact(st.lambda_nm) << ',' << exact(st.refractivity_ref) << ',' << exact(st.refractivity) << ','
-      << exact(st.king_n2) << ',' << exact(st.king_o2) << ',' << exact(st.king_factor) << ',' << exact(st.cross_section_m2);
+      << exact(st.king_n2) << ',' << exact(st.king_o2) << ',' << exact(st.king_factor) << ','
+      << exact(st.cross_section_m2);
     for (const auto& l : r.levels) {
       s << ',' << exact(l.rayleigh_scattering_per_m[i]) << ',' << exact(l.rayleigh_optical_depth[i]);
       if (r.mie_enabled)
@@ -423,8 +453,8 @@ std::string report_to_csv(const CoefficientReport& r) {
     }
     if (r.ozone_enabled) s << ',' << exact(r.ozone_cross_section_m2[i]);
     if (r.conditions)
-      s << ',' << exact(r.conditions->refractivity[i]) << ',' << exact(r.conditions->rayleigh_scattering_per_m[i]) << ','
-        << exact(r.conditions->rayleigh_optical_depth_above[i]);
+      s << ',' << exact(r.conditions->refractivity[i]) << ',' << exact(r.conditions->rayleigh_scattering_per_m[i])
+        << ',' << exact(r.conditions->rayleigh_optical_depth_above[i]);
     s << "\n";
   }
   return s.str();
@@ -511,7 +541,8 @@ std::string report_to_json(const CoefficientReport& r) {
   }
   json formulas = json::array();
   for (const auto& f0 : r.formulas)
-    formulas.push_back({{"quantity", f0.quantity}, {"formula", f0.formula}, {"units", f0.units}, {"source", f0.source}});
+    formulas.push_back(
+        {{"quantity", f0.quantity}, {"formula", f0.formula}, {"units", f0.units}, {"source", f0.source}});
   j["formulas"] = formulas;
   json refs = json::array();
   for (const auto& c : r.references) {

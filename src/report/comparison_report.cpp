@@ -11,11 +11,11 @@
 #include <cstring>
 #include <sstream>
 
-#include "io/raster_image.hpp"
 #include "base/atomic_file.hpp"
+#include "io/raster_image.hpp"
+#include "report/svg_plot.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/version.hpp"
-#include "report/svg_plot.hpp"
 
 namespace skyspec {
 namespace {
@@ -28,10 +28,10 @@ std::string signed_percent_of_share(double v) { return (v >= 0 ? "+" : "") + for
 std::string table_row(const std::string& name, const RegionStats& s) {
   const auto& d = s.delta_e;
   if (d.pixels == 0) return "| " + name + " | 0 | | | | | | | | | |\n";
-  return "| " + name + " | " + std::to_string(d.pixels) + " | " + format_fixed(d.mean, 2) + " | " + format_fixed(d.median, 2) + " | " +
-         format_fixed(d.p95, 2) + " | " + format_fixed(d.max, 2) + " | " + percent(d.share_above_1) + " | " + percent(d.share_above_2) +
-         " | " + percent(d.share_above_5) + " | " + signed_percent_of_share(s.luminance.mean) + " | " +
-         format_fixed(100.0 * s.luminance.p95_abs, 1) + " % |\n";
+  return "| " + name + " | " + std::to_string(d.pixels) + " | " + format_fixed(d.mean, 2) + " | " +
+         format_fixed(d.median, 2) + " | " + format_fixed(d.p95, 2) + " | " + format_fixed(d.max, 2) + " | " +
+         percent(d.share_above_1) + " | " + percent(d.share_above_2) + " | " + percent(d.share_above_5) + " | " +
+         signed_percent_of_share(s.luminance.mean) + " | " + format_fixed(100.0 * s.luminance.p95_abs, 1) + " % |\n";
 }
 
 const char* kTableHead =
@@ -43,10 +43,19 @@ nlohmann::json to_json(const RegionStats& s) {
   const auto& l = s.luminance;
   return {{"pixels", d.pixels},
           {"delta_e_2000",
-           {{"mean", d.mean}, {"median", d.median}, {"p95", d.p95}, {"max", d.max},
-            {"share_above_1", d.share_above_1}, {"share_above_2", d.share_above_2}, {"share_above_5", d.share_above_5}}},
+           {{"mean", d.mean},
+            {"median", d.median},
+            {"p95", d.p95},
+            {"max", d.max},
+            {"share_above_1", d.share_above_1},
+            {"share_above_2", d.share_above_2},
+            {"share_above_5", d.share_above_5}}},
           {"relative_luminance_error",
-           {{"pixels", l.pixels}, {"mean", l.mean}, {"median_abs", l.median_abs}, {"p95_abs", l.p95_abs}, {"max_abs", l.max_abs}}}};
+           {{"pixels", l.pixels},
+            {"mean", l.mean},
+            {"median_abs", l.median_abs},
+            {"p95_abs", l.p95_abs},
+            {"max_abs", l.max_abs}}}};
 }
 
 nlohmann::json regions_json(const std::array<RegionStats, 4>& regions) {
@@ -72,7 +81,8 @@ std::string comparison_markdown(const ComparisonRun& run) {
   if (!run.delta_e_map_file.empty())
     out << "![Delta E 2000 map (0 to " << format_fixed(run.delta_e_max, 0) << ")](" << run.delta_e_map_file << ")\n";
   if (!run.side_by_side_file.empty())
-    out << "![spectral (left) and RGB-fast (right) on the common white and exposure](" << run.side_by_side_file << ")\n";
+    out << "![spectral (left) and RGB-fast (right) on the common white and exposure](" << run.side_by_side_file
+        << ")\n";
   out << "\n";
 
   if (!run.sweep.empty()) {
@@ -83,9 +93,9 @@ std::string comparison_markdown(const ComparisonRun& run) {
     const SweepPoint* worst = &run.sweep.front();
     for (const auto& p : run.sweep) {
       const auto& d = p.all.delta_e;
-      out << "| " << format_fixed(p.sun_elevation_deg, 1) << " | " << format_fixed(d.mean, 2) << " | " << format_fixed(d.median, 2) << " | "
-          << format_fixed(d.p95, 2) << " | " << format_fixed(d.max, 2) << " | " << percent(d.share_above_1) << " | "
-          << percent(d.share_above_2) << " | " << percent(d.share_above_5);
+      out << "| " << format_fixed(p.sun_elevation_deg, 1) << " | " << format_fixed(d.mean, 2) << " | "
+          << format_fixed(d.median, 2) << " | " << format_fixed(d.p95, 2) << " | " << format_fixed(d.max, 2) << " | "
+          << percent(d.share_above_1) << " | " << percent(d.share_above_2) << " | " << percent(d.share_above_5);
       for (SkyRegion r : kRegions) {
         const auto& rd = p.regions[static_cast<size_t>(r)].delta_e;
         out << " | " << (rd.pixels ? format_fixed(rd.mean, 2) : std::string("-"));
@@ -96,10 +106,11 @@ std::string comparison_markdown(const ComparisonRun& run) {
     const auto& w = worst->all.delta_e;
     SkyRegion worst_region = SkyRegion::NearSun;
     for (SkyRegion r : kRegions)
-      if (worst->regions[static_cast<size_t>(r)].delta_e.mean > worst->regions[static_cast<size_t>(worst_region)].delta_e.mean)
+      if (worst->regions[static_cast<size_t>(r)].delta_e.mean >
+          worst->regions[static_cast<size_t>(worst_region)].delta_e.mean)
         worst_region = r;
-    out << "\nWorst: sun at " << format_fixed(worst->sun_elevation_deg, 1) << " deg, mean Delta E 2000 " << format_fixed(w.mean, 2)
-        << " (p95 " << format_fixed(w.p95, 2) << ", " << percent(w.share_above_2)
+    out << "\nWorst: sun at " << format_fixed(worst->sun_elevation_deg, 1) << " deg, mean Delta E 2000 "
+        << format_fixed(w.mean, 2) << " (p95 " << format_fixed(w.p95, 2) << ", " << percent(w.share_above_2)
         << " of pixels above 2); there the worst region is " << to_string(worst_region) << " (mean "
         << format_fixed(worst->regions[static_cast<size_t>(worst_region)].delta_e.mean, 2) << ").\n\n";
     if (!run.sweep_plot_file.empty()) out << "![Delta E 2000 against sun elevation](" << run.sweep_plot_file << ")\n\n";
@@ -125,8 +136,10 @@ std::string comparison_json(const ComparisonRun& run) {
                 {"lab_white", "D65 at luminance 1 after exposure"},
                 {"delta_e", "CIEDE2000, kL = kC = kH = 1"},
                 {"percentiles", "linear interpolation between order statistics"},
-                {"regions_deg", {{"near_sun", run.regions.near_sun_deg}, {"horizon", run.regions.horizon_deg},
-                                 {"zenith", run.regions.zenith_deg}}}};
+                {"regions_deg",
+                 {{"near_sun", run.regions.near_sun_deg},
+                  {"horizon", run.regions.horizon_deg},
+                  {"zenith", run.regions.zenith_deg}}}};
   j["notes"] = run.notes;
   j["result"] = {{"sun_elevation_deg", run.sun_elevation_deg},
                  {"exposure_scale", run.comparison.exposure_scale},
@@ -134,9 +147,11 @@ std::string comparison_json(const ComparisonRun& run) {
                  {"regions", regions_json(run.comparison.regions)}};
   nlohmann::json sweep = nlohmann::json::array();
   for (const auto& p : run.sweep)
-    sweep.push_back({{"sun_elevation_deg", p.sun_elevation_deg}, {"all", to_json(p.all)}, {"regions", regions_json(p.regions)}});
+    sweep.push_back(
+        {{"sun_elevation_deg", p.sun_elevation_deg}, {"all", to_json(p.all)}, {"regions", regions_json(p.regions)}});
   j["sweep"] = sweep;
-  j["files"] = {{"delta_e_map", run.delta_e_map_file}, {"side_by_side", run.side_by_side_file},
+  j["files"] = {{"delta_e_map", run.delta_e_map_file},
+                {"side_by_side", run.side_by_side_file},
                 {"sweep_plot", run.sweep_plot_file}};
   return j.dump(2) + "\n";
 }
@@ -177,7 +192,9 @@ std::string sweep_plot_svg(const std::vector<SweepPoint>& sweep) {
 
 namespace {
 
-int enlargement(int width, int height) { return std::max(1, (256 + std::max(width, height) - 1) / std::max(width, height)); }
+int enlargement(int width, int height) {
+  return std::max(1, (256 + std::max(width, height) - 1) / std::max(width, height));
+}
 
 std::vector<double> colour_bar_ticks(double max) {
   std::vector<double> ticks = {0};
@@ -197,14 +214,16 @@ std::string tick_text(double v) {
 }  // namespace
 
 void write_delta_e_map(const std::filesystem::path& path, const SkyComparison& c, double max) {
-  if (!(max > 0.0) || !std::isfinite(max)) throw InputError(kDeltaEMaxSetting, std::to_string(max), "a positive number");
+  if (!(max > 0.0) || !std::isfinite(max))
+    throw InputError(kDeltaEMaxSetting, std::to_string(max), "a positive number");
   const int s = enlargement(c.width, c.height), W = c.width * s, H = c.height * s;
   const int font = W >= 384 ? 2 : 1, line = 9 * font, margin = 8;
   const int bar_w = 16, bar_x = margin + W + 12, label_x = bar_x + bar_w + 6;
   const int canvas_w = label_x + raster::Canvas::text_width(tick_text(max) + "+", font) + margin;
   const int top = margin + line + 4, canvas_h = top + H + 6 + line + margin;
-  raster::Canvas canvas(std::max(canvas_w, margin + raster::Canvas::text_width("DELTA E 2000 (CIEDE2000)", font) + margin),
-                        canvas_h, {1, 1, 1});
+  raster::Canvas canvas(
+      std::max(canvas_w, margin + raster::Canvas::text_width("DELTA E 2000 (CIEDE2000)", font) + margin), canvas_h,
+      {1, 1, 1});
   const raster::Rgb ink{0, 0, 0};
   canvas.text(margin, margin, "DELTA E 2000 (CIEDE2000)", ink, font);
   for (int y = 0; y < c.height; ++y)

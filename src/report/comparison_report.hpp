@@ -14,15 +14,15 @@ namespace skyspec {
 
 /// Everything a report says.
 struct ComparisonRun {
-  std::string command;                       ///< how to make it again
-  std::string scene_summary;                 ///< e.g. "preset seed, fisheye 64 x 64, sun 2 deg"
+  std::string command;        ///< how to make it again
+  std::string scene_summary;  ///< e.g. "preset seed, fisheye 64 x 64, sun 2 deg"
   std::string reference_label, test_label;
   double sun_elevation_deg = 0;
   RegionSettings regions;
-  std::vector<std::string> notes;            ///< twin construction, sun disk, ...
-  SkyComparison comparison;                  ///< at the scene's sun elevation
-  std::vector<SweepPoint> sweep;             ///< empty: no sweep
-  double delta_e_max = 10;                   ///< top of the map's colour bar
+  std::vector<std::string> notes;  ///< twin construction, sun disk, ...
+  SkyComparison comparison;        ///< at the scene's sun elevation
+  std::vector<SweepPoint> sweep;   ///< empty: no sweep
+  double delta_e_max = 10;         ///< top of the map's colour bar
   /// Names of the figures beside the report (empty: not written).
   std::string delta_e_map_file, side_by_side_file, sweep_plot_file;
 };

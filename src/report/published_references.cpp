@@ -8,9 +8,9 @@
 #include <string_view>
 
 #include "base/embedded_data.hpp"
+#include "base/text_format.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/units.hpp"
-#include "base/text_format.hpp"
 
 namespace skyspec {
 namespace {
@@ -88,7 +88,8 @@ const Bodhaine1999Fit& bodhaine1999_fit() {
   static const Bodhaine1999Fit fit = [] {
     const std::string name = "reference/bodhaine1999_fit.csv";
     const auto rows = csv_rows(name);
-    if (rows.size() != 1 || rows[0].size() != 6) throw Error("embedded table " + name + ": expected 1 row of 6 columns");
+    if (rows.size() != 1 || rows[0].size() != 6)
+      throw Error("embedded table " + name + ": expected 1 row of 6 columns");
     const auto& r = rows[0];
     return Bodhaine1999Fit{number(r[0], name), number(r[1], name), number(r[2], name),
                            number(r[3], name), number(r[4], name), number(r[5], name)};
@@ -123,10 +124,14 @@ const Bodhaine1999TextValues& bodhaine1999_text_values() {
     for (const auto& row : csv_rows(name)) {
       if (row.size() != 4) throw Error("embedded table " + name + ": expected 4 columns");
       const double value = number(row[2], name);
-      if (row[0] == "cross_section" && row[3] == "cm^2") v.cross_section_550nm_m2 = value * kSquareMetresPerSquareCentimetre;
-      else if (row[0] == "king_factor_air") v.king_factor_air_550nm = value;
-      else if (row[0] == "optical_depth") v.optical_depth_550nm = value;
-      else throw Error("embedded table " + name + ": unknown quantity " + row[0]);
+      if (row[0] == "cross_section" && row[3] == "cm^2")
+        v.cross_section_550nm_m2 = value * kSquareMetresPerSquareCentimetre;
+      else if (row[0] == "king_factor_air")
+        v.king_factor_air_550nm = value;
+      else if (row[0] == "optical_depth")
+        v.optical_depth_550nm = value;
+      else
+        throw Error("embedded table " + name + ": unknown quantity " + row[0]);
     }
     if (v.cross_section_550nm_m2 <= 0.0 || v.king_factor_air_550nm <= 0.0 || v.optical_depth_550nm <= 0.0)
       throw Error("embedded table " + name + ": a quantity is missing");
@@ -136,8 +141,8 @@ const Bodhaine1999TextValues& bodhaine1999_text_values() {
 }
 
 const std::vector<PublishedValue>& bucholtz1995_depolarization() {
-  static const auto table = two_column_table("reference/bucholtz1995_depolarization.csv", kNanometresPerMicrometre,
-                                             kFractionPerPercent);
+  static const auto table =
+      two_column_table("reference/bucholtz1995_depolarization.csv", kNanometresPerMicrometre, kFractionPerPercent);
   return table;
 }
 
@@ -149,7 +154,8 @@ double bucholtz1995_cross_section_fit_m2(double lambda_nm) {
   const auto& branches = bucholtz_fit();
   const double lambda_um = lambda_nm / kNanometresPerMicrometre;
   if (!std::isfinite(lambda_um) || lambda_um < branches.front().min_um || lambda_um > branches.back().max_um)
-    throw InputError("wavelength_nm", format_number(lambda_nm), "200 to 1690 nm (Bucholtz's fit, used up to the range of the refractive index of air)");
+    throw InputError("wavelength_nm", format_number(lambda_nm),
+                     "200 to 1690 nm (Bucholtz's fit, used up to the range of the refractive index of air)");
   const FitBranch* use = &branches.back();
   for (const auto& b : branches)
     if (lambda_um <= b.max_um) {

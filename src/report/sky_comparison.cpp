@@ -8,34 +8,42 @@
 #include <cstdio>
 #include <sstream>
 
+#include "base/text_format.hpp"
 #include "colour/chromatic_adaptation.hpp"
 #include "colour/ciede2000.hpp"
-#include "skyspec/colour.hpp"
-#include "skyspec/error.hpp"
 #include "colour/exposure.hpp"
 #include "io/provenance.hpp"
 #include "io/rgb_exr.hpp"
+#include "skyspec/colour.hpp"
+#include "skyspec/error.hpp"
 #include "skyspec/units.hpp"
-#include "base/text_format.hpp"
 
 namespace skyspec {
 
 std::string to_string(SkyRegion region) {
   switch (region) {
-    case SkyRegion::NearSun: return "near the sun";
-    case SkyRegion::Horizon: return "horizon band";
-    case SkyRegion::Zenith: return "zenith";
-    case SkyRegion::Rest: return "the rest";
+    case SkyRegion::NearSun:
+      return "near the sun";
+    case SkyRegion::Horizon:
+      return "horizon band";
+    case SkyRegion::Zenith:
+      return "zenith";
+    case SkyRegion::Rest:
+      return "the rest";
   }
   return "?";
 }
 
 std::string region_key(SkyRegion region) {
   switch (region) {
-    case SkyRegion::NearSun: return "near_sun";
-    case SkyRegion::Horizon: return "horizon";
-    case SkyRegion::Zenith: return "zenith";
-    case SkyRegion::Rest: return "rest";
+    case SkyRegion::NearSun:
+      return "near_sun";
+    case SkyRegion::Horizon:
+      return "horizon";
+    case SkyRegion::Zenith:
+      return "zenith";
+    case SkyRegion::Rest:
+      return "rest";
   }
   return "?";
 }
@@ -64,10 +72,14 @@ PixelGeometry pixel_geometry(const Scene& scene, const RegionSettings& rs) {
       g.elevation_deg[i] = static_cast<float>(elevation);
       g.sun_angle_deg[i] = static_cast<float>(sun_angle);
       if (elevation < 0.0) continue;
-      if (sun_angle < rs.near_sun_deg) g.region[i] = static_cast<uint8_t>(SkyRegion::NearSun);
-      else if (elevation < rs.horizon_deg) g.region[i] = static_cast<uint8_t>(SkyRegion::Horizon);
-      else if (90.0 - elevation < rs.zenith_deg) g.region[i] = static_cast<uint8_t>(SkyRegion::Zenith);
-      else g.region[i] = static_cast<uint8_t>(SkyRegion::Rest);
+      if (sun_angle < rs.near_sun_deg)
+        g.region[i] = static_cast<uint8_t>(SkyRegion::NearSun);
+      else if (elevation < rs.horizon_deg)
+        g.region[i] = static_cast<uint8_t>(SkyRegion::Horizon);
+      else if (90.0 - elevation < rs.zenith_deg)
+        g.region[i] = static_cast<uint8_t>(SkyRegion::Zenith);
+      else
+        g.region[i] = static_cast<uint8_t>(SkyRegion::Rest);
     }
   return g;
 }
@@ -97,7 +109,8 @@ SkyImage render_sky_image(const Scene& scene, const ProgressFn& progress) {
 }
 
 SkyImage read_sky_image(const std::filesystem::path& path, Scene* scene) {
-  if (!std::filesystem::is_regular_file(path)) throw InputError("EXR", "'" + path.string() + "'", "an existing EXR file");
+  if (!std::filesystem::is_regular_file(path))
+    throw InputError("EXR", "'" + path.string() + "'", "an existing EXR file");
   const RgbExrImage exr = read_rgb_exr(path);
   const auto attribute = [&](const std::string& key) -> const std::string& {
     const auto it = exr.strings.find(key);
@@ -170,11 +183,13 @@ Scene spectral_twin(const Scene& scene, std::string* note) {
     if (m == 0 || ray.fixed_beta_per_m.size() != m)
       throw InputError("atmosphere.rayleigh.beta_per_m", "an empty list", "fixed coefficients to extend");
     double sum = 0.0;
-    for (size_t i = 0; i < m; ++i) sum += std::log(ray.fixed_beta_per_m[i]) + 4.0 * std::log(ray.fixed_wavelengths_nm[i] / 1000.0);
+    for (size_t i = 0; i < m; ++i)
+      sum += std::log(ray.fixed_beta_per_m[i]) + 4.0 * std::log(ray.fixed_wavelengths_nm[i] / 1000.0);
     const double K = std::exp(sum / static_cast<double>(m));  // m^-1 um^4
     double worst = 0.0;
     for (size_t i = 0; i < m; ++i)
-      worst = std::max(worst, std::abs(K * std::pow(ray.fixed_wavelengths_nm[i] / 1000.0, -4.0) / ray.fixed_beta_per_m[i] - 1.0));
+      worst = std::max(
+          worst, std::abs(K * std::pow(ray.fixed_wavelengths_nm[i] / 1000.0, -4.0) / ray.fixed_beta_per_m[i] - 1.0));
     ray.fixed_wavelengths_nm = grid.nanometres();
     ray.fixed_beta_per_m.clear();
     for (double nm : grid.nanometres()) ray.fixed_beta_per_m.push_back(K * std::pow(nm / 1000.0, -4.0));
@@ -260,8 +275,9 @@ namespace {
 Eigen::Matrix3d sun_relative_xyz(const SkyImage& image, const Eigen::Vector3d& d65_unit) {
   const Eigen::Vector3d sun_xyz = linear_rec709_to_xyz() * image.sun_rgb;
   if (!(sun_xyz.y() > 0.0) || !sun_xyz.allFinite() || (sun_xyz.array() <= 0.0).any())
-    throw InputError("sun", "XYZ (" + format_number(sun_xyz.x()) + ", " + format_number(sun_xyz.y()) + ", " +
-                                format_number(sun_xyz.z()) + ") of the " + image.label + " image",
+    throw InputError("sun",
+                     "XYZ (" + format_number(sun_xyz.x()) + ", " + format_number(sun_xyz.y()) + ", " +
+                         format_number(sun_xyz.z()) + ") of the " + image.label + " image",
                      "a sun with positive X, Y and Z (the comparison's white)");
   // Bradford maps sun_xyz onto d65_unit exactly: adaptation and division by the sun's luminance.
   return bradford_adaptation(sun_xyz, d65_unit) * linear_rec709_to_xyz();
@@ -272,8 +288,9 @@ Eigen::Matrix3d sun_relative_xyz(const SkyImage& image, const Eigen::Vector3d& d
 SkyComparison compare_skies(const SkyImage& reference, const SkyImage& test, const PixelGeometry& geometry) {
   if (reference.width != test.width || reference.height != test.height || reference.width != geometry.width ||
       reference.height != geometry.height)
-    throw InputError("images", std::to_string(reference.width) + "x" + std::to_string(reference.height) + " and " +
-                                   std::to_string(test.width) + "x" + std::to_string(test.height),
+    throw InputError("images",
+                     std::to_string(reference.width) + "x" + std::to_string(reference.height) + " and " +
+                         std::to_string(test.width) + "x" + std::to_string(test.height),
                      "two images of the same size as the camera (" + std::to_string(geometry.width) + "x" +
                          std::to_string(geometry.height) + ")");
   const size_t n = static_cast<size_t>(reference.width) * static_cast<size_t>(reference.height);

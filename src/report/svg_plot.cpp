@@ -18,8 +18,10 @@ std::string num(double v) {
 
 std::string tick_label(double v) {
   char buf[32];
-  if (v != 0.0 && (std::abs(v) < 1e-3 || std::abs(v) >= 1e5)) std::snprintf(buf, sizeof buf, "%.0e", v);
-  else std::snprintf(buf, sizeof buf, "%g", v);
+  if (v != 0.0 && (std::abs(v) < 1e-3 || std::abs(v) >= 1e5))
+    std::snprintf(buf, sizeof buf, "%.0e", v);
+  else
+    std::snprintf(buf, sizeof buf, "%g", v);
   return buf;
 }
 
@@ -106,7 +108,8 @@ std::vector<double> ticks(double lo, double hi, bool log, std::vector<double>& m
       step = f * mag;
       break;
     }
-  for (double v = std::ceil(lo / step - 1e-9) * step; v <= hi + 1e-9 * step; v += step) t.push_back(std::abs(v) < 1e-12 * step ? 0.0 : v);
+  for (double v = std::ceil(lo / step - 1e-9) * step; v <= hi + 1e-9 * step; v += step)
+    t.push_back(std::abs(v) < 1e-12 * step ? 0.0 : v);
   return t;
 }
 
@@ -116,11 +119,20 @@ std::string escape(const std::string& text) {
   std::string out;
   for (char ch : text) {
     switch (ch) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += ch;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += ch;
     }
   }
   return out;
@@ -138,7 +150,8 @@ std::string line_plot(const Axes& a, const std::vector<Series>& series) {
     << "\" viewBox=\"0 0 " << a.width_px << ' ' << a.height_px << "\" font-family=\"sans-serif\" font-size=\"11\">\n";
   s << "<title>" << escape(a.title) << "</title>\n";
   s << "<rect x=\"0\" y=\"0\" width=\"" << a.width_px << "\" height=\"" << a.height_px << "\" fill=\"white\"/>\n";
-  s << "<text x=\"" << num(w / 2) << "\" y=\"18\" text-anchor=\"middle\" font-size=\"13\">" << escape(a.title) << "</text>\n";
+  s << "<text x=\"" << num(w / 2) << "\" y=\"18\" text-anchor=\"middle\" font-size=\"13\">" << escape(a.title)
+    << "</text>\n";
   std::vector<double> minor;
   for (double t : ticks(xlo, xhi, a.log_x, minor)) {
     s << "<line x1=\"" << num(sx(t)) << "\" y1=\"" << num(kMarginTop) << "\" x2=\"" << num(sx(t)) << "\" y2=\""
@@ -158,8 +171,9 @@ std::string line_plot(const Axes& a, const std::vector<Series>& series) {
   for (double t : minor)
     s << "<line x1=\"" << num(kMarginLeft) << "\" y1=\"" << num(sy(t)) << "\" x2=\"" << num(kMarginLeft + 4)
       << "\" y2=\"" << num(sy(t)) << "\" stroke=\"#888\"/>\n";
-  s << "<rect x=\"" << num(kMarginLeft) << "\" y=\"" << num(kMarginTop) << "\" width=\"" << num(w - kMarginLeft - kMarginRight)
-    << "\" height=\"" << num(h - kMarginTop - kMarginBottom) << "\" fill=\"none\" stroke=\"black\"/>\n";
+  s << "<rect x=\"" << num(kMarginLeft) << "\" y=\"" << num(kMarginTop) << "\" width=\""
+    << num(w - kMarginLeft - kMarginRight) << "\" height=\"" << num(h - kMarginTop - kMarginBottom)
+    << "\" fill=\"none\" stroke=\"black\"/>\n";
   s << "<text x=\"" << num((kMarginLeft + w - kMarginRight) / 2) << "\" y=\"" << num(h - 10)
     << "\" text-anchor=\"middle\">" << escape(a.x_label) << "</text>\n";
   s << "<text transform=\"translate(14," << num((kMarginTop + h - kMarginBottom) / 2)

@@ -20,17 +20,16 @@
 
 #include <toml++/toml.h>
 
+#include "base/embedded_data.hpp"
+#include "base/text_format.hpp"
 #include "physics/date_time.hpp"
 #include "physics/ozone.hpp"
-#include "physics/solar_spectrum.hpp"
 #include "physics/solar_position.hpp"
-#include "base/embedded_data.hpp"
-#include "skyspec/error.hpp"
-#include "base/text_format.hpp"
+#include "physics/solar_spectrum.hpp"
 #include "scene/toml_limits.hpp"
+#include "skyspec/error.hpp"
 #include "skyspec/refractive_index.hpp"
 #include "skyspec/units.hpp"
-
 
 namespace skyspec::scene_keys {
 
@@ -57,8 +56,9 @@ const std::vector<KeyDef>& registry() {
       return choice_key(
           std::move(key), {"exponential", "us1976", "constant"}, std::move(help),
           [ref](Scene& s, const std::string& v) {
-            ref(s) = v == "us1976" ? ProfileKind::UsStandard1976
-                                   : v == "constant" ? ProfileKind::Constant : ProfileKind::Exponential;
+            ref(s) = v == "us1976"     ? ProfileKind::UsStandard1976
+                     : v == "constant" ? ProfileKind::Constant
+                                       : ProfileKind::Exponential;
           },
           [ref](const Scene& s) { return to_string(ref(const_cast<Scene&>(s))); });
     };
@@ -69,9 +69,9 @@ const std::vector<KeyDef>& registry() {
           s.atmosphere.rayleigh.derivation.gas = v == "co2" ? ScatteringGas::CarbonDioxide : ScatteringGas::Air;
         },
         [](const Scene& s) { return to_string(s.atmosphere.rayleigh.derivation.gas); }));
-    r.push_back(profile_key("atmosphere.rayleigh.profile",
-                            [](Scene& s) -> ProfileKind& { return s.atmosphere.rayleigh.profile; },
-                            "number density profile of air"));
+    r.push_back(profile_key(
+        "atmosphere.rayleigh.profile", [](Scene& s) -> ProfileKind& { return s.atmosphere.rayleigh.profile; },
+        "number density profile of air"));
     r.push_back(number_key("atmosphere.rayleigh.scale_height_m", "m", {1.0, kMaxLength, true},
                            "scale height of the exponential profile",
                            [](Scene& s) -> double& { return s.atmosphere.rayleigh.scale_height_m; }));
@@ -85,12 +85,14 @@ const std::vector<KeyDef>& registry() {
         "atmosphere.rayleigh.refractive_index", {"peck-reeder", "edlen", "ciddor"},
         "formula for n(lambda) of standard air",
         [](Scene& s, const std::string& v) {
-          s.atmosphere.rayleigh.derivation.formula = parse_refractive_index_formula(v, "atmosphere.rayleigh.refractive_index");
+          s.atmosphere.rayleigh.derivation.formula =
+              parse_refractive_index_formula(v, "atmosphere.rayleigh.refractive_index");
         },
         [](const Scene& s) { return to_string(s.atmosphere.rayleigh.derivation.formula); }));
-    r.push_back(number_key("atmosphere.rayleigh.co2_ppm", "ppm", {0.0, 1e6},
-                           "CO2 mole fraction (refractive index correction, King factor)",
-                           [](Scene& s) -> double& { return s.atmosphere.rayleigh.derivation.co2_ppv; }, 1e-6));
+    r.push_back(number_key(
+        "atmosphere.rayleigh.co2_ppm", "ppm", {0.0, 1e6},
+        "CO2 mole fraction (refractive index correction, King factor)",
+        [](Scene& s) -> double& { return s.atmosphere.rayleigh.derivation.co2_ppv; }, 1e-6));
     r.push_back(list_key("atmosphere.rayleigh.wavelengths_nm", "nm", {1.0, 1e5}, 64,
                          "source = fixed: wavelengths of the typed-in coefficients",
                          [](Scene& s) -> std::vector<double>& { return s.atmosphere.rayleigh.fixed_wavelengths_nm; }));
@@ -100,8 +102,9 @@ const std::vector<KeyDef>& registry() {
     // Mie
     r.push_back(bool_key("atmosphere.mie.enabled", "aerosols on or off",
                          [](Scene& s) -> bool& { return s.atmosphere.mie.enabled; }));
-    r.push_back(profile_key("atmosphere.mie.profile", [](Scene& s) -> ProfileKind& { return s.atmosphere.mie.profile; },
-                            "aerosol density profile (us1976 is not meaningful for aerosols but allowed)"));
+    r.push_back(profile_key(
+        "atmosphere.mie.profile", [](Scene& s) -> ProfileKind& { return s.atmosphere.mie.profile; },
+        "aerosol density profile (us1976 is not meaningful for aerosols but allowed)"));
     r.push_back(number_key("atmosphere.mie.scale_height_m", "m", {1.0, kMaxLength, true},
                            "scale height of the aerosol profile",
                            [](Scene& s) -> double& { return s.atmosphere.mie.scale_height_m; }));
@@ -129,12 +132,14 @@ const std::vector<KeyDef>& registry() {
                          "spectral aerosol tables: wavelengths (when given, the tables replace the Angstrom law, "
                          "extinction_to_scattering and g)",
                          [](Scene& s) -> std::vector<double>& { return s.atmosphere.mie.table_wavelengths_nm; }));
-    r.push_back(list_key("atmosphere.mie.table_extinction_efficiency", "", {0.0, 1e6}, 1024,
-                         "spectral aerosol tables: extinction efficiency Q (any scale)",
-                         [](Scene& s) -> std::vector<double>& { return s.atmosphere.mie.table_extinction_efficiency; }));
+    r.push_back(
+        list_key("atmosphere.mie.table_extinction_efficiency", "", {0.0, 1e6}, 1024,
+                 "spectral aerosol tables: extinction efficiency Q (any scale)",
+                 [](Scene& s) -> std::vector<double>& { return s.atmosphere.mie.table_extinction_efficiency; }));
     r.push_back(list_key("atmosphere.mie.table_single_scattering_albedo", "", {1e-6, 1.0}, 1024,
-                         "spectral aerosol tables: single-scattering albedo",
-                         [](Scene& s) -> std::vector<double>& { return s.atmosphere.mie.table_single_scattering_albedo; }));
+                         "spectral aerosol tables: single-scattering albedo", [](Scene& s) -> std::vector<double>& {
+                           return s.atmosphere.mie.table_single_scattering_albedo;
+                         }));
     r.push_back(list_key("atmosphere.mie.table_g", "", {-0.999, 0.999}, 1024,
                          "spectral aerosol tables: asymmetry parameter",
                          [](Scene& s) -> std::vector<double>& { return s.atmosphere.mie.table_g; }));
@@ -154,7 +159,8 @@ const std::vector<KeyDef>& registry() {
     r.push_back(number_key("ground.albedo", "", {0.0, 1.0},
                            "Lambertian albedo of the ground (0: black); unless a preset, file or flag sets a ground "
                            "albedo, a panorama that sees below the horizon (equirectangular, min_elevation_deg < 0) "
-                           "gets " + format_number(kPanoramaGroundAlbedo) + " (pvlib's default ground albedo)",
+                           "gets " +
+                               format_number(kPanoramaGroundAlbedo) + " (pvlib's default ground albedo)",
                            [](Scene& s) -> double& { return s.atmosphere.ground.albedo; }));
     r.push_back(list_key("ground.albedo_wavelengths_nm", "nm", {1.0, 1e5}, 1024,
                          "spectral albedo: wavelengths (replaces ground.albedo when not empty)",
@@ -189,7 +195,8 @@ const std::vector<KeyDef>& registry() {
       const std::string allowed =
           "\"\" or an ISO 8601 date-time with UTC offset, e.g. \"2026-06-21T20:30:00+02:00\" (quoted, or unquoted as a "
           "TOML date-time)";
-      k.doc = "(" + allowed + ") when set, the sun's position and distance are computed for this time at "
+      k.doc = "(" + allowed +
+              ") when set, the sun's position and distance are computed for this time at "
               "location.latitude_deg / longitude_deg (NREL SPA)";
       k.set = [k, allowed](Scene& s, const toml::node& n, const std::string& origin) {
         if (const auto* when = n.as_date_time()) {  // a TOML offset date-time, unquoted
@@ -230,8 +237,7 @@ const std::vector<KeyDef>& registry() {
                             [](Scene& s) -> int& { return s.camera.width; }));
     r.push_back(integer_key("camera.height", 1, 65536, "image height in pixels",
                             [](Scene& s) -> int& { return s.camera.height; }));
-    r.push_back(vec3_key("camera.position_m", "m", kMaxLength,
-                         "camera position [east, north, height above sea level]",
+    r.push_back(vec3_key("camera.position_m", "m", kMaxLength, "camera position [east, north, height above sea level]",
                          [](Scene& s) -> Vec3& { return s.camera.position_m; }));
     r.push_back(vec3_key("camera.look_at_m", "m", kMaxLength, "perspective: point the camera looks at",
                          [](Scene& s) -> Vec3& { return s.camera.look_at_m; }));
@@ -275,7 +281,9 @@ const std::vector<KeyDef>& registry() {
         [](Scene& s, const std::string& v) {
           s.render.path = v == "rgb-fast" ? RenderSpec::Path::RgbFast : RenderSpec::Path::Spectral;
         },
-        [](const Scene& s) { return std::string(s.render.path == RenderSpec::Path::RgbFast ? "rgb-fast" : "spectral"); }));
+        [](const Scene& s) {
+          return std::string(s.render.path == RenderSpec::Path::RgbFast ? "rgb-fast" : "spectral");
+        }));
     r.push_back(integer_key("render.view_segments", 1, 4096, "quadrature segments along each view ray",
                             [](Scene& s) -> int& { return s.render.view_segments; }));
     r.push_back(integer_key("render.table_altitude_samples", 8, 4096, "sun optical-depth table: altitudes",
@@ -310,18 +318,21 @@ const std::vector<KeyDef>& registry() {
                             "sky-view table: columns from towards the sun to away from it",
                             [](Scene& s) -> int& { return s.render.sky_view_azimuth_samples; }));
     // output
-    r.push_back(text_key("output.directory", "folder for the output files",
-                         [](Scene& s) -> std::string& { return s.output.directory; }, false));
-    r.push_back(text_key("output.name", "base name of the output files (<name>.exr, <name>.png)",
-                         [](Scene& s) -> std::string& { return s.output.name; }, true));
+    r.push_back(text_key(
+        "output.directory", "folder for the output files", [](Scene& s) -> std::string& { return s.output.directory; },
+        false));
+    r.push_back(text_key(
+        "output.name", "base name of the output files (<name>.exr, <name>.png)",
+        [](Scene& s) -> std::string& { return s.output.name; }, true));
     r.push_back(bool_key("output.exr", "write the spectral OpenEXR", [](Scene& s) -> bool& { return s.output.exr; }));
     r.push_back(bool_key("output.png", "write the sRGB PNG preview", [](Scene& s) -> bool& { return s.output.png; }));
-    r.push_back(bool_key("output.polarisation",
-                         "polarised sky: Stokes S1-S3 per wavelength in the spectral EXR beside S0, and "
-                         "<name>-polarisation.exr with the luminance-weighted Y, DoLP and AoLP (vector transport for "
-                         "the air, aerosols as unit scattering matrices; 1.8-3.5 times the render time, 4-5 times the EXR; "
-                         "needs render.ms_angular_degree >= 2 with multiple scattering)",
-                         [](Scene& s) -> bool& { return s.output.polarisation; }));
+    r.push_back(
+        bool_key("output.polarisation",
+                 "polarised sky: Stokes S1-S3 per wavelength in the spectral EXR beside S0, and "
+                 "<name>-polarisation.exr with the luminance-weighted Y, DoLP and AoLP (vector transport for "
+                 "the air, aerosols as unit scattering matrices; 1.8-3.5 times the render time, 4-5 times the EXR; "
+                 "needs render.ms_angular_degree >= 2 with multiple scattering)",
+                 [](Scene& s) -> bool& { return s.output.polarisation; }));
     r.push_back(bool_key("output.polarisation_png",
                          "with output.polarisation and output.png: also <name>-polarisation.png, the angle of linear "
                          "polarisation as hue (a colour wheel over 180 degrees) and its degree as brightness",

@@ -18,17 +18,16 @@
 
 #include <toml++/toml.h>
 
+#include "base/embedded_data.hpp"
+#include "base/text_format.hpp"
 #include "physics/date_time.hpp"
 #include "physics/ozone.hpp"
-#include "physics/solar_spectrum.hpp"
 #include "physics/solar_position.hpp"
-#include "base/embedded_data.hpp"
-#include "skyspec/error.hpp"
-#include "base/text_format.hpp"
+#include "physics/solar_spectrum.hpp"
 #include "scene/toml_limits.hpp"
+#include "skyspec/error.hpp"
 #include "skyspec/refractive_index.hpp"
 #include "skyspec/units.hpp"
-
 
 namespace skyspec::scene_keys {
 
@@ -97,17 +96,15 @@ size_t edit_distance(const std::string& a, const std::string& b) {
 // ---------------------------------------------------------------------------------------------
 // The key registry: one entry per scene key, with its unit, range, setter and getter.
 
-
 double get_number(const KeyDef& k, const toml::node& n, const std::string& origin, const std::string& allowed) {
   if (auto i = n.as_integer()) return static_cast<double>(i->get());
   if (auto f = n.as_floating_point()) return f->get();
   throw InputError(k.key, node_text(n), allowed, origin);
 }
 
-
 // scale: the stored value is the entered value times scale (e.g. ppm -> parts per volume).
-KeyDef number_key(std::string key, std::string unit, Range range, std::string help,
-                  std::function<double&(Scene&)> ref, double scale) {
+KeyDef number_key(std::string key, std::string unit, Range range, std::string help, std::function<double&(Scene&)> ref,
+                  double scale) {
   KeyDef k;
   k.key = std::move(key);
   const std::string allowed = range.describe(unit);
@@ -173,8 +170,7 @@ KeyDef choice_key(std::string key, std::vector<std::string> choices, std::string
   return k;
 }
 
-KeyDef text_key(std::string key, std::string help, std::function<std::string&(Scene&)> ref,
-                bool file_name_only) {
+KeyDef text_key(std::string key, std::string help, std::function<std::string&(Scene&)> ref, bool file_name_only) {
   KeyDef k;
   k.key = std::move(key);
   k.text = true;

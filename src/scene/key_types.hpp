@@ -35,15 +35,14 @@ struct Range {
 };
 
 double get_number(const KeyDef& k, const toml::node& n, const std::string& origin, const std::string& allowed);
-KeyDef number_key(std::string key, std::string unit, Range range, std::string help,
-                  std::function<double&(Scene&)> ref, double scale = 1.0);
+KeyDef number_key(std::string key, std::string unit, Range range, std::string help, std::function<double&(Scene&)> ref,
+                  double scale = 1.0);
 KeyDef integer_key(std::string key, long lo, long hi, std::string help, std::function<int&(Scene&)> ref);
 KeyDef bool_key(std::string key, std::string help, std::function<bool&(Scene&)> ref);
 KeyDef choice_key(std::string key, std::vector<std::string> choices, std::string help,
                   std::function<void(Scene&, const std::string&)> set_value,
                   std::function<std::string(const Scene&)> get_value);
-KeyDef text_key(std::string key, std::string help, std::function<std::string&(Scene&)> ref,
-                bool file_name_only);
+KeyDef text_key(std::string key, std::string help, std::function<std::string&(Scene&)> ref, bool file_name_only);
 KeyDef vec3_key(std::string key, std::string unit, double bound, std::string help, std::function<Vec3&(Scene&)> ref);
 KeyDef list_key(std::string key, std::string unit, Range range, size_t max_count, std::string help,
                 std::function<std::vector<double>&(Scene&)> ref);

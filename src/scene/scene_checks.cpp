@@ -18,17 +18,16 @@
 
 #include <toml++/toml.h>
 
+#include "base/embedded_data.hpp"
+#include "base/text_format.hpp"
 #include "physics/date_time.hpp"
 #include "physics/ozone.hpp"
-#include "physics/solar_spectrum.hpp"
 #include "physics/solar_position.hpp"
-#include "base/embedded_data.hpp"
-#include "skyspec/error.hpp"
-#include "base/text_format.hpp"
+#include "physics/solar_spectrum.hpp"
 #include "scene/toml_limits.hpp"
+#include "skyspec/error.hpp"
 #include "skyspec/refractive_index.hpp"
 #include "skyspec/units.hpp"
-
 
 namespace skyspec {
 
@@ -37,9 +36,10 @@ void check_panorama(const CameraSpec& c) {
   if (c.panorama_convention == PanoramaConvention::Skyspec) return;
   const std::string name = panorama_convention_name(c.panorama_convention);
   if (c.min_elevation_deg != -90.0)
-    throw InputError("camera.min_elevation_deg", format_number(c.min_elevation_deg),
-                     "-90 with camera.panorama_convention = \"" + name +
-                         "\" (its lat-long map covers the whole sphere; a partial panorama takes the skyspec convention)");
+    throw InputError(
+        "camera.min_elevation_deg", format_number(c.min_elevation_deg),
+        "-90 with camera.panorama_convention = \"" + name +
+            "\" (its lat-long map covers the whole sphere; a partial panorama takes the skyspec convention)");
   if (c.panorama_convention == PanoramaConvention::OpenExr && (c.width < 2 || c.height < 2))
     throw InputError("camera.width x camera.height", std::to_string(c.width) + "x" + std::to_string(c.height),
                      "at least 2x2 pixels with camera.panorama_convention = \"openexr\" (its first and last pixel "
@@ -77,7 +77,8 @@ std::vector<SpectralLimit> spectral_limits(const Scene& s) {
   if (const auto air = refractive_index_limit(s)) limits.push_back(*air);
   if (s.sun.spectrum == SunSpec::Spectrum::Solar) {
     const TabulatedSpectrum& sun = solar_irradiance_table();
-    limits.push_back({sun.min_nm(), sun.max_nm(), "the extraterrestrial solar spectrum (ASTM G173-03, sun.spectrum = \"solar\")"});
+    limits.push_back(
+        {sun.min_nm(), sun.max_nm(), "the extraterrestrial solar spectrum (ASTM G173-03, sun.spectrum = \"solar\")"});
   }
   const OzoneSpec& o3 = s.atmosphere.ozone;
   if (o3.enabled && o3.cross_section_m2.empty()) {
@@ -97,11 +98,12 @@ void check_limits(const WavelengthGrid& grid, const std::vector<SpectralLimit>& 
   }
   if (grid.min_nm() >= lo && grid.max_nm() <= hi) return;
   if (lo_reason == hi_reason)
-    throw InputError("spectrum", grid.describe(),
-                     "wavelengths from " + format_number(lo) + " to " + format_number(hi) + " nm" + what + ": " + lo_reason);
+    throw InputError(
+        "spectrum", grid.describe(),
+        "wavelengths from " + format_number(lo) + " to " + format_number(hi) + " nm" + what + ": " + lo_reason);
   throw InputError("spectrum", grid.describe(),
-                   "wavelengths from " + format_number(lo) + " nm (" + lo_reason + ") to " + format_number(hi) + " nm (" +
-                       hi_reason + ")" + what);
+                   "wavelengths from " + format_number(lo) + " nm (" + lo_reason + ") to " + format_number(hi) +
+                       " nm (" + hi_reason + ")" + what);
 }
 
 }  // namespace

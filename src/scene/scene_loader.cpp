@@ -1,8 +1,8 @@
 // SceneLoader: a preset, then scene files, TOML text, quality levels and overrides, each value
 // checked by the key registry; finish() checks the relations between keys.
-#include "skyspec/scene.hpp"
 #include "scene/key_registry.hpp"
 #include "scene/scene_checks.hpp"
+#include "skyspec/scene.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -21,24 +21,22 @@
 
 #include <toml++/toml.h>
 
+#include "base/embedded_data.hpp"
+#include "base/text_format.hpp"
 #include "physics/date_time.hpp"
 #include "physics/ozone.hpp"
-#include "physics/solar_spectrum.hpp"
 #include "physics/solar_position.hpp"
-#include "base/embedded_data.hpp"
-#include "skyspec/error.hpp"
-#include "base/text_format.hpp"
+#include "physics/solar_spectrum.hpp"
 #include "scene/toml_limits.hpp"
+#include "skyspec/error.hpp"
 #include "skyspec/refractive_index.hpp"
 #include "skyspec/units.hpp"
-
 
 namespace skyspec {
 
 using namespace scene_keys;
 
 namespace {
-
 
 void apply_table(Scene& scene, const toml::table& tbl, const std::string& prefix, const std::string& fallback_origin,
                  std::set<std::string>& applied) {
@@ -68,14 +66,13 @@ toml::table parse_toml(const std::string& text, const std::string& origin) {
     return toml::parse(text, origin);
   } catch (const toml::parse_error& e) {
     std::ostringstream s;
-    s << origin << ":" << e.source().begin.line << ":" << e.source().begin.column << ": not valid TOML: "
-      << e.description();
-    throw InputError("scene file", origin, "valid TOML (" + std::string(e.description()) + ")",
-                     origin + ":" + std::to_string(e.source().begin.line) + ":" +
-                         std::to_string(e.source().begin.column));
+    s << origin << ":" << e.source().begin.line << ":" << e.source().begin.column
+      << ": not valid TOML: " << e.description();
+    throw InputError(
+        "scene file", origin, "valid TOML (" + std::string(e.description()) + ")",
+        origin + ":" + std::to_string(e.source().begin.line) + ":" + std::to_string(e.source().begin.column));
   }
 }
-
 
 }  // namespace
 
@@ -124,18 +121,24 @@ void SceneLoader::apply_file(const std::string& path) {
   if (!ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
     throw InputError(kSceneFileSetting, "\"" + path + "\"",
                      std::string("a TOML scene file (this is ") +
-                         (std::filesystem::is_directory(status) ? "a folder" : std::filesystem::is_fifo(status) ? "a FIFO" : "not a regular file") + ")");
+                         (std::filesystem::is_directory(status) ? "a folder"
+                          : std::filesystem::is_fifo(status)    ? "a FIFO"
+                                                                : "not a regular file") +
+                         ")");
   std::string text;
   {
     FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) throw InputError(kSceneFileSetting, "\"" + path + "\"", "a readable TOML scene file (" + std::string(std::strerror(errno)) + ")");
+    if (!f)
+      throw InputError(kSceneFileSetting, "\"" + path + "\"",
+                       "a readable TOML scene file (" + std::string(std::strerror(errno)) + ")");
     char buf[65536];
     size_t n;
     while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) {
       text.append(buf, n);
       if (text.size() > kMaxTomlBytes) {
         std::fclose(f);
-        throw InputError(kSceneFileSetting, "\"" + path + "\"", "a scene file of at most " + std::to_string(kMaxTomlBytes >> 20) + " MiB");
+        throw InputError(kSceneFileSetting, "\"" + path + "\"",
+                         "a scene file of at most " + std::to_string(kMaxTomlBytes >> 20) + " MiB");
       }
     }
     std::fclose(f);
@@ -183,17 +186,19 @@ Scene SceneLoader::finish(SceneUse use) const {
   // Camera: not inside the planet.
   const Vec3 world = Vec3(s.camera.position_m.x(), s.camera.position_m.y(), R + s.camera.position_m.z());
   if (world.norm() < R)
-    throw InputError("camera.position_m",
-                     "[" + format_number(s.camera.position_m.x()) + ", " + format_number(s.camera.position_m.y()) + ", " +
-                         format_number(s.camera.position_m.z()) + "]",
-                     "a position on or above the ground (this one is " + format_number(R - world.norm()) + " m below it)");
+    throw InputError(
+        "camera.position_m",
+        "[" + format_number(s.camera.position_m.x()) + ", " + format_number(s.camera.position_m.y()) + ", " +
+            format_number(s.camera.position_m.z()) + "]",
+        "a position on or above the ground (this one is " + format_number(R - world.norm()) + " m below it)");
   if (s.camera.type == CameraSpec::Type::Perspective && (s.camera.look_at_m - s.camera.position_m).norm() < 1e-6)
     throw InputError("camera.look_at_m", "the camera position", "a point different from camera.position_m");
   if (static_cast<double>(s.camera.width) * s.camera.height > 1.0e9)
-    throw InputError("camera.width x camera.height", std::to_string(s.camera.width) + "x" + std::to_string(s.camera.height),
-                     "at most 1e9 pixels");
+    throw InputError("camera.width x camera.height",
+                     std::to_string(s.camera.width) + "x" + std::to_string(s.camera.height), "at most 1e9 pixels");
   if (s.camera.type == CameraSpec::Type::Equirectangular) check_panorama(s.camera);
-  if (sees_below_horizon_as_panorama(s.camera) && !ground_albedo_given(given_)) s.atmosphere.ground.albedo = kPanoramaGroundAlbedo;
+  if (sees_below_horizon_as_panorama(s.camera) && !ground_albedo_given(given_))
+    s.atmosphere.ground.albedo = kPanoramaGroundAlbedo;
   if (!s.sun.date_time.empty()) {
     // The sun's position and distance for the date, time and place (NREL SPA).
     Observer where;
@@ -221,8 +226,9 @@ Scene SceneLoader::finish(SceneUse use) const {
         {"atmosphere.mie.table_g", mie.table_g.size()}};
     for (const auto& [key, size] : tables)
       if (size != n_table)
-        throw InputError(key, std::to_string(size) + " values",
-                         "one value per entry of atmosphere.mie.table_wavelengths_nm (" + std::to_string(n_table) + ")");
+        throw InputError(
+            key, std::to_string(size) + " values",
+            "one value per entry of atmosphere.mie.table_wavelengths_nm (" + std::to_string(n_table) + ")");
     for (size_t i = 1; i < n_table; ++i)
       if (!(mie.table_wavelengths_nm[i] > mie.table_wavelengths_nm[i - 1]))
         throw InputError("atmosphere.mie.table_wavelengths_nm", format_number(mie.table_wavelengths_nm[i]),
@@ -238,7 +244,8 @@ Scene SceneLoader::finish(SceneUse use) const {
       throw InputError("ground.albedo_wavelengths_nm", format_number(gr.albedo_wavelengths_nm[i]),
                        "strictly increasing wavelengths");
   if (s.output.polarisation_png && !s.output.polarisation)
-    throw InputError("output.polarisation_png", "true", "false unless output.polarisation = true (it draws the polarisation)");
+    throw InputError("output.polarisation_png", "true",
+                     "false unless output.polarisation = true (it draws the polarisation)");
   if (s.output.polarisation && s.render.scattering_orders >= 2 && s.render.ms_angular_degree < 2)
     throw InputError("render.ms_angular_degree", std::to_string(s.render.ms_angular_degree),
                      "2 or more with output.polarisation = true and multiple scattering (the polarisation of light "

@@ -1,7 +1,7 @@
 // The scene as TOML (scene_to_toml), its keys' help (--help-keys, Python's scene_keys()) and
 // docs/scene-keys.md, all from the key registry.
-#include "skyspec/scene.hpp"
 #include "scene/key_registry.hpp"
+#include "skyspec/scene.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -20,17 +20,16 @@
 
 #include <toml++/toml.h>
 
+#include "base/embedded_data.hpp"
+#include "base/text_format.hpp"
 #include "physics/date_time.hpp"
 #include "physics/ozone.hpp"
-#include "physics/solar_spectrum.hpp"
 #include "physics/solar_position.hpp"
-#include "base/embedded_data.hpp"
-#include "skyspec/error.hpp"
-#include "base/text_format.hpp"
+#include "physics/solar_spectrum.hpp"
 #include "scene/toml_limits.hpp"
+#include "skyspec/error.hpp"
 #include "skyspec/refractive_index.hpp"
 #include "skyspec/units.hpp"
-
 
 namespace skyspec {
 
@@ -105,4 +104,3 @@ std::string scene_keys_markdown() {
 Scene default_scene() { return SceneLoader("default").finish(); }
 
 }  // namespace skyspec
-

@@ -9,8 +9,10 @@ namespace {
 std::string position(const std::string& origin, std::string_view text, std::size_t at) {
   int line = 1, column = 1;
   for (std::size_t i = 0; i < at && i < text.size(); ++i) {
-    if (text[i] == '\n') ++line, column = 1;
-    else ++column;
+    if (text[i] == '\n')
+      ++line, column = 1;
+    else
+      ++column;
   }
   return origin + ":" + std::to_string(line) + ":" + std::to_string(column);
 }
@@ -19,7 +21,8 @@ std::string position(const std::string& origin, std::string_view text, std::size
 
 void check_toml_limits(std::string_view text, const std::string& setting, const std::string& origin) {
   if (text.size() > kMaxTomlBytes)
-    throw InputError::refused(setting, origin + ": " + std::to_string(text.size()) + " bytes of TOML; skyspec reads at most " +
+    throw InputError::refused(setting, origin + ": " + std::to_string(text.size()) +
+                                           " bytes of TOML; skyspec reads at most " +
                                            std::to_string(kMaxTomlBytes >> 20) + " MiB");
   int depth = 0, dots = 0;
   const std::size_t n = text.size();
@@ -65,9 +68,9 @@ void check_toml_limits(std::string_view text, const std::string& setting, const 
         break;
       case '.':
         if (++dots >= kMaxTomlKeyParts)
-          throw InputError::refused(setting, position(origin, text, i) + ": a dotted key of more than " +
-                                                 std::to_string(kMaxTomlKeyParts) + " parts; skyspec reads keys of at most " +
-                                                 std::to_string(kMaxTomlKeyParts) + " parts");
+          throw InputError::refused(
+              setting, position(origin, text, i) + ": a dotted key of more than " + std::to_string(kMaxTomlKeyParts) +
+                           " parts; skyspec reads keys of at most " + std::to_string(kMaxTomlKeyParts) + " parts");
         break;
       case '=':
       case ',':

@@ -13,7 +13,6 @@ Vec3 direction_from_angles(double azimuth_deg, double elevation_deg) {
   return Vec3(std::cos(el) * std::sin(az), std::cos(el) * std::cos(az), std::sin(el));
 }
 
-
 SphereHit intersect_sphere(const Vec3& origin_m, const Vec3& dir, double radius_m) {
   // |o + t d|^2 = r^2  <=>  t^2 + 2 b t + c = 0, b = o.d, c = |o|^2 - r^2.
   const double b = origin_m.dot(dir);
@@ -51,8 +50,8 @@ double sphere_entry_distance(const Vec3& origin_m, const Vec3& dir, double radiu
   return std::numeric_limits<double>::infinity();
 }
 
-IntervalSet lit_intervals(const Vec3& origin_m, const Vec3& dir, double t0_m, double t1_m,
-                          const Vec3& sun_dir, double planet_radius_m) {
+IntervalSet lit_intervals(const Vec3& origin_m, const Vec3& dir, double t0_m, double t1_m, const Vec3& sun_dir,
+                          double planet_radius_m) {
   IntervalSet out;
   if (!(t1_m > t0_m)) return out;
   // Shadow cylinder: |p_perp(t)|^2 < R^2 with p_perp = o_perp + t d_perp (components normal to s).

@@ -139,7 +139,8 @@ MonteCarloIntegrator::MonteCarloIntegrator(MonteCarloMedium medium, const Vec3& 
       throw Error("a Monte Carlo component needs 0 <= scattering <= extinction");
     double rho_max = 0.0;
     const int n = static_cast<int>(std::ceil(medium_.top_altitude_m / 10.0));
-    for (int k = 0; k <= n; ++k) rho_max = std::max(rho_max, c.profile.relative(std::min(k * 10.0, medium_.top_altitude_m)));
+    for (int k = 0; k <= n; ++k)
+      rho_max = std::max(rho_max, c.profile.relative(std::min(k * 10.0, medium_.top_altitude_m)));
     if (c.profile.kind() == DensityProfile::Kind::Tent) rho_max = std::max(rho_max, 1.0);
     majorant_ += c.extinction_per_m * rho_max;
   }
@@ -214,10 +215,17 @@ double MonteCarloIntegrator::phase_to_sun(const double* scattering, double total
     const auto& c = medium_.components[k];
     double pk = 0.0;
     switch (c.phase) {
-      case MonteCarloComponent::Phase::Rayleigh: pk = rayleigh_phase(mu, c.phase_parameter); break;
-      case MonteCarloComponent::Phase::HenyeyGreenstein: pk = henyey_greenstein_phase(mu, c.phase_parameter); break;
-      case MonteCarloComponent::Phase::CornetteShanks: pk = cornette_shanks_phase(mu, c.phase_parameter); break;
-      case MonteCarloComponent::Phase::None: break;
+      case MonteCarloComponent::Phase::Rayleigh:
+        pk = rayleigh_phase(mu, c.phase_parameter);
+        break;
+      case MonteCarloComponent::Phase::HenyeyGreenstein:
+        pk = henyey_greenstein_phase(mu, c.phase_parameter);
+        break;
+      case MonteCarloComponent::Phase::CornetteShanks:
+        pk = cornette_shanks_phase(mu, c.phase_parameter);
+        break;
+      case MonteCarloComponent::Phase::None:
+        break;
     }
     p += scattering[k] * pk;
   }
@@ -231,14 +239,17 @@ ScatteringMatrix MonteCarloIntegrator::mixture_matrix(const double* scattering, 
     const auto& c = medium_.components[k];
     ScatteringMatrix fk;
     switch (c.phase) {
-      case MonteCarloComponent::Phase::Rayleigh: fk = rayleigh_scattering_matrix(mu, c.phase_parameter); break;
+      case MonteCarloComponent::Phase::Rayleigh:
+        fk = rayleigh_scattering_matrix(mu, c.phase_parameter);
+        break;
       case MonteCarloComponent::Phase::HenyeyGreenstein:
         fk = non_polarising_scattering_matrix(henyey_greenstein_phase(mu, c.phase_parameter));
         break;
       case MonteCarloComponent::Phase::CornetteShanks:
         fk = non_polarising_scattering_matrix(cornette_shanks_phase(mu, c.phase_parameter));
         break;
-      case MonteCarloComponent::Phase::None: continue;
+      case MonteCarloComponent::Phase::None:
+        continue;
     }
     fk *= scattering[k];
     f += fk;
@@ -273,14 +284,18 @@ Vec3 MonteCarloIntegrator::sample_scattering(const double* scattering, double to
       while (rng.uniform() * (A + B) > A + B * mu * mu);
       break;
     }
-    case MonteCarloComponent::Phase::HenyeyGreenstein: mu = henyey_greenstein(a); break;
+    case MonteCarloComponent::Phase::HenyeyGreenstein:
+      mu = henyey_greenstein(a);
+      break;
     case MonteCarloComponent::Phase::CornetteShanks:
       // Cornette-Shanks = Henyey-Greenstein x 3 (1 + mu^2) / (2 (2 + g^2)): HG proposals accepted
       // with probability (1 + mu^2) / 2.
       do mu = henyey_greenstein(a);
       while (rng.uniform() * 2.0 > 1.0 + mu * mu);
       break;
-    case MonteCarloComponent::Phase::None: mu = 1.0; break;
+    case MonteCarloComponent::Phase::None:
+      mu = 1.0;
+      break;
   }
   return rotate_about(d, mu, 2.0 * kPi * rng.uniform());
 }
@@ -330,7 +345,8 @@ Eigen::Matrix<double, N, 1> MonteCarloIntegrator::path(Vec3 p, Vec3 d, const Vec
   for (int order = 1; order <= kMaxEvents; ++order) {
     bool ground = false;
     const double t_max = distance_to_boundary(p, d, ground);
-    const double rate = std::isfinite(t_max) ? std::max(majorant_, kPointsPerSegment / std::max(t_max, 1e-300)) : majorant_;
+    const double rate =
+        std::isfinite(t_max) ? std::max(majorant_, kPointsPerSegment / std::max(t_max, 1e-300)) : majorant_;
     double T = 1.0, t = 0.0;
     double t_real = -1.0, albedo_real = 0.0;
     Vec3 d_real = d;
@@ -383,7 +399,8 @@ Eigen::Matrix<double, N, 1> MonteCarloIntegrator::path(Vec3 p, Vec3 d, const Vec
       const double cos_sun = n.dot(sun_);
       if (cos_sun > 0.0 && medium_.ground_albedo > 0.0) {
         // Lambertian: unpolarised whatever the light it reflects.
-        const double k = w * T * medium_.ground_albedo / kPi * E * cos_sun * transmittance_to_sun(snap_to_ground(g), rng);
+        const double k =
+            w * T * medium_.ground_albedo / kPi * E * cos_sun * transmittance_to_sun(snap_to_ground(g), rng);
         if constexpr (kStokes)
           L += k * M.col(0);
         else

@@ -36,10 +36,10 @@
 #include <cstdint>
 #include <vector>
 
+#include "physics/scattering_matrix.hpp"
 #include "skyspec/atmosphere.hpp"
 #include "skyspec/density_profile.hpp"
 #include "skyspec/geometry.hpp"
-#include "physics/scattering_matrix.hpp"
 
 namespace skyspec {
 
@@ -61,8 +61,8 @@ struct MonteCarloMedium {
   double planet_radius_m = 6360e3;
   double top_altitude_m = 60e3;  ///< the medium ends here
   std::vector<MonteCarloComponent> components;
-  double ground_albedo = 0.0;    ///< Lambertian
-  double sun_irradiance = 1.0;   ///< irradiance normal to the sun's direction at the top
+  double ground_albedo = 0.0;   ///< Lambertian
+  double sun_irradiance = 1.0;  ///< irradiance normal to the sun's direction at the top
 
   /// Wavelength i of an atmosphere on its grid: Rayleigh (gamma from the King factor), the aerosol
   /// (its phase model and g at that wavelength), ozone; per unit solar irradiance.
@@ -72,8 +72,8 @@ struct MonteCarloMedium {
 struct MonteCarloSettings {
   std::int64_t paths = 65536;  ///< per probe and wavelength
   std::uint64_t seed = 1;
-  int max_orders = 0;          ///< 0: all orders; k: events (scattering or ground) up to k
-  int threads = 0;             ///< 0: all cores
+  int max_orders = 0;  ///< 0: all orders; k: events (scattering or ground) up to k
+  int threads = 0;     ///< 0: all cores
 };
 
 /// What one estimate gives: the mean over the paths and its standard error.

@@ -7,19 +7,19 @@
 #include <fstream>
 #include <istream>
 #include <ostream>
+#include <stdexcept>
 #include <streambuf>
 #include <string_view>
-#include <stdexcept>
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
-#include "base/cancellation.hpp"
 #include "base/atomic_file.hpp"
+#include "base/cancellation.hpp"
 #include "base/embedded_data.hpp"
 #include "base/hashing_streambuf.hpp"
-#include "skyspec/units.hpp"
 #include "skyspec/phase_function.hpp"
+#include "skyspec/units.hpp"
 #include "transport/spherical_harmonics.hpp"
 
 namespace skyspec {
@@ -91,7 +91,8 @@ std::shared_ptr<const PhaseMoments> PhaseMoments::of(const AtmosphereModel& atm,
       m->rayleigh[static_cast<size_t>(l) * n + i] = static_cast<float>(r[static_cast<size_t>(l)]);
       m->mie[static_cast<size_t>(l) * n + i] = static_cast<float>(a[static_cast<size_t>(l)]);
       // Zero to rounding beyond l = 2 (the quadrature is exact for a quadratic).
-      if (std::abs(r[static_cast<size_t>(l)]) > 1e-9 * std::abs(r[0])) m->rayleigh_degree = std::max(m->rayleigh_degree, l);
+      if (std::abs(r[static_cast<size_t>(l)]) > 1e-9 * std::abs(r[0]))
+        m->rayleigh_degree = std::max(m->rayleigh_degree, l);
     }
   }
   return m;
@@ -126,7 +127,9 @@ double SourceTable::row_coordinate_of_altitude(double h) const {
   return std::log1p(h / kRowAltitudeScale_m) / std::log1p((Rt_ - R_) / kRowAltitudeScale_m);
 }
 
-double SourceTable::altitude_m(int ih) const { return altitude_of_row_coordinate(static_cast<double>(ih) / (n_h_ - 1)); }
+double SourceTable::altitude_m(int ih) const {
+  return altitude_of_row_coordinate(static_cast<double>(ih) / (n_h_ - 1));
+}
 
 double SourceTable::mu_sun(int imu) const {
   if (imu == 0) return -1.0;  // the end columns exactly (sinh(asinh(x)) is x to rounding)
@@ -177,8 +180,16 @@ SourceTable::Blend SourceTable::blend(double r_m, double mu_s) const {
   const double fm = std::clamp(u_from_mu(mu_s), 0.0, 1.0) * (n_mu_ - 1);
   const int ih = std::min(static_cast<int>(fh), n_h_ - 2), im = std::min(static_cast<int>(fm), n_mu_ - 2);
   const float ah = static_cast<float>(fh - ih), am = static_cast<float>(fm - im);
-  Blend w{ih, im, &j_[index(ih, im)], &j_[index(ih, im + 1)], &j_[index(ih + 1, im)], &j_[index(ih + 1, im + 1)],
-          (1 - ah) * (1 - am), (1 - ah) * am, ah * (1 - am), ah * am};
+  Blend w{ih,
+          im,
+          &j_[index(ih, im)],
+          &j_[index(ih, im + 1)],
+          &j_[index(ih + 1, im)],
+          &j_[index(ih + 1, im + 1)],
+          (1 - ah) * (1 - am),
+          (1 - ah) * am,
+          ah * (1 - am),
+          ah * am};
   const bool lower_steep = steep_[static_cast<size_t>(ih) * (n_mu_ - 1) + im] != 0;
   const bool upper_steep = steep_[static_cast<size_t>(ih + 1) * (n_mu_ - 1) + im] != 0;
   if (!lower_steep && !upper_steep) return w;
@@ -232,7 +243,8 @@ void SourceTable::source_to_degree(int max_degree, double r_m, double mu, double
   // are not written out.
   const int rayleigh_degree = std::min(moments_->rayleigh_degree, degree);
   for (int i0 = 0; i0 < n_l_; i0 += kLookupSlack) {
-    Lanes wa = Lanes::Constant(w.sa), wb = Lanes::Constant(w.sb), wc = Lanes::Constant(w.sc), wd = Lanes::Constant(w.sd);
+    Lanes wa = Lanes::Constant(w.sa), wb = Lanes::Constant(w.sb), wc = Lanes::Constant(w.sc),
+          wd = Lanes::Constant(w.sd);
     if (w.lower) {
       const LanesMap f(w.lower + i0);
       wa *= f;
@@ -289,8 +301,8 @@ void SourceTable::source_to_degree(int max_degree, double r_m, double mu, double
   }
 }
 
-void SourceTable::mix(const Blend& w, size_t (SourceTable::*at)(int, int) const, const ZeroedFloats& data, size_t offset,
-                      float* out) const {
+void SourceTable::mix(const Blend& w, size_t (SourceTable::*at)(int, int) const, const ZeroedFloats& data,
+                      size_t offset, float* out) const {
   const float* a = &data[(this->*at)(w.ih, w.im) + offset];
   const float* b = &data[(this->*at)(w.ih, w.im + 1) + offset];
   const float* c = &data[(this->*at)(w.ih + 1, w.im) + offset];
@@ -305,7 +317,8 @@ bool SourceTable::rayleigh_moments(double r_m, double mu, float* out) const {
   if (degree_ < 2) return false;
   const Blend w = blend(r_m, mu);
   for (int m = 0; m <= 2; ++m)
-    mix(w, &SourceTable::index, j_, static_cast<size_t>(harmonic_index(2, m)) * n_l_, out + static_cast<size_t>(m) * n_l_);
+    mix(w, &SourceTable::index, j_, static_cast<size_t>(harmonic_index(2, m)) * n_l_,
+        out + static_cast<size_t>(m) * n_l_);
   float* tensor = out + 3 * static_cast<size_t>(n_l_);
   if (!polarised_) {
     std::fill(tensor, tensor + 3 * static_cast<size_t>(n_l_), 0.0f);
@@ -357,7 +370,8 @@ void SourceTable::write(std::ostream& out) const {
   out.write(reinterpret_cast<const char*>(shape), sizeof shape);
   out.write(reinterpret_cast<const char*>(j_.data()), static_cast<std::streamsize>(j_size() * sizeof(float)));
   out.write(reinterpret_cast<const char*>(g_.data()), static_cast<std::streamsize>(g_.size() * sizeof(float)));
-  if (p_size() > 0) out.write(reinterpret_cast<const char*>(p_.data()), static_cast<std::streamsize>(p_size() * sizeof(float)));
+  if (p_size() > 0)
+    out.write(reinterpret_cast<const char*>(p_.data()), static_cast<std::streamsize>(p_size() * sizeof(float)));
 }
 
 bool SourceTable::read(std::istream& in) {
@@ -369,7 +383,8 @@ bool SourceTable::read(std::istream& in) {
   if (!in.read(reinterpret_cast<char*>(j.data()), static_cast<std::streamsize>(j_size() * sizeof(float)))) return false;
   if (!in.read(reinterpret_cast<char*>(g.data()), static_cast<std::streamsize>(g.size() * sizeof(float)))) return false;
   ZeroedFloats p(p_size());
-  if (p_size() > 0 && !in.read(reinterpret_cast<char*>(p.data()), static_cast<std::streamsize>(p_size() * sizeof(float))))
+  if (p_size() > 0 &&
+      !in.read(reinterpret_cast<char*>(p.data()), static_cast<std::streamsize>(p_size() * sizeof(float))))
     return false;
   for (size_t i = 0; i < j_size(); ++i)
     if (!std::isfinite(j[i])) return false;
@@ -419,7 +434,8 @@ void integrate_order(const SingleScattering& integrator, const ScatteringSources
     Eigen::ArrayXXf p;  // [wavelength, xx yy xz]: the polarisation tensor (polarised tables)
     RadianceParts parts;
     std::vector<double> basis;
-    Scratch(int m, int c) : ws(m), radiance(m), g(m), q(m), u(m), a(m, c), p(m, 3), parts(m), basis(static_cast<size_t>(c)) {}
+    Scratch(int m, int c)
+        : ws(m), radiance(m), g(m), q(m), u(m), a(m, c), p(m, 3), parts(m), basis(static_cast<size_t>(c)) {}
   };
   ScatteringSources ray_sources = sources;
   ray_sources.polarisation = polarised;
@@ -466,7 +482,8 @@ void integrate_order(const SingleScattering& integrator, const ScatteringSources
             integrator.radiance(x, w, s, unit, sources, sc.ws, sc.radiance);
           }
           symmetric_harmonics(degree, mu, std::cos(phi), sc.basis.data());
-          for (int c = 0; c < n_c; ++c) sc.a.col(c) += static_cast<float>(weight * sc.basis[static_cast<size_t>(c)]) * sc.radiance;
+          for (int c = 0; c < n_c; ++c)
+            sc.a.col(c) += static_cast<float>(weight * sc.basis[static_cast<size_t>(c)]) * sc.radiance;
           if (sky && at_ground) sc.g += static_cast<float>(mu * weight) * sc.radiance;
         }
       }
@@ -474,7 +491,8 @@ void integrate_order(const SingleScattering& integrator, const ScatteringSources
     integrate(nodes, weights, true);
     integrate(gn, gw, false);
     float* out = table.j_at(ih, imu);
-    for (int c = 0; c < n_c; ++c) std::copy(sc.a.col(c).data(), sc.a.col(c).data() + n, out + static_cast<size_t>(c) * n);
+    for (int c = 0; c < n_c; ++c)
+      std::copy(sc.a.col(c).data(), sc.a.col(c).data() + n, out + static_cast<size_t>(c) * n);
     if (at_ground) std::copy(sc.g.data(), sc.g.data() + n, table.g_at(imu));
     if (polarised)
       for (int c = 0; c < 3; ++c)
@@ -528,7 +546,8 @@ ScatteringOrders::ScatteringOrders(const SingleScattering& integrator, const Mul
     ScatteringSources previous;
     previous.single = k == 2;
     previous.higher = source_of_previous.get();
-    integrate_order(builder, previous, quadrature_of_order(settings_.angular_degree, k, settings_.quadrature_refinement), *table);
+    integrate_order(builder, previous,
+                    quadrature_of_order(settings_.angular_degree, k, settings_.quadrature_refinement), *table);
     sum_->add(*table);
     orders_.push_back(std::move(table));
   }
@@ -538,7 +557,8 @@ ScatteringOrders::ScatteringOrders(const SingleScattering& integrator, const Mul
 }
 
 std::uint64_t ScatteringOrders::table_bytes(const MultipleScatteringSettings& st, int wavelengths) {
-  const std::uint64_t entry = static_cast<std::uint64_t>(st.altitude_samples) * st.sun_samples * wavelengths * sizeof(float);
+  const std::uint64_t entry =
+      static_cast<std::uint64_t>(st.altitude_samples) * st.sun_samples * wavelengths * sizeof(float);
   std::uint64_t harmonics = static_cast<std::uint64_t>(skyspec::harmonic_count(st.angular_degree));  // the sum
   for (int k = 2; k <= st.orders; ++k) harmonics += skyspec::harmonic_count(degree_of_order(st.angular_degree, k));
   if (st.polarisation) harmonics += 3 * static_cast<std::uint64_t>(st.orders);  // each table's polarisation tensor
@@ -560,7 +580,7 @@ DirectionQuadrature ScatteringOrders::quadrature_of_order(int angular_degree, in
 }
 
 double ScatteringOrders::estimate_build_seconds(const SingleScattering& integrator,
-                                               const MultipleScatteringSettings& settings) {
+                                                const MultipleScatteringSettings& settings) {
   if (settings.orders < 2) return 0.0;
   const AtmosphereModel& atm = integrator.atmosphere();
   const SingleScattering builder(atm, integrator.sun_columns(), IntegratorSettings{settings.view_segments});
@@ -586,7 +606,8 @@ double ScatteringOrders::estimate_build_seconds(const SingleScattering& integrat
   double higher = 0.0;
   if (settings.orders > 2) {
     const int d_max = degree_of_order(a, 3), d_min = degree_of_order(a, settings.orders);
-    const DirectionQuadrature q_max = quadrature_of_order(a, 3, refine), q_min = quadrature_of_order(a, settings.orders, refine);
+    const DirectionQuadrature q_max = quadrature_of_order(a, 3, refine),
+                              q_min = quadrature_of_order(a, settings.orders, refine);
     SourceTable big(atm.planet_radius_m(), atm.top_radius_m(), 4, 4, moments, d_max, settings.polarisation);
     big.prepare();
     const double t_max = seconds_per_entry(ScatteringSources{false, &big}, q_max) / q_max.rays();
@@ -665,8 +686,8 @@ std::unique_ptr<ScatteringOrders> ScatteringOrders::load(const std::string& path
   };
   for (int k = 0; k < count; ++k) {
     auto t = std::make_unique<SourceTable>(atm.planet_radius_m(), atm.top_radius_m(), settings.altitude_samples,
-                                           settings.sun_samples, moments, degree_of_order(settings.angular_degree, k + 2),
-                                           settings.polarisation);
+                                           settings.sun_samples, moments,
+                                           degree_of_order(settings.angular_degree, k + 2), settings.polarisation);
     if (!t->read(in)) return nullptr;
     t->prepare();
     o->orders_.push_back(std::move(t));

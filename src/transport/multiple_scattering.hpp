@@ -36,14 +36,14 @@
 namespace skyspec {
 
 struct MultipleScatteringSettings {
-  int orders = 4;              ///< highest scattering order counted (1: single scattering only)
-  int altitude_samples = 16;   ///< table rows, denser near the ground (SourceTable::altitude_m)
-  int sun_samples = 72;        ///< table columns over mu_s in [-1, 1], denser near the horizon
-  int view_segments = 24;      ///< quadrature segments of each ray while building the tables
+  int orders = 4;             ///< highest scattering order counted (1: single scattering only)
+  int altitude_samples = 16;  ///< table rows, denser near the ground (SourceTable::altitude_m)
+  int sun_samples = 72;       ///< table columns over mu_s in [-1, 1], denser near the horizon
+  int view_segments = 24;     ///< quadrature segments of each ray while building the tables
   /// Every order's direction nodes (quadrature_of_order) times this in each of the three
   /// dimensions: 1 for renders; more to check that the tables have converged.
   int quadrature_refinement = 1;
-  int angular_degree = 0;      ///< spherical-harmonic degree of the tabulated fields (0: isotropic)
+  int angular_degree = 0;  ///< spherical-harmonic degree of the tabulated fields (0: isotropic)
   /// Carry the fields' linear polarisation from order to order (vector transport for the air; needs
   /// angular_degree >= 2): each table also holds its field's polarisation tensor
   /// (InScatteringSource::rayleigh_moments), and the intensity gets polarisation's share.

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include <Eigen/Core>
 #include <tbb/parallel_for.h>
+#include <Eigen/Core>
 
 #include "base/cancellation.hpp"
 #include "skyspec/units.hpp"
@@ -102,8 +102,8 @@ void columns_to_top(const DensityProfile* const* profiles, int count, double pla
 }
 }  // namespace
 
-double column_to_top_m(const DensityProfile& profile, double planet_radius_m, double top_radius_m,
-                       double r_m, double mu, int segments) {
+double column_to_top_m(const DensityProfile& profile, double planet_radius_m, double top_radius_m, double r_m,
+                       double mu, int segments) {
   const DensityProfile* profiles[1] = {&profile};
   double column = 0.0;
   columns_to_top(profiles, 1, planet_radius_m, top_radius_m, r_m, mu, segments, &column);
@@ -114,8 +114,8 @@ Columns columns_to_top_m(const AtmosphereModel& atm, double r_m, double mu, int 
   // All species on the same nodes: their altitudes are computed once.
   const DensityProfile* profiles[kSpeciesCount] = {&atm.rayleigh().profile, &atm.mie().profile, &atm.ozone().profile};
   Columns c{};
-  columns_to_top(profiles, atm.ozone().enabled() ? 3 : 2, atm.planet_radius_m(), atm.top_radius_m(), r_m, mu,
-                 segments, c.data());
+  columns_to_top(profiles, atm.ozone().enabled() ? 3 : 2, atm.planet_radius_m(), atm.top_radius_m(), r_m, mu, segments,
+                 c.data());
   return c;
 }
 

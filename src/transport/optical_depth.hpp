@@ -35,8 +35,8 @@ inline double distance_to_top_m(double r_m, double mu, double top_r_m) {
 /// the exponential (log-mean) rule with Richardson extrapolation on `segments` pieces (split at
 /// the ray's lowest point when it descends first). Rays that hit the planet are not handled:
 /// callers check the horizon.
-double column_to_top_m(const DensityProfile& profile, double planet_radius_m, double top_radius_m,
-                       double r_m, double mu, int segments);
+double column_to_top_m(const DensityProfile& profile, double planet_radius_m, double top_radius_m, double r_m,
+                       double mu, int segments);
 
 /// Columns for all species from (r, mu) to the top: the table's reference computation.
 Columns columns_to_top_m(const AtmosphereModel& atm, double r_m, double mu, int segments);
@@ -48,9 +48,9 @@ Columns columns_to_top_m(const AtmosphereModel& atm, double r_m, double mu, int 
 class SunColumnTable {
  public:
   struct Resolution {
-    int n_r = 128;           ///< samples in altitude
-    int n_mu = 256;          ///< samples in zenith cosine (horizon to zenith)
-    int segments = 128;      ///< integration pieces per table entry
+    int n_r = 128;       ///< samples in altitude
+    int n_mu = 256;      ///< samples in zenith cosine (horizon to zenith)
+    int segments = 128;  ///< integration pieces per table entry
   };
   /// The sun zenith cosines the table is to serve: entries are computed only where a look-up with
   /// mu in [lo, hi] interpolates (the same grid and values as the whole table there). A look-up
@@ -97,7 +97,7 @@ class SunColumnTable {
   const AtmosphereModel* atm_;
   double R_, Rt_, H_;
   Resolution res_;
-  std::vector<Columns> data_;  // [i_r * n_mu + i_mu]
+  std::vector<Columns> data_;     // [i_r * n_mu + i_mu]
   std::vector<int> first_, end_;  // per altitude row: the computed i_mu are [first, end)
 };
 

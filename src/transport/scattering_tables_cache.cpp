@@ -29,7 +29,8 @@ std::vector<std::pair<std::string, std::shared_ptr<const ScatteringOrders>>> g_r
 void warn_cache_unusable(const std::filesystem::path& dir, const std::string& why) {
   static std::once_flag once;
   std::call_once(once, [&] {
-    const char* from = std::getenv("SKYSPEC_CACHE_DIR") && *std::getenv("SKYSPEC_CACHE_DIR") ? " (SKYSPEC_CACHE_DIR)" : "";
+    const char* from =
+        std::getenv("SKYSPEC_CACHE_DIR") && *std::getenv("SKYSPEC_CACHE_DIR") ? " (SKYSPEC_CACHE_DIR)" : "";
     std::cerr << "skyspec: warning: the scattering tables cannot be cached in " << dir.string() << from << ": " << why
               << "; they are built again on every run\n";
   });
@@ -50,7 +51,8 @@ bool usable_cache_directory(const std::filesystem::path& dir) {
   return true;
 }
 
-std::shared_ptr<const ScatteringOrders> load_or_build(const SingleScattering& integrator, const ScatteringTablesKey& key,
+std::shared_ptr<const ScatteringOrders> load_or_build(const SingleScattering& integrator,
+                                                      const ScatteringTablesKey& key,
                                                       const MultipleScatteringSettings& settings, bool use_disk_cache) {
   const std::filesystem::path dir = use_disk_cache ? table_cache_directory() : std::filesystem::path();
   const std::string path = dir.empty() ? std::string() : (dir / key.file_name()).string();

@@ -45,8 +45,8 @@ ScatteringTablesKey scattering_tables_key(const AtmosphereModel& atm, const SunC
   write_array(out, "mie.g", atm.mie_g());
   write_array(out, "ground.albedo", atm.ground_albedo());
   out << "sun_table " << sun_table.n_r << ' ' << sun_table.n_mu << ' ' << sun_table.segments << '\n';
-  out << "orders " << ms.orders << "\naltitude_samples " << ms.altitude_samples << "\nsun_samples "
-      << ms.sun_samples << "\nview_segments " << ms.view_segments << "\nangular_degree " << ms.angular_degree << '\n';
+  out << "orders " << ms.orders << "\naltitude_samples " << ms.altitude_samples << "\nsun_samples " << ms.sun_samples
+      << "\nview_segments " << ms.view_segments << "\nangular_degree " << ms.angular_degree << '\n';
   if (ms.polarisation) out << "polarisation 1\n";  // absent for scalar tables (their keys stay as they were)
   for (int k = 2; k <= ms.orders; ++k) {
     const DirectionQuadrature q = ScatteringOrders::quadrature_of_order(ms.angular_degree, k, ms.quadrature_refinement);

@@ -37,7 +37,8 @@ struct ScatteringTablesKey {
   std::string file_name() const;
 };
 
-ScatteringTablesKey scattering_tables_key(const AtmosphereModel& atmosphere, const SunColumnTable::Resolution& sun_table,
+ScatteringTablesKey scattering_tables_key(const AtmosphereModel& atmosphere,
+                                          const SunColumnTable::Resolution& sun_table,
                                           const MultipleScatteringSettings& settings);
 
 }  // namespace skyspec

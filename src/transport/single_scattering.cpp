@@ -6,19 +6,38 @@
 #include <limits>
 
 #include "skyspec/atmosphere.hpp"
-#include "transport/optical_depth.hpp"
 #include "skyspec/phase_function.hpp"
 #include "skyspec/units.hpp"
 #include "transport/multiple_scattering.hpp"  // gauss_legendre
+#include "transport/optical_depth.hpp"
 #include "transport/spherical_harmonics.hpp"
 
 namespace skyspec {
 
 ScatteringWorkspace::ScatteringWorkspace(int n)
-    : view_tau(n), view_trans(n), source(n), ground_sun(n), ground_sky(n),
-      sum_rayleigh(n), sum_mie(n), coarse_rayleigh(n), coarse_mie(n), sum_ms_rayleigh(n), sum_ms_mie(n),
-      coarse_ms_rayleigh(n), coarse_ms_mie(n), sum_ms_q(n), coarse_ms_q(n), sum_ms_u(n), coarse_ms_u(n), sum_ms_mq(n),
-      coarse_ms_mq(n), sum_ms_mu(n), coarse_ms_mu(n), phase(n), parts(n) {}
+    : view_tau(n),
+      view_trans(n),
+      source(n),
+      ground_sun(n),
+      ground_sky(n),
+      sum_rayleigh(n),
+      sum_mie(n),
+      coarse_rayleigh(n),
+      coarse_mie(n),
+      sum_ms_rayleigh(n),
+      sum_ms_mie(n),
+      coarse_ms_rayleigh(n),
+      coarse_ms_mie(n),
+      sum_ms_q(n),
+      coarse_ms_q(n),
+      sum_ms_u(n),
+      coarse_ms_u(n),
+      sum_ms_mq(n),
+      coarse_ms_mq(n),
+      sum_ms_mu(n),
+      coarse_ms_mu(n),
+      phase(n),
+      parts(n) {}
 
 Vec3 polarisation_frame(const Vec3& view, const Vec3& sun) {
   const Vec3 k = -view;
@@ -29,8 +48,7 @@ Vec3 polarisation_frame(const Vec3& view, const Vec3& sun) {
   return e1.normalized();
 }
 
-SingleScattering::SingleScattering(const AtmosphereModel& atm, const SunColumns& sun_columns,
-                                   IntegratorSettings s)
+SingleScattering::SingleScattering(const AtmosphereModel& atm, const SunColumns& sun_columns, IntegratorSettings s)
     : atm_(atm),
       sun_(sun_columns),
       settings_(s),
@@ -81,9 +99,9 @@ constexpr Eigen::Index kWavelengthsForWavelengthLoops = 8;  // one AVX vector of
 namespace detail {
 struct PieceSegments {
   int segments = 0;
-  Eigen::ArrayXf dt, rho[2], log_ratio[2];              // fine: [k]; rho: [node]
-  Eigen::ArrayXf dt2, log_ratio2[2];                    // coarse: [j]
-  Eigen::ArrayXf terms_r, terms_m;                      // scratch
+  Eigen::ArrayXf dt, rho[2], log_ratio[2];  // fine: [k]; rho: [node]
+  Eigen::ArrayXf dt2, log_ratio2[2];        // coarse: [j]
+  Eigen::ArrayXf terms_r, terms_m;          // scratch
 };
 }  // namespace detail
 
@@ -129,8 +147,8 @@ void accumulate_piece(const NodeArray& tau, const NodeArray& trans, PieceSegment
                    g.dt.data(), g.terms_r.data(), g.terms_m.data());
     fine_r[l] += g.terms_r.head(segs).sum();
     fine_m[l] += g.terms_m.head(segs).sum();
-    log_mean_terms(pairs, 2, ta, ea, g.rho[0].data(), g.rho[1].data(), g.log_ratio2[0].data(),
-                   g.log_ratio2[1].data(), g.dt2.data(), g.terms_r.data(), g.terms_m.data());
+    log_mean_terms(pairs, 2, ta, ea, g.rho[0].data(), g.rho[1].data(), g.log_ratio2[0].data(), g.log_ratio2[1].data(),
+                   g.dt2.data(), g.terms_r.data(), g.terms_m.data());
     coarse_r[l] += g.terms_r.head(pairs).sum();
     coarse_m[l] += g.terms_m.head(pairs).sum();
   }
@@ -217,9 +235,9 @@ namespace {
 // L = E_sun [p_R rayleigh + p_M mie + phase_free] for one direction's parts (n values each), with
 // the aerosol's phase per wavelength where pm_spectral is given.
 // The Rayleigh phase per wavelength is pr_a + pr_b mu^2 (the constructor's A and B).
-void combine_parts(Eigen::Index n, const float* rayleigh, const float* mie, const float* phase_free, const Spectrum& pr_a,
-                   const Spectrum& pr_b, float mu2, float pm, const Spectrum* pm_spectral, const Spectrum& sun_irradiance,
-                   float* out) {
+void combine_parts(Eigen::Index n, const float* rayleigh, const float* mie, const float* phase_free,
+                   const Spectrum& pr_a, const Spectrum& pr_b, float mu2, float pm, const Spectrum* pm_spectral,
+                   const Spectrum& sun_irradiance, float* out) {
   using In = Eigen::Map<const Spectrum>;
   Eigen::Map<Spectrum> o(out, n);
   if (pm_spectral)
@@ -480,7 +498,8 @@ void SingleScattering::piece_node_positions(const Vec3& o, const Vec3& d, double
   // The columns by the trapezoid rule (they only place the nodes), then each species' share.
   double total[2] = {0.0, 0.0};
   for (int sp = 0; sp < 2; ++sp)
-    for (int k = 1; k <= pilots; ++k) total[sp] += 0.5 * (rho[sp][static_cast<size_t>(k) - 1] + rho[sp][static_cast<size_t>(k)]);
+    for (int k = 1; k <= pilots; ++k)
+      total[sp] += 0.5 * (rho[sp][static_cast<size_t>(k) - 1] + rho[sp][static_cast<size_t>(k)]);
   double running[2] = {0.0, 0.0};
   for (int k = 1; k <= pilots; ++k) {
     double v = static_cast<double>(k) / pilots;
@@ -521,7 +540,8 @@ void fill_piece_segments(const NodeT* nodes, int segs, PieceSegments& g) {
     g.log_ratio[sp].resize(segs);
     g.log_ratio2[sp].resize(segs / 2);
     for (int k = 0; k < m; ++k) g.rho[sp][k] = static_cast<float>(nodes[k].rho[sp]);
-    for (int k = 0; k < segs; ++k) g.log_ratio[sp][k] = static_cast<float>(nodes[k].log_rho[sp] - nodes[k + 1].log_rho[sp]);
+    for (int k = 0; k < segs; ++k)
+      g.log_ratio[sp][k] = static_cast<float>(nodes[k].log_rho[sp] - nodes[k + 1].log_rho[sp]);
     for (int j = 0; j < segs / 2; ++j)
       g.log_ratio2[sp][j] = static_cast<float>(nodes[2 * j].log_rho[sp] - nodes[2 * j + 2].log_rho[sp]);
   }
@@ -541,12 +561,12 @@ struct SingleScattering::PieceScratch {
   NodeArray tau, trans, source, view_tau, view_trans;
   std::vector<double> node_r, node_mu_sun;  // the sun columns' arguments at a piece's nodes
   std::vector<Columns> sun;
-  Eigen::ArrayXXf source_t, source_mie_t;  // [wavelength, node], as the source tables write them
-  Eigen::ArrayXXf source_q_t, source_u_t;   // J_R + P_Q, J_R + P_U (polarised_sources)
-  Eigen::ArrayXXf source_mq_t, source_mu_t; // J_M + P_M,Q, J_M + P_M,U
-  std::vector<float> moments;               // InScatteringSource::rayleigh_moments at one node
-  Spectrum q, u, pq, pu;                    // polarised_sources' sums at one node
-  Spectrum unused[4];                       // the other species' sums of a higher-order pass
+  Eigen::ArrayXXf source_t, source_mie_t;    // [wavelength, node], as the source tables write them
+  Eigen::ArrayXXf source_q_t, source_u_t;    // J_R + P_Q, J_R + P_U (polarised_sources)
+  Eigen::ArrayXXf source_mq_t, source_mu_t;  // J_M + P_M,Q, J_M + P_M,U
+  std::vector<float> moments;                // InScatteringSource::rayleigh_moments at one node
+  Spectrum q, u, pq, pu;                     // polarised_sources' sums at one node
+  Spectrum unused[4];                        // the other species' sums of a higher-order pass
 };
 
 // tau = sum_s beta_ext,s(l) columns[k, s] (the optical depth), as [node k, wavelength l] or [l, k].
@@ -692,8 +712,8 @@ bool SingleScattering::higher_orders_piece(const Node* nodes, int m, double os, 
   optical_depths(sc.view_columns, sc, sc.view_tau);
   sc.view_trans = (-sc.view_tau).exp();
   // Rayleigh's sums with J_R, the aerosol's with J_M; then, for polarisation, Rayleigh's with
-  // J_R + P_Q and J_R + P_U, the aerosol's with J_M + P_M,Q and J_M + P_M,U. [wavelength, node] arrays: one species per pass; [node, wavelength]
-  // (few wavelengths): each pass computes both and one is kept.
+  // J_R + P_Q and J_R + P_U, the aerosol's with J_M + P_M,Q and J_M + P_M,U. [wavelength, node] arrays: one species per
+  // pass; [node, wavelength] (few wavelengths): each pass computes both and one is kept.
   const bool polarised = polarisation && polarised_sources(nodes, m, *polarisation, higher, sc);
   Spectrum* rayleigh_sums[4] = {sums[0], &sc.unused[0], sums[2], &sc.unused[1]};
   Spectrum* mie_sums[4] = {&sc.unused[2], sums[1], &sc.unused[3], sums[3]};
@@ -763,16 +783,17 @@ void SingleScattering::view_optical_depth(const Node& node, Spectrum& tau) const
 // the lit ones, higher orders on all), Richardson-extrapolated, then the transmittance and the
 // ground's reflection at its end.
 void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, const Vec3& s,
-                                 const ScatteringSources& sources, ScatteringWorkspace& ws, RadianceParts& parts) const {
+                                 const ScatteringSources& sources, ScatteringWorkspace& ws,
+                                 RadianceParts& parts) const {
   parts.rayleigh.setZero();
   parts.mie.setZero();
   parts.phase_free.setZero();
   const bool higher = sources.higher != nullptr;
   const double os = o.dot(s), ds = d.dot(s), od = o.dot(d);
-  for (Spectrum* sum : {&ws.sum_rayleigh, &ws.sum_mie, &ws.coarse_rayleigh, &ws.coarse_mie, &ws.sum_ms_rayleigh,
-                        &ws.sum_ms_mie, &ws.coarse_ms_rayleigh, &ws.coarse_ms_mie, &ws.sum_ms_q, &ws.coarse_ms_q,
-                        &ws.sum_ms_u, &ws.coarse_ms_u, &ws.sum_ms_mq, &ws.coarse_ms_mq, &ws.sum_ms_mu,
-                        &ws.coarse_ms_mu})
+  for (Spectrum* sum :
+       {&ws.sum_rayleigh, &ws.sum_mie, &ws.coarse_rayleigh, &ws.coarse_mie, &ws.sum_ms_rayleigh, &ws.sum_ms_mie,
+        &ws.coarse_ms_rayleigh, &ws.coarse_ms_mie, &ws.sum_ms_q, &ws.coarse_ms_q, &ws.sum_ms_u, &ws.coarse_ms_u,
+        &ws.sum_ms_mq, &ws.coarse_ms_mq, &ws.sum_ms_mu, &ws.coarse_ms_mu})
     sum->setZero();
   RayFrame frame;
   bool polarised = false;  // whether the higher orders' sources had a quadrupole (all pieces or none)
@@ -804,7 +825,7 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
   }
   if (higher)
     parts.phase_free = sca_rayleigh_ * richardson(ws.sum_ms_rayleigh, ws.coarse_ms_rayleigh) +
-                      sca_mie_ * richardson(ws.sum_ms_mie, ws.coarse_ms_mie);
+                       sca_mie_ * richardson(ws.sum_ms_mie, ws.coarse_ms_mie);
   if (sources.polarisation) {
     // Zero where nothing was polarised (no higher orders, or tables without a quadrupole).
     const Spectrum ms_rayleigh = richardson(ws.sum_ms_rayleigh, ws.coarse_ms_rayleigh);

@@ -25,8 +25,8 @@
 #include <limits>
 
 #include "skyspec/geometry.hpp"
-#include "transport/optical_depth.hpp"
 #include "skyspec/spectrum.hpp"
+#include "transport/optical_depth.hpp"
 
 namespace skyspec {
 
@@ -42,9 +42,9 @@ struct IntegratorSettings {
 ///
 /// with mu the cosine of the scattering angle. `rayleigh` and `mie` are beta_sca,s times the
 /// order-1 integral of species s; `phase_free` holds the higher orders (their phase functions are
-/// inside the tables' sources) and the ground (per unit solar irradiance). All three are smooth functions of the view direction, which is what makes
-/// them worth tabulating (sky_view_table.hpp); the phase functions, peaked near the sun, are
-/// evaluated exactly afterwards.
+/// inside the tables' sources) and the ground (per unit solar irradiance). All three are smooth functions of the view
+/// direction, which is what makes them worth tabulating (sky_view_table.hpp); the phase functions, peaked near the sun,
+/// are evaluated exactly afterwards.
 ///
 /// With ScatteringSources::polarisation, polarised_q and polarised_u hold the linear polarisation
 /// of the higher orders' light, per unit solar irradiance: the Stokes Q and U of
@@ -58,7 +58,9 @@ struct IntegratorSettings {
 /// the same along the ray, so the sources of all its points add up. Empty otherwise.
 struct RadianceParts {
   explicit RadianceParts(int n_wavelengths = 0)
-      : rayleigh(Spectrum::Zero(n_wavelengths)), mie(Spectrum::Zero(n_wavelengths)), phase_free(Spectrum::Zero(n_wavelengths)) {}
+      : rayleigh(Spectrum::Zero(n_wavelengths)),
+        mie(Spectrum::Zero(n_wavelengths)),
+        phase_free(Spectrum::Zero(n_wavelengths)) {}
   Spectrum rayleigh, mie, phase_free;
   Spectrum polarised_q, polarised_u;
 };
@@ -73,11 +75,11 @@ Vec3 polarisation_frame(const Vec3& view, const Vec3& sun);
 struct ScatteringWorkspace {
   explicit ScatteringWorkspace(int n_wavelengths);
   Spectrum view_tau, view_trans, source, ground_sun, ground_sky;  // the ground's light
-  Spectrum sum_rayleigh, sum_mie, coarse_rayleigh, coarse_mie;  // fine and coarse (paired) rules
+  Spectrum sum_rayleigh, sum_mie, coarse_rayleigh, coarse_mie;    // fine and coarse (paired) rules
   Spectrum sum_ms_rayleigh, sum_ms_mie, coarse_ms_rayleigh, coarse_ms_mie;
-  Spectrum sum_ms_q, coarse_ms_q, sum_ms_u, coarse_ms_u;  // of J_R + P_Q and J_R + P_U (polarisation)
+  Spectrum sum_ms_q, coarse_ms_q, sum_ms_u, coarse_ms_u;      // of J_R + P_Q and J_R + P_U (polarisation)
   Spectrum sum_ms_mq, coarse_ms_mq, sum_ms_mu, coarse_ms_mu;  // of J_M + P_M,Q and J_M + P_M,U
-  Spectrum phase;  // per-wavelength aerosol phase (spectral asymmetry)
+  Spectrum phase;                                             // per-wavelength aerosol phase (spectral asymmetry)
   RadianceParts parts;
 };
 
@@ -131,7 +133,7 @@ class InScatteringSource {
 
 /// What a radiance evaluation includes.
 struct ScatteringSources {
-  bool single = true;                         ///< order 1: air scattering + direct sun off the ground
+  bool single = true;                          ///< order 1: air scattering + direct sun off the ground
   const InScatteringSource* higher = nullptr;  ///< orders >= 2 from tables (or one order while building them)
   /// Aerial perspective: integrate only up to this distance along the ray (a surface there hides
   /// what lies behind, including the ground), and, when `transmittance` is given, return the
@@ -170,7 +172,8 @@ class SingleScattering {
   /// angle, and what depends on it, is evaluated per ray. Other rays are integrated one by one.
   /// The results are radiance_parts's, to rounding. sources.transmittance must be null.
   void radiance_parts_same_zenith(const Vec3& origin_m, const Vec3* dirs, int count, const Vec3& sun_dir,
-                                  const ScatteringSources& sources, ScatteringWorkspace& ws, RadianceParts* parts) const;
+                                  const ScatteringSources& sources, ScatteringWorkspace& ws,
+                                  RadianceParts* parts) const;
   /// L = E_sun [p_R(mu) rayleigh + p_M(mu) mie + phase_free] for mu = cos(scattering angle).
   void combine(const RadianceParts& parts, double mu, const Spectrum& sun_irradiance, ScatteringWorkspace& ws,
                Spectrum& out) const;
@@ -225,11 +228,13 @@ class SingleScattering {
   // integrate's steps, one piece of a ray at a time (PieceScratch: per-thread arrays).
   struct PieceScratch;
   void optical_depths(const Eigen::ArrayXXf& columns, PieceScratch& sc, Eigen::ArrayXXf& tau) const;
-  void single_scattering_piece(const Node* nodes, int m, double os, double ds, PieceScratch& sc, Spectrum* sums[4]) const;
+  void single_scattering_piece(const Node* nodes, int m, double os, double ds, PieceScratch& sc,
+                               Spectrum* sums[4]) const;
   struct RayFrame;
   /// True if it integrated the polarised sources too.
   bool higher_orders_piece(const Node* nodes, int m, double os, double ds, double od, const InScatteringSource& higher,
-                           const RayFrame* polarisation, PieceScratch& sc, ScatteringWorkspace& ws, Spectrum* sums[4]) const;
+                           const RayFrame* polarisation, PieceScratch& sc, ScatteringWorkspace& ws,
+                           Spectrum* sums[4]) const;
   bool polarised_sources(const Node* nodes, int m, const RayFrame& frame, const InScatteringSource& higher,
                          PieceScratch& sc) const;
   void accumulate(PieceScratch& sc, Spectrum* sums[4]) const;

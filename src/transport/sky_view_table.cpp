@@ -8,10 +8,10 @@
 #include <tbb/task_arena.h>
 
 #include "base/cancellation.hpp"
+#include "base/fast_atan2.hpp"
 #include "skyspec/atmosphere.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/units.hpp"
-#include "base/fast_atan2.hpp"
 
 namespace skyspec {
 
@@ -166,7 +166,8 @@ SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringS
     std::vector<double>& theta = sky_side ? sky_theta_ : ground_theta_;
     std::vector<double>& key = sky_side ? sky_key_ : ground_key_;
     for (int i = 0; i < rows; ++i) {
-      theta.push_back(i == 0 ? first_row_zenith(sky_side, rows) : zenith_of(sky_side, static_cast<double>(i) / (rows - 1)));
+      theta.push_back(i == 0 ? first_row_zenith(sky_side, rows)
+                             : zenith_of(sky_side, static_cast<double>(i) / (rows - 1)));
       key.push_back(key_of(sky_side, theta.back()));
       if (i > 0 && key[static_cast<size_t>(i)] == key[static_cast<size_t>(i - 1)])
         throw Error("sky-view table: rows " + std::to_string(i - 1) + " and " + std::to_string(i) +
@@ -211,7 +212,9 @@ SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringS
     std::vector<Vec3> dirs;
     std::vector<RadianceParts> parts;
     RowScratch(int wavelengths, int azimuths)
-        : ws(wavelengths), dirs(static_cast<size_t>(azimuths)), parts(static_cast<size_t>(azimuths), RadianceParts(wavelengths)) {}
+        : ws(wavelengths),
+          dirs(static_cast<size_t>(azimuths)),
+          parts(static_cast<size_t>(azimuths), RadianceParts(wavelengths)) {}
   };
   const int n = n_, m = res_.azimuths;
   tbb::enumerable_thread_specific<RowScratch> scratch([n, m] { return RowScratch(n, m); });
@@ -224,7 +227,8 @@ SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringS
         throw_if_cancelled();  // a row of the table: a request stops it within a second
         const bool sky_side = row_all < res_.sky_rows;
         const int row = sky_side ? row_all : row_all - res_.sky_rows;
-        for (int column = 0; column < m; ++column) sc.dirs[static_cast<size_t>(column)] = direction(sky_side, row, column);
+        for (int column = 0; column < m; ++column)
+          sc.dirs[static_cast<size_t>(column)] = direction(sky_side, row, column);
         integrator.radiance_parts_same_zenith(origin_m, sc.dirs.data(), m, sun_dir, src, sc.ws, sc.parts.data());
         for (int column = 0; column < m; ++column) {
           const RadianceParts& p = sc.parts[static_cast<size_t>(column)];
@@ -379,9 +383,10 @@ bool SkyViewTable::lookup_polarised(const Vec3& dir, RadianceParts& out) const {
   if (!weights(theta, phi, w)) return false;
   mix(w, out.rayleigh.data(), out.mie.data(), out.phase_free.data());
   const int m = res_.azimuths;
-  const float* rows_at = (w.sky_side ? polarised_sky_ : polarised_ground_).data() +
-                         static_cast<size_t>(w.first_row) * static_cast<size_t>(m) * kPolarisedParts * static_cast<size_t>(n) +
-                         static_cast<size_t>(w.c0) * kPolarisedParts * static_cast<size_t>(n);
+  const float* rows_at =
+      (w.sky_side ? polarised_sky_ : polarised_ground_).data() +
+      static_cast<size_t>(w.first_row) * static_cast<size_t>(m) * kPolarisedParts * static_cast<size_t>(n) +
+      static_cast<size_t>(w.c0) * kPolarisedParts * static_cast<size_t>(n);
   float* const parts[kPolarisedParts] = {out.polarised_q.data(), out.polarised_u.data()};
   mix_entries<0, kPolarisedParts>(rows_at, m, w.row_w, w.n_rows, w.w0, w.w1, n, parts);
   // The table holds the side towards +across; the mirror image's frame has e2 reversed, so U changes sign.

@@ -26,9 +26,9 @@
 namespace skyspec {
 
 struct SkyViewResolution {
-  int sky_rows = 128;     ///< view zenith samples from the horizon to the zenith
-  int ground_rows = 48;   ///< view zenith samples from the horizon to the nadir
-  int azimuths = 64;      ///< azimuth samples from towards the sun (0) to away from it (pi)
+  int sky_rows = 128;       ///< view zenith samples from the horizon to the zenith
+  int ground_rows = 48;     ///< view zenith samples from the horizon to the nadir
+  int azimuths = 64;        ///< azimuth samples from towards the sun (0) to away from it (pi)
   bool ground_side = true;  ///< tabulate below the horizon too (false: an image of the sky alone)
 };
 
@@ -93,7 +93,7 @@ class SkyViewTable {
   void mix(const Weights& w, float* rayleigh, float* mie, float* phase_free) const;
 
   SkyViewResolution res_;
-  int n_ = 0;  // wavelengths
+  int n_ = 0;                      // wavelengths
   Vec3 up_, toward_sun_, across_;  // local frame: zenith, sun's azimuth, perpendicular
   double horizon_zenith_rad_ = 0.0;
   double r_m_ = 0.0, R_m_ = 0.0, rho_m_ = 0.0;  // camera and planet radii, distance to the horizon

@@ -118,7 +118,8 @@ const std::array<Eigen::Matrix3d, 3>& quadrupole_tensors() {
         const Eigen::Vector3d w(s * std::cos(phi), s * std::sin(phi), mu);
         symmetric_harmonics(2, mu, std::cos(phi), y);
         for (int m = 0; m <= 2; ++m)
-          t[static_cast<size_t>(m)] += weights[i] * (2.0 * kPi / kAzimuths) * y[harmonic_index(2, m)] * (w * w.transpose());
+          t[static_cast<size_t>(m)] +=
+              weights[i] * (2.0 * kPi / kAzimuths) * y[harmonic_index(2, m)] * (w * w.transpose());
       }
     return t;
   }();

@@ -9,9 +9,9 @@
 #include <string>
 
 #include "base/atomic_file.hpp"
+#include "io/png_image.hpp"
 #include "scratch_folder.hpp"
 #include "skyspec/error.hpp"
-#include "io/png_image.hpp"
 
 BOOST_AUTO_TEST_SUITE(test_atomic_file)
 

@@ -38,14 +38,15 @@ BOOST_AUTO_TEST_CASE(a_second_writer_of_a_name_is_refused_and_the_lock_file_goes
 BOOST_AUTO_TEST_CASE(only_temporaries_of_processes_that_are_gone_are_removed) {
   ScratchFolder dir;
   const std::string mine = "sky_0000.exr.tmp-" + std::to_string(::getpid()) + "-ab12";
-  for (const std::string& name : {std::string("sky_0000.exr.tmp-999999999-ab12"), mine, std::string("other.exr.tmp-999999999-1"),
-                                 std::string("sky_0001.exr"), std::string("sky_0002.png.tmp-x-1")})
+  for (const std::string& name :
+       {std::string("sky_0000.exr.tmp-999999999-ab12"), mine, std::string("other.exr.tmp-999999999-1"),
+        std::string("sky_0001.exr"), std::string("sky_0002.png.tmp-x-1")})
     std::ofstream(dir.path / name) << "x";
   BOOST_TEST(remove_stale_temporaries(dir.path, "sky_") == 1);
   BOOST_TEST(!fs::exists(dir.path / "sky_0000.exr.tmp-999999999-ab12"));
-  BOOST_TEST(fs::exists(dir.path / mine));  // this process still runs
+  BOOST_TEST(fs::exists(dir.path / mine));                         // this process still runs
   BOOST_TEST(fs::exists(dir.path / "other.exr.tmp-999999999-1"));  // another prefix
-  BOOST_TEST(fs::exists(dir.path / "sky_0002.png.tmp-x-1"));  // not a process id
+  BOOST_TEST(fs::exists(dir.path / "sky_0002.png.tmp-x-1"));       // not a process id
 }
 
 BOOST_AUTO_TEST_CASE(an_output_that_is_an_input_is_refused) {

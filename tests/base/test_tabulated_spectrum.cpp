@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "skyspec/error.hpp"
 #include "base/tabulated_spectrum.hpp"
 #include "check_helpers.hpp"
+#include "skyspec/error.hpp"
 
 BOOST_AUTO_TEST_SUITE(test_tabulated_spectrum)
 
@@ -63,8 +63,8 @@ BOOST_AUTO_TEST_CASE(samples_are_joined_linearly) {
 }
 
 BOOST_AUTO_TEST_CASE(bins_are_piecewise_constant) {
-  const TabulatedSpectrum t = TabulatedSpectrum::bin_averages("a binned test table", {360.0, 370.0, 380.0, 390.0},
-                                                              {1.0, 4.0, 2.0});
+  const TabulatedSpectrum t =
+      TabulatedSpectrum::bin_averages("a binned test table", {360.0, 370.0, 380.0, 390.0}, {1.0, 4.0, 2.0});
   BOOST_TEST((t.kind() == TabulatedSpectrum::Kind::BinAverages));
   BOOST_TEST(t.value_at(360.0) == 1.0);
   BOOST_TEST(t.value_at(369.9) == 1.0);
@@ -118,9 +118,10 @@ BOOST_AUTO_TEST_CASE(a_linear_table_gives_its_point_values) {
   // The mean of a linear function over a band centred on a sample is its value there, on any grid
   // (uniform or not) whose bands lie inside the table.
   const TabulatedSpectrum t = linear_samples(300.0, 900.0, 10.0);
-  for (const WavelengthGrid& grid : {WavelengthGrid::uniform(380.0, 780.0, 1.0), WavelengthGrid::uniform(380.0, 780.0, 40.0),
-                                     WavelengthGrid::uniform(420.5, 650.5, 115.0),
-                                     WavelengthGrid::from_list({400.0, 410.0, 430.0}).with_bandwidth(25.0)}) {
+  for (const WavelengthGrid& grid :
+       {WavelengthGrid::uniform(380.0, 780.0, 1.0), WavelengthGrid::uniform(380.0, 780.0, 40.0),
+        WavelengthGrid::uniform(420.5, 650.5, 115.0),
+        WavelengthGrid::from_list({400.0, 410.0, 430.0}).with_bandwidth(25.0)}) {
     const SpectrumD means = t.mean_on_grid(grid);
     for (int k = 0; k < grid.size(); ++k)
       BOOST_TEST(std::abs(means[k] - linear(grid.nm(k))) < 1e-12, grid.describe() << " at " << grid.nm(k));

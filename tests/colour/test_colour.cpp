@@ -3,10 +3,10 @@
 #include <cmath>
 #include <vector>
 
+#include "check_helpers.hpp"
 #include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/spectrum.hpp"
-#include "check_helpers.hpp"
 
 BOOST_AUTO_TEST_SUITE(test_colour)
 
@@ -154,9 +154,8 @@ BOOST_AUTO_TEST_CASE(table_grid_matches_trapezoid_integration) {
 // piecewise-linear functions on a 0.005 nm mesh.
 BOOST_AUTO_TEST_CASE(irregular_grid_matches_brute_force_integration) {
   const CmfTable& t = cie1931_2deg();
-  const WavelengthGrid grid =
-      WavelengthGrid::from_list({361.3, 377.8, 402.5, 431.0, 455.55, 498.2, 530.0, 561.7, 604.4, 650.1,
-                                 702.9, 755.0, 801.25, 829.9});
+  const WavelengthGrid grid = WavelengthGrid::from_list(
+      {361.3, 377.8, 402.5, 431.0, 455.55, 498.2, 530.0, 561.7, 604.4, 650.1, 702.9, 755.0, 801.25, 829.9});
   const SpectrumD s = sample(grid, smooth_spectrum);
   const std::vector<double> s_values(s.data(), s.data() + s.size());
   const Eigen::Vector3d xyz = SpectrumToXyz(grid)(s);
@@ -174,8 +173,7 @@ BOOST_AUTO_TEST_CASE(irregular_grid_matches_brute_force_integration) {
 BOOST_AUTO_TEST_CASE(narrow_line_lies_on_the_spectral_locus) {
   const CmfTable& t = cie1931_2deg();
   const size_t row = (555 - 360) / 5;
-  const Eigen::Vector2d locus =
-      xy_chromaticity(Eigen::Vector3d(t.x[row], t.y[row], t.z[row]));
+  const Eigen::Vector2d locus = xy_chromaticity(Eigen::Vector3d(t.x[row], t.y[row], t.z[row]));
   BOOST_TEST(std::abs(locus.x() - 0.33736) < 1e-5);
   BOOST_TEST(std::abs(locus.y() - 0.65885) < 1e-5);
 

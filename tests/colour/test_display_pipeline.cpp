@@ -14,14 +14,14 @@
 #include <string>
 #include <vector>
 
-#include "scratch_folder.hpp"
 #include "colour/chromatic_adaptation.hpp"
-#include "skyspec/colour.hpp"
 #include "colour/display_pipeline.hpp"
-#include "skyspec/error.hpp"
+#include "colour/tone_mapping.hpp"
 #include "io/png_image.hpp"
 #include "io/rgb_exr.hpp"
-#include "colour/tone_mapping.hpp"
+#include "scratch_folder.hpp"
+#include "skyspec/colour.hpp"
+#include "skyspec/error.hpp"
 
 BOOST_AUTO_TEST_SUITE(test_display_pipeline)
 
@@ -80,7 +80,8 @@ std::vector<std::pair<std::string, std::vector<uint8_t>>> png_chunks(const fs::p
   std::vector<std::pair<std::string, std::vector<uint8_t>>> chunks;
   size_t at = 8;
   while (at + 12 <= bytes.size()) {
-    const uint32_t length = uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 | uint32_t(bytes[at + 2]) << 8 | bytes[at + 3];
+    const uint32_t length =
+        uint32_t(bytes[at]) << 24 | uint32_t(bytes[at + 1]) << 16 | uint32_t(bytes[at + 2]) << 8 | bytes[at + 3];
     const std::string type(bytes.begin() + static_cast<long>(at + 4), bytes.begin() + static_cast<long>(at + 8));
     chunks.emplace_back(type, std::vector<uint8_t>(bytes.begin() + static_cast<long>(at + 8),
                                                    bytes.begin() + static_cast<long>(at + 8 + length)));
@@ -119,7 +120,8 @@ BOOST_AUTO_TEST_CASE(builtin_config_has_the_spaces_displays_views_and_looks) {
   const auto srgb_views = c.views("sRGB");
   BOOST_TEST((std::find(srgb_views.begin(), srgb_views.end(), "ACES 1.0 - SDR Video") != srgb_views.end()));
   const auto pq_views = c.views("Rec.2100-PQ");
-  BOOST_TEST((std::find(pq_views.begin(), pq_views.end(), "ACES 1.1 - HDR Video (1000 nits & Rec.2020 lim)") != pq_views.end()));
+  BOOST_TEST((std::find(pq_views.begin(), pq_views.end(), "ACES 1.1 - HDR Video (1000 nits & Rec.2020 lim)") !=
+              pq_views.end()));
   BOOST_TEST(c.looks() == std::vector<std::string>{"reinhard"}, boost::test_tools::per_element());
 }
 
@@ -226,8 +228,9 @@ BOOST_AUTO_TEST_CASE(d65_white_is_equal_rgb_in_every_working_space) {
   const OcioConfig c;
   for (const auto& space : working_spaces()) {
     const auto rgb = to_working_space(c, rgb_of_xyz(d65), space);
-    BOOST_TEST_MESSAGE("D65 (Y = 2) in " << space.name << ": largest deviation from (2, 2, 2) "
-                       << std::max({std::abs(rgb[0] - 2.0f), std::abs(rgb[1] - 2.0f), std::abs(rgb[2] - 2.0f)}));
+    BOOST_TEST_MESSAGE(
+        "D65 (Y = 2) in " << space.name << ": largest deviation from (2, 2, 2) "
+                          << std::max({std::abs(rgb[0] - 2.0f), std::abs(rgb[1] - 2.0f), std::abs(rgb[2] - 2.0f)}));
     BOOST_TEST_CONTEXT(space.name) {
       BOOST_TEST(std::abs(rgb[0] - 2.0) < 2e-4);
       BOOST_TEST(std::abs(rgb[1] - 2.0) < 2e-4);
@@ -242,7 +245,8 @@ BOOST_AUTO_TEST_CASE(white_at_the_right_exposure_is_code_value_one) {
   const auto white = rgb_of_xyz(xyz_from_xy(0.3127, 0.3290, 1.0));
   for (const char* display : {"sRGB", "Display P3", "Rec.1886 Rec.709"}) {
     const auto code = pipeline(display).encode(white, 1.0);
-    BOOST_TEST_MESSAGE("white at exposure 1 on " << display << ": largest deviation from code value 1 "
+    BOOST_TEST_MESSAGE("white at exposure 1 on "
+                       << display << ": largest deviation from code value 1 "
                        << std::max({std::abs(code[0] - 1.0f), std::abs(code[1] - 1.0f), std::abs(code[2] - 1.0f)}));
     BOOST_TEST_CONTEXT(display) {
       for (float v : code) BOOST_TEST(std::abs(v - 1.0f) < 1e-4f);
@@ -343,17 +347,19 @@ BOOST_AUTO_TEST_CASE(working_space_exr_chromaticities_round_trip) {
       const Imf::Chromaticities chroma(v2(back.chromaticities.red), v2(back.chromaticities.green),
                                        v2(back.chromaticities.blue), v2(back.chromaticities.white));
       const IMATH_NAMESPACE::M44f m = Imf::RGBtoXYZ(chroma, 1.0f);  // row vectors: xyz = rgb * m
-      const Eigen::Matrix3d adapt = bradford_adaptation(
-          xyz_from_xy(back.chromaticities.white[0], back.chromaticities.white[1]), d65);
+      const Eigen::Matrix3d adapt =
+          bradford_adaptation(xyz_from_xy(back.chromaticities.white[0], back.chromaticities.white[1]), d65);
       double worst = 0;
       for (size_t i = 0; i < rgb.size(); i += 3) {
         Eigen::Vector3d xyz;
         for (int col = 0; col < 3; ++col)
           xyz[col] = rgb[i] * m[0][col] + rgb[i + 1] * m[1][col] + rgb[i + 2] * m[2][col];
-        const Eigen::Vector3d expected = linear_rec709_to_xyz() * Eigen::Vector3d(colours[i], colours[i + 1], colours[i + 2]);
+        const Eigen::Vector3d expected =
+            linear_rec709_to_xyz() * Eigen::Vector3d(colours[i], colours[i + 1], colours[i + 2]);
         worst = std::max(worst, (adapt * xyz - expected).norm());
       }
-      BOOST_TEST_MESSAGE(space.name << ": XYZ from the chromaticities attribute vs the engine, largest error " << worst);
+      BOOST_TEST_MESSAGE(space.name << ": XYZ from the chromaticities attribute vs the engine, largest error "
+                                    << worst);
       BOOST_TEST(worst < 2e-4);
     }
   }

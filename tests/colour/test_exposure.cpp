@@ -4,8 +4,8 @@
 #include <set>
 #include <vector>
 
-#include "skyspec/error.hpp"
 #include "colour/exposure.hpp"
+#include "skyspec/error.hpp"
 
 BOOST_AUTO_TEST_SUITE(test_exposure)
 

@@ -18,9 +18,8 @@ int main(int argc, char** argv) {
   const SpectralImageBuffer image = render_to_memory(scene);
   double sum = 0.0;
   for (float v : image.spectral) sum += v;
-  std::printf("skyspec %s: %dx%d, %zu wavelengths, mean radiance %.4g W m^-2 sr^-1 nm^-1\n",
-              version_string(), image.width, image.height, image.wavelengths_nm.size(),
-              sum / static_cast<double>(image.spectral.size()));
+  std::printf("skyspec %s: %dx%d, %zu wavelengths, mean radiance %.4g W m^-2 sr^-1 nm^-1\n", version_string(),
+              image.width, image.height, image.wavelengths_nm.size(), sum / static_cast<double>(image.spectral.size()));
   if (!(std::isfinite(sum) && sum > 0.0)) return 1;
 
   DisplaySettings display;

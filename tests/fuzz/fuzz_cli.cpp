@@ -40,8 +40,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   std::ostringstream out, err;
   int code = 0;
   try {
-    code = skyspec::cli::run_cli(static_cast<int>(args.size()), argv.data(), skyspec::cli::CliMode::ValidateOnly,
-                                 out, err);
+    code = skyspec::cli::run_cli(static_cast<int>(args.size()), argv.data(), skyspec::cli::CliMode::ValidateOnly, out,
+                                 err);
   } catch (const std::exception& e) {
     err << "exception escaped run_cli: " << e.what() << "\n";
     code = skyspec::cli::kExitInternal;

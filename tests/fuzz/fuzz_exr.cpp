@@ -48,7 +48,8 @@ void read(const char* reader, Read&& r) {
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const int fd = memfd_create("fuzz.exr", 0);
   if (fd < 0) finding("memfd_create failed", "");
-  if (ftruncate(fd, 0) != 0 || pwrite(fd, data, size, 0) != static_cast<ssize_t>(size)) finding("cannot write the memfd", "");
+  if (ftruncate(fd, 0) != 0 || pwrite(fd, data, size, 0) != static_cast<ssize_t>(size))
+    finding("cannot write the memfd", "");
   const std::string path = "/proc/self/fd/" + std::to_string(fd);
   read("read_exr_provenance", [&] { skyspec::read_exr_provenance(path); });
   read("exr_channel_names", [&] { skyspec::exr_channel_names(path); });

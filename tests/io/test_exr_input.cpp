@@ -17,13 +17,12 @@
 BOOST_AUTO_TEST_SUITE(test_exr_input)
 
 using namespace skyspec;
-using skyspec::test::ScratchFolder;
 using skyspec::test::read_all;
+using skyspec::test::ScratchFolder;
 using skyspec::test::write_text;
 namespace fs = std::filesystem;
 
 namespace {
-
 
 // A 16 x 8 ZIP EXR with channels R, G, B and a short string attribute.
 fs::path good_exr(const ScratchFolder& dir) {
@@ -66,8 +65,9 @@ BOOST_AUTO_TEST_CASE(an_attribute_larger_than_the_file_is_refused_before_reading
   std::string bytes = read_all(good_exr(dir));
   put_int(bytes, value_of(bytes, "note", "string") - 4, 2000000000);
   write_text(dir.path / "bad.exr", bytes);
-  BOOST_TEST(error_of(dir.path / "bad.exr").find("attribute \"note\" declares 2000000000 bytes, more than the file holds") !=
-             std::string::npos);
+  BOOST_TEST(
+      error_of(dir.path / "bad.exr").find("attribute \"note\" declares 2000000000 bytes, more than the file holds") !=
+      std::string::npos);
   BOOST_CHECK_THROW(read_exr_channels(dir.path / "bad.exr", {"R"}), IoError);
 }
 
@@ -137,7 +137,8 @@ BOOST_AUTO_TEST_CASE(pixel_verification_decodes_every_chunk) {
 BOOST_AUTO_TEST_CASE(png_verification_reads_every_row_and_the_text) {
   ScratchFolder dir;
   const fs::path png = dir.path / "a.png";
-  write_png_display(png, 8, 4, std::vector<float>(8 * 4 * 3, 0.5f), 8, PngColourTag::Srgb, {{"skyspec:scene", "x = 1"}});
+  write_png_display(png, 8, 4, std::vector<float>(8 * 4 * 3, 0.5f), 8, PngColourTag::Srgb,
+                    {{"skyspec:scene", "x = 1"}});
   BOOST_TEST(read_png_text_verified(png).at("skyspec:scene") == "x = 1");
   std::string bytes = read_all(png);
   write_text(dir.path / "cut.png", bytes.substr(0, bytes.size() - 20));

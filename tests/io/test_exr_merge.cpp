@@ -64,7 +64,8 @@ void write_tile(const std::filesystem::path& path, const Image& im, std::array<i
   for (int y = y0; y < y1; ++y)
     for (int x = x0; x < x1; ++x) {
       const size_t p = static_cast<size_t>(y) * kWidth + x;
-      spectral.insert(spectral.end(), im.spectral.begin() + static_cast<long>(p * n), im.spectral.begin() + static_cast<long>((p + 1) * n));
+      spectral.insert(spectral.end(), im.spectral.begin() + static_cast<long>(p * n),
+                      im.spectral.begin() + static_cast<long>((p + 1) * n));
       rgb.insert(rgb.end(), im.rgb.begin() + static_cast<long>(p * 3), im.rgb.begin() + static_cast<long>(p * 3 + 3));
     }
   SpectralExrWriter writer(path, kWidth, kHeight, kWavelengths, meta);
@@ -92,8 +93,8 @@ BOOST_AUTO_TEST_CASE(tiles_in_any_layout_merge_into_the_bytes_of_the_whole_image
       {{0, 1, 0, kHeight}, {1, kWidth, 0, 1}, {1, kWidth, 1, kHeight}},
       {{0, kWidth, 0, kHeight}},
   };
-  for (const auto& [compression, half] : std::vector<std::pair<std::string, bool>>{
-           {"piz", false}, {"zip", false}, {"none", false}, {"piz", true}}) {
+  for (const auto& [compression, half] :
+       std::vector<std::pair<std::string, bool>>{{"piz", false}, {"zip", false}, {"none", false}, {"piz", true}}) {
     ScratchFolder dir("merge");
     const SpectralExrMetadata meta = metadata(compression, half);
     {
@@ -113,7 +114,8 @@ BOOST_AUTO_TEST_CASE(tiles_in_any_layout_merge_into_the_bytes_of_the_whole_image
       BOOST_TEST(m.tiles == static_cast<int>(tiles.size()));
       BOOST_TEST(m.width == kWidth);
       BOOST_TEST(m.height == kHeight);
-      BOOST_TEST((read_all(out) == read_all(dir.path / "whole.exr")), compression << (half ? " half" : "") << " layout " << l);
+      BOOST_TEST((read_all(out) == read_all(dir.path / "whole.exr")),
+                 compression << (half ? " half" : "") << " layout " << l);
     }
   }
 }
@@ -170,7 +172,8 @@ BOOST_AUTO_TEST_CASE(a_tile_with_a_non_finite_value_is_refused) {
     Imf::FrameBuffer frame;
     for (auto c = h.channels().begin(); c != h.channels().end(); ++c) {
       planes.emplace_back(static_cast<size_t>(width) * rows);
-      frame.insert(c.name(), Imf::Slice::Make(Imf::FLOAT, planes.back().data(), w, sizeof(float), sizeof(float) * width));
+      frame.insert(c.name(),
+                   Imf::Slice::Make(Imf::FLOAT, planes.back().data(), w, sizeof(float), sizeof(float) * width));
     }
     in.setFrameBuffer(frame);
     in.readPixels(w.min.y, w.max.y);

@@ -20,12 +20,12 @@
 #include <string>
 #include <vector>
 
-#include "skyspec/colour.hpp"
-#include "scratch_folder.hpp"
-#include "skyspec/error.hpp"
 #include "io/png_image.hpp"
 #include "io/spectral_exr.hpp"
 #include "io/spectral_exr_encode.hpp"
+#include "scratch_folder.hpp"
+#include "skyspec/colour.hpp"
+#include "skyspec/error.hpp"
 
 BOOST_AUTO_TEST_SUITE(test_spectral_exr)
 
@@ -123,9 +123,8 @@ BOOST_AUTO_TEST_CASE(stokes_components_have_their_own_names) {
 }
 
 BOOST_AUTO_TEST_CASE(parse_rejects_other_channels) {
-  for (const char* name : {"S0.400.5nm", "R", "G", "B", "A", "T.550nm", "S1.550nm", "S3.550,0nm", "S0.nm",
-                           "S0.,nm", "S0.550", "S0.550 nm", "S0.-550nm", "S0.0nm", "s0.550nm", "S0.550Nm",
-                           "S0.550nmx", "S0550nm",
+  for (const char* name : {"S0.400.5nm", "R", "G", "B", "A", "T.550nm", "S1.550nm", "S3.550,0nm", "S0.nm", "S0.,nm",
+                           "S0.550", "S0.550 nm", "S0.-550nm", "S0.0nm", "s0.550nm", "S0.550Nm", "S0.550nmx", "S0550nm",
                            "S0.5500\xC3\x85m" /* angstrom: not an SI prefix */})
     BOOST_TEST(!parse_spectral_channel_name(name).has_value(), name);
 }
@@ -177,8 +176,10 @@ BOOST_AUTO_TEST_CASE(half_spectral_channels_round_to_half) {
   double worst_relative = 0.0, worst_absolute = 0.0;
   for (size_t i = 0; i < img.spectral.size(); ++i) {
     const double v = img.spectral[i], d = std::abs(back.spectral[i] - v);
-    if (v >= std::ldexp(1.0, -14)) worst_relative = std::max(worst_relative, d / v);
-    else worst_absolute = std::max(worst_absolute, d);
+    if (v >= std::ldexp(1.0, -14))
+      worst_relative = std::max(worst_relative, d / v);
+    else
+      worst_absolute = std::max(worst_absolute, d);
   }
   BOOST_TEST_MESSAGE("half: largest relative error " << worst_relative << ", absolute below 2^-14 " << worst_absolute);
   BOOST_TEST(worst_relative <= std::ldexp(1.0, -11));
@@ -217,7 +218,7 @@ BOOST_AUTO_TEST_CASE(round_trip_through_read_spectral_exr) {
   ScratchFolder dir;
   const TestImage image;
   const fs::path path = dir.path / "sky.exr";
-  image.write(path, 4, test_metadata());  // bands of 4, 4 and 3 rows
+  image.write(path, 4, test_metadata());                             // bands of 4, 4 and 3 rows
   BOOST_TEST(dir.entries() == std::vector<std::string>{"sky.exr"});  // no temporary left
 
   const SpectralImage back = read_spectral_exr(path);
@@ -243,7 +244,8 @@ BOOST_AUTO_TEST_CASE(polarised_round_trip) {
   for (size_t p = 0; p < pixels; ++p)
     for (size_t c = 0; c < 4; ++c)
       for (size_t i = 0; i < n; ++i) {
-        const float v = c == 0 ? image.spectral[p * n + i] : image.spectral[p * n + i] * (0.1f * static_cast<float>(c)) - 0.05f;
+        const float v =
+            c == 0 ? image.spectral[p * n + i] : image.spectral[p * n + i] * (0.1f * static_cast<float>(c)) - 0.05f;
         all[(p * 4 + c) * n + i] = v;
         if (c > 0) stokes[(p * 3 + c - 1) * n + i] = v;
       }

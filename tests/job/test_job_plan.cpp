@@ -8,10 +8,10 @@
 #include <set>
 #include <string>
 
+#include "check_helpers.hpp"
 #include "job/job_plan.hpp"
 #include "job/job_spec.hpp"
 #include "physics/solar_position.hpp"
-#include "check_helpers.hpp"
 #include "scene_fixtures.hpp"
 #include "skyspec/error.hpp"
 
@@ -113,7 +113,8 @@ BOOST_AUTO_TEST_CASE(sun_filter_keeps_exactly_the_frames_with_the_sun_high_enoug
       when = add_seconds(when, (h - 4) * 3600.0);
       if (kept.count(site.name + to_iso8601(when))) continue;
       ++left_out;
-      const double el = solar_position(when, Observer{site.latitude_deg, site.longitude_deg, site.altitude_m + 1.0}).elevation_deg;
+      const double el =
+          solar_position(when, Observer{site.latitude_deg, site.longitude_deg, site.altitude_m + 1.0}).elevation_deg;
       BOOST_TEST(el < 10.0);
     }
   BOOST_TEST(left_out > 0);
@@ -220,9 +221,12 @@ BOOST_AUTO_TEST_CASE(errors_name_the_key_where_it_is_and_what_is_allowed) {
   BOOST_TEST(contains(e, "job.produce"));
   e = err("[random]\nsamples = 3\n[random.axes]\n\"ground.albedo\" = { min = 0.5, max = 0.1 }\n");
   BOOST_TEST(contains(e, "random.axes.ground.albedo.max"));
-  e = err("[axes]\n\"ground.albedo\" = [0.1]\n[random]\nsamples = 3\n[random.axes]\n\"ground.albedo\" = { min = 0.0, max = 0.1 }\n");
+  e =
+      err("[axes]\n\"ground.albedo\" = [0.1]\n[random]\nsamples = 3\n[random.axes]\n\"ground.albedo\" = { min = 0.0, "
+          "max = 0.1 }\n");
   BOOST_TEST(contains(e, "not both"));
-  e = err("[job]\nmin_sun_elevation_deg = 80\n[[time]]\nstart = 2026-12-21T12:00:00+01:00\n[[site]]\nname = \"oslo\"\n"
+  e =
+      err("[job]\nmin_sun_elevation_deg = 80\n[[time]]\nstart = 2026-12-21T12:00:00+01:00\n[[site]]\nname = \"oslo\"\n"
           "latitude_deg = 59.9\nlongitude_deg = 10.7\n");
   BOOST_TEST(contains(e, "job.min_sun_elevation_deg"));
   e = err("[[time]]\nstart = 2026-01-01T00:00:00Z\nend = 2026-12-31T00:00:00Z\nstep_minutes = 0.1\n");
@@ -232,8 +236,9 @@ BOOST_AUTO_TEST_CASE(errors_name_the_key_where_it_is_and_what_is_allowed) {
 }
 
 BOOST_AUTO_TEST_CASE(tiled_frames_are_strips_that_cover_the_image_once) {
-  const JobPlan plan = plan_job(parse("[job]\ntile_rows = 300\n[scene]\ncamera.width = 128\ncamera.height = 1000\n"
-                                      "[axes]\n\"camera.height\" = [1000, 600]\n"));
+  const JobPlan plan =
+      plan_job(parse("[job]\ntile_rows = 300\n[scene]\ncamera.width = 128\ncamera.height = 1000\n"
+                     "[axes]\n\"camera.height\" = [1000, 600]\n"));
   BOOST_TEST(plan.job.exr);
   BOOST_TEST(!plan.job.png);  // a tiled job produces the EXR alone unless it says otherwise
   BOOST_TEST(plan.frame_tasks.size() == 2u);
@@ -251,7 +256,8 @@ BOOST_AUTO_TEST_CASE(tiled_frames_are_strips_that_cover_the_image_once) {
     }
     BOOST_TEST(next == (range.first == 0 ? 1000 : 600));
   }
-  BOOST_TEST(contains(error_of([] { parse("[job]\ntile_rows = 300\nproduce = [\"exr\", \"png\"]\n"); }), "job.tile_rows"));
+  BOOST_TEST(
+      contains(error_of([] { parse("[job]\ntile_rows = 300\nproduce = [\"exr\", \"png\"]\n"); }), "job.tile_rows"));
 }
 
 BOOST_AUTO_TEST_CASE(a_job_without_sweeps_is_one_task_of_the_scene) {

@@ -133,8 +133,9 @@ BOOST_AUTO_TEST_CASE(julian_days_agree_with_the_date_library) {
         if (year == 1582 && month == 10 && day > 4 && day < 15) continue;  // did not exist
         const bool julian_calendar = year < 1582 || (year == 1582 && (month < 10 || (month == 10 && day < 15)));
         const date::sys_days d =
-            julian_calendar ? date::sys_days(julian::year{year} / static_cast<unsigned>(month) / static_cast<unsigned>(day))
-                            : date::sys_days(date::year{year} / static_cast<unsigned>(month) / static_cast<unsigned>(day));
+            julian_calendar
+                ? date::sys_days(julian::year{year} / static_cast<unsigned>(month) / static_cast<unsigned>(day))
+                : date::sys_days(date::year{year} / static_cast<unsigned>(month) / static_cast<unsigned>(day));
         const double expected = 2440587.5 + d.time_since_epoch().count() + 0.25;  // 06:00
         BOOST_TEST_CONTEXT(year << "-" << month << "-" << day) {
           BOOST_TEST(julian_day_utc(DateTime{year, month, day, 6, 0, 0.0, 0.0}) == expected);
@@ -153,7 +154,8 @@ BOOST_AUTO_TEST_CASE(the_reader_agrees_with_date_parse) {
     in >> date::parse(form, instant);
     BOOST_TEST_CONTEXT(text) {
       BOOST_REQUIRE(!in.fail());
-      BOOST_TEST(seconds_between(epoch, parse_iso8601(text)) == static_cast<double>(instant.time_since_epoch().count()));
+      BOOST_TEST(seconds_between(epoch, parse_iso8601(text)) ==
+                 static_cast<double>(instant.time_since_epoch().count()));
     }
   }
 }

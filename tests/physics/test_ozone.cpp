@@ -9,16 +9,16 @@
 #include <functional>
 #include <string>
 
-#include "skyspec/error.hpp"
-#include "physics/ozone.hpp"
-#include "skyspec/units.hpp"
 #include "check_helpers.hpp"
+#include "physics/ozone.hpp"
+#include "skyspec/error.hpp"
+#include "skyspec/units.hpp"
 
 BOOST_AUTO_TEST_SUITE(test_ozone)
 
 using namespace skyspec;
-using test::relative;
 using test::error_setting;
+using test::relative;
 
 BOOST_AUTO_TEST_SUITE(cross_section)
 

@@ -48,7 +48,8 @@ BOOST_AUTO_TEST_CASE(depolarised_rayleigh_follows_the_king_factor) {
     const double king = (6 + 3 * rho) / (6 - 7 * rho);
     BOOST_TEST(depolarisation_ratio_from_king_factor(king) == rho, boost::test_tools::tolerance(1e-12));
   }
-  BOOST_TEST(rayleigh_gamma_from_depolarisation(0.02842) == 0.02842 / (2 - 0.02842), boost::test_tools::tolerance(1e-15));
+  BOOST_TEST(rayleigh_gamma_from_depolarisation(0.02842) == 0.02842 / (2 - 0.02842),
+             boost::test_tools::tolerance(1e-15));
   RayleighDerivationInput air;
   air.co2_ppv = 300e-6;  // Bucholtz's standard air
   const auto steps = derive_rayleigh({450.0, 550.0, 650.0}, air);

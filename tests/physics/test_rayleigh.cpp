@@ -100,8 +100,7 @@ BOOST_AUTO_TEST_CASE(sea_level_optical_depth_at_550_nm) {
 BOOST_AUTO_TEST_CASE(king_factor_of_air_at_550_nm) {
   const double published_king_factor = 1.0488;
   const double four_decimal_tolerance = 1.0e-4;
-  BOOST_TEST(std::abs(king_factor_air(550.0, kBodhaineCo2_ppv) - published_king_factor) <=
-             four_decimal_tolerance);
+  BOOST_TEST(std::abs(king_factor_air(550.0, kBodhaineCo2_ppv) - published_king_factor) <= four_decimal_tolerance);
 }
 
 // List 1968 (Smithsonian Meteorological Tables): sea-level gravity at 45 deg is 980.616 cm s^-2;
@@ -132,8 +131,8 @@ BOOST_AUTO_TEST_CASE(optical_depth_table) {
     const double tau = bodhaine_sea_level_optical_depth(row.wavelength_nm);
     const double err = relative_error(tau, row.optical_depth);
     max_relative_error = std::max(max_relative_error, err);
-    BOOST_TEST_MESSAGE(row.wavelength_nm << " nm: tau " << tau << ", table " << row.optical_depth
-                                         << ", relative error " << err);
+    BOOST_TEST_MESSAGE(row.wavelength_nm << " nm: tau " << tau << ", table " << row.optical_depth << ", relative error "
+                                         << err);
     BOOST_TEST(err < kPublishedTolerance,
                "tau(" << row.wavelength_nm << " nm) = " << tau << " vs " << row.optical_depth);
   }
@@ -154,10 +153,8 @@ BOOST_AUTO_TEST_CASE(formulas_agree_at_common_co2) {
   for (double lambda_nm = 360.0; lambda_nm <= 830.0; lambda_nm += 10.0) {
     const double peck_reeder =
         refractivity_with_co2(RefractiveIndexFormula::PeckReeder1972, lambda_nm, kBodhaineCo2_ppv);
-    const double edlen =
-        refractivity_with_co2(RefractiveIndexFormula::Edlen1966, lambda_nm, kBodhaineCo2_ppv);
-    const double ciddor =
-        refractivity_with_co2(RefractiveIndexFormula::Ciddor1996, lambda_nm, kBodhaineCo2_ppv);
+    const double edlen = refractivity_with_co2(RefractiveIndexFormula::Edlen1966, lambda_nm, kBodhaineCo2_ppv);
+    const double ciddor = refractivity_with_co2(RefractiveIndexFormula::Ciddor1996, lambda_nm, kBodhaineCo2_ppv);
     BOOST_TEST(relative_error(edlen, peck_reeder) < agreement, lambda_nm << " nm: Edlen " << edlen);
     BOOST_TEST(relative_error(ciddor, peck_reeder) < agreement, lambda_nm << " nm: Ciddor " << ciddor);
     BOOST_TEST(relative_error(ciddor, peck_reeder) > must_differ_by);
@@ -192,8 +189,7 @@ BOOST_AUTO_TEST_CASE(co2_correction) {
   BOOST_TEST(reference_co2_ppv(RefractiveIndexFormula::Ciddor1996) == 450.0e-6);
   BOOST_TEST(refractivity_with_co2(pr, 550.0, 300.0e-6) == refractivity_standard_air(pr, 550.0),
              boost::test_tools::tolerance(1e-15));
-  BOOST_TEST(refractivity_with_co2(pr, 550.0, 360.0e-6) / refractivity_standard_air(pr, 550.0) ==
-                 1.0 + 0.54 * 60.0e-6,
+  BOOST_TEST(refractivity_with_co2(pr, 550.0, 360.0e-6) / refractivity_standard_air(pr, 550.0) == 1.0 + 0.54 * 60.0e-6,
              boost::test_tools::tolerance(1e-12));
   BOOST_CHECK_THROW(refractivity_with_co2(pr, 550.0, -1.0e-4), InputError);
 }
@@ -232,10 +228,10 @@ BOOST_AUTO_TEST_CASE(valid_from_230_to_1690_nm_and_refused_beyond_with_the_reaso
   }
   // Beyond the visible the dispersion goes on smoothly: (n - 1) is 1.6 % lower at 1500 nm and 8.5 %
   // higher at 250 nm than at 550 nm.
-  BOOST_TEST(refractivity_standard_air(pr, 1500.0) / refractivity_standard_air(pr, 550.0) ==
-             0.98369, boost::test_tools::tolerance(1e-4));
-  BOOST_TEST(refractivity_standard_air(pr, 250.0) / refractivity_standard_air(pr, 550.0) ==
-             1.08509, boost::test_tools::tolerance(1e-4));
+  BOOST_TEST(refractivity_standard_air(pr, 1500.0) / refractivity_standard_air(pr, 550.0) == 0.98369,
+             boost::test_tools::tolerance(1e-4));
+  BOOST_TEST(refractivity_standard_air(pr, 250.0) / refractivity_standard_air(pr, 550.0) == 1.08509,
+             boost::test_tools::tolerance(1e-4));
 }
 
 BOOST_AUTO_TEST_SUITE_END()
@@ -250,8 +246,7 @@ BOOST_AUTO_TEST_CASE(steps_are_consistent) {
   for (std::size_t i = 0; i < steps.size(); ++i) {
     const RayleighDerivationStep& s = steps[i];
     BOOST_TEST(s.lambda_nm == lambdas_nm[i]);
-    BOOST_TEST(s.refractivity_ref ==
-               refractivity_standard_air(RefractiveIndexFormula::PeckReeder1972, s.lambda_nm));
+    BOOST_TEST(s.refractivity_ref == refractivity_standard_air(RefractiveIndexFormula::PeckReeder1972, s.lambda_nm));
     BOOST_TEST(s.refractivity ==
                refractivity_with_co2(RefractiveIndexFormula::PeckReeder1972, s.lambda_nm, kBodhaineCo2_ppv));
     BOOST_TEST(s.king_n2 == king_factor_n2(s.lambda_nm));

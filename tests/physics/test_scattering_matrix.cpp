@@ -21,7 +21,8 @@ const double kGammas[] = {0.0, rayleigh_gamma_from_depolarisation(depolarisation
 BOOST_AUTO_TEST_CASE(rayleigh_phase_element_is_the_phase_function) {
   for (double gamma : kGammas)
     for (double mu = -1.0; mu <= 1.0; mu += 0.125)
-      BOOST_TEST(rayleigh_scattering_matrix(mu, gamma).a1 == rayleigh_phase(mu, gamma), boost::test_tools::tolerance(1e-14));
+      BOOST_TEST(rayleigh_scattering_matrix(mu, gamma).a1 == rayleigh_phase(mu, gamma),
+                 boost::test_tools::tolerance(1e-14));
 }
 
 BOOST_AUTO_TEST_CASE(rayleigh_phase_element_integrates_to_one) {
@@ -72,7 +73,8 @@ BOOST_AUTO_TEST_CASE(matrices_are_physically_realisable) {
           const double chi = kPi * a / 12.0, eps = kPi / 4.0 * b / 3.0;  // orientation and ellipticity
           const Stokes in(1.0, std::cos(2 * eps) * std::cos(2 * chi), std::cos(2 * eps) * std::sin(2 * chi),
                           std::sin(2 * eps));
-          for (const ScatteringMatrix& f : {rayleigh_scattering_matrix(mu, gamma), non_polarising_scattering_matrix(0.3)}) {
+          for (const ScatteringMatrix& f :
+               {rayleigh_scattering_matrix(mu, gamma), non_polarising_scattering_matrix(0.3)}) {
             const Stokes out = f.matrix() * in;
             BOOST_TEST(out[0] >= 0.0);
             BOOST_TEST(out.tail<3>().norm() <= out[0] * (1.0 + 1e-12));

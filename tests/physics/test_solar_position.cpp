@@ -12,8 +12,8 @@
 #include <string>
 
 #include "physics/date_time.hpp"
-#include "skyspec/error.hpp"
 #include "physics/solar_position.hpp"
+#include "skyspec/error.hpp"
 
 BOOST_AUTO_TEST_SUITE(test_solar_position)
 

@@ -10,15 +10,15 @@
 #include <string>
 #include <vector>
 
-#include "skyspec/error.hpp"
-#include "physics/solar_spectrum.hpp"
 #include "check_helpers.hpp"
+#include "physics/solar_spectrum.hpp"
+#include "skyspec/error.hpp"
 
 BOOST_AUTO_TEST_SUITE(test_solar_spectrum)
 
 using namespace skyspec;
-using test::relative;
 using test::error_setting;
+using test::relative;
 
 BOOST_AUTO_TEST_SUITE(table)
 
@@ -55,12 +55,11 @@ BOOST_AUTO_TEST_CASE(bruneton_bin_means_reproduce) {
   // average of the ASTM G-173 values for all wavelengths between 360 and 370nm", i.e. the
   // arithmetic mean of the table entries in [lambda, lambda + 10). Recomputing those 48 means
   // from our table checks every one of its 520 entries in 360-839.5 nm to the printed digits.
-  const double published[48] = {1.11776, 1.14259, 1.01249, 1.14716, 1.72765, 1.73054, 1.6887,  1.61253,
-                                1.91198, 2.03474, 2.02042, 2.02212, 1.93377, 1.95809, 1.91686, 1.8298,
-                                1.8685,  1.8931,  1.85149, 1.8504,  1.8341,  1.8345,  1.8147,  1.78158,
-                                1.7533,  1.6965,  1.68194, 1.64654, 1.6048,  1.52143, 1.55622, 1.5113,
-                                1.474,   1.4482,  1.41018, 1.36775, 1.34188, 1.31429, 1.28303, 1.26758,
-                                1.2367,  1.2082,  1.18737, 1.14683, 1.12362, 1.1058,  1.07124, 1.04992};
+  const double published[48] = {
+      1.11776, 1.14259, 1.01249, 1.14716, 1.72765, 1.73054, 1.6887,  1.61253, 1.91198, 2.03474, 2.02042, 2.02212,
+      1.93377, 1.95809, 1.91686, 1.8298,  1.8685,  1.8931,  1.85149, 1.8504,  1.8341,  1.8345,  1.8147,  1.78158,
+      1.7533,  1.6965,  1.68194, 1.64654, 1.6048,  1.52143, 1.55622, 1.5113,  1.474,   1.4482,  1.41018, 1.36775,
+      1.34188, 1.31429, 1.28303, 1.26758, 1.2367,  1.2082,  1.18737, 1.14683, 1.12362, 1.1058,  1.07124, 1.04992};
   const TabulatedSpectrum& t = solar_irradiance_table();
   for (int bin = 0; bin < 48; ++bin) {
     const double lo_nm = 360.0 + 10.0 * bin;

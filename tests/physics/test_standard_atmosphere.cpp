@@ -112,8 +112,7 @@ BOOST_AUTO_TEST_CASE(hydrostatic_balance) {
     const AtmosphereState s = at_geopotential(h_m);
     const double dp_dh =
         (at_geopotential(h_m + dh_m).pressure_Pa - at_geopotential(h_m - dh_m).pressure_Pa) / (2.0 * dh_m);
-    const double expected =
-        -s.pressure_Pa * molar_mass_kg_per_mol * g0_m_per_s2 / (gas_constant * s.temperature_K);
+    const double expected = -s.pressure_Pa * molar_mass_kg_per_mol * g0_m_per_s2 / (gas_constant * s.temperature_K);
     BOOST_TEST(relative_error(dp_dh, expected) < 1e-6, h_m << " m'");
   }
 }
@@ -124,8 +123,7 @@ BOOST_AUTO_TEST_CASE(range_ends_and_outside) {
   // Below sea level the first layer continues: warmer, denser.
   BOOST_TEST(us_standard_atmosphere_1976(-1000.0).temperature_K > 288.15);
   // Above 84.852 km' the last layer (-2 K/km') continues.
-  BOOST_TEST(us_standard_atmosphere_1976(100000.0).temperature_K <
-             us_standard_atmosphere_1976(86000.0).temperature_K);
+  BOOST_TEST(us_standard_atmosphere_1976(100000.0).temperature_K < us_standard_atmosphere_1976(86000.0).temperature_K);
   for (double bad : {-5000.5, 100000.5, std::nan("")}) {
     try {
       us_standard_atmosphere_1976(bad);

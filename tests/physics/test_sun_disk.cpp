@@ -34,7 +34,8 @@ BOOST_AUTO_TEST_CASE(disk_integrates_to_the_irradiance) {
     disk_radiance_per_irradiance(grid, theta, x, L);
     sum += L * static_cast<float>(2 * kPi * x * theta * theta / n);
   }
-  for (int i = 0; i < grid.size(); ++i) BOOST_TEST(static_cast<double>(sum[i]) == 1.0, boost::test_tools::tolerance(2e-3));
+  for (int i = 0; i < grid.size(); ++i)
+    BOOST_TEST(static_cast<double>(sum[i]) == 1.0, boost::test_tools::tolerance(2e-3));
   disk_radiance_per_irradiance(grid, theta, 1.5, L);
   BOOST_TEST(L.maxCoeff() == 0.0f);
 }

@@ -101,7 +101,8 @@ BOOST_AUTO_TEST_CASE(lowest_cosine_bounds_the_pixels) {
   const EquirectangularCamera hemisphere(128, 32, origin, 0.0), band(128, 48, origin, -20.0), sphere(128, 64, origin);
   const PerspectiveCamera perspective(32, 24, origin, origin + Vec3(1000, 0, 100), 60.0);
   BOOST_TEST(!perspective.lowest_cosine_to(Vec3(0, 0, 1)).has_value());
-  for (const Vec3& u : {Vec3(0, 0, 1), Vec3(0.3, -0.2, 0.9).normalized(), Vec3(1, 0, 0), Vec3(0.1, 0.2, -0.97).normalized()})
+  for (const Vec3& u :
+       {Vec3(0, 0, 1), Vec3(0.3, -0.2, 0.9).normalized(), Vec3(1, 0, 0), Vec3(0.1, 0.2, -0.97).normalized()})
     for (const Camera* camera : std::initializer_list<const Camera*>{&fisheye, &hemisphere, &band, &sphere}) {
       double lowest = 2.0;
       for (int y = 0; y < camera->height(); ++y)

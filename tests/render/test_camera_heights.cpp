@@ -53,7 +53,8 @@ BOOST_AUTO_TEST_CASE(the_ground_from_height_zero_is_the_ground_from_a_millimetre
   const SpectralImageBuffer at1mm = render_to_memory(small_scene("equirectangular", "0.001"));
   double worst = 0.0;
   for (size_t i = 0; i < at0.spectral.size(); ++i)
-    worst = std::max(worst, std::abs(double(at0.spectral[i]) - at1mm.spectral[i]) / std::max(1e-12, double(at1mm.spectral[i])));
+    worst = std::max(
+        worst, std::abs(double(at0.spectral[i]) - at1mm.spectral[i]) / std::max(1e-12, double(at1mm.spectral[i])));
   BOOST_TEST(worst < 1e-4);
   // The bottom row looks at the ground: it is lit (the sun is up, the default ground reflects).
   BOOST_TEST(at0.spectral[(5 * 8 + 3) * at0.wavelengths_nm.size() + 20] > 0.0f);

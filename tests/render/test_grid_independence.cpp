@@ -23,7 +23,8 @@ namespace {
 std::vector<float> channel(const std::string& grid, double nm, int orders) {
   const Scene scene = test::scene_with(
       "camera.type = \"equirectangular\"\ncamera.width = 32\ncamera.height = 16\nsun.elevation_deg = 5\n"
-      "spectrum.wavelengths_nm = [" + grid + "]\nrender.scattering_orders = " + std::to_string(orders) +
+      "spectrum.wavelengths_nm = [" +
+      grid + "]\nrender.scattering_orders = " + std::to_string(orders) +
       "\nrender.cache_tables = false\nrender.ms_altitude_samples = 8\nrender.ms_sun_samples = 8\n");
   const SpectralImageBuffer image = render_to_memory(scene);
   int k = 0;

@@ -43,8 +43,8 @@ void check_against_reference(const std::string& preset, double sun_elevation, do
                                 << " nm: renderer " << value << ", reference " << ref << " +- " << se << " ("
                                 << 100.0 * (value / ref - 1.0) << " %)");
       BOOST_TEST(std::abs(value - ref) <= allowed * ref + 3.0 * se,
-                 preset << " sun " << sun_elevation << " " << probes[k].label << " " << mc.wavelengths_nm[i] << " nm: "
-                        << value << " vs " << ref << " +- " << se);
+                 preset << " sun " << sun_elevation << " " << probes[k].label << " " << mc.wavelengths_nm[i]
+                        << " nm: " << value << " vs " << ref << " +- " << se);
     }
   }
 }

@@ -20,7 +20,8 @@ BOOST_AUTO_TEST_CASE(a_window_holds_the_whole_images_values_bit_for_bit) {
   // A fisheye (pixels outside its circle too), a sun in the image, the sky-view table and a march.
   for (const char* table : {"true", "false"}) {
     const Scene s = test::scene_with(std::string("[camera]\nwidth = 41\nheight = 29\n[sun]\nelevation_deg = 60\n"
-                                                 "[render]\nscattering_orders = 1\nsky_view_table = ") + table + "\n");
+                                                 "[render]\nscattering_orders = 1\nsky_view_table = ") +
+                                     table + "\n");
     const SkyRenderer r(s);
     const int w = r.width(), h = r.height(), n = r.grid().size();
     std::vector<float> spectral(static_cast<size_t>(w) * h * n), rgb(static_cast<size_t>(w) * h * 3);

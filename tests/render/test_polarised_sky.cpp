@@ -10,15 +10,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 
+#include "io/spectral_exr.hpp"
 #include "scene_fixtures.hpp"
+#include "scratch_folder.hpp"
 #include "skyspec/camera.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/monte_carlo_reference.hpp"
-#include "io/spectral_exr.hpp"
-#include "scratch_folder.hpp"
 #include "skyspec/render.hpp"
 
 BOOST_AUTO_TEST_SUITE(test_polarised_sky)
@@ -193,7 +193,8 @@ BOOST_AUTO_TEST_CASE(sky_view_table_keeps_the_polarisation, *boost::unit_test::p
           return std::hypot(img.stokes[(p * 3) * n + k], img.stokes[(p * 3 + 1) * n + k]) / img.spectral[p * n + k];
         };
         differences.push_back(std::abs(dolp(a) - dolp(b)));
-        largest_s0 = std::max(largest_s0, std::abs(static_cast<double>(a.spectral[p * n + k]) / b.spectral[p * n + k] - 1.0));
+        largest_s0 =
+            std::max(largest_s0, std::abs(static_cast<double>(a.spectral[p * n + k]) / b.spectral[p * n + k] - 1.0));
       }
     std::sort(differences.begin(), differences.end());
     const double p99 = differences[differences.size() * 99 / 100], largest = differences.back();

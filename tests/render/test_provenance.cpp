@@ -31,7 +31,8 @@ BOOST_AUTO_TEST_CASE(data_tables_are_described_from_their_embedded_bytes) {
   // Which tables a render reads follows the scene; every one listed has a source.
   const Scene d = scene_with("");
   const std::string text = data_tables_text(d, true);
-  for (const char* table : {"cie/", "solar/astm_g173_etr.csv", "ozone/", "ocio/config.ocio"}) BOOST_TEST(contains(text, table));
+  for (const char* table : {"cie/", "solar/astm_g173_etr.csv", "ozone/", "ocio/config.ocio"})
+    BOOST_TEST(contains(text, table));
   BOOST_TEST(!contains(text, "solar_position/"));
   const Scene seed = scene_with("", "seed");
   BOOST_TEST(!contains(data_tables_text(seed, false), "cie/"));

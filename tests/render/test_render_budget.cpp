@@ -4,10 +4,10 @@
 #include <cstdint>
 #include <string>
 
-#include "skyspec/error.hpp"
-#include "skyspec/render.hpp"
 #include "render/render_budget.hpp"
 #include "scene_fixtures.hpp"
+#include "skyspec/error.hpp"
+#include "skyspec/render.hpp"
 #include "skyspec/scene.hpp"
 
 BOOST_AUTO_TEST_SUITE(test_render_budget)
@@ -70,7 +70,8 @@ BOOST_AUTO_TEST_CASE(plan_of_a_scene) {
 
 BOOST_AUTO_TEST_CASE(limits_and_messages) {
   RenderEstimate e;
-  e.plan = RenderPlan::for_scene(scene_with("[camera]\nwidth = 16384\nheight = 8192\n[output]\ndirectory = \"/data\"\n"));
+  e.plan =
+      RenderPlan::for_scene(scene_with("[camera]\nwidth = 16384\nheight = 8192\n[output]\ndirectory = \"/data\"\n"));
   e.output_bytes = 41'000'000'000ull;
   e.peak_memory_bytes = 2'000'000'000ull;
   e.disk_available_bytes = 12'000'000'000ull;
@@ -85,7 +86,8 @@ BOOST_AUTO_TEST_CASE(limits_and_messages) {
   BOOST_TEST(refusal(e).empty());
   e.seconds = 3.2 * 86400;
   const std::string slow = refusal(e);
-  BOOST_TEST(contains(slow, "would take about 3.2 days at these settings (41 wavelengths, 64 view segments, 16384x8192"));
+  BOOST_TEST(
+      contains(slow, "would take about 3.2 days at these settings (41 wavelengths, 64 view segments, 16384x8192"));
   BOOST_TEST(contains(slow, kForceSetting));
   e.seconds = 23.0 * 3600;
   BOOST_TEST(refusal(e).empty());

@@ -54,7 +54,7 @@ BOOST_AUTO_TEST_CASE(seed_preset_matches_converged_baseline) {
       sum += rel;
       ++compared;
       BOOST_TEST(rel < 2e-3, "sun " << el << " pixel (" << i << "," << j << ") channel " << c << ": " << ours[c]
-                                     << " vs baseline " << rgb[c]);
+                                    << " vs baseline " << rgb[c]);
     }
   }
   BOOST_TEST(compared == 3 * 291);

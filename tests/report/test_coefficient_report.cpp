@@ -12,14 +12,14 @@
 #include <string>
 #include <vector>
 
+#include "check_helpers.hpp"
+#include "report/published_references.hpp"
 #include "skyspec/coefficient_report.hpp"
 #include "skyspec/error.hpp"
-#include "report/published_references.hpp"
 #include "skyspec/rayleigh.hpp"
 #include "skyspec/scene.hpp"
 #include "skyspec/standard_atmosphere.hpp"
 #include "skyspec/units.hpp"
-#include "check_helpers.hpp"
 
 BOOST_AUTO_TEST_SUITE(test_coefficient_report)
 
@@ -200,13 +200,16 @@ BOOST_AUTO_TEST_CASE(arbitrary_pressure_and_temperature) {
     const double sigma = r.derivation[i].cross_section_m2;
     BOOST_TEST(sigma == rayleigh_cross_section_m2(r.wavelengths_nm[i], req.atmosphere.rayleigh.derivation));
     BOOST_TEST(c.rayleigh_scattering_per_m[i] == sigma * n_per_m3, boost::test_tools::tolerance(1e-14));
-    BOOST_TEST(c.refractivity[i] == r.derivation[i].refractivity * c.density_ratio, boost::test_tools::tolerance(1e-14));
-    BOOST_TEST(c.rayleigh_optical_depth_above[i] == sigma * c.column_molecules_per_m2, boost::test_tools::tolerance(1e-14));
+    BOOST_TEST(c.refractivity[i] == r.derivation[i].refractivity * c.density_ratio,
+               boost::test_tools::tolerance(1e-14));
+    BOOST_TEST(c.rayleigh_optical_depth_above[i] == sigma * c.column_molecules_per_m2,
+               boost::test_tools::tolerance(1e-14));
   }
   // 250 hPa lies near 10.36 km in the U.S. Standard Atmosphere 1976; the bisection finds it.
   BOOST_TEST(c.pressure_altitude_m > 10300.0);
   BOOST_TEST(c.pressure_altitude_m < 10450.0);
-  BOOST_TEST(us_standard_atmosphere_1976(c.pressure_altitude_m).pressure_Pa == 25000.0, boost::test_tools::tolerance(1e-6));
+  BOOST_TEST(us_standard_atmosphere_1976(c.pressure_altitude_m).pressure_Pa == 25000.0,
+             boost::test_tools::tolerance(1e-6));
   BOOST_TEST(c.column_gravity_m_per_s2 > 9.75);
   BOOST_TEST(c.column_gravity_m_per_s2 < 9.81);
 }
@@ -309,8 +312,9 @@ BOOST_AUTO_TEST_CASE(ultraviolet_to_near_infrared) {
   BOOST_TEST(std::isnan(l.ozone_optical_depth[2]));
   BOOST_TEST(l.total_optical_depth[2] == l.rayleigh_optical_depth[2] + l.mie_optical_depth[2],
              boost::test_tools::tolerance(1e-12));
-  BOOST_TEST(l.total_optical_depth[0] == l.rayleigh_optical_depth[0] + l.mie_optical_depth[0] + l.ozone_optical_depth[0],
-             boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(
+      l.total_optical_depth[0] == l.rayleigh_optical_depth[0] + l.mie_optical_depth[0] + l.ozone_optical_depth[0],
+      boost::test_tools::tolerance(1e-12));
   // Rayleigh: (1500/300)^4 = 625, and more since n - 1 and F rise towards the ultraviolet.
   BOOST_TEST(r.derivation[0].cross_section_m2 / r.derivation[2].cross_section_m2 > 700.0);
   const std::string md = report_to_markdown(r);

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "scratch_folder.hpp"
 #include "colour/chromatic_adaptation.hpp"
-#include "skyspec/colour.hpp"
 #include "report/comparison_report.hpp"
+#include "scratch_folder.hpp"
+#include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/sky_comparison.hpp"
 
@@ -138,8 +138,7 @@ BOOST_AUTO_TEST_CASE(regions_of_the_fisheye_and_the_panorama) {
   loader.apply_override("camera.height", "8", "test");
   const PixelGeometry pano = pixel_geometry(loader.finish());
   for (int y = 0; y < 8; ++y)
-    for (int x = 0; x < 16; ++x)
-      BOOST_TEST((pano.region[size_t(y * 16 + x)] == kNotCompared) == (y >= 4));
+    for (int x = 0; x < 16; ++x) BOOST_TEST((pano.region[size_t(y * 16 + x)] == kNotCompared) == (y >= 4));
 }
 
 BOOST_AUTO_TEST_SUITE_END()

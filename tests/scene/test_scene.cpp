@@ -97,17 +97,20 @@ BOOST_AUTO_TEST_CASE(wavelength_grid_must_lie_where_the_tables_are) {
                  .max_nm() == 1600.0);
   BOOST_TEST(contains(load_error("[atmosphere.ozone]\nenabled = false\n[spectrum]\nmax_nm = 1700\nstep_nm = 10\n"),
                       "to 1690 nm (the refractive index of air: the range of Peck & Reeder"));
-  BOOST_TEST(contains(load_error("[atmosphere.ozone]\nenabled = false\n[sun]\nspectrum = \"flat\"\n[spectrum]\nmin_nm = 220\n"),
-                      "from 230 to 1690 nm when render.path = \"spectral\": the refractive index of air"));
-  BOOST_TEST(contains(load_error("[spectrum]\nstep_nm = 0.5\n"), "spectrum.step_nm = 0.5 is not allowed: a number in nm, >= 1"));
+  BOOST_TEST(contains(
+      load_error("[atmosphere.ozone]\nenabled = false\n[sun]\nspectrum = \"flat\"\n[spectrum]\nmin_nm = 220\n"),
+      "from 230 to 1690 nm when render.path = \"spectral\": the refractive index of air"));
+  BOOST_TEST(contains(load_error("[spectrum]\nstep_nm = 0.5\n"),
+                      "spectrum.step_nm = 0.5 is not allowed: a number in nm, >= 1"));
   BOOST_TEST(contains(load_error("[spectrum]\nstep_nm = 7\n"), "divides"));
   BOOST_TEST(contains(load_error("[spectrum]\ncount = 500\n"), "at least 1 nm apart"));
   SceneLoader counted;
   counted.apply_toml("[spectrum]\ncount = 48\nmin_nm = 360\nmax_nm = 830\n", "test.toml");
   BOOST_TEST(make_wavelength_grid(counted.finish()).size() == 48);
   // The seed's typed-in coefficients exist only at its three wavelengths.
-  BOOST_TEST(contains(load_error("[spectrum]\nwavelengths_nm = [440, 550, 600]\n[render]\npath = \"spectral\"\n", "seed"),
-                      "atmosphere.rayleigh.wavelengths_nm"));
+  BOOST_TEST(
+      contains(load_error("[spectrum]\nwavelengths_nm = [440, 550, 600]\n[render]\npath = \"spectral\"\n", "seed"),
+               "atmosphere.rayleigh.wavelengths_nm"));
   BOOST_TEST(contains(load_error("[render]\npath = \"rgb-fast\"\n"), "exactly 440, 550 and 680 nm"));
 }
 
@@ -159,7 +162,8 @@ BOOST_AUTO_TEST_CASE(panoramas_get_a_grey_ground_unless_one_is_set) {
   };
   BOOST_TEST(albedo({}) == 0.0);
   BOOST_TEST(albedo({{"camera.type", "equirectangular"}}) == kPanoramaGroundAlbedo);
-  BOOST_TEST(albedo({{"camera.type", "equirectangular"}, {"camera.min_elevation_deg", "-10"}}) == kPanoramaGroundAlbedo);
+  BOOST_TEST(albedo({{"camera.type", "equirectangular"}, {"camera.min_elevation_deg", "-10"}}) ==
+             kPanoramaGroundAlbedo);
   BOOST_TEST(albedo({{"camera.type", "equirectangular"}, {"camera.min_elevation_deg", "0"}}) == 0.0);
   BOOST_TEST(albedo({{"camera.type", "equirectangular"}, {"ground.albedo", "0"}}) == 0.0);
   BOOST_TEST(albedo({{"camera.type", "equirectangular"}, {"ground.albedo", "0.6"}}) == 0.6);
@@ -168,9 +172,10 @@ BOOST_AUTO_TEST_CASE(panoramas_get_a_grey_ground_unless_one_is_set) {
   file.apply_toml("[camera]\ntype = \"equirectangular\"\n[ground]\nalbedo = 0.0\n", "scene.toml");
   BOOST_TEST(file.finish().atmosphere.ground.albedo == 0.0);
   SceneLoader spectral;
-  spectral.apply_toml("[camera]\ntype = \"equirectangular\"\n[ground]\nalbedo_wavelengths_nm = [400, 700]\n"
-                      "albedo_values = [0.1, 0.3]\n",
-                      "scene.toml");
+  spectral.apply_toml(
+      "[camera]\ntype = \"equirectangular\"\n[ground]\nalbedo_wavelengths_nm = [400, 700]\n"
+      "albedo_values = [0.1, 0.3]\n",
+      "scene.toml");
   BOOST_TEST(spectral.finish().atmosphere.ground.albedo == 0.0);  // the spectral albedo is the choice
   // The effective scene of a panorama records the albedo it used; loading it gives the same.
   SceneLoader panorama;
@@ -185,7 +190,9 @@ BOOST_AUTO_TEST_CASE(panoramas_get_a_grey_ground_unless_one_is_set) {
 // sun.date_time takes a TOML offset date-time as written in a file or after --set, unquoted, as
 // well as the quoted text; a local date-time (no offset) or a bare date is refused, saying why.
 BOOST_AUTO_TEST_CASE(date_times_unquoted_as_toml_writes_them) {
-  const auto sun_of = [](const Scene& s) { return std::to_string(s.sun.elevation_deg) + " " + std::to_string(s.sun.azimuth_deg); };
+  const auto sun_of = [](const Scene& s) {
+    return std::to_string(s.sun.elevation_deg) + " " + std::to_string(s.sun.azimuth_deg);
+  };
   SceneLoader quoted;
   quoted.apply_toml("[sun]\ndate_time = \"2026-06-21T12:00:00+02:00\"\n[location]\nlatitude_deg = 48\n", "a.toml");
   SceneLoader bare;
@@ -274,19 +281,22 @@ BOOST_AUTO_TEST_CASE(quality_levels) {
     return l.finish().render;
   };
   const RenderSpec d = at("default");
-  BOOST_TEST(scene_to_toml(SceneLoader().finish()) == [] { SceneLoader l; l.apply_quality("default"); return scene_to_toml(l.finish()); }());
+  BOOST_TEST(scene_to_toml(SceneLoader().finish()) == [] {
+    SceneLoader l;
+    l.apply_quality("default");
+    return scene_to_toml(l.finish());
+  }());
   BOOST_TEST(d.view_segments == base.view_segments);
   const auto names = quality_names();
   for (size_t i = 1; i < names.size(); ++i) {
     const RenderSpec lo = at(names[i - 1]), hi = at(names[i]);
     BOOST_TEST_CONTEXT(names[i - 1] << " -> " << names[i]) {
-      const std::vector<std::pair<int, int>> counts = {
-          {lo.view_segments, hi.view_segments},
-          {lo.table_altitude_samples, hi.table_altitude_samples},
-          {lo.table_zenith_samples, hi.table_zenith_samples},
-          {lo.ms_altitude_samples, hi.ms_altitude_samples},
-          {lo.ms_sun_samples, hi.ms_sun_samples},
-          {lo.scattering_orders, hi.scattering_orders}};
+      const std::vector<std::pair<int, int>> counts = {{lo.view_segments, hi.view_segments},
+                                                       {lo.table_altitude_samples, hi.table_altitude_samples},
+                                                       {lo.table_zenith_samples, hi.table_zenith_samples},
+                                                       {lo.ms_altitude_samples, hi.ms_altitude_samples},
+                                                       {lo.ms_sun_samples, hi.ms_sun_samples},
+                                                       {lo.scattering_orders, hi.scattering_orders}};
       bool rises = false;
       for (const auto& [a, b] : counts) {
         BOOST_TEST(a <= b);
@@ -326,8 +336,10 @@ BOOST_AUTO_TEST_CASE(built_in_defaults_are_the_default_scene_file) {
     std::string line, table;
     while (std::getline(in, line)) {
       if (line.empty()) continue;
-      if (line.front() == '[') table = line.substr(1, line.size() - 2);
-      else out.push_back(table + "." + line);
+      if (line.front() == '[')
+        table = line.substr(1, line.size() - 2);
+      else
+        out.push_back(table + "." + line);
     }
     return out;
   };
@@ -362,7 +374,8 @@ BOOST_AUTO_TEST_CASE(every_named_camera_type_and_convention_round_trips_through_
     const Scene s = l.finish();
     BOOST_TEST((s.camera.type == row.value));
     BOOST_TEST(std::string(camera_type_name(s.camera.type)) == row.name);
-    BOOST_TEST(scene_to_toml(s, SceneTomlKeys::All).find(std::string("type = \"") + row.name + "\"") != std::string::npos);
+    BOOST_TEST(scene_to_toml(s, SceneTomlKeys::All).find(std::string("type = \"") + row.name + "\"") !=
+               std::string::npos);
     BOOST_TEST(static_cast<bool>(make_camera(s)));
   }
   for (const auto& row : panorama_conventions()) {
@@ -406,7 +419,8 @@ BOOST_AUTO_TEST_CASE(a_band_below_zero_nm_is_refused) {
     l.apply_override("spectrum.bandwidth_nm", "1000", "--set spectrum.bandwidth_nm");
     l.finish();
   });
-  BOOST_TEST(contains(e, "spectrum.bandwidth_nm = 1000 is not allowed: less than twice the shortest wavelength (380 nm)"));
+  BOOST_TEST(
+      contains(e, "spectrum.bandwidth_nm = 1000 is not allowed: less than twice the shortest wavelength (380 nm)"));
   SceneLoader ok;
   ok.apply_override("spectrum.bandwidth_nm", "700", "--set spectrum.bandwidth_nm");
   BOOST_TEST(ok.finish().spectrum.bandwidth_nm == 700.0);

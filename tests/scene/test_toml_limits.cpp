@@ -33,14 +33,17 @@ BOOST_AUTO_TEST_CASE(the_default_scene_is_far_within_the_limits) {
 
 BOOST_AUTO_TEST_CASE(nesting_up_to_the_limit_is_accepted_beyond_it_refused_with_a_position) {
   BOOST_TEST(refusal("x = " + repeat("[", kMaxTomlNesting) + repeat("]", kMaxTomlNesting)).empty());
-  BOOST_TEST(refusal("x = " + repeat("[", kMaxTomlNesting + 1) + repeat("]", kMaxTomlNesting + 1)).find("t.toml:1:37: arrays") == 0);
-  BOOST_TEST(refusal("x = " + repeat("{a=", 40000) + "1" + repeat("}", 40000)).find("nested more than 32 deep") != std::string::npos);
+  BOOST_TEST(refusal("x = " + repeat("[", kMaxTomlNesting + 1) + repeat("]", kMaxTomlNesting + 1))
+                 .find("t.toml:1:37: arrays") == 0);
+  BOOST_TEST(refusal("x = " + repeat("{a=", 40000) + "1" + repeat("}", 40000)).find("nested more than 32 deep") !=
+             std::string::npos);
   BOOST_TEST(refusal("\n\n[" + repeat("a.", 40000) + "a]").find("t.toml:3:") == 0);
 }
 
 BOOST_AUTO_TEST_CASE(dotted_keys_count_parts_outside_strings_and_comments) {
   BOOST_TEST(refusal(repeat("a.", kMaxTomlKeyParts - 1) + "a = 1").empty());
-  BOOST_TEST(refusal(repeat("a.", kMaxTomlKeyParts) + "a = 1").find("a dotted key of more than 32 parts") != std::string::npos);
+  BOOST_TEST(refusal(repeat("a.", kMaxTomlKeyParts) + "a = 1").find("a dotted key of more than 32 parts") !=
+             std::string::npos);
   // Dots and brackets inside strings, literal strings, multi-line strings and comments do not count.
   const std::string dots = repeat(".[{", 100);
   BOOST_TEST(refusal("a = \"" + dots + "\"").empty());
@@ -55,7 +58,8 @@ BOOST_AUTO_TEST_CASE(dotted_keys_count_parts_outside_strings_and_comments) {
 
 BOOST_AUTO_TEST_CASE(the_size_limit_names_the_size) {
   BOOST_TEST(refusal(std::string(kMaxTomlBytes, ' ')).empty());
-  BOOST_TEST(refusal(std::string(kMaxTomlBytes + 1, ' ')).find("bytes of TOML; skyspec reads at most 1 MiB") != std::string::npos);
+  BOOST_TEST(refusal(std::string(kMaxTomlBytes + 1, ' ')).find("bytes of TOML; skyspec reads at most 1 MiB") !=
+             std::string::npos);
 }
 
 // Every way in: scene text, --set values; the parser never sees the deep text.

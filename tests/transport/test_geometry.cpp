@@ -55,7 +55,8 @@ BOOST_AUTO_TEST_CASE(planet_scale_precision_horizontal_ray) {
   const Vec3 o(0, 0, R + 1.0), d(1, 0, 0);
   BOOST_TEST(!intersect_sphere(o, d, R).hit);
   const SphereHit top = intersect_sphere(o, d, Rt);
-  const long double exact = std::sqrt(static_cast<long double>(Rt) * Rt - static_cast<long double>(R + 1.0) * (R + 1.0));
+  const long double exact =
+      std::sqrt(static_cast<long double>(Rt) * Rt - static_cast<long double>(R + 1.0) * (R + 1.0));
   BOOST_TEST(std::abs(top.t_far_m - static_cast<double>(exact)) < 1e-3);
 }
 

@@ -9,8 +9,8 @@
 
 #include "atmosphere_fixtures.hpp"
 #include "monte_carlo_fixtures.hpp"
-#include "skyspec/camera.hpp"
 #include "physics/scattering_matrix.hpp"
+#include "skyspec/camera.hpp"
 #include "skyspec/phase_function.hpp"
 #include "transport/monte_carlo.hpp"
 #include "transport/single_scattering.hpp"
@@ -26,8 +26,8 @@ MonteCarloMedium rayleigh_slab(double tau, double gamma, double ground_albedo, d
 }
 
 bool agrees(const char* what, const MonteCarloValue& mc, double expected, double k_sigma, double relative) {
-  std::printf("  %s: mc %.6g +- %.2g, expected %.6g: %+.3f %% (%.2f sigma)\n", what, mc.mean, mc.standard_error, expected,
-              100.0 * (mc.mean / expected - 1.0), (mc.mean - expected) / mc.standard_error);
+  std::printf("  %s: mc %.6g +- %.2g, expected %.6g: %+.3f %% (%.2f sigma)\n", what, mc.mean, mc.standard_error,
+              expected, 100.0 * (mc.mean / expected - 1.0), (mc.mean - expected) / mc.standard_error);
   return std::abs(mc.mean - expected) <= k_sigma * mc.standard_error + relative * std::abs(expected);
 }
 }  // namespace
@@ -98,7 +98,8 @@ BOOST_AUTO_TEST_CASE(rayleigh_air_has_no_circular_polarisation) {
   const MonteCarloIntegrator mc(rayleigh_slab(0.8, 0.015, 0.3, 1.0), Vec3(0.0, 0.5, std::sqrt(0.75)));
   MonteCarloSettings settings;
   settings.paths = 20000;
-  const MonteCarloStokes v = mc.stokes_radiance(Vec3(0, 0, 0), Vec3(0.3, -0.2, 0.5).normalized(), Vec3(0, 0, 1), settings, 1);
+  const MonteCarloStokes v =
+      mc.stokes_radiance(Vec3(0, 0, 0), Vec3(0.3, -0.2, 0.5).normalized(), Vec3(0, 0, 1), settings, 1);
   BOOST_TEST(v[0].mean > 0.0);
   BOOST_TEST(std::abs(v[1].mean) + std::abs(v[2].mean) > 1e-3 * v[0].mean);  // but it is polarised
   BOOST_TEST(v[3].mean == 0.0);

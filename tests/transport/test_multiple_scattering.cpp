@@ -6,14 +6,13 @@
 #include <iterator>
 #include <vector>
 
-
 #include "atmosphere_fixtures.hpp"
 #include "scratch_folder.hpp"
 #include "skyspec/camera.hpp"
 #include "skyspec/phase_function.hpp"
+#include "skyspec/units.hpp"
 #include "transport/multiple_scattering.hpp"
 #include "transport/spherical_harmonics.hpp"
-#include "skyspec/units.hpp"
 
 BOOST_AUTO_TEST_SUITE(test_multiple_scattering)
 
@@ -71,7 +70,8 @@ BOOST_AUTO_TEST_CASE(conservative_atmosphere_over_white_ground_conserves_energy)
     const ScatteringOrders orders(ss, ms);
     const Spectrum flux = upward_flux_at_top(ss, ScatteringSources{true, &orders}, spec.planet_radius_m + 59.9e3);
     for (int i = 0; i < 3; ++i) {
-      BOOST_TEST_MESSAGE("degree " << degree << ": upward flux at " << kNm[static_cast<size_t>(i)] << " nm: " << flux[i]);
+      BOOST_TEST_MESSAGE("degree " << degree << ": upward flux at " << kNm[static_cast<size_t>(i)]
+                                   << " nm: " << flux[i]);
       // 0.5 %: the higher orders are integrated along rays by the log-mean rule (they were within
       // 2 % by the trapezoid rule, 1.019 at 440 nm).
       BOOST_TEST(static_cast<double>(flux[i]) == 1.0, boost::test_tools::tolerance(0.005));
@@ -214,7 +214,8 @@ BOOST_AUTO_TEST_CASE(angular_source_is_the_phase_weighted_field) {
   for (int ih = 0; ih < 4; ++ih)
     for (int im = 0; im < 4; ++im)
       for (int c = 0; c < n_c; ++c)
-        for (int l = 0; l < 3; ++l) table.j_at(ih, im)[c * 3 + l] = static_cast<float>(a[static_cast<size_t>(c * 3 + l)]);
+        for (int l = 0; l < 3; ++l)
+          table.j_at(ih, im)[c * 3 + l] = static_cast<float>(a[static_cast<size_t>(c * 3 + l)]);
   table.prepare();
   // Views at several zenith angles and azimuths, the sun at mu_s = 0.4.
   const double mu_s = 0.4, ss = std::sqrt(1 - mu_s * mu_s);
@@ -282,7 +283,8 @@ BOOST_AUTO_TEST_CASE(altitude_rows_are_dense_near_the_ground) {
   for (int i = 0; i < rows; ++i) {
     const double h = table.altitude_m(i);
     if (h < 1000.0) ++below_1km;
-    BOOST_TEST(table.row_coordinate_of_altitude(h) * (rows - 1) == static_cast<double>(i), boost::test_tools::tolerance(1e-9));
+    BOOST_TEST(table.row_coordinate_of_altitude(h) * (rows - 1) == static_cast<double>(i),
+               boost::test_tools::tolerance(1e-9));
     if (i >= 2) BOOST_TEST(h - table.altitude_m(i - 1) > table.altitude_m(i - 1) - table.altitude_m(i - 2));
   }
   BOOST_TEST(below_1km == 5);  // 0, 0.13, 0.31, 0.57, 0.93 km
@@ -433,7 +435,8 @@ BOOST_AUTO_TEST_CASE(direction_quadrature_of_the_orders_has_converged) {
   const ScatteringOrders coarse(ss, ms);
   ms.quadrature_refinement = 2;
   const ScatteringOrders fine(ss, ms);
-  BOOST_TEST(ScatteringOrders::quadrature_of_order(10, 2, 2).rays() == 4 * ScatteringOrders::quadrature_of_order(10, 2).rays());
+  BOOST_TEST(ScatteringOrders::quadrature_of_order(10, 2, 2).rays() ==
+             4 * ScatteringOrders::quadrature_of_order(10, 2).rays());
   ScatteringWorkspace ws(3);
   Spectrum a(3), b(3);
   const Vec3 o(0, 0, 6360e3 + 2), s = direction_from_angles(0, 10);
@@ -444,7 +447,8 @@ BOOST_AUTO_TEST_CASE(direction_quadrature_of_the_orders_has_converged) {
       ss.radiance(o, d, s, Spectrum::Ones(3), ScatteringSources{true, &coarse}, ws, a);
       ss.radiance(o, d, s, Spectrum::Ones(3), ScatteringSources{true, &fine}, ws, b);
       for (int i = 0; i < 3; ++i) {
-        BOOST_TEST_MESSAGE("az " << az << " el " << el << " " << kNm[static_cast<size_t>(i)] << " nm: " << a[i] / b[i] - 1);
+        BOOST_TEST_MESSAGE("az " << az << " el " << el << " " << kNm[static_cast<size_t>(i)]
+                                 << " nm: " << a[i] / b[i] - 1);
         worst = std::max(worst, std::abs(static_cast<double>(a[i] / b[i]) - 1.0));
       }
     }

@@ -5,10 +5,10 @@
 #include <vector>
 
 #include "atmosphere_fixtures.hpp"
-#include "transport/optical_depth.hpp"
 #include "skyspec/rayleigh.hpp"
 #include "skyspec/standard_atmosphere.hpp"
 #include "skyspec/units.hpp"
+#include "transport/optical_depth.hpp"
 
 BOOST_AUTO_TEST_SUITE(test_optical_depth)
 
@@ -68,7 +68,8 @@ BOOST_AUTO_TEST_CASE(table_matches_direct_integration) {
     // Compare what matters: the transmittance at the most extinguished wavelength.
     const double tau_direct = 13.5e-6 * direct[kRayleigh] + 23.1e-6 * direct[kMie];
     const double tau_table = 13.5e-6 * tab[kRayleigh] + 23.1e-6 * tab[kMie];
-    worst_transmittance_error = std::max(worst_transmittance_error, std::abs(std::exp(-tau_direct) - std::exp(-tau_table)));
+    worst_transmittance_error =
+        std::max(worst_transmittance_error, std::abs(std::exp(-tau_direct) - std::exp(-tau_table)));
   }
   BOOST_TEST(worst_transmittance_error < 1e-3);
 }
@@ -117,10 +118,11 @@ BOOST_AUTO_TEST_CASE(banded_table_serves_the_camera_exactly) {
       const double e = degrees_to_radians(sun_el);
       const Vec3 s(std::cos(e), 0, std::sin(e));
       const SunColumnTable banded(atm, res, SunColumnTable::band_seen_from(atm, o, s));
-      BOOST_TEST_MESSAGE("camera " << height << " m, sun " << sun_el << " deg: " << banded.computed_entries()
-                                   << " of " << whole.computed_entries() << " entries");
+      BOOST_TEST_MESSAGE("camera " << height << " m, sun " << sun_el << " deg: " << banded.computed_entries() << " of "
+                                   << whole.computed_entries() << " entries");
       // The table's rows crowd towards the horizon, so a low sun's band still holds most of them.
-      BOOST_TEST(banded.computed_entries() < (sun_el >= 10.0 ? whole.computed_entries() / 2 : whole.computed_entries()));
+      BOOST_TEST(banded.computed_entries() <
+                 (sun_el >= 10.0 ? whole.computed_entries() / 2 : whole.computed_entries()));
       int differ = 0, points = 0;
       for (int i = 0; i < 3000; ++i) {  // points along random rays from the camera, up to the ground or the top
         const double z = 2 * u(rng) - 1, phi = 2 * M_PI * u(rng);

@@ -3,12 +3,12 @@
 #include <cmath>
 #include <string>
 
-#include "skyspec/colour.hpp"
-#include "transport/optical_depth.hpp"
 #include "physics/ozone.hpp"
+#include "skyspec/colour.hpp"
 #include "skyspec/render.hpp"
 #include "skyspec/scene.hpp"
 #include "skyspec/units.hpp"
+#include "transport/optical_depth.hpp"
 
 BOOST_AUTO_TEST_SUITE(test_ozone_sky)
 

@@ -45,8 +45,8 @@ BOOST_AUTO_TEST_CASE(constant_density_unattenuated_sun_matches_closed_form) {
   const double mu = up.dot(sun), s = top - h;
   for (int i = 0; i < 3; ++i) {
     const double br = kBetaR[static_cast<size_t>(i)], bm = 21e-6, bext = br + 1.1 * bm;
-    const double expected = 2.0 * (br * rayleigh_phase(mu) + bm * cornette_shanks_phase(mu, 0.76)) / bext *
-                            (1 - std::exp(-bext * s));
+    const double expected =
+        2.0 * (br * rayleigh_phase(mu) + bm * cornette_shanks_phase(mu, 0.76)) / bext * (1 - std::exp(-bext * s));
     BOOST_TEST(static_cast<double>(L[i]) == expected, boost::test_tools::tolerance(2e-6));
   }
 }
@@ -130,14 +130,16 @@ BOOST_AUTO_TEST_CASE(rotational_symmetry) {
   const Vec3 o(0, 0, R + 100), d = direction_from_angles(20, 5), s = direction_from_angles(200, 10);
   const Eigen::Matrix3d rot = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
   const Spectrum a = radiance(ss, o, d, s), b = radiance(ss, rot * o, rot * d, rot * s);
-  for (int i = 0; i < 3; ++i) BOOST_TEST(static_cast<double>(a[i]) == static_cast<double>(b[i]), boost::test_tools::tolerance(1e-4));
+  for (int i = 0; i < 3; ++i)
+    BOOST_TEST(static_cast<double>(a[i]) == static_cast<double>(b[i]), boost::test_tools::tolerance(1e-4));
 }
 
 namespace {
 // The default 64 view segments against 4096, from the ground, for every combination of the sun's
 // and the view's elevations and the view's azimuths (degrees).
-void check_default_segments_converged(double beta_mie, const std::vector<double>& suns, const std::vector<double>& views,
-                                      const std::vector<double>& azimuths, double tolerance) {
+void check_default_segments_converged(double beta_mie, const std::vector<double>& suns,
+                                      const std::vector<double>& views, const std::vector<double>& azimuths,
+                                      double tolerance) {
   const AtmosphereModel atm(test::simple_atmosphere(ProfileKind::Exponential, 60e3, kNm, kBetaR, beta_mie),
                             WavelengthGrid::from_list(kNm));
   const SunColumnTable table(atm);
@@ -157,7 +159,8 @@ void check_default_segments_converged(double beta_mie, const std::vector<double>
 // The quadrature converges: the default 64 segments agree with 4096 to 0.5 % for low and high
 // suns and for rays from the zenith to the horizon.
 BOOST_AUTO_TEST_CASE(default_quadrature_is_converged) {
-  check_default_segments_converged(21e-6, {30.0, 5.0, 1.0, -2.0}, {90.0, 30.0, 5.0, 1.0, 0.0}, {0.0, 90.0, 180.0}, 5e-3);
+  check_default_segments_converged(21e-6, {30.0, 5.0, 1.0, -2.0}, {90.0, 30.0, 5.0, 1.0, 0.0}, {0.0, 90.0, 180.0},
+                                   5e-3);
 }
 
 // In hazy air a ray near the horizon gathers almost all its light in the first tens of kilometres,
@@ -188,13 +191,15 @@ BOOST_AUTO_TEST_CASE(distance_cap_matches_closed_form) {
   for (int i = 0; i < 3; ++i) {
     const double br = kBetaR[static_cast<size_t>(i)], bm = 21e-6, bext = br + 1.1 * bm;
     BOOST_TEST(static_cast<double>(T[i]) == std::exp(-bext * d), boost::test_tools::tolerance(1e-6));
-    const double expected = (br * rayleigh_phase(mu) + bm * cornette_shanks_phase(mu, 0.76)) / bext * (1 - std::exp(-bext * d));
+    const double expected =
+        (br * rayleigh_phase(mu) + bm * cornette_shanks_phase(mu, 0.76)) / bext * (1 - std::exp(-bext * d));
     BOOST_TEST(static_cast<double>(L[i]) == expected, boost::test_tools::tolerance(2e-6));
   }
   // Without a cap the transmittance is to the top of the atmosphere.
   src.max_distance_m = std::numeric_limits<double>::infinity();
   ss.radiance(o, up, sun, Spectrum::Ones(3), src, ws, L);
-  BOOST_TEST(static_cast<double>(T[0]) == std::exp(-(kBetaR[0] + 1.1 * 21e-6) * (top - h)), boost::test_tools::tolerance(1e-5));
+  BOOST_TEST(static_cast<double>(T[0]) == std::exp(-(kBetaR[0] + 1.1 * 21e-6) * (top - h)),
+             boost::test_tools::tolerance(1e-5));
 }
 
 // Rays of one zenith angle share their nodes (radiance_parts_same_zenith, the sky-view table's
@@ -223,7 +228,9 @@ BOOST_AUTO_TEST_CASE(rays_of_one_zenith_angle_share_nodes_exactly) {
           ss.radiance_parts(o, dirs[static_cast<size_t>(j)], s, ScatteringSources{}, ws, alone);
           const RadianceParts& shared = row[static_cast<size_t>(j)];
           for (int i = 0; i < n; ++i) {
-            const auto close = [](float a, float b) { return std::abs(a - b) <= 1e-5f * std::max(std::abs(b), 1e-30f); };
+            const auto close = [](float a, float b) {
+              return std::abs(a - b) <= 1e-5f * std::max(std::abs(b), 1e-30f);
+            };
             BOOST_TEST(close(shared.rayleigh[i], alone.rayleigh[i]));
             BOOST_TEST(close(shared.mie[i], alone.mie[i]));
             BOOST_TEST(close(shared.phase_free[i], alone.phase_free[i]));

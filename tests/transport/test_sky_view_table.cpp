@@ -20,8 +20,10 @@ constexpr double R = 6360e3;
 struct SmoothSource : InScatteringSource {
   void source(double r_m, double mu_sun, double mu_view, double nu, float* rayleigh, float* mie) const override {
     for (int i = 0; i < 3; ++i) {
-      rayleigh[i] = static_cast<float>(0.02 * (1 + i) * std::exp(-(r_m - R) / 9000.0) * (1.2 + mu_sun) * (1.1 + 0.1 * nu));
-      mie[i] = static_cast<float>(0.03 * (1 + i) * std::exp(-(r_m - R) / 9000.0) * (1.2 + mu_sun) * (1.5 + 0.3 * mu_view));
+      rayleigh[i] =
+          static_cast<float>(0.02 * (1 + i) * std::exp(-(r_m - R) / 9000.0) * (1.2 + mu_sun) * (1.1 + 0.1 * nu));
+      mie[i] =
+          static_cast<float>(0.03 * (1 + i) * std::exp(-(r_m - R) / 9000.0) * (1.2 + mu_sun) * (1.5 + 0.3 * mu_view));
     }
   }
   void ground_irradiance(double mu_sun, float* out) const override {
@@ -116,7 +118,8 @@ BOOST_AUTO_TEST_CASE(sky_side_only) {
 BOOST_AUTO_TEST_CASE(symmetric_and_deterministic) {
   const Fixture f;
   const Vec3 o(0, 0, R + 1), s = direction_from_angles(0, 10);
-  const SkyViewTable one(f.integrator, f.sources, o, s, {32, 16, 16}, 1), two(f.integrator, f.sources, o, s, {32, 16, 16}, 2);
+  const SkyViewTable one(f.integrator, f.sources, o, s, {32, 16, 16}, 1),
+      two(f.integrator, f.sources, o, s, {32, 16, 16}, 2);
   std::mt19937_64 rng(7);
   RadianceParts a(3), b(3), c(3);
   for (int i = 0; i < 200; ++i) {

@@ -41,7 +41,8 @@ BOOST_AUTO_TEST_CASE(harmonics_are_orthonormal) {
       symmetric_harmonics(degree, mu[i], std::cos(phi), y.data());
       for (int a = 0; a < n; ++a)
         for (int b = 0; b < n; ++b)
-          gram[static_cast<size_t>(a * n + b)] += w[i] * 2.0 * kPi / n_phi * y[static_cast<size_t>(a)] * y[static_cast<size_t>(b)];
+          gram[static_cast<size_t>(a * n + b)] +=
+              w[i] * 2.0 * kPi / n_phi * y[static_cast<size_t>(a)] * y[static_cast<size_t>(b)];
     }
   for (int a = 0; a < n; ++a)
     for (int b = 0; b < n; ++b)
@@ -61,7 +62,8 @@ BOOST_AUTO_TEST_CASE(addition_theorem) {
         const double cos_angle = mu1 * mu2 + std::sqrt((1 - mu1 * mu1) * (1 - mu2 * mu2)) * std::cos(phi);
         for (int l = 0; l <= degree; ++l) {
           double sum = 0.0;
-          for (int m = 0; m <= l; ++m) sum += a[static_cast<size_t>(harmonic_index(l, m))] * b[static_cast<size_t>(harmonic_index(l, m))];
+          for (int m = 0; m <= l; ++m)
+            sum += a[static_cast<size_t>(harmonic_index(l, m))] * b[static_cast<size_t>(harmonic_index(l, m))];
           BOOST_TEST(sum == (2.0 * l + 1.0) / (4.0 * kPi) * legendre(l, cos_angle), boost::test_tools::tolerance(1e-9));
         }
       }
@@ -71,7 +73,8 @@ BOOST_AUTO_TEST_CASE(addition_theorem) {
 // chi_2 = (1 - gamma) / (10 (1 + 2 gamma)), every other moment 0; Cornette-Shanks: chi_0 = 1.
 BOOST_AUTO_TEST_CASE(legendre_moments_of_the_phase_functions) {
   const std::vector<double> hg = legendre_moments([](double mu) { return henyey_greenstein_phase(mu, 0.7); }, 12);
-  for (int l = 0; l <= 12; ++l) BOOST_TEST(hg[static_cast<size_t>(l)] == std::pow(0.7, l), boost::test_tools::tolerance(1e-9));
+  for (int l = 0; l <= 12; ++l)
+    BOOST_TEST(hg[static_cast<size_t>(l)] == std::pow(0.7, l), boost::test_tools::tolerance(1e-9));
   for (double gamma : {0.0, 0.0142, 0.1}) {
     const std::vector<double> r = legendre_moments([gamma](double mu) { return rayleigh_phase(mu, gamma); }, 6);
     BOOST_TEST(r[0] == 1.0, boost::test_tools::tolerance(1e-12));
@@ -90,14 +93,16 @@ BOOST_AUTO_TEST_CASE(legendre_moments_of_the_phase_functions) {
 BOOST_AUTO_TEST_CASE(quadrupole_tensors_give_the_second_moments) {
   const auto& K = quadrupole_tensors();
   BOOST_TEST(K[0](2, 2) == std::sqrt(5.0 / (4.0 * kPi)) * 8.0 * kPi / 15.0, boost::test_tools::tolerance(1e-12));
-  for (const Eigen::Vector3d& v : {Eigen::Vector3d(0.3, 0.5, 0.8), Eigen::Vector3d(-0.7, 0.1, -0.2), Eigen::Vector3d(0, 0, 1)}) {
+  for (const Eigen::Vector3d& v :
+       {Eigen::Vector3d(0.3, 0.5, 0.8), Eigen::Vector3d(-0.7, 0.1, -0.2), Eigen::Vector3d(0, 0, 1)}) {
     const Eigen::Vector3d u = v.normalized(), mirror(u.x(), -u.y(), u.z());
     const double cos_phi = std::hypot(u.x(), u.y()) > 0 ? u.x() / std::hypot(u.x(), u.y()) : 1.0;
     double y[harmonic_count(2)];
     symmetric_harmonics(2, u.z(), cos_phi, y);
     Eigen::Matrix3d t = Eigen::Matrix3d::Zero();
     for (int m = 0; m <= 2; ++m) t += y[harmonic_index(2, m)] * K[static_cast<size_t>(m)];
-    const Eigen::Matrix3d expected = 0.5 * (u * u.transpose() + mirror * mirror.transpose()) - Eigen::Matrix3d::Identity() / 3.0;
+    const Eigen::Matrix3d expected =
+        0.5 * (u * u.transpose() + mirror * mirror.transpose()) - Eigen::Matrix3d::Identity() / 3.0;
     BOOST_TEST((t - expected).cwiseAbs().maxCoeff() < 1e-12);
   }
   for (const auto& k : K) BOOST_TEST(std::abs(k.trace()) < 1e-12);
