@@ -23,7 +23,8 @@ stage "release tests"
 build_sanitized
 stage "sanitizer build"
 # Not repeated here, for time: the Python and notebook tests (no module in that build), the
-# installed package, the Slurm cluster (its skyspec commands run here in cli_job); six tests of
+# installed package, the Slurm cluster (its skyspec commands run here in cli_job), the layering
+# check (it reads sources and preprocesses probes: nothing a sanitizer sees); six tests of
 # properties a sanitizer does not change (byte-identical renders, provenance round trips, the
 # multiple-scattering physics, grid independence, the Monte Carlo reference and the renderer
 # against it); and two long ones whose code the others run under the sanitizers: cli_display (the
@@ -35,5 +36,5 @@ stage "sanitizer build"
 SKYSPEC_SANITIZER_STAGE=1 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan --output-on-failure -j"$(nproc)" \
-    -E '^(python_.*|notebook_.*|install_consumer|slurm_job|cli_determinism|cli_reproduce|test_multiple_scattering|test_grid_independence|test_monte_carlo|test_monte_carlo_reference|cli_display|test_properties)$'
+    -E '^(python_.*|notebook_.*|install_consumer|slurm_job|layering|cli_determinism|cli_reproduce|test_multiple_scattering|test_grid_independence|test_monte_carlo|test_monte_carlo_reference|cli_display|test_properties)$'
 stage "sanitizer tests"
