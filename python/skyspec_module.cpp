@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <functional>
 #include <iomanip>
 #include <memory>
 #include <optional>
@@ -108,12 +109,15 @@ void apply_overrides(SceneLoader& loader, const py::dict& overrides, const std::
   }
 }
 
+// `last`, when given, applies what the call itself decides (aerial_perspective: the image's size).
 Scene load_scene(const std::string& preset, const std::optional<std::string>& scene_file,
-                 const std::optional<std::string>& scene_toml, const std::optional<py::dict>& overrides) {
+                 const std::optional<std::string>& scene_toml, const std::optional<py::dict>& overrides,
+                 const std::function<void(SceneLoader&)>& last = {}) {
   SceneLoader loader(preset);
   if (scene_file) loader.apply_file(*scene_file);
   if (scene_toml) loader.apply_toml(*scene_toml, "scene_toml");
   if (overrides) apply_overrides(loader, *overrides, "");
+  if (last) last(loader);
   return loader.finish();
 }
 
@@ -354,13 +358,10 @@ py::dict aerial_perspective_py(const py::array_t<float, py::array::c_style | py:
   if (depth_is != "distance" && depth_is != "z")
     throw InputError("depth_is", "\"" + depth_is + "\"", "one of: distance (along each ray), z (along the view axis)");
   const auto h = depth.shape(0), w = depth.shape(1);
-  SceneLoader loader(preset);
-  if (scene_file) loader.apply_file(*scene_file);
-  if (scene_toml) loader.apply_toml(*scene_toml, "scene_toml");
-  if (overrides) apply_overrides(loader, *overrides, "");
-  loader.apply_override("camera.width", std::to_string(w), "depth's width");
-  loader.apply_override("camera.height", std::to_string(h), "depth's height");
-  const Scene scene = loader.finish();
+  const Scene scene = load_scene(preset, scene_file, scene_toml, overrides, [w, h](SceneLoader& loader) {
+    loader.apply_override("camera.width", std::to_string(w), "depth's width");
+    loader.apply_override("camera.height", std::to_string(h), "depth's height");
+  });
   std::vector<float> values(depth.data(), depth.data() + depth.size());
   AerialPerspectiveImage ap;
   {

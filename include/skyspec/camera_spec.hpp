@@ -47,12 +47,11 @@ struct CameraSpec {
   PanoramaConvention panorama_convention = PanoramaConvention::Skyspec;
 };
 
-/// A row of a name table: the enum value, its name in scene files, and a few words for help texts.
+/// A row of a name table: the enum value and its name in scene files.
 template <typename Enum>
 struct NamedValue {
   Enum value;
   const char* name;
-  const char* description;
 };
 
 /// Every camera type, in the order help texts list them: fisheye, perspective, equirectangular.

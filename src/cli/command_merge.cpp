@@ -27,8 +27,8 @@ int run_merge(const MergeOptions& o) {
   std::vector<NamedInput> inputs;
   for (const auto& t : tiles) inputs.push_back({"TILES", t});
   refuse_output_replacing_input(o.out, "--out", inputs);
-  // Before the merge, not after it (a 16384 x 8192 panorama took 230 s to be refused): a folder, a
-  // link or a device is not a file this command may replace.
+  // Before the merge, not after it (a large panorama's merge took minutes before being refused): a
+  // folder, a link or a device is not a file this command may replace.
   if (std::filesystem::is_directory(std::filesystem::symlink_status(o.out)))
     throw InputError("--out", "'" + o.out + "'", "the merged EXR's file name (this is a folder)");
   refuse_to_replace_non_regular(o.out);

@@ -19,7 +19,7 @@ void install_interrupt_handlers() {
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
   // A dropped SSH session or a closed terminal: stop as for SIGTERM, removing the temporaries and
-  // the lock (it used to leave a 113 MB sky.exr.tmp-* and the lock behind).
+  // the lock (docs/reliability.md, round 3, item 10).
   sigaction(SIGHUP, &action, nullptr);
 }
 

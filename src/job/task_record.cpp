@@ -179,7 +179,7 @@ std::string record_problem(const JobPlan& plan, const JobTask& task, const json&
   if (r.contains("date_time") && !r.at("date_time").get<std::string>().empty()) {
     try {
       parse_iso8601(r.at("date_time").get<std::string>(), "date_time");
-    } catch (const InputError& e) {
+    } catch (const InputError&) {
       return "its \"date_time\" " + r.at("date_time").get<std::string>() + " is not an ISO 8601 date-time";
     }
   }

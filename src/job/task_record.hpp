@@ -42,7 +42,7 @@ nlohmann::json read_task_record(const JobPlan& plan, const JobTask& task, std::s
 std::string record_problem(const JobPlan& plan, const JobTask& task, const nlohmann::json& record);
 
 /// The files a task's record must list to be done: its scene's render outputs, relative to the
-/// job's folder ("" when the job renders no images).
+/// job's folder (none when the job renders no images).
 std::vector<std::string> expected_task_files(const JobPlan& plan, const JobTask& task);
 
 /// SHA-256 of the task's scene as TOML (render.threads left out): what its files are a render of.

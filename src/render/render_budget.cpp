@@ -118,11 +118,10 @@ std::uint64_t RenderPlan::peak_memory_bytes() const {
   const std::uint64_t band =
       std::min<std::uint64_t>(band_rows, static_cast<std::uint64_t>(std::max(height, 0))) * row_bytes;
   std::uint64_t bytes = 2 * band + table_bytes;
-  // Per pixel, as measured (docs/reliability.md, "Memory estimates": peak RSS of renders of 1500^2
-  // and 3000^2 pixels; the difference over the difference in pixels): a spectral EXR alone 16.6
-  // bytes, a PNG 68.7 (the whole-image RGB, the copy the display pipeline encodes, its output, the
-  // PNG's samples, and the allocator's pages around them). Rounded up: a bound, not a guess.
-  // With both, the PNG's part is the peak (measured 645 MB for both at 3000^2, 639 for the PNG alone).
+  // Per pixel, the measured slopes of peak memory rounded up (docs/reliability.md, "Memory
+  // estimates"): for a PNG, the whole-image RGB, the copy the display pipeline encodes, its output,
+  // the PNG's samples and the allocator's pages around them; for a spectral EXR alone, less.
+  // With both, the PNG's part is the peak (the same measurements).
   const std::uint64_t exr_part = spectral_exr ? 2 * band + px * 18 : 0;
   std::uint64_t display_part = 0;
   if (png || working_exr) {

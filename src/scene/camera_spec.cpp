@@ -9,18 +9,18 @@ namespace skyspec {
 
 const std::vector<NamedValue<CameraSpec::Type>>& camera_types() {
   static const std::vector<NamedValue<CameraSpec::Type>> table = {
-      {CameraSpec::Type::Fisheye, "fisheye", "upward, equal-area, 180 degrees"},
-      {CameraSpec::Type::Perspective, "perspective", "pinhole looking at camera.look_at_m"},
-      {CameraSpec::Type::Equirectangular, "equirectangular", "latitude-longitude panorama"},
+      {CameraSpec::Type::Fisheye, "fisheye"},
+      {CameraSpec::Type::Perspective, "perspective"},
+      {CameraSpec::Type::Equirectangular, "equirectangular"},
   };
   return table;
 }
 
 const std::vector<NamedValue<PanoramaConvention>>& panorama_conventions() {
   static const std::vector<NamedValue<PanoramaConvention>> table = {
-      {PanoramaConvention::Skyspec, "skyspec", "north at the left edge, east a quarter in"},
-      {PanoramaConvention::Blender, "blender", "Cycles' mapping with north on Blender's +Y: east at the centre"},
-      {PanoramaConvention::OpenExr, "openexr", "OpenEXR's lat-long map, up +Y, north -Z"},
+      {PanoramaConvention::Skyspec, "skyspec"},
+      {PanoramaConvention::Blender, "blender"},
+      {PanoramaConvention::OpenExr, "openexr"},
   };
   return table;
 }

@@ -73,7 +73,7 @@ elif [ -x /usr/bin/time ]; then
     awk -v e="$est_mb" -v m="$peak_kb" 'BEGIN { r = e * 1e6 / (m * 1024); exit !(r > 1 / 1.5 && r < 1.5) }' && ok \
       || bad "memory $outputs: estimated $est_mb MB, measured $((peak_kb / 1024)) MB"
     # The time only for the spectral EXR: the estimate leaves out the PNG's encoding through the
-    # display pipeline (PNG only: 0.8 s estimated, 2.2 s alone, 2.5 s beside other tests; open).
+    # display pipeline (docs/reliability.md, round 3, item 7: open).
     if [ "$outputs" = --no-png ]; then
       awk -v e="$est_s" -v m="$wall_s" 'BEGIN { r = e / m; exit !(e != "" && r > 1 / 3 && r < 3) }' && ok \
         || bad "time $outputs: estimated ${est_s:-?} s, measured $wall_s s"
