@@ -202,7 +202,8 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
                                     const PreparedFn& prepared = {},
                                     const std::optional<PixelBounds>& tile = std::nullopt);
 /// The files render_scene_to_files writes for these settings: exr, png and working_exr set (empty
-/// where not asked for), nothing rendered. Unknown working spaces throw InputError.
+/// where not asked for), nothing rendered. Unknown working spaces, and no output at all
+/// (output.exr and output.png false and no working space), throw InputError.
 RenderOutputs render_output_paths(const Scene& scene, const DisplaySettings& display);
 
 }  // namespace skyspec

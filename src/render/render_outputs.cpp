@@ -439,6 +439,8 @@ double write_display_png(const SpectralImageBuffer& image, const std::filesystem
 }
 
 RenderOutputs render_output_paths(const Scene& scene, const DisplaySettings& display) {
+  if (!scene.output.exr && !scene.output.png && display.exr_space.empty())
+    throw InputError("output.exr and output.png", "false", "at least one output to be true");
   RenderOutputs out;
   const std::filesystem::path dir(scene.output.directory);
   for (const FileOutput& o : file_outputs())
@@ -472,8 +474,6 @@ RenderOutputs render_scene_to_files(const Scene& scene, const DisplaySettings& d
   remove_stale_temporaries(scene.output.directory, scene.output.name + "-");
   RenderOutputs out;
   const bool working_exr = !display.exr_space.empty();
-  if (!scene.output.exr && !scene.output.png && !working_exr)
-    throw InputError("output.exr and output.png", "false", "at least one output to be true");
   // The files written after the image, in the list's order.
   std::vector<const FileOutput*> after;
   for (const FileOutput& o : file_outputs())

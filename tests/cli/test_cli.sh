@@ -42,9 +42,21 @@ expect_error bad_compression 2 "output.exr_compression = \"dwaa\" is not allowed
 "$skyspec" render --name nan --print-scene | grep -qxE "name = [\"']nan[\"']" && ok || bad "--name nan"
 "$skyspec" render --name 2026 --print-scene | grep -qxE "name = [\"']2026[\"']" && ok || bad "--name 2026"
 
+# Small scattering-order tables with a single table order (render.scattering_orders = 2) and every
+# pixel marched (no sky-view table: these images have fewer pixels than it has entries), for the
+# commands whose files and behaviour are checked, not their physics. Under the sanitizers
+# (scripts/test.sh sets SKYSPEC_SANITIZER_STAGE) the good render, the aerial perspective and the
+# irradiance use them too: building the default tables there was most of this test's time
+# (docs/performance.md, "Build and test times"); the release stage builds the default ones.
+small_tables=(--set render.ms_altitude_samples=8 --set render.ms_sun_samples=24 --set render.scattering_orders=2
+              --set render.sky_view_table=false)
+stage_tables=()
+[ -n "${SKYSPEC_SANITIZER_STAGE:-}" ] && stage_tables=("${small_tables[@]}")
+
 # A good render: exit 0, both files, nothing else left in the folder, quiet stderr when piped.
 out="$work/good"
-if "$skyspec" render --out "$out" --width 24 --height 16 --camera equirectangular >"$work/stdout" 2>"$work/stderr"; then
+if "$skyspec" render --out "$out" --width 24 --height 16 --camera equirectangular "${stage_tables[@]}" \
+    >"$work/stdout" 2>"$work/stderr"; then
   [ -s "$out/sky.exr" ] && [ -s "$out/sky.png" ] && ok || bad "good render: files missing"
   [ "$(ls "$out" | wc -l)" = 2 ] && ok || bad "good render: extra files $(ls "$out")"
   [ ! -s "$work/stderr" ] && ok || { bad "good render: stderr not empty when not a terminal"; cat "$work/stderr"; }
@@ -57,11 +69,9 @@ else
   bad "good render failed"; cat "$work/stderr"
 fi
 
-# Time-lapse: frames with one exposure, --resume keeps finished frames (small scattering-order
-# tables with a single table order, render.scattering_orders = 2: the frames' files are checked
-# here, not their physics; under the sanitizers the tables' build is most of this test's time).
+# Time-lapse: frames with one exposure, --resume keeps finished frames (small tables: the frames'
+# files are checked here, not their physics).
 tl="$work/tl"
-small_tables=(--set render.ms_altitude_samples=8 --set render.ms_sun_samples=24 --set render.scattering_orders=2)
 if "$skyspec" timelapse -q --latitude 48.14 --longitude 11.58 --start 2026-06-21T20:00:00+02:00 \
     --end 2026-06-21T20:30:00+02:00 --step-minutes 15 --out "$tl" --width 8 --height 8 "${small_tables[@]}" 2>"$work/stderr"; then
   [ "$(ls "$tl" | wc -l)" = 6 ] && ok || bad "timelapse: expected 6 files, got $(ls "$tl")"
@@ -103,7 +113,7 @@ expect_error grid_beyond_ozone 2 "to 1060 nm (the built-in ozone cross-sections"
 # Daylight's colour temperature (irradiance): global light with the sun 30 degrees up lies between
 # CIE D50 and D65 (5003-6504 K), the skylight alone is bluer than 10000 K; a sun 4 degrees down
 # leaves only skylight (docs/validation.md, "Daylight", has the figures).
-if "$skyspec" irradiance --sun-elevations 30,-4 --format csv >"$work/irr.csv" 2>"$work/stderr"; then
+if "$skyspec" irradiance --sun-elevations 30,-4 --format csv "${stage_tables[@]}" >"$work/irr.csv" 2>"$work/stderr"; then
   /usr/bin/python3 - "$work/irr.csv" <<'PY' && ok || bad "irradiance: colour temperatures out of range"
 import csv, sys
 rows = list(csv.DictReader(open(sys.argv[1])))
@@ -118,7 +128,7 @@ fi
 
 # Aerial perspective: a constant distance, then a bad depth-mode.
 "$skyspec" aerial -q --distance 2000 --camera perspective --position 0,0,2 --look-at 0,1000,300 --fov 40 \
-  --image "$out/sky.exr" --out "$work/ap" 2>"$work/stderr" && [ -s "$work/ap/sky_transmittance.exr" ] \
+  "${stage_tables[@]}" --image "$out/sky.exr" --out "$work/ap" 2>"$work/stderr" && [ -s "$work/ap/sky_transmittance.exr" ] \
   && [ -s "$work/ap/sky_inscatter.exr" ] && [ -s "$work/ap/sky_composite.exr" ] && ok || { bad "aerial failed"; cat "$work/stderr"; }
 "$skyspec" aerial -q --distance 2000 --depth-is sideways --image "$out/sky.exr" --out "$work/ap2" 2>"$work/stderr"
 [ $? = 2 ] && grep -q -- "--depth-is" "$work/stderr" && [ ! -e "$work/ap2" ] && ok || bad "aerial: bad --depth-is not rejected"
@@ -129,7 +139,7 @@ fi
 oiiotool --pattern fill:top=200:bottom=5000 24x16 1 --chnames Z -d float -o "$work/depth.exr" \
   && oiiotool --pattern constant:color=0.5,0.4,0.3 24x16 3 --chnames R,G,B -d float -o "$work/rgb.exr" \
   && "$skyspec" aerial -q --depth "$work/depth.exr" --depth-is z --image "$work/rgb.exr" --camera perspective \
-       --position 0,0,2 --look-at 0,1000,700 --fov 40 --out "$work/ap3" 2>"$work/stderr" \
+       --position 0,0,2 --look-at 0,1000,700 --fov 40 "${stage_tables[@]}" --out "$work/ap3" 2>"$work/stderr" \
   && /usr/bin/python3 - "$work/rgb.exr" "$work/ap3" <<'PY' && ok || { bad "aerial with a depth pass and an RGB image"; cat "$work/stderr"; }
 import sys, numpy as np, OpenImageIO as oiio
 def read(path, channels):
@@ -145,7 +155,7 @@ assert (t[-1] < t[0]).all(), "the farther bottom row should transmit less than t
 PY
 
 # --quiet prints nothing at all on success.
-"$skyspec" render -q --out "$work/quiet" --width 4 --height 4 >"$work/stdout" 2>"$work/stderr"
+"$skyspec" render -q --out "$work/quiet" --width 4 --height 4 "${stage_tables[@]}" >"$work/stdout" 2>"$work/stderr"
 [ ! -s "$work/stdout" ] && [ ! -s "$work/stderr" ] && ok || bad "--quiet was not quiet"
 
 # --help is something a newcomer can follow, and --help-keys documents every key with its unit.

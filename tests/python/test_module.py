@@ -25,6 +25,21 @@ def cli(*args):
     return done.stdout
 
 
+# Small scattering-order tables with a single table order and every pixel marched, for the tests
+# that compare the module with the program on the same scene (not the physics: test_multiple_
+# scattering and docs/validation.md check that): both sides read the same tables.
+SMALL_TABLES = {"render.ms_altitude_samples": 8, "render.ms_sun_samples": 24, "render.scattering_orders": 2,
+                "render.sky_view_table": False}
+
+
+def set_args(overrides):
+    """--set KEY=VALUE arguments of the program for a flat dict of scene keys."""
+    args = []
+    for key, value in overrides.items():
+        args += ["--set", f"{key}={str(value).lower() if isinstance(value, bool) else value}"]
+    return args
+
+
 def cli_json(*args):
     return json.loads(cli("coefficients", "--format", "json", *args))
 
@@ -81,7 +96,8 @@ class RenderAgainstCli(unittest.TestCase):
     def test_spectral_image_equals_the_exr(self):
         import OpenImageIO as oiio
         overrides = {"camera.width": 12, "camera.height": 8, "camera.type": "equirectangular",
-                     "sun.elevation_deg": 10, "render.table_altitude_samples": 32, "render.table_zenith_samples": 64}
+                     "sun.elevation_deg": 10, "render.table_altitude_samples": 32, "render.table_zenith_samples": 64,
+                     **SMALL_TABLES}
         img = skyspec.render(overrides=overrides)
         self.assertEqual(img.spectral.shape, (8, 12, 41))
         self.assertEqual(img.spectral.dtype, np.float32)
@@ -90,7 +106,7 @@ class RenderAgainstCli(unittest.TestCase):
         with tempfile.TemporaryDirectory() as tmp:
             cli("render", "-q", "--out", tmp, "--no-png", "--width", "12", "--height", "8", "--camera", "equirectangular",
                 "--sun-elevation", "10", "--set", "render.table_altitude_samples=32",
-                "--set", "render.table_zenith_samples=64")
+                "--set", "render.table_zenith_samples=64", *set_args(SMALL_TABLES))
             exr = oiio.ImageBuf(os.path.join(tmp, "sky.exr"))
             names = list(exr.spec().channelnames)
             pixels = exr.get_pixels(oiio.FLOAT)
@@ -109,7 +125,7 @@ class RenderAgainstCli(unittest.TestCase):
         # stokes (h, w, n, 4) holds the EXR's S0-S3; e1 is perpendicular to each pixel's direction.
         import OpenImageIO as oiio
         overrides = {"camera.width": 8, "camera.height": 4, "camera.type": "equirectangular",
-                     "spectrum.wavelengths_nm": [450, 650], "output.polarisation": True}
+                     "spectrum.wavelengths_nm": [450, 650], "output.polarisation": True, **SMALL_TABLES}
         img = skyspec.render(overrides=overrides)
         self.assertEqual(img.stokes.shape, (4, 8, 2, 4))
         np.testing.assert_array_equal(img.stokes[..., 0], img.spectral)
@@ -118,7 +134,8 @@ class RenderAgainstCli(unittest.TestCase):
         np.testing.assert_allclose(np.einsum("hwc,hwc->hw", img.stokes_e1, img.directions), 0.0, atol=1e-12)
         with tempfile.TemporaryDirectory() as tmp:
             cli("render", "-q", "--out", tmp, "--no-png", "--width", "8", "--height", "4", "--camera", "equirectangular",
-                "--set", "spectrum.wavelengths_nm=[450, 650]", "--set", "output.polarisation=true")
+                "--set", "spectrum.wavelengths_nm=[450, 650]", "--set", "output.polarisation=true",
+                *set_args(SMALL_TABLES))
             exr = oiio.ImageBuf(os.path.join(tmp, "sky.exr"))
             names = list(exr.spec().channelnames)
             pixels = exr.get_pixels(oiio.FLOAT)
@@ -174,11 +191,10 @@ class RenderAgainstCli(unittest.TestCase):
     def test_aerial_perspective_equals_the_cli(self):
         """skyspec.aerial_perspective is `skyspec aerial` without files: the same transmittance and inscatter."""
         import OpenImageIO as oiio
-        small = ["render.table_altitude_samples=32", "render.table_zenith_samples=64"]
         depth = np.full((6, 10), 5000.0, dtype=np.float32)
         depth[0, :] = np.inf  # sky
         overrides = {"camera.type": "perspective", "sun.elevation_deg": 20,
-                     "render.table_altitude_samples": 32, "render.table_zenith_samples": 64}
+                     "render.table_altitude_samples": 32, "render.table_zenith_samples": 64, **SMALL_TABLES}
         ap = skyspec.aerial_perspective(depth, overrides=overrides)
         self.assertEqual(ap["transmittance"].shape, (6, 10, 41))
         self.assertEqual(ap["inscatter_rgb"].shape, (6, 10, 3))
@@ -190,9 +206,8 @@ class RenderAgainstCli(unittest.TestCase):
             buf.set_pixels(oiio.ROI(0, 10, 0, 6, 0, 1, 0, 1), depth.reshape(6, 10, 1))
             buf.write(os.path.join(tmp, "depth.exr"))
             args = ["aerial", "-q", "--depth", os.path.join(tmp, "depth.exr"), "--camera", "perspective",
-                    "--sun-elevation", "20", "--out", tmp, "--name", "ap"]
-            for s in small:
-                args += ["--set", s]
+                    "--sun-elevation", "20", "--out", tmp, "--name", "ap",
+                    *set_args({k: v for k, v in overrides.items() if k.startswith("render.")})]
             cli(*args)
             for name, key in (("ap_transmittance.exr", "transmittance"), ("ap_inscatter.exr", "inscatter")):
                 exr = oiio.ImageBuf(os.path.join(tmp, name))
