@@ -52,7 +52,7 @@ build() {
 # loaded by an uninstrumented python3).
 # This build also proves that the code builds for AVX-512 with warnings as errors: on a CPU with
 # AVX-512 it targets x86-64-v4 and runs the tests there; elsewhere it targets the machine and also
-# compiles every library source for x86-64-v4 without running it (SKYSPEC_ARCH_CHECK).
+# compiles the numeric layers' sources for x86-64-v4 without running them (SKYSPEC_ARCH_CHECK).
 build_sanitized() {
   local arch=(-DSKYSPEC_ARCH=native -DSKYSPEC_ARCH_CHECK=x86-64-v4)
   grep -qw avx512f /proc/cpuinfo 2>/dev/null && arch=(-DSKYSPEC_ARCH=x86-64-v4 -DSKYSPEC_ARCH_CHECK=)

@@ -39,6 +39,10 @@ struct AerialPerspectiveImage {
 std::vector<float> ray_distances_from_z(const Scene& scene, const std::vector<float>& z_m,
                                         const std::string& setting = "depth");
 
+/// The scene's own checks of aerial_perspective, without building anything (a front end calls it
+/// before its budget's pilot): InputError for the RGB-fast path or output.polarisation.
+void check_aerial_perspective_scene(const Scene& scene);
+
 /// Aerial perspective for the scene's camera (its width x height) with distance_m[y][x] in metres
 /// along each ray. InputError for the RGB-fast path or output.polarisation (not polarised), for a
 /// distance buffer of another size, and for NaN or negative distances (naming `distance_setting`).

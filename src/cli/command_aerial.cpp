@@ -137,6 +137,7 @@ int run(AerialOptions& o) {
     l.apply_override("camera.width", std::to_string(in.width), "the input's size");
     l.apply_override("camera.height", std::to_string(in.height), "the input's size");
   });
+  check_aerial_perspective_scene(scene);  // before the budget's pilot builds anything
   const RenderPlan plan = check_budget(scene, in, o.force);
   std::vector<NamedInput> inputs = scene_input_files(o.scene);
   inputs.push_back({"--image", o.image});

@@ -52,15 +52,19 @@ std::vector<float> ray_distances_from_z(const Scene& scene, const std::vector<fl
   return dist;
 }
 
-AerialPerspectiveImage aerial_perspective(const Scene& scene, const std::vector<float>& distance_m,
-                                          const ProgressFn& progress, const PreparedFn& prepared,
-                                          const std::string& distance_setting) {
+void check_aerial_perspective_scene(const Scene& scene) {
   if (scene.render.path != RenderSpec::Path::Spectral)
     throw InputError("render.path", "\"rgb-fast\"", "\"spectral\" for aerial perspective");
   if (scene.output.polarisation)
     throw InputError("output.polarisation", "true",
                      "false for aerial perspective (its transmittance and inscatter are not polarised; render the sky "
                      "with skyspec render)");
+}
+
+AerialPerspectiveImage aerial_perspective(const Scene& scene, const std::vector<float>& distance_m,
+                                          const ProgressFn& progress, const PreparedFn& prepared,
+                                          const std::string& distance_setting) {
+  check_aerial_perspective_scene(scene);
   const int width = scene.camera.width, height = scene.camera.height;
   if (distance_m.size() != static_cast<size_t>(width) * height)
     throw InputError(distance_setting, std::to_string(distance_m.size()) + " values",

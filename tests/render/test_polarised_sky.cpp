@@ -136,7 +136,8 @@ BOOST_AUTO_TEST_CASE(pixel_frames_follow_the_image_axes) {
 BOOST_AUTO_TEST_CASE(stokes_rows_agree_with_the_image_and_the_probe) {
   const Scene scene = test::scene_with(
       "[spectrum]\nwavelengths_nm = [450, 550, 650]\n[camera]\ntype = \"equirectangular\"\nwidth = 24\nheight = 12\n"
-      "[render]\ncache_tables = false\nms_altitude_samples = 8\nms_sun_samples = 24\n[output]\npolarisation = true\n");
+      "[render]\ncache_tables = false\nms_altitude_samples = 8\nms_sun_samples = 24\nms_angular_degree = 4\n"
+      "[output]\npolarisation = true\n");
   const SkyRenderer renderer(scene);  // small tables: the test compares three ways of reading the same ones
   const int w = 24, h = 12, n = 3;
   std::vector<float> stokes(static_cast<size_t>(w * h * 4 * n)), spectral(static_cast<size_t>(w * h * n)),
