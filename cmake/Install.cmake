@@ -12,6 +12,9 @@ install(TARGETS skyspec_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS skyspec EXPORT skyspecTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/skyspec DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+# The OpenColorIO config the program embeds, as a file for other tools (docs/other-tools.md);
+# `skyspec render --list-displays` prints its installed path.
+install(FILES ${PROJECT_SOURCE_DIR}/data/ocio/config.ocio DESTINATION ${CMAKE_INSTALL_DATADIR}/skyspec/ocio)
 install(EXPORT skyspecTargets NAMESPACE skyspec:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/skyspec)
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/skyspecConfig.cmake.in
                               ${PROJECT_BINARY_DIR}/skyspecConfig.cmake

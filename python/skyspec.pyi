@@ -6,6 +6,7 @@ then an optional scene file or TOML text, then `overrides`, a dict of scene keys
 and docs/scene-keys.md. Bad input raises ValueError naming the key; files, OSError.
 tests/python/test_stubs.py checks that these names and parameters are the module's.
 """
+import os
 from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
@@ -15,6 +16,9 @@ __version__: str
 
 Numbers = Union[float, Sequence[float], npt.NDArray[np.float64]]
 """A number, or a list/array of numbers (a wavelength in nm, an altitude in m)."""
+
+PathLike = Union[str, "os.PathLike[str]"]
+"""A file's path: a str or a pathlib.Path (any os.PathLike)."""
 
 class RenderResult:
     """A sky rendered into memory, with what it shows (render() makes it).
@@ -85,12 +89,12 @@ class RenderResult:
         elevation), degrees."""
     def spectrum_at(self, azimuth_deg: float, elevation_deg: float) -> npt.NDArray[np.float64]:
         """(n,): the spectral radiance of the pixel nearest that direction, W m^-2 sr^-1 nm^-1."""
-    def write_exr(self, path: str) -> None:
+    def write_exr(self, path: PathLike) -> None:
         """Write the spectral EXR as `skyspec render` writes it for this scene (channels, values and
         header), atomically."""
     def write_png(
         self,
-        path: str,
+        path: PathLike,
         *,
         display: Optional[str] = None,
         view: Optional[str] = None,
@@ -106,7 +110,7 @@ class RenderResult:
 def render(
     preset: str = "default",
     *,
-    scene_file: Optional[str] = None,
+    scene_file: Optional[PathLike] = None,
     scene_toml: Optional[str] = None,
     overrides: Optional[Dict[str, Any]] = None,
 ) -> RenderResult:
@@ -117,7 +121,7 @@ def aerial_perspective(
     *,
     depth_is: str = "distance",
     preset: str = "default",
-    scene_file: Optional[str] = None,
+    scene_file: Optional[PathLike] = None,
     scene_toml: Optional[str] = None,
     overrides: Optional[Dict[str, Any]] = None,
 ) -> Dict[str, Any]:
@@ -127,7 +131,7 @@ def aerial_perspective(
 def monte_carlo(
     preset: str = "default",
     *,
-    scene_file: Optional[str] = None,
+    scene_file: Optional[PathLike] = None,
     scene_toml: Optional[str] = None,
     overrides: Optional[Dict[str, Any]] = None,
     probes: Optional[Sequence[Sequence[float]]] = None,
@@ -159,7 +163,7 @@ def derive(
     wavelengths_nm: Optional[Numbers] = None,
     *,
     preset: str = "default",
-    scene_file: Optional[str] = None,
+    scene_file: Optional[PathLike] = None,
     scene_toml: Optional[str] = None,
     overrides: Optional[Dict[str, Any]] = None,
     altitudes_m: Numbers = 0.0,
@@ -179,7 +183,7 @@ def coefficient_report(
     *,
     wavelengths_nm: Optional[Numbers] = None,
     preset: str = "default",
-    scene_file: Optional[str] = None,
+    scene_file: Optional[PathLike] = None,
     scene_toml: Optional[str] = None,
     overrides: Optional[Dict[str, Any]] = None,
     altitudes_m: Numbers = 0.0,
@@ -208,7 +212,7 @@ def rayleigh_cross_section(
 def scene_toml(
     preset: str = "default",
     *,
-    scene_file: Optional[str] = None,
+    scene_file: Optional[PathLike] = None,
     scene_toml: Optional[str] = None,
     overrides: Optional[Dict[str, Any]] = None,
 ) -> str:

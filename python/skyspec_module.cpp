@@ -6,9 +6,11 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include <Eigen/Core>
 #include <cmath>
+#include <filesystem>
 #include <functional>
 #include <iomanip>
 #include <memory>
@@ -74,9 +76,16 @@ std::string toml_string(const std::string& s) {
 
 /// A Python value as TOML value text: bool, int, float, str, or a sequence of them.
 std::string toml_value(const py::handle& v, const std::string& key) {
-  if (py::isinstance<py::bool_>(v)) return v.cast<bool>() ? "true" : "false";
+  if (py::isinstance<py::bool_>(v) || py::isinstance(v, py::module_::import("numpy").attr("bool_")))
+    return v.cast<bool>() ? "true" : "false";
   if (py::isinstance<py::str>(v)) return toml_string(v.cast<std::string>());
   if (py::isinstance<py::int_>(v)) return py::str(v).cast<std::string>();
+  // Integers of any kind (NumPy's int64, uint8, ...: they have __index__), written as integers.
+  if (!py::isinstance<py::array>(v) && PyIndex_Check(v.ptr())) {
+    PyObject* as_int = PyNumber_Index(v.ptr());
+    if (!as_int) throw py::error_already_set();
+    return py::str(py::reinterpret_steal<py::object>(as_int)).cast<std::string>();
+  }
   const bool is_sequence =
       py::isinstance<py::sequence>(v) || (py::isinstance<py::array>(v) && py::hasattr(v, "__len__"));
   if (!is_sequence && py::hasattr(v, "__float__")) {  // float, NumPy scalars
@@ -110,11 +119,11 @@ void apply_overrides(SceneLoader& loader, const py::dict& overrides, const std::
 }
 
 // `last`, when given, applies what the call itself decides (aerial_perspective: the image's size).
-Scene load_scene(const std::string& preset, const std::optional<std::string>& scene_file,
+Scene load_scene(const std::string& preset, const std::optional<std::filesystem::path>& scene_file,
                  const std::optional<std::string>& scene_toml, const std::optional<py::dict>& overrides,
                  const std::function<void(SceneLoader&)>& last = {}) {
   SceneLoader loader(preset);
-  if (scene_file) loader.apply_file(*scene_file);
+  if (scene_file) loader.apply_file(scene_file->string());
   if (scene_toml) loader.apply_toml(*scene_toml, "scene_toml");
   if (overrides) apply_overrides(loader, *overrides, "");
   if (last) last(loader);
@@ -161,7 +170,7 @@ std::vector<double> numbers_arg(const py::object& value, const std::string& name
 }
 
 CoefficientReport make_report(const py::object& wavelengths, const std::string& preset,
-                              const std::optional<std::string>& scene_file,
+                              const std::optional<std::filesystem::path>& scene_file,
                               const std::optional<std::string>& scene_toml, const std::optional<py::dict>& overrides,
                               const py::object& altitudes, std::optional<double> pressure_Pa,
                               std::optional<double> temperature_K, double latitude_deg,
@@ -184,13 +193,13 @@ CoefficientReport make_report(const py::object& wavelengths, const std::string& 
   req.altitudes_m = numbers_arg(altitudes, "altitudes_m");
   if (pressure_Pa) req.conditions = AirConditions{*pressure_Pa, *temperature_K};
   req.latitude_deg = latitude_deg;
-  req.origin = "Python: preset " + preset + (scene_file ? ", scene file " + *scene_file : std::string()) +
+  req.origin = "Python: preset " + preset + (scene_file ? ", scene file " + scene_file->string() : std::string()) +
                (scene_toml ? ", scene_toml" : "") + (overrides ? ", overrides" : "");
   return make_coefficient_report(req);
 }
 
 py::dict derive(const py::object& wavelengths_nm, const std::string& preset,
-                const std::optional<std::string>& scene_file, const std::optional<std::string>& scene_toml,
+                const std::optional<std::filesystem::path>& scene_file, const std::optional<std::string>& scene_toml,
                 const std::optional<py::dict>& overrides, const py::object& altitudes_m,
                 std::optional<double> pressure_Pa, std::optional<double> temperature_K, double latitude_deg,
                 const std::optional<std::string>& refractive_index, std::optional<double> co2_ppm) {
@@ -336,7 +345,7 @@ py::array_t<float> xyz_of(const SpectralImageBuffer& img) {
   return xyz;
 }
 
-RenderResult render(const std::string& preset, const std::optional<std::string>& scene_file,
+RenderResult render(const std::string& preset, const std::optional<std::filesystem::path>& scene_file,
                     const std::optional<std::string>& scene_toml, const std::optional<py::dict>& overrides) {
   const Scene scene = load_scene(preset, scene_file, scene_toml, overrides);
   auto image = std::make_shared<SpectralImageBuffer>();
@@ -350,7 +359,7 @@ RenderResult render(const std::string& preset, const std::optional<std::string>&
 // Aerial perspective for a depth pass given as an (h, w) array: the camera's size is the array's.
 py::dict aerial_perspective_py(const py::array_t<float, py::array::c_style | py::array::forcecast>& depth,
                                const std::string& depth_is, const std::string& preset,
-                               const std::optional<std::string>& scene_file,
+                               const std::optional<std::filesystem::path>& scene_file,
                                const std::optional<std::string>& scene_toml, const std::optional<py::dict>& overrides) {
   if (depth.ndim() != 2 || depth.shape(0) < 1 || depth.shape(1) < 1)
     throw InputError("depth", "an array of " + std::to_string(depth.ndim()) + " dimensions",
@@ -386,7 +395,7 @@ py::dict aerial_perspective_py(const py::array_t<float, py::array::c_style | py:
 }
 
 // The Monte Carlo reference at probes given as (azimuth, elevation) pairs (default: the standard ones).
-py::dict monte_carlo(const std::string& preset, const std::optional<std::string>& scene_file,
+py::dict monte_carlo(const std::string& preset, const std::optional<std::filesystem::path>& scene_file,
                      const std::optional<std::string>& scene_toml, const std::optional<py::dict>& overrides,
                      const py::object& probes, long long paths, unsigned long long seed, int orders, bool irradiance,
                      bool stokes) {
@@ -668,7 +677,7 @@ wavelengths_nm are read-only views.)")
           "float64 (n,): the spectral radiance of the pixel nearest that direction (see pixel()), W m^-2 sr^-1 nm^-1")
       .def(
           "write_exr",
-          [](const RenderResult& r, const std::string& path) {
+          [](const RenderResult& r, const std::filesystem::path& path) {
             py::gil_scoped_release release;
             write_spectral_exr(*r.image, path);
           },
@@ -677,7 +686,7 @@ wavelengths_nm are read-only views.)")
           "exposure, units, envmap), atomically. OSError if it cannot be written.")
       .def(
           "write_png",
-          [](const RenderResult& r, const std::string& path, const std::optional<std::string>& display,
+          [](const RenderResult& r, const std::filesystem::path& path, const std::optional<std::string>& display,
              const std::optional<std::string>& view, const std::optional<std::string>& look, int bits,
              const std::optional<double>& exposure_ev, const std::optional<std::string>& ocio) {
             const DisplaySettings settings = display_settings(display, view, look, bits, exposure_ev, ocio);
@@ -742,7 +751,7 @@ PYBIND11_MODULE(skyspec, m) {
 
   m.def(
       "scene_toml",
-      [](const std::string& preset, const std::optional<std::string>& scene_file,
+      [](const std::string& preset, const std::optional<std::filesystem::path>& scene_file,
          const std::optional<std::string>& scene_toml, const std::optional<py::dict>& overrides) {
         return skyspec::scene_to_toml(load_scene(preset, scene_file, scene_toml, overrides));
       },
@@ -782,7 +791,7 @@ Example: skyspec.derive(pressure_Pa=25000, temperature_K=220)["conditions_raylei
   m.def(
       "coefficient_report",
       [](const std::string& format, const py::object& wavelengths_nm, const std::string& preset,
-         const std::optional<std::string>& scene_file, const std::optional<std::string>& scene_toml,
+         const std::optional<std::filesystem::path>& scene_file, const std::optional<std::string>& scene_toml,
          const std::optional<py::dict>& overrides, const py::object& altitudes_m, std::optional<double> pressure_Pa,
          std::optional<double> temperature_K, double latitude_deg, const std::optional<std::string>& refractive_index,
          std::optional<double> co2_ppm) {

@@ -6,6 +6,7 @@
 // key, the value, what is allowed and where the value came from (file:line:column or the flag).
 #pragma once
 
+#include <map>
 #include <optional>
 #include <set>
 #include <string>
@@ -136,7 +137,8 @@ class SceneLoader {
   /// not whether there is any. InputError naming `origin` for an unknown name.
   void apply_quality(const std::string& name, const std::string& origin = "render.quality");
   /// Applies one key = value given as TOML value text, e.g. ("camera.width", "1024"); origin is
-  /// the flag that supplied it, e.g. "--width".
+  /// the flag that supplied it, e.g. "--width". A key the scene's camera does not read (the field
+  /// of view of a fisheye, the panorama convention of a perspective view) is refused by finish().
   void apply_override(const std::string& key, const std::string& toml_value, const std::string& origin);
   /// Checks relations between keys (top above ground, camera above ground, grid vs fixed
   /// coefficients, ...) and returns the scene. SceneUse::Atmosphere (the coefficient report) checks
@@ -147,6 +149,7 @@ class SceneLoader {
  private:
   Scene scene_;
   std::set<std::string> given_;  ///< keys set by a preset (not the default), a file, a quality level or a flag
+  std::map<std::string, std::string> overridden_;  ///< keys set by apply_override, and the flag that set each
 };
 
 /// The quality levels, fastest first: draft, lean, default, high, reference.

@@ -59,10 +59,11 @@ int run(IrradianceOptions& o) {
             "diffuse horizontal (W/m2) | diffuse horizontal (lx) | global horizontal (lx) | global CCT (K) | "
             "diffuse CCT (K) |\n"
          << "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
-  } else {
-    text << "sun_elevation_deg,direct_normal_W_m2,direct_normal_lux,direct_horizontal_W_m2,direct_horizontal_lux,"
-            "diffuse_horizontal_W_m2,diffuse_horizontal_lux,global_horizontal_lux,global_cct_K,global_duv,"
-            "diffuse_cct_K,diffuse_duv\n";
+  } else {  // the band the W/m2 columns integrate over, then every broadband quantity of the list
+    text << "sun_elevation_deg,band_min_nm,band_max_nm";
+    for (const IrradianceQuantity& q : irradiance_quantities())
+      if (!q.spectral()) text << "," << q.key;
+    text << ",global_cct_K,global_duv,diffuse_cct_K,diffuse_duv\n";
   }
   // A CCT as text: empty (CSV) or "-" (Markdown) where the light has none.
   const auto cct_text = [&](const std::optional<ColourTemperature>& c, bool with_duv) {
@@ -86,10 +87,15 @@ int run(IrradianceOptions& o) {
                     rep.direct_normal_lux, rep.direct_horizontal_lux, rep.diffuse_horizontal_W_m2,
                     rep.diffuse_horizontal_lux, rep.global_horizontal_lux());
     else
-      std::snprintf(line, sizeof line, "%g,%.4f,%.2f,%.4f,%.2f,%.4f,%.2f,%.2f,", el, rep.direct_normal_W_m2,
-                    rep.direct_normal_lux, rep.direct_horizontal_W_m2, rep.direct_horizontal_lux,
-                    rep.diffuse_horizontal_W_m2, rep.diffuse_horizontal_lux, rep.global_horizontal_lux());
-    text << line << cct_text(rep.global_horizontal_cct, !md) << (md ? " | " : ",")
+      std::snprintf(line, sizeof line, "%g,%g,%g,", el, rep.band_min_nm(), rep.band_max_nm());
+    text << line;
+    if (!md)
+      for (const IrradianceQuantity& q : irradiance_quantities()) {
+        if (q.spectral()) continue;
+        std::snprintf(line, sizeof line, "%.*f,", q.decimals, q.value(rep));
+        text << line;
+      }
+    text << cct_text(rep.global_horizontal_cct, !md) << (md ? " | " : ",")
          << cct_text(rep.diffuse_horizontal_cct, !md) << (md ? " |\n" : "\n");
   }
   if (o.format == "md")

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 
 #include "skyspec/error.hpp"
@@ -80,10 +81,32 @@ DisplaySettings display_settings(const DisplayOptions& o, bool exposure_flag_giv
   return s;
 }
 
+namespace {
+// The built-in config as a file for other tools: where `cmake --install` puts it, relative to the
+// installed program (<prefix>/bin/skyspec -> <prefix>/share/skyspec/ocio/config.ocio); empty when
+// this program has no such file beside it (a build tree).
+std::filesystem::path installed_builtin_config() {
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) return {};
+  const std::filesystem::path config = exe.parent_path().parent_path() / "share" / "skyspec" / "ocio" / "config.ocio";
+  return std::filesystem::is_regular_file(config, ec) ? config : std::filesystem::path();
+}
+}  // namespace
+
 bool list_displays_if_asked(const DisplayOptions& o) {
   if (!o.list) return false;
   const DisplaySettings s = display_settings(o);
-  std::cout << describe_displays_and_looks(OcioConfig(s.config));
+  const OcioConfig config(s.config);
+  std::cout << describe_displays_and_looks(config);
+  if (config.is_builtin()) {
+    const std::filesystem::path file = installed_builtin_config();
+    std::cout << "\nThe built-in config as a file, for other tools (oiiotool --colorconfig, ociocheck --iconfig): "
+              << (file.empty() ? std::string("data/ocio/config.ocio in skyspec's sources; `cmake --install` puts it in "
+                                             "<prefix>/share/skyspec/ocio/config.ocio")
+                               : file.string())
+              << "\n";
+  }
   return true;
 }
 

@@ -2,12 +2,17 @@
 
 #include <netcdf.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "base/atomic_file.hpp"
+#include "base/text_format.hpp"
 #include "physics/date_time.hpp"
+#include "render/irradiance.hpp"
+#include "scene/key_registry.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/version.hpp"
 
@@ -53,6 +58,24 @@ class NcFile {
   std::filesystem::path path_;
   int id_ = -1;
 };
+
+// A scene key's unit (as docs/scene-keys.md writes it) in UDUNITS, or none where UDUNITS has no
+// such unit (the Dobson unit): then the long name carries it.
+std::optional<std::string> udunits(const std::string& unit) {
+  if (unit.empty()) return "1";
+  if (unit == "degrees") return "degree";
+  if (unit == "ppm") return "1e-6";
+  if (unit == "Dobson units") return std::nullopt;
+  std::string u = unit;  // "m^-1" -> "m-1", "W m^-2 nm^-1" -> "W m-2 nm-1"
+  u.erase(std::remove(u.begin(), u.end(), '^'), u.end());
+  return u;
+}
+
+// "ground.albedo" -> "ground_albedo": CF's variable names are letters, digits and underscores.
+std::string variable_name_of_key(std::string key) {
+  std::replace(key.begin(), key.end(), '.', '_');
+  return key;
+}
 
 double unix_seconds(const std::string& iso) {
   DateTime epoch;
@@ -119,6 +142,14 @@ void write_irradiance_netcdf(const std::filesystem::path& path, const JobPlan& p
     const int v_name = nc.var("station_name", NC_CHAR, {d_name});
     nc.text(v_name, "cf_role", "timeseries_id");
     nc.text(v_name, "long_name", "site");
+    nc.text(v_name, "_Encoding", "utf-8");  // read as text, not bytes (netCDF4-python, xarray)
+    // The band every W m-2 value integrates over: the render's wavelengths (not the whole solar
+    // spectrum a pyranometer sees; docs/jobs.md, "Irradiance and pyranometers").
+    const double band_min = wl.front().get<double>(), band_max = wl.back().get<double>();
+    const std::string band_comment = "integral over " + format_number(band_min) + "-" + format_number(band_max) +
+                                     " nm only (the render's wavelengths, trapezoid rule): not the whole solar "
+                                     "spectrum a pyranometer measures (docs/jobs.md)";
+    nc.text(g, "skyspec_band_nm", format_number(band_min) + " " + format_number(band_max));
 
     struct Series {
       int var;
@@ -138,41 +169,24 @@ void write_irradiance_netcdf(const std::filesystem::path& path, const JobPlan& p
                               "degree", false);
     Series azimuth =
         series("solar_azimuth_angle", "solar_azimuth_angle", "solar azimuth, clockwise from north", "degree", false);
+    // A swept key: a variable named as CF names variables (letters, digits, underscores), its
+    // scene key in an attribute, its unit in UDUNITS where it has one; strings as NaN.
     std::vector<Series> swept;
-    for (const auto& [key, value] : params)  // in the key's unit (docs/scene-keys.md); strings as NaN
-      swept.push_back(
-          series(key, nullptr, "scene key " + key + " (swept; its unit: docs/scene-keys.md)", nullptr, false));
-    struct Field {
-      const char* key;
-      const char* name;
-      const char* standard_name;
-      const char* long_name;
-      const char* units;
-      bool spectral;
-    };
-    const Field fields[] = {
-        {"direct_normal_W_m2", "direct_normal_irradiance", nullptr, "direct normal irradiance", "W m-2", false},
-        {"direct_horizontal_W_m2", "direct_horizontal_irradiance", "surface_direct_downwelling_shortwave_flux_in_air",
-         "direct irradiance on a horizontal surface", "W m-2", false},
-        {"diffuse_horizontal_W_m2", "diffuse_horizontal_irradiance",
-         "surface_diffuse_downwelling_shortwave_flux_in_air", "diffuse irradiance on a horizontal surface", "W m-2",
-         false},
-        {"direct_normal_lux", "direct_normal_illuminance", nullptr, "direct normal illuminance", "lx", false},
-        {"direct_horizontal_lux", "direct_horizontal_illuminance", nullptr,
-         "direct illuminance on a horizontal surface", "lx", false},
-        {"diffuse_horizontal_lux", "diffuse_horizontal_illuminance", nullptr,
-         "diffuse illuminance on a horizontal surface", "lx", false},
-        {"global_horizontal_lux", "global_horizontal_illuminance", nullptr,
-         "global illuminance on a horizontal surface", "lx", false},
-        {"global_horizontal_W_m2_nm", "spectral_global_horizontal_irradiance", nullptr,
-         "spectral global irradiance on a horizontal surface", "W m-2 nm-1", true},
-        {"diffuse_horizontal_W_m2_nm", "spectral_diffuse_horizontal_irradiance", nullptr,
-         "spectral diffuse irradiance on a horizontal surface", "W m-2 nm-1", true},
-        {"direct_normal_W_m2_nm", "spectral_direct_normal_irradiance", nullptr, "spectral direct normal irradiance",
-         "W m-2 nm-1", true},
-    };
+    for (const auto& [key, value] : params) {
+      const scene_keys::KeyDef* def = scene_keys::find_key(key);
+      const std::optional<std::string> units = def && !def->text ? udunits(def->unit) : std::nullopt;
+      std::string long_name = "scene key " + key + " (swept)";
+      if (def && !def->text && !units) long_name += ", in " + def->unit;
+      swept.push_back(series(variable_name_of_key(key), nullptr, long_name, units ? units->c_str() : nullptr, false));
+      nc.text(swept.back().var, "skyspec_scene_key", key);
+    }
+    // No CF standard name for the band-limited irradiance: surface_*_shortwave_flux_in_air means
+    // the whole solar spectrum.
     std::vector<Series> data;
-    for (const auto& f : fields) data.push_back(series(f.name, f.standard_name, f.long_name, f.units, f.spectral));
+    for (const IrradianceQuantity& q : irradiance_quantities()) {
+      data.push_back(series(q.variable, nullptr, q.long_name, q.units, q.spectral()));
+      if (q.band_limited()) nc.text(data.back().var, "comment", band_comment);
+    }
     nc.check(nc_enddef(nc.id()), "end the definitions");
 
     std::vector<double> times;
@@ -188,10 +202,11 @@ void write_irradiance_netcdf(const std::filesystem::path& path, const JobPlan& p
       }
       const json& irr = r->at("irradiance");
       for (std::size_t k = 0; k < data.size(); ++k) {
-        if (fields[k].spectral)
-          for (const auto& v : irr.at(fields[k].key)) data[k].values.push_back(v.get<double>());
+        const IrradianceQuantity& q = irradiance_quantities()[k];
+        if (q.spectral())
+          for (const auto& v : irr.at(q.key)) data[k].values.push_back(v.get<double>());
         else
-          data[k].values.push_back(irr.at(fields[k].key).get<double>());
+          data[k].values.push_back(irr.at(q.key).get<double>());
       }
     }
     if (timed) nc.put(v_time, times);

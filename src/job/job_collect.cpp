@@ -10,6 +10,7 @@
 #include "io/exr_merge.hpp"
 #include "job/irradiance_netcdf.hpp"
 #include "job/task_record.hpp"
+#include "render/irradiance.hpp"
 #include "skyspec/error.hpp"
 
 namespace skyspec {
@@ -49,18 +50,18 @@ void write_text_atomically(const std::filesystem::path& path, const std::string&
   file.commit();
 }
 
-const char* const kBroadband[] = {"direct_normal_W_m2",   "direct_horizontal_W_m2", "diffuse_horizontal_W_m2",
-                                  "direct_normal_lux",    "direct_horizontal_lux",  "diffuse_horizontal_lux",
-                                  "global_horizontal_lux"};
-const char* const kSpectral[] = {"global_horizontal_W_m2_nm", "diffuse_horizontal_W_m2_nm", "direct_normal_W_m2_nm"};
-
+// The irradiance table (irradiance_<site>.csv): per task its sun, swept keys, the band the W m^-2
+// columns integrate over, then every quantity of irradiance_quantities().
 std::string table_header(const JobPlan& plan, const json& first) {
   std::string h = "task,date_time,sun_elevation_deg,sun_azimuth_deg";
   for (const auto& [key, value] : plan.combinations.front()) h += "," + key;
-  for (const char* b : kBroadband) h += std::string(",") + b;
+  h += ",band_min_nm,band_max_nm";
   const auto& wl = first.at("irradiance").at("wavelengths_nm");
-  for (const char* s : kSpectral)
-    for (const auto& w : wl) h += std::string(",") + s + "_" + csv_number(w.get<double>());
+  for (const IrradianceQuantity& q : irradiance_quantities()) {
+    if (!q.spectral()) h += std::string(",") + q.key;
+    else
+      for (const auto& w : wl) h += std::string(",") + q.key + "_" + csv_number(w.get<double>());
+  }
   return h + "\n";
 }
 
@@ -70,9 +71,13 @@ std::string table_row(const JobPlan& plan, const json& r) {
                     csv_number(r.at("sun_azimuth_deg").get<double>());
   for (const auto& [key, value] : plan.combinations.front()) row += "," + csv_value(r.at("parameters").at(key));
   const auto& irr = r.at("irradiance");
-  for (const char* b : kBroadband) row += "," + csv_number(irr.at(b).get<double>());
-  for (const char* s : kSpectral)
-    for (const auto& v : irr.at(s)) row += "," + csv_number(v.get<double>());
+  const auto& wl = irr.at("wavelengths_nm");
+  row += "," + csv_number(wl.front().get<double>()) + "," + csv_number(wl.back().get<double>());
+  for (const IrradianceQuantity& q : irradiance_quantities()) {
+    if (!q.spectral()) row += "," + csv_number(irr.at(q.key).get<double>());
+    else
+      for (const auto& v : irr.at(q.key)) row += "," + csv_number(v.get<double>());
+  }
   return row + "\n";
 }
 

@@ -42,18 +42,10 @@ json spectrum_json(const SpectrumD& s) {
 }
 
 json irradiance_json(const IrradianceReport& r) {
-  const SpectrumD global = r.direct_horizontal + r.diffuse_horizontal;
-  return {{"direct_normal_W_m2", r.direct_normal_W_m2},
-          {"direct_horizontal_W_m2", r.direct_horizontal_W_m2},
-          {"diffuse_horizontal_W_m2", r.diffuse_horizontal_W_m2},
-          {"direct_normal_lux", r.direct_normal_lux},
-          {"direct_horizontal_lux", r.direct_horizontal_lux},
-          {"diffuse_horizontal_lux", r.diffuse_horizontal_lux},
-          {"global_horizontal_lux", r.global_horizontal_lux()},
-          {"wavelengths_nm", r.wavelengths_nm},
-          {"direct_normal_W_m2_nm", spectrum_json(r.direct_normal)},
-          {"diffuse_horizontal_W_m2_nm", spectrum_json(r.diffuse_horizontal)},
-          {"global_horizontal_W_m2_nm", spectrum_json(global)}};
+  json out = {{"wavelengths_nm", r.wavelengths_nm}};
+  for (const IrradianceQuantity& q : irradiance_quantities())
+    out[q.key] = q.spectral() ? spectrum_json(q.spectrum(r)) : json(q.value(r));
+  return out;
 }
 
 std::string host_name() {
@@ -206,6 +198,8 @@ std::string record_problem(const JobPlan& plan, const JobTask& task, const json&
     for (std::size_t k = 0; k < wl.size(); ++k)
       if (!is_finite_number(wl[k]) || std::abs(wl[k].get<double>() - grid[k]) > 1e-9 * grid[k])
         return "its irradiance's wavelengths are not the scene's";
+    for (const IrradianceQuantity& q : irradiance_quantities())
+      if (!irr.contains(q.key)) return std::string("its irradiance has no \"") + q.key + "\"";
     for (const auto& [key, value] : irr.items()) {
       if (key == "wavelengths_nm") continue;
       if (value.is_array()) {

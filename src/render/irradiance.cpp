@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -71,6 +72,42 @@ IrradianceReport irradiance_at_camera(const SkyRenderer& r, int zenith_nodes, in
   rep.global_horizontal_cct = correlated_colour_temperature(xyz(global_horizontal));
   rep.diffuse_horizontal_cct = correlated_colour_temperature(xyz(rep.diffuse_horizontal));
   return rep;
+}
+
+bool IrradianceQuantity::band_limited() const { return !spectral() && std::string(units) == "W m-2"; }
+
+const std::vector<IrradianceQuantity>& irradiance_quantities() {
+  using R = IrradianceReport;
+  static const std::vector<IrradianceQuantity> list = {
+      {"direct_normal_W_m2", "direct_normal_irradiance", "direct normal irradiance over the band", "W m-2", 4,
+       [](const R& r) { return r.direct_normal_W_m2; }, nullptr},
+      {"direct_horizontal_W_m2", "direct_horizontal_irradiance",
+       "direct irradiance on a horizontal surface over the band", "W m-2", 4,
+       [](const R& r) { return r.direct_horizontal_W_m2; }, nullptr},
+      {"diffuse_horizontal_W_m2", "diffuse_horizontal_irradiance",
+       "diffuse irradiance on a horizontal surface over the band", "W m-2", 4,
+       [](const R& r) { return r.diffuse_horizontal_W_m2; }, nullptr},
+      {"global_horizontal_W_m2", "global_horizontal_irradiance",
+       "global (direct + diffuse) irradiance on a horizontal surface over the band", "W m-2", 4,
+       [](const R& r) { return r.global_horizontal_W_m2(); }, nullptr},
+      {"direct_normal_lux", "direct_normal_illuminance", "direct normal illuminance", "lx", 2,
+       [](const R& r) { return r.direct_normal_lux; }, nullptr},
+      {"direct_horizontal_lux", "direct_horizontal_illuminance", "direct illuminance on a horizontal surface", "lx",
+       2, [](const R& r) { return r.direct_horizontal_lux; }, nullptr},
+      {"diffuse_horizontal_lux", "diffuse_horizontal_illuminance", "diffuse illuminance on a horizontal surface",
+       "lx", 2, [](const R& r) { return r.diffuse_horizontal_lux; }, nullptr},
+      {"global_horizontal_lux", "global_horizontal_illuminance", "global illuminance on a horizontal surface", "lx",
+       2, [](const R& r) { return r.global_horizontal_lux(); }, nullptr},
+      {"global_horizontal_W_m2_nm", "spectral_global_horizontal_irradiance",
+       "spectral global irradiance on a horizontal surface", "W m-2 nm-1", 6, nullptr,
+       [](const R& r) { return r.global_horizontal(); }},
+      {"diffuse_horizontal_W_m2_nm", "spectral_diffuse_horizontal_irradiance",
+       "spectral diffuse irradiance on a horizontal surface", "W m-2 nm-1", 6, nullptr,
+       [](const R& r) { return r.diffuse_horizontal; }},
+      {"direct_normal_W_m2_nm", "spectral_direct_normal_irradiance", "spectral direct normal irradiance",
+       "W m-2 nm-1", 6, nullptr, [](const R& r) { return r.direct_normal; }},
+  };
+  return list;
 }
 
 std::string IrradianceReport::describe() const {

@@ -6,13 +6,15 @@
 //   diffuse horizontal E_d  = integral over the upper hemisphere of L_sky(omega) cos(theta) d omega
 //
 // The hemisphere integral uses Gauss-Legendre nodes in cos(theta) and the midpoint rule in
-// azimuth; the sky radiance excludes the sun's disk (that is the direct part). Broadband values
-// integrate the spectrum over the grid's range (trapezoid); illuminance is 683 lm/W times the
+// azimuth; the sky radiance excludes the sun's disk (that is the direct part). "Broadband" values
+// integrate the spectrum over the grid's range only (trapezoid; 380-780 nm by default: not the
+// whole solar spectrum a pyranometer sees, docs/jobs.md); illuminance is 683 lm/W times the
 // integral weighted by the CIE 1931 y-bar function.
 #pragma once
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "colour/colour_temperature.hpp"
 
@@ -27,12 +29,35 @@ struct IrradianceReport {
   double direct_normal_W_m2 = 0, direct_horizontal_W_m2 = 0, diffuse_horizontal_W_m2 = 0;
   double direct_normal_lux = 0, direct_horizontal_lux = 0, diffuse_horizontal_lux = 0;
   double global_horizontal_lux() const { return direct_horizontal_lux + diffuse_horizontal_lux; }
+  double global_horizontal_W_m2() const { return direct_horizontal_W_m2 + diffuse_horizontal_W_m2; }
+  SpectrumD global_horizontal() const { return direct_horizontal + diffuse_horizontal; }
+  /// The band the W m^-2 values integrate over: the grid's first and last wavelength, nm.
+  double band_min_nm() const { return wavelengths_nm.front(); }
+  double band_max_nm() const { return wavelengths_nm.back(); }
   /// Correlated colour temperature of the global (direct + diffuse) and the diffuse horizontal
   /// light (colour_temperature.hpp); empty when the light has no colour or lies off the locus.
   std::optional<ColourTemperature> global_horizontal_cct, diffuse_horizontal_cct;
   /// A few lines for people, e.g. for the render summary.
   std::string describe() const;
 };
+
+/// One quantity of an IrradianceReport as the irradiance tables name it: the CLI's CSV, a job's
+/// task records, its CSV and its NetCDF all iterate irradiance_quantities(), so a new quantity is
+/// one row there.
+struct IrradianceQuantity {
+  const char* key;        ///< JSON key and CSV column (spectral: one column per wavelength, "_<nm>" appended)
+  const char* variable;   ///< NetCDF variable name
+  const char* long_name;  ///< what it is (NetCDF long_name)
+  const char* units;      ///< UDUNITS
+  int decimals;           ///< in tables for people (the CLI's CSV)
+  double (*value)(const IrradianceReport&);     ///< broadband; null for a spectral quantity
+  SpectrumD (*spectrum)(const IrradianceReport&);  ///< spectral; null for a broadband one
+  bool spectral() const { return spectrum != nullptr; }
+  /// True for an integral of W m^-2 nm^-1 over the band (illuminance is complete once the band
+  /// holds y-bar's range; spectral values are per wavelength).
+  bool band_limited() const;
+};
+const std::vector<IrradianceQuantity>& irradiance_quantities();
 
 /// Irradiance on a horizontal surface at the renderer's camera position. zenith_nodes and
 /// azimuth_nodes set the hemisphere quadrature. For the spectral path only (needs the CMFs).

@@ -33,6 +33,30 @@
 
 namespace skyspec::scene_keys {
 
+// Split at the parenthesis that closes the first.
+std::pair<std::string, std::string> split_doc(const std::string& doc) {
+  if (doc.empty() || doc.front() != '(') return {"", doc};
+  int depth = 0;
+  for (size_t i = 0; i < doc.size(); ++i) {
+    if (doc[i] == '(') ++depth;
+    if (doc[i] == ')' && --depth == 0) {
+      const size_t start = doc.find_first_not_of(' ', i + 1);
+      return {doc.substr(1, i - 1), start == std::string::npos ? std::string() : doc.substr(start)};
+    }
+  }
+  return {"", doc};
+}
+
+namespace {
+// A key that only this camera type reads: "(allowed) meaning" becomes "(allowed) type: meaning".
+KeyDef only_for(CameraSpec::Type type, KeyDef k) {
+  k.cameras = {type};
+  const auto [allowed, meaning] = split_doc(k.doc);
+  k.doc = "(" + allowed + ") " + camera_type_name(type) + ": " + meaning;
+  return k;
+}
+}  // namespace
+
 const std::vector<KeyDef>& registry() {
   static const std::vector<KeyDef> keys = [] {
     std::vector<KeyDef> r;
@@ -239,23 +263,28 @@ const std::vector<KeyDef>& registry() {
                             [](Scene& s) -> int& { return s.camera.height; }));
     r.push_back(vec3_key("camera.position_m", "m", kMaxLength, "camera position [east, north, height above sea level]",
                          [](Scene& s) -> Vec3& { return s.camera.position_m; }));
-    r.push_back(vec3_key("camera.look_at_m", "m", kMaxLength, "perspective: point the camera looks at",
-                         [](Scene& s) -> Vec3& { return s.camera.look_at_m; }));
-    r.push_back(number_key("camera.fov_deg", "degrees", {0.0, 179.0, true}, "perspective: vertical field of view",
-                           [](Scene& s) -> double& { return s.camera.fov_deg; }));
-    r.push_back(number_key("camera.min_elevation_deg", "degrees", {-90.0, 89.0},
-                           "equirectangular: elevation of the bottom edge (-90: the whole sphere; 0: the upper "
-                           "hemisphere only, as sky-dome textures are)",
-                           [](Scene& s) -> double& { return s.camera.min_elevation_deg; }));
-    r.push_back(choice_key(
-        "camera.panorama_convention", names_of(panorama_conventions()),
-        "equirectangular: skyspec (north at the left edge, east a quarter in), blender (Cycles' mapping with north "
-        "on Blender's +Y: east at the centre) or openexr (OpenEXR's lat-long map, up +Y, north -Z); blender and "
-        "openexr need min_elevation_deg = -90 (docs/other-tools.md)",
-        [](Scene& s, const std::string& v) {
-          s.camera.panorama_convention = value_named(panorama_conventions(), v, "camera.panorama_convention");
-        },
-        [](const Scene& s) { return std::string(panorama_convention_name(s.camera.panorama_convention)); }));
+    using Type = CameraSpec::Type;
+    r.push_back(only_for(Type::Perspective, vec3_key("camera.look_at_m", "m", kMaxLength, "point the camera looks at",
+                                                     [](Scene& s) -> Vec3& { return s.camera.look_at_m; })));
+    r.push_back(only_for(Type::Perspective,
+                         number_key("camera.fov_deg", "degrees", {0.0, 179.0, true}, "vertical field of view",
+                                    [](Scene& s) -> double& { return s.camera.fov_deg; })));
+    r.push_back(only_for(Type::Equirectangular,
+                         number_key("camera.min_elevation_deg", "degrees", {-90.0, 89.0},
+                                    "elevation of the bottom edge (-90: the whole sphere; 0: the upper "
+                                    "hemisphere only, as sky-dome textures are)",
+                                    [](Scene& s) -> double& { return s.camera.min_elevation_deg; })));
+    r.push_back(only_for(
+        Type::Equirectangular,
+        choice_key(
+            "camera.panorama_convention", names_of(panorama_conventions()),
+            "skyspec (north at the left edge, east a quarter in), blender (Cycles' mapping with north on Blender's "
+            "+Y: east at the centre) or openexr (OpenEXR's lat-long map, up +Y, north -Z); blender and openexr "
+            "need min_elevation_deg = -90 (docs/other-tools.md)",
+            [](Scene& s, const std::string& v) {
+              s.camera.panorama_convention = value_named(panorama_conventions(), v, "camera.panorama_convention");
+            },
+            [](const Scene& s) { return std::string(panorama_convention_name(s.camera.panorama_convention)); })));
     // spectrum
     r.push_back(number_key("spectrum.min_nm", "nm", {1.0, 1e5}, "first wavelength",
                            [](Scene& s) -> double& { return s.spectrum.min_nm; }));

@@ -8,6 +8,7 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <toml++/toml.h>
@@ -22,6 +23,10 @@ struct KeyDef {
   std::function<void(Scene&, const toml::node&, const std::string& origin)> set;
   std::function<std::string(const Scene&)> get;  // TOML value text
   bool text = false;  // the value is a string (a flag's bare word is taken as one, even "nan" or "1")
+  std::string unit;   // of a number, as the help writes it ("m", "m^-1", "degrees"); "" when it has none
+  /// The camera types that read this key (empty: every one). Its help starts with their names, and
+  /// a flag or an override that sets it for another camera is refused (SceneLoader::finish).
+  std::vector<CameraSpec::Type> cameras;
 };
 
 /// Every scene key, in the order help texts and scene_to_toml list them.
@@ -30,6 +35,9 @@ const std::vector<KeyDef>& registry();
 const KeyDef* find_key(const std::string& key);
 /// InputError::unknown_key with a "did you mean" hint from the registry.
 [[noreturn]] void unknown_key(const std::string& key, const std::string& origin);
+
+/// A key's documentation is "(allowed values) meaning": the two parts.
+std::pair<std::string, std::string> split_doc(const std::string& doc);
 
 /// A TOML value as the user wrote it, for messages.
 std::string node_text(const toml::node& n);

@@ -107,6 +107,7 @@ KeyDef number_key(std::string key, std::string unit, Range range, std::string he
                   double scale) {
   KeyDef k;
   k.key = std::move(key);
+  k.unit = unit;
   const std::string allowed = range.describe(unit);
   k.doc = "(" + allowed + ") " + help;
   k.set = [k, allowed, range, ref, scale](Scene& s, const toml::node& n, const std::string& origin) {
@@ -204,6 +205,7 @@ KeyDef text_key(std::string key, std::string help, std::function<std::string&(Sc
 KeyDef vec3_key(std::string key, std::string unit, double bound, std::string help, std::function<Vec3&(Scene&)> ref) {
   KeyDef k;
   k.key = std::move(key);
+  k.unit = unit;
   const std::string allowed = "an array of 3 numbers in " + unit + ", each within +-" + format_number(bound);
   k.doc = "(" + allowed + ") " + help;
   k.set = [k, allowed, bound, ref](Scene& s, const toml::node& n, const std::string& origin) {
@@ -228,6 +230,7 @@ KeyDef list_key(std::string key, std::string unit, Range range, size_t max_count
                 std::function<std::vector<double>&(Scene&)> ref) {
   KeyDef k;
   k.key = std::move(key);
+  k.unit = unit;
   const std::string allowed = "an array of up to " + std::to_string(max_count) + " numbers, each " +
                               (unit.empty() ? std::string() : "in " + unit + ", ") + range.bounds();
   k.doc = "(" + allowed + ") " + help;

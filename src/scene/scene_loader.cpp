@@ -178,6 +178,7 @@ void SceneLoader::apply_override(const std::string& key, const std::string& toml
     def->set(scene_, *n, origin);
   }
   given_.insert(key);
+  overridden_[key] = origin;
 }
 
 Scene SceneLoader::finish(SceneUse use) const {
@@ -272,6 +273,20 @@ Scene SceneLoader::finish(SceneUse use) const {
     // AtmosphereModel reports the details; evaluate once here so errors surface before rendering.
     AtmosphereModel check(s.atmosphere, grid);
     (void)check;
+  }
+  // A flag or an override that the camera would ignore is a mistake (a scene file may carry every
+  // key: recorded scenes do).
+  for (const auto& [key, origin] : overridden_) {
+    const KeyDef* def = find_key(key);
+    if (def->cameras.empty() ||
+        std::find(def->cameras.begin(), def->cameras.end(), s.camera.type) != def->cameras.end())
+      continue;
+    std::vector<std::string> names;
+    for (CameraSpec::Type t : def->cameras) names.push_back(std::string("\"") + camera_type_name(t) + "\"");
+    throw InputError(key, def->get(s),
+                     "only with camera.type = " + join(names, " or ") + " (this camera is \"" +
+                         camera_type_name(s.camera.type) + "\" and does not read it)",
+                     origin);
   }
   return s;
 }

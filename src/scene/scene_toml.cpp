@@ -65,23 +65,6 @@ std::vector<std::pair<std::string, std::string>> scene_key_help() {
   return out;
 }
 
-namespace {
-// A key's documentation is "(allowed values) meaning": split at the parenthesis that closes the first.
-std::pair<std::string, std::string> split_doc(const std::string& doc) {
-  if (doc.empty() || doc.front() != '(') return {"", doc};
-  int depth = 0;
-  for (size_t i = 0; i < doc.size(); ++i) {
-    if (doc[i] == '(') ++depth;
-    if (doc[i] == ')' && --depth == 0) {
-      const size_t start = doc.find_first_not_of(' ', i + 1);
-      return {doc.substr(1, i - 1), start == std::string::npos ? std::string() : doc.substr(start)};
-    }
-  }
-  return {"", doc};
-}
-
-}  // namespace
-
 std::string scene_keys_markdown() {
   const Scene defaults = default_scene();
   std::ostringstream out;

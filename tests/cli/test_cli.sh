@@ -31,6 +31,8 @@ printf '[camera]\nwidth = 8\nheigth = 8\n' >"$work/typo.toml"
 expect_error scene_typo 2 "typo.toml:3:1: unknown key \"camera.heigth\" (did you mean \"camera.height\"?)" --scene "$work/typo.toml"
 expect_error unwritable_out 2 "output.directory" --set "output.directory=\"/proc/skyspec\""
 expect_error no_outputs 2 "at least one output" --no-exr --no-png
+expect_error convention_of_a_fisheye 2 "--panorama-convention: camera.panorama_convention = \"blender\" is not allowed: only with camera.type = \"equirectangular\"" --panorama-convention blender
+expect_error fov_of_a_panorama 2 "--fov: camera.fov_deg = 30 is not allowed: only with camera.type = \"perspective\"" --camera equirectangular --fov 30
 expect_error unknown_quality 2 "--quality = \"ultra\" is not allowed: one of: draft, lean, default, high, reference" --quality ultra
 expect_error bad_compression 2 "output.exr_compression = \"dwaa\" is not allowed: one of: piz, zip, zips, rle, none" --set output.exr_compression=dwaa
 
@@ -42,14 +44,15 @@ expect_error bad_compression 2 "output.exr_compression = \"dwaa\" is not allowed
 "$skyspec" render --name nan --print-scene | grep -qxE "name = [\"']nan[\"']" && ok || bad "--name nan"
 "$skyspec" render --name 2026 --print-scene | grep -qxE "name = [\"']2026[\"']" && ok || bad "--name 2026"
 
-# Small scattering-order tables with a single table order (render.scattering_orders = 2) and every
-# pixel marched (no sky-view table: these images have fewer pixels than it has entries), for the
+# Small scattering-order tables (a single table order, render.scattering_orders = 2, and harmonics to
+# degree 4: polarisation needs 2) and every pixel marched (no sky-view table: these images have
+# fewer pixels than it has entries), for the
 # commands whose files and behaviour are checked, not their physics. Under the sanitizers
 # (scripts/test.sh sets SKYSPEC_SANITIZER_STAGE) the good render, the aerial perspective and the
 # irradiance use them too: building the default tables there was most of this test's time
 # (docs/performance.md, "Build and test times"); the release stage builds the default ones.
 small_tables=(--set render.ms_altitude_samples=8 --set render.ms_sun_samples=24 --set render.scattering_orders=2
-              --set render.sky_view_table=false)
+              --set render.ms_angular_degree=4 --set render.sky_view_table=false)
 stage_tables=()
 [ -n "${SKYSPEC_SANITIZER_STAGE:-}" ] && stage_tables=("${small_tables[@]}")
 
@@ -121,6 +124,10 @@ day, dusk = rows
 assert 5003 < float(day["global_cct_K"]) < 6504, day
 assert float(day["diffuse_cct_K"]) > 10000, day
 assert float(dusk["direct_horizontal_lux"]) == 0 and dusk["global_cct_K"] == dusk["diffuse_cct_K"], dusk
+# The W/m2 columns say which band they integrate (the render's wavelengths), and global = direct + diffuse.
+assert (day["band_min_nm"], day["band_max_nm"]) == ("380", "780"), day
+g, parts = float(day["global_horizontal_W_m2"]), float(day["direct_horizontal_W_m2"]) + float(day["diffuse_horizontal_W_m2"])
+assert abs(g - parts) <= 2e-4, day
 PY
 else
   bad "irradiance failed"; cat "$work/stderr"

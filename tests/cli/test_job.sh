@@ -66,9 +66,25 @@ assert len(rows) == 6 and ds.dimensions["sample"].size == 6 and ds.dimensions["w
 for k, r in enumerate(rows):
     assert abs(ds["diffuse_horizontal_irradiance"][k] - float(r["diffuse_horizontal_W_m2"])) <= 1e-7 * float(r["diffuse_horizontal_W_m2"])
     assert abs(ds["spectral_global_horizontal_irradiance"][k, 17] - float(r["global_horizontal_W_m2_nm_550"])) <= 1e-7 * float(r["global_horizontal_W_m2_nm_550"])
-    assert ds["atmosphere.mie.scattering_per_m"][k] == float(r["atmosphere.mie.scattering_per_m"])
+    assert ds["atmosphere_mie_scattering_per_m"][k] == float(r["atmosphere.mie.scattering_per_m"])
+    g = float(r["global_horizontal_W_m2"])
+    assert abs(g - float(r["direct_horizontal_W_m2"]) - float(r["diffuse_horizontal_W_m2"])) <= 1e-6 * g, r
+    assert abs(ds["global_horizontal_irradiance"][k] - g) <= 1e-7 * g
+    assert (float(r["band_min_nm"]), float(r["band_max_nm"])) == (380, 780), r
 assert abs(ds["lat"][...] + 1.29) < 1e-12 and abs(ds["altitude"][...] - 1796) < 1e-9
-assert netCDF4.chartostring(ds["station_name"][:]) == "nairobi"
+# A swept key: CF's variable-name characters, the key and a UDUNITS unit in attributes (issue 41).
+swept = ds["atmosphere_mie_scattering_per_m"]
+assert swept.skyspec_scene_key == "atmosphere.mie.scattering_per_m" and swept.units == "m-1", swept
+# The station's name reads as text (not bytes) where netCDF4 and xarray decode it.
+name = ds["station_name"][...]
+assert isinstance(name, str) or getattr(name, "dtype", None) is not None and name.dtype.kind == "U", repr(name)
+assert str(name) == "nairobi", repr(name)
+# The band-limited irradiance says so, and claims no CF "shortwave" standard name (the whole solar
+# spectrum); the band is a global attribute.
+assert ds.skyspec_band_nm == "380 780"
+for v in ("direct_normal_irradiance", "direct_horizontal_irradiance", "diffuse_horizontal_irradiance",
+          "global_horizontal_irradiance"):
+    assert "380-780 nm only" in ds[v].comment and "standard_name" not in ds[v].ncattrs(), v
 PY
 # Run again: nothing left to do.
 out=$("$skyspec" job run "$work/small.toml" --out "$work/A" --shard 1/1 --threads 1)

@@ -17,6 +17,13 @@ fi
 for private in single_scattering.hpp spectral_exr.hpp embedded_data.hpp; do
   if [ -e "$work/prefix/include/skyspec/$private" ]; then echo "FAIL: internal header $private installed" >&2; exit 1; fi
 done
+# The built-in OpenColorIO config is installed as a file that OpenColorIO validates, the very
+# config the program embeds, and the installed program names it.
+config="$work/prefix/share/skyspec/ocio/config.ocio"
+cmp -s "$config" "$here/../../data/ocio/config.ocio" || { echo "FAIL: $config missing or not data/ocio/config.ocio" >&2; exit 1; }
+ociocheck --iconfig "$config" >"$work/ociocheck.txt" 2>&1 || { cat "$work/ociocheck.txt" >&2; echo "FAIL: ociocheck $config" >&2; exit 1; }
+"$work/prefix/bin/skyspec" render --list-displays | grep -qF "ociocheck --iconfig): $config" \
+  || { echo "FAIL: skyspec render --list-displays does not name $config" >&2; exit 1; }
 cmake -S "$here" -B "$work/build" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$work/build" >/dev/null
 "$work/build/consumer" "$work"

@@ -136,6 +136,41 @@ BOOST_AUTO_TEST_CASE(overrides_name_their_flag) {
   BOOST_TEST((l.finish().camera.type == CameraSpec::Type::Equirectangular));
 }
 
+// A flag or an override that the chosen camera does not read is refused, naming the flag, the key,
+// the camera types that read it and the one chosen (issue 41: --panorama-convention blender
+// rendered a fisheye); whichever order the flags come in, the camera type decides. A scene file
+// may carry every key (recorded scenes do), so a file's fov_deg under a fisheye is no error.
+BOOST_AUTO_TEST_CASE(keys_the_camera_does_not_read_are_refused) {
+  const std::string e = error_of([] {
+    SceneLoader l;  // the default camera is a fisheye
+    l.apply_override("camera.panorama_convention", "blender", "--panorama-convention");
+    (void)l.finish();
+  });
+  BOOST_TEST(e == "--panorama-convention: camera.panorama_convention = \"blender\" is not allowed: only with camera.type = "
+                  "\"equirectangular\" (this camera is \"fisheye\" and does not read it)");
+  for (const char* key : {"camera.fov_deg", "camera.look_at_m"}) {
+    const std::string f = error_of([key] {
+      SceneLoader l;
+      l.apply_override("camera.type", "equirectangular", "--camera");
+      l.apply_override(key, std::string(key) == "camera.fov_deg" ? "30" : "[0, 1, 0]", "--set");
+      (void)l.finish();
+    });
+    BOOST_TEST(contains(f, std::string(key) + " = "));
+    BOOST_TEST(contains(f, "only with camera.type = \"perspective\" (this camera is \"equirectangular\""));
+  }
+  SceneLoader later;  // the type after the key
+  later.apply_override("camera.fov_deg", "30", "--fov");
+  later.apply_override("camera.type", "perspective", "--camera");
+  BOOST_TEST(later.finish().camera.fov_deg == 30.0);
+  SceneLoader file;
+  file.apply_toml("[camera]\ntype = \"fisheye\"\nfov_deg = 30\npanorama_convention = \"blender\"\n", "test.toml");
+  BOOST_TEST((file.finish().camera.type == CameraSpec::Type::Fisheye));
+  // The registry says which camera reads a key, and its help says so.
+  for (const auto& [key, help] : scene_key_help())
+    if (key == "camera.panorama_convention" || key == "camera.min_elevation_deg")
+      BOOST_TEST(contains(help, ") equirectangular: "), key);
+}
+
 // The equirectangular camera's bottom edge: 0 is the upper hemisphere; the horizon cannot be
 // the top edge, so 90 is refused with the range.
 BOOST_AUTO_TEST_CASE(equirectangular_elevation_range) {
