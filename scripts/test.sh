@@ -29,10 +29,10 @@ stage "sanitizer build"
 # multiple-scattering physics, grid independence, the Monte Carlo reference and the renderer
 # against it); and two long ones whose code the others run under the sanitizers: cli_display (the
 # display pipeline; every PNG of the other tests goes through it) and test_properties (random
-# scenes; the renderer's code). cli (renders, time-lapses, aerial perspective) runs here again
-# since the faster scattering-order tables (docs/performance.md, "Build and test times").
+# scenes; the renderer's code). cli (renders, time-lapses, aerial perspective) runs here with small
+# scattering-order tables (docs/performance.md, "Build and test times").
 # SKYSPEC_SANITIZER_STAGE also leaves a test's longest parts to the release stage where it says so
-# (cli_hostile, cli_tiles, test_polarised_sky).
+# (cli_hostile, cli_tiles, test_polarised_sky) and makes cli's renders use small tables.
 SKYSPEC_SANITIZER_STAGE=1 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan --output-on-failure -j"$(nproc)" \
