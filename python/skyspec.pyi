@@ -7,7 +7,7 @@ and docs/scene-keys.md. Bad input raises ValueError naming the key; files, OSErr
 tests/python/test_stubs.py checks that these names and parameters are the module's.
 """
 import os
-from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -19,6 +19,9 @@ Numbers = Union[float, Sequence[float], npt.NDArray[np.float64]]
 
 PathLike = Union[str, "os.PathLike[str]"]
 """A file's path: a str or a pathlib.Path (any os.PathLike)."""
+
+Progress = Union[None, bool, Callable[[int, int], Any]]
+"""None, True (a bar with an ETA on stderr) or a callable progress(done, total) called as the work advances."""
 
 class RenderResult:
     """A sky rendered into memory, with what it shows (render() makes it).
@@ -113,6 +116,7 @@ def render(
     scene_file: Optional[PathLike] = None,
     scene_toml: Optional[str] = None,
     overrides: Optional[Dict[str, Any]] = None,
+    progress: Progress = None,
 ) -> RenderResult:
     """Render a scene into memory; no files are written until you ask (RenderResult.write_exr)."""
 
@@ -124,6 +128,7 @@ def aerial_perspective(
     scene_file: Optional[PathLike] = None,
     scene_toml: Optional[str] = None,
     overrides: Optional[Dict[str, Any]] = None,
+    progress: Progress = None,
 ) -> Dict[str, Any]:
     """Aerial perspective for a (height, width) depth pass in metres (depth_is="z": along the view
     axis): transmittance and inscatter (h, w, n), their RGB (h, w, 3), wavelengths_nm, scene_toml."""
@@ -140,6 +145,7 @@ def monte_carlo(
     orders: int = 0,
     irradiance: bool = False,
     stokes: bool = False,
+    progress: Progress = None,
 ) -> Dict[str, Any]:
     """The Monte Carlo reference (all scattering orders) at (azimuth_deg, elevation_deg) probes:
     radiance and standard_error arrays (probes x wavelengths), optionally the diffuse horizontal

@@ -9,9 +9,15 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <Eigen/Core>
+#include <atomic>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <exception>
 #include <filesystem>
 #include <functional>
+#include <future>
+#include <mutex>
 #include <iomanip>
 #include <memory>
 #include <optional>
@@ -22,6 +28,7 @@
 
 #include "skyspec/aerial_perspective.hpp"
 #include "skyspec/camera.hpp"
+#include "skyspec/cancellation.hpp"
 #include "skyspec/coefficient_report.hpp"
 #include "skyspec/colour.hpp"
 #include "skyspec/display.hpp"
@@ -48,6 +55,175 @@ std::string format_number(double v) {
 }
 
 constexpr double kPpvPerPpm = 1.0e-6;
+
+// ---- long calls: Ctrl-C and progress --------------------------------------------------------
+//
+// A long call (render, aerial_perspective, monte_carlo) runs on a thread of its own while the
+// calling thread waits without the GIL, waking every 50 ms to run Python's signal handlers and the
+// progress callback. Python runs its Ctrl-C handler only between bytecodes of the main thread, so
+// a call that held the main thread until it returned would hear Ctrl-C only at its end. On
+// KeyboardInterrupt (or an exception from the callback) the wait asks the library to cancel
+// (skyspec/cancellation.hpp), waits for the worker to stop (within a second: every long loop
+// polls), and raises it. The request is process-wide: it stops every call under way, and is forgotten
+// when the last of them has ended.
+
+constexpr auto kPollInterval = std::chrono::milliseconds(50);
+
+std::mutex g_calls_mutex;
+int g_calls_under_way = 0;
+
+class CallUnderWay {
+ public:
+  CallUnderWay() {
+    const std::lock_guard<std::mutex> lock(g_calls_mutex);
+    if (g_calls_under_way++ == 0) clear_cancellation_request();
+  }
+  ~CallUnderWay() {
+    const std::lock_guard<std::mutex> lock(g_calls_mutex);
+    if (--g_calls_under_way == 0) clear_cancellation_request();
+  }
+  CallUnderWay(const CallUnderWay&) = delete;
+  CallUnderWay& operator=(const CallUnderWay&) = delete;
+};
+
+// Written by the worker (any thread), read by the waiting Python thread.
+struct ProgressCounter {
+  std::atomic<long long> done{0}, total{0};
+  ProgressFn rows() {
+    return [this](int d, int t) {
+      total.store(t, std::memory_order_relaxed);
+      done.store(d, std::memory_order_relaxed);
+    };
+  }
+};
+
+// progress=: None (nothing), a callable progress(done, total), or True: a bar with an ETA on
+// sys.stderr (a terminal or a notebook's output), redrawn at most every half second.
+class ProgressReport {
+ public:
+  ProgressReport(py::object progress, std::string label)
+      : progress_(std::move(progress)), label_(std::move(label)), start_(std::chrono::steady_clock::now()) {
+    if (progress_.is_none() || (py::isinstance<py::bool_>(progress_) && !progress_.cast<bool>())) {
+      kind_ = Kind::None;
+    } else if (py::isinstance<py::bool_>(progress_)) {
+      kind_ = Kind::Bar;
+    } else if (PyCallable_Check(progress_.ptr())) {
+      kind_ = Kind::Callback;
+    } else {
+      throw InputError("progress", py::repr(progress_).cast<std::string>(),
+                       "None, True (a bar on stderr) or a callable progress(done, total)");
+    }
+  }
+
+  // With the GIL. Calls the callback when the counts changed; the bar also while nothing has come
+  // yet (the tables are being built), saying how long it has waited.
+  void update(long long done, long long total, bool last = false) {
+    if (kind_ == Kind::None) return;
+    const bool changed = done != done_ || total != total_;
+    done_ = done, total_ = total;
+    if (kind_ == Kind::Callback) {
+      if (changed && total > 0) progress_(done, total);
+      return;
+    }
+    const auto now = std::chrono::steady_clock::now();
+    if (!last && now - drawn_ < std::chrono::milliseconds(500)) return;
+    drawn_ = now;
+    const double elapsed = std::chrono::duration<double>(now - start_).count();
+    char line[160];
+    if (total <= 0) {
+      std::snprintf(line, sizeof line, "\rskyspec %s: preparing (tables), %.0f s", label_.c_str(), elapsed);
+    } else {
+      const double f = static_cast<double>(done) / static_cast<double>(total);
+      const int filled = static_cast<int>(f * 30.0);
+      std::string bar(static_cast<size_t>(filled), '#');
+      bar.resize(30, '.');
+      if (f >= 1.0 || f <= 0.0)
+        std::snprintf(line, sizeof line, "\rskyspec %s: [%s] %3.0f%%, %.0f s          ", label_.c_str(), bar.c_str(),
+                      100.0 * f, elapsed);
+      else
+        std::snprintf(line, sizeof line, "\rskyspec %s: [%s] %3.0f%%, ETA %.0f s     ", label_.c_str(), bar.c_str(),
+                      100.0 * f, elapsed * (1.0 - f) / f);
+    }
+    write(line);
+  }
+
+  // With the GIL, after a call that returned: the last values, and the bar's line ended.
+  void finish() {
+    if (kind_ == Kind::Bar) {
+      update(done_, total_, true);
+      write("\n");
+    }
+  }
+
+  // With the GIL, after a call that failed or was stopped: the bar's line ended, if one was drawn.
+  void abandon() noexcept {
+    if (kind_ != Kind::Bar || drawn_ == std::chrono::steady_clock::time_point{}) return;
+    try {
+      write("\n");
+    } catch (...) {  // keep the call's own error
+      PyErr_Clear();
+    }
+  }
+
+ private:
+  enum class Kind { None, Callback, Bar };
+  void write(const char* text) {
+    const auto err = py::module_::import("sys").attr("stderr");
+    if (err.is_none()) return;
+    err.attr("write")(text);
+    err.attr("flush")();
+  }
+  py::object progress_;
+  std::string label_;
+  Kind kind_ = Kind::None;
+  long long done_ = -1, total_ = -1;
+  std::chrono::steady_clock::time_point start_, drawn_{};
+};
+
+// Runs work(counter) on a thread of its own (see above); called with the GIL held. Its result, or
+// its exception; KeyboardInterrupt on Ctrl-C.
+template <class Work>
+auto run_interruptible(Work&& work, const py::object& progress, const std::string& label) {
+  ProgressReport report(progress, label);
+  ProgressCounter counter;
+  const CallUnderWay under_way;
+  auto future = std::async(std::launch::async, [&work, &counter] { return work(counter); });
+  const auto stop = [&] {  // after a Python error: the worker asked to stop, and waited for
+    request_cancellation(0);
+    {
+      py::gil_scoped_release release;
+      future.wait();
+    }
+    report.abandon();
+  };
+  for (;;) {
+    {
+      py::gil_scoped_release release;
+      if (future.wait_for(kPollInterval) == std::future_status::ready) break;
+    }
+    if (PyErr_CheckSignals() != 0) {
+      py::error_already_set interrupted;  // takes the KeyboardInterrupt (or another handler's error)
+      stop();
+      throw interrupted;
+    }
+    try {
+      report.update(counter.done.load(std::memory_order_relaxed), counter.total.load(std::memory_order_relaxed));
+    } catch (...) {  // the callback raised
+      const auto raised = std::current_exception();
+      stop();
+      std::rethrow_exception(raised);
+    }
+  }
+  try {
+    auto result = future.get();  // rethrows the worker's exception
+    report.update(counter.done.load(std::memory_order_relaxed), counter.total.load(std::memory_order_relaxed));
+    report.finish();
+    return result;
+  } catch (...) {
+    report.abandon();
+    throw;
+  }
+}
 
 // ---- scenes from Python arguments -----------------------------------------------------------
 
@@ -346,13 +522,11 @@ py::array_t<float> xyz_of(const SpectralImageBuffer& img) {
 }
 
 RenderResult render(const std::string& preset, const std::optional<std::filesystem::path>& scene_file,
-                    const std::optional<std::string>& scene_toml, const std::optional<py::dict>& overrides) {
+                    const std::optional<std::string>& scene_toml, const std::optional<py::dict>& overrides,
+                    const py::object& progress) {
   const Scene scene = load_scene(preset, scene_file, scene_toml, overrides);
-  auto image = std::make_shared<SpectralImageBuffer>();
-  {
-    py::gil_scoped_release release;
-    *image = render_to_memory(scene);
-  }
+  auto image = std::make_shared<SpectralImageBuffer>(run_interruptible(
+      [&scene](ProgressCounter& counter) { return render_to_memory(scene, counter.rows()); }, progress, "render"));
   return {image, xyz_of(*image)};
 }
 
@@ -360,7 +534,8 @@ RenderResult render(const std::string& preset, const std::optional<std::filesyst
 py::dict aerial_perspective_py(const py::array_t<float, py::array::c_style | py::array::forcecast>& depth,
                                const std::string& depth_is, const std::string& preset,
                                const std::optional<std::filesystem::path>& scene_file,
-                               const std::optional<std::string>& scene_toml, const std::optional<py::dict>& overrides) {
+                               const std::optional<std::string>& scene_toml, const std::optional<py::dict>& overrides,
+                               const py::object& progress) {
   if (depth.ndim() != 2 || depth.shape(0) < 1 || depth.shape(1) < 1)
     throw InputError("depth", "an array of " + std::to_string(depth.ndim()) + " dimensions",
                      "a 2-D (height, width) array");
@@ -372,12 +547,12 @@ py::dict aerial_perspective_py(const py::array_t<float, py::array::c_style | py:
     loader.apply_override("camera.height", std::to_string(h), "depth's height");
   });
   std::vector<float> values(depth.data(), depth.data() + depth.size());
-  AerialPerspectiveImage ap;
-  {
-    py::gil_scoped_release release;
-    if (depth_is == "z") values = ray_distances_from_z(scene, values, "depth");
-    ap = aerial_perspective(scene, values, {}, {}, "depth");
-  }
+  if (depth_is == "z") values = ray_distances_from_z(scene, values, "depth");
+  const AerialPerspectiveImage ap = run_interruptible(
+      [&scene, &values](ProgressCounter& counter) {
+        return aerial_perspective(scene, values, counter.rows(), {}, "depth");
+      },
+      progress, "aerial perspective");
   const auto n = static_cast<py::ssize_t>(ap.wavelengths_nm.size());
   auto array3 = [&](const std::vector<float>& v, py::ssize_t depth_n) {
     py::array_t<float> a({h, w, depth_n});
@@ -398,7 +573,7 @@ py::dict aerial_perspective_py(const py::array_t<float, py::array::c_style | py:
 py::dict monte_carlo(const std::string& preset, const std::optional<std::filesystem::path>& scene_file,
                      const std::optional<std::string>& scene_toml, const std::optional<py::dict>& overrides,
                      const py::object& probes, long long paths, unsigned long long seed, int orders, bool irradiance,
-                     bool stokes) {
+                     bool stokes, const py::object& progress) {
   const Scene scene = load_scene(preset, scene_file, scene_toml, overrides);
   std::vector<ReferenceProbe> list;
   if (probes.is_none()) {
@@ -418,11 +593,11 @@ py::dict monte_carlo(const std::string& preset, const std::optional<std::filesys
   settings.max_orders = orders;
   settings.diffuse_irradiance = irradiance;
   settings.stokes = stokes;
-  ReferenceResult r;
-  {
-    py::gil_scoped_release release;
-    r = monte_carlo_reference(scene, list, settings);
-  }
+  const ReferenceResult r = run_interruptible(
+      [&scene, &list, &settings](ProgressCounter& counter) {
+        return monte_carlo_reference(scene, list, settings, counter.rows());
+      },
+      progress, "Monte Carlo");
   const auto k = static_cast<py::ssize_t>(r.probes.size()), n = static_cast<py::ssize_t>(r.wavelengths_nm.size());
   py::array_t<double> radiance({k, n}), error({k, n}), az(k), el(k);
   for (py::ssize_t a = 0; a < k; ++a) {
@@ -710,6 +885,13 @@ wavelengths_nm are read-only views.)")
 
 }  // namespace
 
+// The long calls' common paragraph.
+#define PROGRESS_DOC                                                                                     \
+  "\nprogress: None, True (a bar with an ETA on stderr, in a terminal or a notebook) or a callable\n"     \
+  "progress(done, total), called from this thread as the work advances (rows of the image, estimates of\n" \
+  "the Monte Carlo); an exception it raises stops the call. Ctrl-C (KeyboardInterrupt) stops the call\n"   \
+  "within about a second, also while the scattering tables are built."
+
 PYBIND11_MODULE(skyspec, m) {
   m.doc() =
       "skyspec: a spectral, physically based sky simulator.\n\n"
@@ -729,6 +911,8 @@ PYBIND11_MODULE(skyspec, m) {
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
+    } catch (const Cancelled& e) {  // another thread's Ctrl-C stopped this call too
+      PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
     } catch (const InputError& e) {
       PyErr_SetString(PyExc_ValueError, e.respelled(python_spellings()).what());
     } catch (const IoError& e) {
@@ -845,7 +1029,7 @@ Example: skyspec.derive(pressure_Pa=25000, temperature_K=220)["conditions_raylei
 
   bind_render_result(m);
   m.def("render", &render, py::arg("preset") = "default", py::kw_only(), py::arg("scene_file") = py::none(),
-        py::arg("scene_toml") = py::none(), py::arg("overrides") = py::none(),
+        py::arg("scene_toml") = py::none(), py::arg("overrides") = py::none(), py::arg("progress") = py::none(),
         R"(Render a scene into memory; returns a RenderResult (no files are written until you ask).
 
 The result holds the image (spectral, wavelengths_nm, xyz, rgb), where each pixel looks (directions,
@@ -853,22 +1037,24 @@ valid, pixel(), spectrum_at()), the sun (sun_direction, sun_azimuth_deg, sun_ele
 (exposure_scale, exposure_ev, exposure) and the effective scene (scene_toml, scene), and writes the files
 `skyspec render` would (write_exr(), write_png()). Example:
   img = skyspec.render(overrides={"camera.width": 64, "camera.height": 64, "sun.elevation_deg": 10})
-  img.spectrum_at(azimuth_deg=0, elevation_deg=45); img.write_exr("sky.exr"))");
+  img.spectrum_at(azimuth_deg=0, elevation_deg=45); img.write_exr("sky.exr")
+)" PROGRESS_DOC);
 
   m.def("aerial_perspective", &aerial_perspective_py, py::arg("depth"), py::kw_only(), py::arg("depth_is") = "distance",
         py::arg("preset") = "default", py::arg("scene_file") = py::none(), py::arg("scene_toml") = py::none(),
-        py::arg("overrides") = py::none(),
+        py::arg("overrides") = py::none(), py::arg("progress") = py::none(),
         R"(Aerial perspective (`skyspec aerial`) for a depth pass: depth is a (height, width) array of distances in
 metres along each pixel's ray (depth_is="z": along the camera's view axis); infinity is sky. The scene's camera
 (camera.type, position, look_at, fov) must be the one the depth was rendered with; its size is the array's.
 Returns a dict: wavelengths_nm (n), transmittance and inscatter (float32 (h, w, n); inscatter in
 W m^-2 sr^-1 nm^-1), transmittance_rgb and inscatter_rgb (float32 (h, w, 3), linear Rec.709) and scene_toml.
-A surface image I becomes I * transmittance + inscatter (per wavelength, or per channel with the RGB pair).)");
+A surface image I becomes I * transmittance + inscatter (per wavelength, or per channel with the RGB pair).
+)" PROGRESS_DOC);
 
   m.def("monte_carlo", &monte_carlo, py::arg("preset") = "default", py::kw_only(), py::arg("scene_file") = py::none(),
         py::arg("scene_toml") = py::none(), py::arg("overrides") = py::none(), py::arg("probes") = py::none(),
         py::arg("paths") = 100000, py::arg("seed") = 1, py::arg("orders") = 0, py::arg("irradiance") = false,
-        py::arg("stokes") = false,
+        py::arg("stokes") = false, py::arg("progress") = py::none(),
         R"(The Monte Carlo reference of a scene (`skyspec reference`): sky radiance with every scattering order
 at the camera's position, by backward path tracing independent of the renderer (docs/validation.md).
 
@@ -881,7 +1067,8 @@ Returns a dict: wavelength_nm (n), labels, azimuth_deg, elevation_deg (k), radia
 W m^-2 nm^-1), with stokes `stokes` and `stokes_standard_error` ((k, n, 4): I, Q, U, V in the frame of
 the vertical through the line of sight, Q > 0 polarised in that plane, U > 0 at 45 deg from it towards
 the observer's left; at the zenith from north), and paths, seed, orders, seconds. The same seed gives the same values on any machine
-and number of threads.)");
+and number of threads.
+)" PROGRESS_DOC);
 
   // Jobs run on Dask through the pure-Python driver beside this module (skyspec_jobs.py).
   m.def(

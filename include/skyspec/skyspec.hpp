@@ -6,6 +6,7 @@
 #include "skyspec/atmosphere.hpp"
 #include "skyspec/camera.hpp"
 #include "skyspec/camera_spec.hpp"
+#include "skyspec/cancellation.hpp"
 #include "skyspec/coefficient_report.hpp"
 #include "skyspec/colour.hpp"
 #include "skyspec/density_profile.hpp"

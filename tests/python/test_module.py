@@ -9,6 +9,7 @@ import json
 import os
 import re
 import subprocess
+import sys
 import tempfile
 import unittest
 
@@ -406,10 +407,6 @@ class HostileInput(unittest.TestCase):
         self.assertIn("altitude_m = None", str(e.exception))
 
 
-if __name__ == "__main__":
-    unittest.main()
-
-
 class PythonValues(unittest.TestCase):
     """Issue 41: NumPy's integers and booleans are what they are; paths may be pathlib.Path."""
 
@@ -435,3 +432,72 @@ class PythonValues(unittest.TestCase):
             self.assertTrue((folder / "sky.exr").stat().st_size > 0 and (folder / "sky.png").stat().st_size > 0)
             with self.assertRaisesRegex(ValueError, r"scene_file.*missing\.toml"):
                 skyspec.scene_toml(scene_file=folder / "missing.toml")
+
+
+class LongCalls(unittest.TestCase):
+    """Issues 41 and 42: progress while a call runs, and Ctrl-C that stops it within a second."""
+
+    def test_progress_callback_sees_every_row(self):
+        seen = []
+        img = skyspec.render(overrides={**SMALL_TABLES, "camera.width": 8, "camera.height": 40},
+                             progress=lambda done, total: seen.append((done, total)))
+        self.assertEqual(img.spectral.shape[:2], (40, 8))
+        self.assertTrue(seen, "the callback was never called")
+        self.assertEqual(seen[-1], (40, 40))
+        self.assertEqual([d for d, _ in seen], sorted(d for d, _ in seen))
+        self.assertTrue(all(t == 40 for _, t in seen))
+
+    def test_an_exception_in_the_callback_stops_the_call(self):
+        class Enough(Exception):
+            pass
+
+        def give_up(done, total):
+            raise Enough(f"{done}/{total}")
+
+        with self.assertRaises(Enough):
+            skyspec.render(overrides={**SMALL_TABLES, "camera.width": 8, "camera.height": 40}, progress=give_up)
+        # the library's request is forgotten once the call ended: the next call runs
+        self.assertEqual(skyspec.render(overrides={**SMALL_TABLES, "camera.width": 2, "camera.height": 2,
+                                                   "render.scattering_orders": 1}).spectral.shape[:2], (2, 2))
+
+    def test_a_bad_progress_argument_is_named(self):
+        with self.assertRaisesRegex(ValueError, r"progress.*'yes'.*callable"):
+            skyspec.render(overrides={"camera.width": 2, "camera.height": 2}, progress="yes")
+
+    def test_ctrl_c_stops_a_table_build_within_a_second(self):
+        # Cold scattering-order tables at the default settings take tens of seconds: Ctrl-C two
+        # seconds in must raise KeyboardInterrupt at once and leave no table file behind.
+        import signal
+        import time
+        script = ("import sys, skyspec\n"
+                  "try:\n"
+                  "    skyspec.render(overrides={'camera.width': 16, 'camera.height': 16}, progress=True)\n"
+                  "except KeyboardInterrupt as e:\n"
+                  "    print('KeyboardInterrupt', e, file=sys.stderr); sys.exit(42)\n"
+                  "sys.exit(0)\n")
+        with tempfile.TemporaryDirectory() as cache:
+            env = dict(os.environ, SKYSPEC_CACHE_DIR=cache)
+            child = subprocess.Popen([sys.executable, "-c", script], env=env, stderr=subprocess.PIPE)
+            os.set_blocking(child.stderr.fileno(), False)
+            err = b""
+            deadline = time.monotonic() + 60
+            while b"preparing (tables), 2 s" not in err and time.monotonic() < deadline:
+                time.sleep(0.05)
+                err += child.stderr.read() or b""
+            sent = time.monotonic()
+            child.send_signal(signal.SIGINT)
+            try:
+                child.wait(timeout=10)
+            finally:
+                child.kill()
+            waited = time.monotonic() - sent
+            os.set_blocking(child.stderr.fileno(), True)
+            err = (err + child.stderr.read()).decode()
+            child.stderr.close()
+            self.assertEqual(child.returncode, 42, err)
+            self.assertLess(waited, 1.5, f"Ctrl-C took {waited:.2f} s to stop the call")
+            self.assertEqual(os.listdir(cache), [], "a table file was left behind")
+
+
+if __name__ == "__main__":
+    unittest.main()
