@@ -94,6 +94,9 @@ class SkyRenderer {
   const Vec3& camera_origin_m() const;
   /// Seconds spent building the sky-view table (0 without one).
   double sky_view_table_seconds() const;
+  /// Seconds the constructor took: the atmosphere on the grid and every table it built or loaded
+  /// (optical depth, scattering orders, sky view).
+  double build_seconds() const;
 
   /// Linear Rec.709 from a spectrum: through CIE XYZ (spectral path, Y in cd m^-2 for radiance in
   /// W m^-2 sr^-1 nm^-1) or directly from the 680/550/440 nm values (RGB-fast path).

@@ -17,8 +17,24 @@
 namespace skyspec {
 namespace fs = std::filesystem;
 
-OutputLock::OutputLock(const fs::path& folder, const std::string& name, const std::string& setting)
-    : path_((folder.empty() ? fs::path(".") : folder) / ("." + name + ".lock")) {
+OutputLock::OutputLock(const fs::path& folder, const std::string& name, const std::string& setting) {
+  std::string holder;
+  if (!acquire(folder, name, holder))
+    throw InputError::refused(setting, "another skyspec run" +
+                                           (holder.empty() ? std::string() : " (process " + holder + ")") +
+                                           " is writing the outputs named \"" + name + "\" in " + folder.string() +
+                                           "; wait for it to finish or choose another --out or --name");
+}
+
+std::unique_ptr<OutputLock> OutputLock::try_lock(const fs::path& folder, const std::string& name) {
+  std::unique_ptr<OutputLock> lock(new OutputLock());
+  std::string holder;
+  if (!lock->acquire(folder, name, holder)) return nullptr;
+  return lock;
+}
+
+bool OutputLock::acquire(const fs::path& folder, const std::string& name, std::string& holder) {
+  path_ = (folder.empty() ? fs::path(".") : folder) / ("." + name + ".lock");
   for (int attempt = 0; attempt < 100; ++attempt) {
     // Never through a symbolic link (O_NOFOLLOW: ELOOP), never anything but a regular file: a
     // link planted in the output folder would otherwise have its target truncated.
@@ -36,16 +52,12 @@ OutputLock::OutputLock(const fs::path& folder, const std::string& name, const st
     }
     if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
       const int error_number = errno;
-      std::string holder;
       if (error_number == EWOULDBLOCK) std::getline(std::ifstream(path_), holder);
       ::close(fd_);
       fd_ = -1;
       if (error_number != EWOULDBLOCK)
         throw IoError("cannot lock '" + path_.string() + "': " + std::strerror(error_number));
-      throw InputError::refused(setting, "another skyspec run" +
-                                             (holder.empty() ? std::string() : " (process " + holder + ")") +
-                                             " is writing the outputs named \"" + name + "\" in " + folder.string() +
-                                             "; wait for it to finish or choose another --out or --name");
+      return false;
     }
     // Locked: but if the holder before us removed the file meanwhile, ours is no longer the file
     // at that path and a third run could lock a new one. Then start again.
@@ -56,7 +68,7 @@ OutputLock::OutputLock(const fs::path& folder, const std::string& name, const st
       // The process id, for the message of a run that finds the lock taken; not writing it is harmless.
       const std::string pid = std::to_string(::getpid()) + "\n";
       if (::ftruncate(fd_, 0) == 0) static_cast<void>(::write(fd_, pid.data(), pid.size()) > 0);
-      return;
+      return true;
     }
     ::close(fd_);
     fd_ = -1;

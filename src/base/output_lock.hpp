@@ -10,6 +10,7 @@
 #pragma once
 
 #include <filesystem>
+#include <memory>
 #include <string>
 
 namespace skyspec {
@@ -19,11 +20,17 @@ class OutputLock {
   /// Locks the outputs `name` in `folder`; throws InputError naming `setting` (e.g.
   /// "output.name") when another process holds them, IoError when the lock cannot be made.
   OutputLock(const std::filesystem::path& folder, const std::string& name, const std::string& setting);
+  /// The same lock, or null when another process holds it (IoError when it cannot be made).
+  static std::unique_ptr<OutputLock> try_lock(const std::filesystem::path& folder, const std::string& name);
   ~OutputLock();
   OutputLock(const OutputLock&) = delete;
   OutputLock& operator=(const OutputLock&) = delete;
 
  private:
+  OutputLock() = default;
+  /// Takes the lock; false when another process holds it (the holder's process id in `holder`).
+  bool acquire(const std::filesystem::path& folder, const std::string& name, std::string& holder);
+
   std::filesystem::path path_;
   int fd_ = -1;
 };

@@ -5,6 +5,7 @@
 #include <sys/prctl.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <csignal>
 #include <cstring>
 
@@ -13,6 +14,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "base/atomic_file.hpp"
@@ -21,6 +23,7 @@
 #include "interrupt.hpp"
 #include "job/job_collect.hpp"
 #include "job/job_plan.hpp"
+#include "job/job_tables.hpp"
 #include "job/task_record.hpp"
 #include "progress.hpp"
 #include "render/render_budget.hpp"
@@ -109,12 +112,22 @@ int run_plan(const JobOptions& o) {
                             plan.frame_tasks.size() / plan.tasks.size();
   }
   RenderEstimate estimate = estimate_render(rp);
+  // Every distinct atmosphere builds its scattering-order tables once (cached), every task its
+  // atmosphere, sun table and sky-view table.
+  const JobTableEstimate tables = estimate_job_tables(plan);
+  std::cout << "tables: " << tables.describe() << "\n";
+  estimate.table_seconds = tables.build_seconds;
   if (job.exr || job.png) {
     const SkyRenderer light(scene_for_estimate(first));
-    estimate.table_seconds = estimate_table_seconds(first, light);
+    *estimate.table_seconds +=
+        estimate_frame_table_seconds(first, light) * static_cast<double>(plan.tasks.size());
     estimate.seconds = measure_render_seconds(light, rp);
   }
   std::cout << "estimate: " << estimate.describe() << " (" << rp.settings() << ")\n";
+  if (!tables.cache_directory.empty())
+    if (const auto free = available_disk_bytes(tables.cache_directory); free && tables.cache_bytes > *free)
+      std::cout << "warning: the tables would add " << format_bytes(tables.cache_bytes) << " to "
+                << tables.cache_directory.string() << " but it has " << format_bytes(*free) << " free\n";
   for (const auto& p : estimate.problems()) std::cout << "warning: " << p << "\n";
   return kExitOk;
 }
@@ -124,28 +137,56 @@ int run_here(const JobOptions& o, const JobPlan& plan, TaskRange range, bool col
   ensure_writable_directory(plan.job.output_directory, "job.output");
   std::filesystem::create_directories(plan.task_directory());
   ProgressBar bar("job " + plan.job.name, o.quiet);
-  int ran = 0, skipped = 0, failed = 0;
+  int ran = 0, skipped = 0, failed = 0, elsewhere_done = 0, finished = 0;
+  const auto run_locked = [&](const JobTask& task) {  // holding the task's lock
+    std::string why;
+    if (task_done(plan, task, why)) {  // finished by another run since we looked
+      ++skipped;
+      return;
+    }
+    const auto record = run_task(plan, task, o.threads);
+    ++ran;
+    if (record.value("status", "") != "ok") {
+      ++failed;
+      std::cerr << "skyspec: task " << task.id() << " failed: " << record.value("error", std::string()) << "\n";
+    }
+  };
+  // Tasks another run holds are taken up last, when their lock is free: done by then (skipped), or
+  // run here if that run stopped before finishing them.
+  std::vector<int> held_elsewhere;
   for (int k = range.first; k < range.last; ++k) {
     throw_if_interrupted();
     const JobTask& task = plan.tasks[k];
     std::string why;
     if (task_done(plan, task, why)) {
       ++skipped;
+    } else if (const auto lock = try_lock_task(plan, task)) {
+      run_locked(task);
     } else {
-      const auto record = run_task(plan, task, o.threads);
-      ++ran;
-      if (record.value("status", "") != "ok") {
-        ++failed;
-        std::cerr << "skyspec: task " << task.id() << " failed: " << record.value("error", std::string()) << "\n";
-      }
+      held_elsewhere.push_back(k);
+      continue;
     }
-    bar.update(k - range.first + 1, range.size());
+    bar.update(++finished, range.size());
+  }
+  for (const int k : held_elsewhere) {
+    const JobTask& task = plan.tasks[k];
+    std::unique_ptr<OutputLock> lock;
+    while (!(lock = try_lock_task(plan, task))) {
+      throw_if_interrupted();
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    const int before = skipped;
+    run_locked(task);
+    elsewhere_done += skipped - before;
+    bar.update(++finished, range.size());
   }
   bar.finish();
   if (!o.quiet)
     std::cout << (range.size() > 0 ? "tasks " + std::to_string(range.first) + "-" + std::to_string(range.last - 1)
                                    : std::string("no tasks (this shard is empty: the job has fewer tasks than shards)"))
-              << ": ran " << ran << ", " << skipped << " already done, " << failed << " failed\n";
+              << ": ran " << ran << ", " << skipped << " already done"
+              << (elsewhere_done ? " (" + std::to_string(elsewhere_done) + " by another run meanwhile)" : std::string())
+              << ", " << failed << " failed\n";
   if (collect) {
     const JobSummary summary = collect_job(plan);
     if (!o.quiet)

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <csetjmp>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <string>
 
@@ -129,9 +130,12 @@ bool encode_display_png(FILE* out, const DisplayPngLayout& layout, const png_byt
 
 }  // namespace
 
-void write_png_display(const std::filesystem::path& path, int width, int height, const std::vector<float>& code_values,
-                       int bit_depth, PngColourTag tag, const std::vector<std::pair<std::string, std::string>>& text) {
-  const std::string where = "PNG '" + path.string() + "': ";
+namespace {
+
+// Checks the arguments and quantises every value first, so that a bad value leaves no file behind:
+// rows of width * 3 samples of bit_depth bits (16-bit samples big-endian, as PNG stores them).
+std::vector<png_byte> quantised_pixels(const std::string& where, int width, int height,
+                                       const std::vector<float>& code_values, int bit_depth) {
   if (width <= 0 || height <= 0)
     throw IoError(where + "image size " + std::to_string(width) + " x " + std::to_string(height) + " must be positive");
   if (bit_depth != 8 && bit_depth != 16)
@@ -140,11 +144,6 @@ void write_png_display(const std::filesystem::path& path, int width, int height,
   if (code_values.size() != values)
     throw IoError(where + std::to_string(code_values.size()) + " values given for " + std::to_string(width) + " x " +
                   std::to_string(height) + " RGB pixels");
-  for (const auto& [key, value] : text)
-    if (key.empty() || key.size() > 79)
-      throw IoError(where + "text keyword '" + key + "' must have 1 to 79 characters");
-
-  // Quantise everything first: a bad value leaves no file behind.
   const size_t bytes_per_sample = static_cast<size_t>(bit_depth / 8);
   const double max_code = bit_depth == 8 ? 255.0 : 65535.0;
   std::vector<png_byte> pixels(values * bytes_per_sample);
@@ -161,6 +160,18 @@ void write_png_display(const std::filesystem::path& path, int width, int height,
       pixels[2 * i + 1] = static_cast<png_byte>(code & 0xff);
     }
   }
+  return pixels;
+}
+
+}  // namespace
+
+void write_png_display(const std::filesystem::path& path, int width, int height, const std::vector<float>& code_values,
+                       int bit_depth, PngColourTag tag, const std::vector<std::pair<std::string, std::string>>& text) {
+  const std::string where = "PNG '" + path.string() + "': ";
+  for (const auto& [key, value] : text)
+    if (key.empty() || key.size() > 79)
+      throw IoError(where + "text keyword '" + key + "' must have 1 to 79 characters");
+  const std::vector<png_byte> pixels = quantised_pixels(where, width, height, code_values, bit_depth);
 
   AtomicOutputFile file(path);
   FILE* out = std::fopen(file.temporary_path().c_str(), "wb");
@@ -183,6 +194,23 @@ void write_png_display(const std::filesystem::path& path, int width, int height,
   if (!stream_ok || !closed)
     throw IoError(where + "cannot write '" + file.temporary_path().string() + "': " + std::strerror(errno));
   file.commit();
+}
+
+std::size_t encoded_png_display_bytes(int width, int height, const std::vector<float>& code_values, int bit_depth,
+                                      PngColourTag tag) {
+  const std::string where = "PNG (in memory): ";
+  const std::vector<png_byte> pixels = quantised_pixels(where, width, height, code_values, bit_depth);
+  char* buffer = nullptr;
+  size_t size = 0;
+  FILE* out = open_memstream(&buffer, &size);
+  if (!out) throw IoError(where + "cannot open a memory stream: " + std::strerror(errno));
+  PngErrorMessage error;
+  const DisplayPngLayout layout{width, height, bit_depth, tag, nullptr, 0};
+  const bool encoded = encode_display_png(out, layout, pixels.data(), &error);
+  std::fclose(out);  // sets buffer and size
+  std::free(buffer);
+  if (!encoded) throw IoError(where + error.text);
+  return size;
 }
 
 namespace {

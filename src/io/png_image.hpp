@@ -1,6 +1,7 @@
 // PNG output: 8-bit sRGB previews and display-encoded 8/16-bit images, written atomically.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 #include <map>
 #include <string>
@@ -23,6 +24,12 @@ void write_png_srgb8(const std::filesystem::path& path, int width, int height, c
 void write_png_display(const std::filesystem::path& path, int width, int height, const std::vector<float>& code_values,
                        int bit_depth, PngColourTag tag,
                        const std::vector<std::pair<std::string, std::string>>& text = {});
+
+/// The bytes write_png_display would write for these values (without text chunks), encoded into
+/// memory: the same quantisation and libpng compression, no file (the render budget times it on a
+/// sample of rows). Throws IoError as write_png_display does.
+std::size_t encoded_png_display_bytes(int width, int height, const std::vector<float>& code_values, int bit_depth,
+                                      PngColourTag tag);
 
 /// Reads a PNG completely (every row decoded: libpng checks each chunk's CRC and the image
 /// data's Adler-32) and returns its text chunks (keyword -> text). Throws IoError naming the file

@@ -82,6 +82,10 @@ std::string task_scene_digest(const Scene& scene) {
   return sha256_hex(scene_to_toml(scene, SceneTomlKeys::Recorded));
 }
 
+std::unique_ptr<OutputLock> try_lock_task(const JobPlan& plan, const JobTask& task) {
+  return OutputLock::try_lock(plan.task_directory(), task.id() + ".task");
+}
+
 json run_task(const JobPlan& plan, const JobTask& task, int threads) {
   const auto t0 = std::chrono::steady_clock::now();
   json record = {{"task", task.index},           {"id", task.id()},

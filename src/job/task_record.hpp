@@ -8,9 +8,11 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "base/output_lock.hpp"
 #include "job/job_plan.hpp"
 
 namespace skyspec {
@@ -24,6 +26,12 @@ std::filesystem::path task_record_path(const JobPlan& plan, const JobTask& task)
 /// record cannot be written (IoError) or when the run is cancelled (skyspec::Cancelled). `threads`
 /// > 0 renders on that many threads (render and EXR compression) instead of the scene's.
 nlohmann::json run_task(const JobPlan& plan, const JobTask& task, int threads = 0);
+
+/// The lock a run holds on a task while it runs and records it ("<task folder>/.<id>.task.lock"),
+/// or null when another process holds it: two runs of the same tasks at once (a resubmitted array
+/// job, a second `job run`) each run a task only when they hold its lock, and take up the tasks the
+/// other holds last (waiting for its lock: done by then, or run again if the other died).
+std::unique_ptr<OutputLock> try_lock_task(const JobPlan& plan, const JobTask& task);
 
 /// Whether the task is done (see above); `why` says what is missing or wrong otherwise.
 bool task_done(const JobPlan& plan, const JobTask& task, std::string& why);

@@ -64,6 +64,7 @@ struct SkyRenderer::Impl {
   std::unique_ptr<Camera> camera;
   std::unique_ptr<SkyViewTable> sky_view;  // null: every pixel is marched
   double sky_view_seconds = 0.0;           // its build time
+  double build_seconds = 0.0;              // the constructor's wall time
   Vec3 sun_dir;
   Spectrum sun_irradiance;
   double sun_radius_rad;
@@ -182,8 +183,10 @@ struct SkyRenderer::Impl {
 SkyRenderer::SkyRenderer(const Scene& scene) {
   // The tables (sun columns, scattering orders, sky view) are built in parallel too: within
   // render.threads, like the image.
+  const auto start = std::chrono::steady_clock::now();
   tbb::task_arena arena(thread_count(scene));
   arena.execute([&] { impl_ = std::make_unique<Impl>(scene); });
+  impl_->build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 SkyRenderer::~SkyRenderer() = default;
 const Scene& SkyRenderer::scene() const { return impl_->scene; }
@@ -197,6 +200,7 @@ const Vec3& SkyRenderer::sun_direction() const { return impl_->sun_dir; }
 const Vec3& SkyRenderer::camera_origin_m() const { return impl_->camera->origin_m(); }
 double SkyRenderer::sun_angular_radius_rad() const { return impl_->sun_radius_rad; }
 double SkyRenderer::sky_view_table_seconds() const { return impl_->sky_view_seconds; }
+double SkyRenderer::build_seconds() const { return impl_->build_seconds; }
 
 Spectrum SkyRenderer::transmittance(const Vec3& dir) const {
   Spectrum t(impl_->grid.size());

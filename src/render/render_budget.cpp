@@ -11,6 +11,8 @@
 #include <sstream>
 #include <system_error>
 
+#include "colour/display_pipeline.hpp"
+#include "io/png_image.hpp"
 #include "io/spectral_exr.hpp"
 #include "io/spectral_exr_encode.hpp"
 #include "render/scene_tables.hpp"
@@ -148,8 +150,7 @@ std::string RenderEstimate::describe() const {
   text += ", peak memory about " + format_bytes(peak_memory_bytes);
   if (memory_available_bytes) text += " (" + format_bytes(*memory_available_bytes) + " available)";
   if (seconds) text += ", about " + format_duration(*seconds) + " of rendering";
-  if (table_seconds)
-    text += *table_seconds > 0 ? ", tables about " + format_duration(*table_seconds) : ", tables cached";
+  if (table_seconds) text += ", tables about " + format_duration(*table_seconds);
   return text;
 }
 
@@ -192,7 +193,14 @@ RenderEstimate estimate_render(const RenderPlan& plan) {
 
 Scene scene_for_estimate(const Scene& scene) {
   Scene light = scene;
-  light.render.scattering_orders = 1;
+  // The higher orders from the smallest tables allowed (4 x 4 entries of order 2, built in a few
+  // milliseconds and never cached): a look-up costs what it costs in the real tables (the same
+  // degree, wavelengths and polarisation), so the sky-view table's entries and the marched pixels
+  // are timed with it.
+  light.render.scattering_orders = std::min(scene.render.scattering_orders, 2);
+  light.render.ms_altitude_samples = 4;
+  light.render.ms_sun_samples = 4;
+  light.render.cache_tables = false;
   light.render.sky_view_zenith_samples = std::min(scene.render.sky_view_zenith_samples, 32);
   light.render.sky_view_azimuth_samples = std::min(scene.render.sky_view_azimuth_samples, 32);
   return light;
@@ -211,13 +219,17 @@ double estimate_scattering_orders_seconds(const Scene& scene) {
   });
 }
 
-double estimate_table_seconds(const Scene& scene, const SkyRenderer& estimate_renderer) {
+double estimate_frame_table_seconds(const Scene& scene, const SkyRenderer& estimate_renderer) {
   const Scene& light = estimate_renderer.scene();
   const double full = static_cast<double>(scene.render.sky_view_zenith_samples) * scene.render.sky_view_azimuth_samples;
   const double built =
       static_cast<double>(light.render.sky_view_zenith_samples) * light.render.sky_view_azimuth_samples;
-  const double sky_view = estimate_renderer.sky_view_table_seconds() * std::max(0.0, full / built - 1.0);
-  return estimate_scattering_orders_seconds(scene) + sky_view;
+  const double rest_of_sky_view = estimate_renderer.sky_view_table_seconds() * std::max(0.0, full / built - 1.0);
+  return estimate_renderer.build_seconds() + rest_of_sky_view;
+}
+
+double estimate_table_seconds(const Scene& scene, const SkyRenderer& estimate_renderer) {
+  return estimate_scattering_orders_seconds(scene) + estimate_frame_table_seconds(scene, estimate_renderer);
 }
 
 double measure_render_seconds(const SkyRenderer& renderer, const RenderPlan& plan) {
@@ -289,7 +301,30 @@ double measure_render_seconds(const SkyRenderer& renderer, const RenderPlan& pla
     detail::encode_spectral_rows(w, rows, renderer.grid().nanometres(), meta, band_spectral.data(), band_rgb.data());
     write = (process_cpu_seconds() - before) / rows;
   }
-  return (cpu / static_cast<double>(rendered) + write / w) * work / threads;
+  // And the PNG, which the render makes on one thread once the image is done: the row through the
+  // display pipeline (skyspec's config, its default display and view, at the plan's bit depth) and
+  // libpng's compression, into memory, as 16 rows each shifted along by a few pixels (identical rows
+  // would compress to nothing under libpng's "Up" filter), exposed to a mean of 0.18.
+  double png = 0.0;
+  if (plan.png) {
+    const int rows = 16;
+    double mean = 0.0;
+    for (size_t i = 1; i < rgb.size(); i += 3) mean += rgb[i];
+    mean /= std::max(w, 1);
+    std::vector<float> band(rgb.size() * rows);
+    for (int r = 0; r < rows; ++r)
+      for (int x = 0; x < w; ++x)
+        for (int c = 0; c < 3; ++c)
+          band[(static_cast<size_t>(r) * w + x) * 3 + c] = rgb[static_cast<size_t>((x + 7 * r) % w) * 3 + c];
+    DisplaySettings settings;
+    settings.png_bit_depth = plan.png_bit_depth;
+    const DisplayPipeline pipeline(settings);
+    const double before = thread_cpu_seconds();
+    const auto codes = pipeline.encode(std::move(band), mean > 0.0 && std::isfinite(mean) ? 0.18 / mean : 1.0);
+    encoded_png_display_bytes(w, rows, codes, plan.png_bit_depth, pipeline.png_tag());
+    png = (thread_cpu_seconds() - before) / (static_cast<double>(rows) * w);
+  }
+  return (cpu / static_cast<double>(rendered) + write / w) * work / threads + png * work;
 }
 
 void refuse_if_over_budget(const RenderEstimate& estimate, const std::string& force_flag) {

@@ -72,7 +72,7 @@ struct RenderEstimate {
   std::optional<double> seconds;                        ///< wall time of the image; unknown until measured
   std::optional<double> table_seconds;                  ///< wall time of tables not yet built, if estimated
   /// "outputs up to 46 MB (74 GB free), peak memory about 6 MB (22 GB available), about 2.1 s of
-  /// rendering[, tables about 40 s]".
+  /// rendering[, tables about 40 s]" (the tables: everything before the first pixel).
   std::string describe() const;
   /// One sentence per limit exceeded: output > free disk, memory > MemAvailable, time > 24 h.
   std::vector<std::string> problems() const;
@@ -85,24 +85,29 @@ RenderEstimate estimate_render(const RenderPlan& plan);
 /// it: render_rows on one or two of the image's rows, scaled to width x height x frames / threads.
 /// When a row would take over a second even so, the cost of radiance() (every pixel marched),
 /// timed on up to 64 pixels spread over the image, is scaled instead. With a spectral EXR, the
-/// cost of compressing a rendered row into one (encoded in memory) is added. Building the
-/// renderer and the PNG are not included. The sample is a row or two, so the estimate costs a
+/// cost of compressing a rendered row into one (encoded in memory) is added; with a PNG, the cost
+/// of the display pipeline and libpng's compression on 16 rows (in memory, serial as in the render).
+/// Building the renderer is not included (estimate_table_seconds). The sample is a row or two, so the estimate costs a
 /// small fraction of a render; with many wavelengths most of it is the compression of the sample
 /// (docs/performance.md).
 double measure_render_seconds(const SkyRenderer& renderer, const RenderPlan& plan);
 
-/// The scene as `render --dry-run` builds it, so that nothing expensive is computed: single
-/// scattering only (no scattering-order tables) and a sky-view table of at most 32 x 32 entries.
-/// The cost of a pixel measured on its renderer is that of the render (a table look-up, or a
-/// march), less the look-ups of the higher orders.
+/// The scene as `render --dry-run` builds it, so that nothing expensive is computed: the higher
+/// orders from the smallest tables allowed (4 x 4 entries of order 2, not cached) and a sky-view
+/// table of at most 32 x 32 entries. The cost of a pixel or a sky-view entry measured on its
+/// renderer is that of the render's (a look-up in tables of the same degree and wavelengths).
 Scene scene_for_estimate(const Scene& scene);
 /// Seconds to build the scene's scattering-order tables (render.scattering_orders >= 2), or 0
 /// when they are cached (in this process or on disk): ScatteringOrders::estimate_build_seconds,
 /// which builds and times 16 entries of one order. Builds the scene's sun table to do so.
 double estimate_scattering_orders_seconds(const Scene& scene);
-/// Seconds to build the tables of `scene` that `estimate_renderer` (built from
-/// scene_for_estimate(scene)) left out: the scattering orders, and the rest of the sky-view table
-/// (its build time scaled by the ratio of the table sizes).
+/// Seconds to build what every frame builds anew, measured on `estimate_renderer` (built from
+/// scene_for_estimate(scene)): its own construction (the atmosphere on the grid, the sun's
+/// optical-depth table, a small sky-view table) and the rest of the scene's sky-view table, its
+/// build time scaled by the ratio of the table sizes (the sky-view table depends on the sun).
+double estimate_frame_table_seconds(const Scene& scene, const SkyRenderer& estimate_renderer);
+/// Seconds to build every table of `scene`: estimate_frame_table_seconds and the scattering
+/// orders (estimate_scattering_orders_seconds; 0 when cached).
 double estimate_table_seconds(const Scene& scene, const SkyRenderer& estimate_renderer);
 
 /// The neutral id of the setting that renders anyway (the CLI's --force).

@@ -71,6 +71,22 @@ run_expecting_error empty_tasks 2 '--tasks = "" is not allowed' "$work/none" "$s
 "$skyspec" job run "${job[@]}" --shard 1/13 --no-collect >"$work/stdout" 2>&1
 grep -q "^no tasks (this shard is empty" "$work/stdout" && ok || bad "empty shard: $(cat "$work/stdout")"
 
+# 16. Two `job run` of the same tasks at once (a resubmitted array job): each task runs once, in one
+# of them; neither records a spurious failure; both exit 0 and both collect every task.
+both=("$work/small.toml" --out "$work/K" --shard 1/1 --threads 1)
+"$skyspec" job run "${both[@]}" >"$work/run1" 2>&1 &
+first=$!
+"$skyspec" job run "${both[@]}" >"$work/run2" 2>&1
+rc2=$?
+wait $first
+rc1=$?
+[ "$rc1" = 0 ] && [ "$rc2" = 0 ] && ok || bad "concurrent runs exited $rc1 and $rc2: $(tail -3 "$work/run1" "$work/run2" 2>&1)"
+ran=$(cat "$work/run1" "$work/run2" | sed -n 's/^tasks 0-11: ran \([0-9]*\),.*/\1/p' | paste -sd+ | bc)
+[ "$ran" = 12 ] && ok || bad "the two runs ran $ran tasks between them, not 12: $(cat "$work/run1" "$work/run2")"
+[ "$(grep -c '"status":"ok"' "$work/K/manifest.jsonl")" = 12 ] && ok || bad "concurrent runs: $(grep -c ok "$work/K/manifest.jsonl") ok"
+! grep -q "failed: " "$work/run1" "$work/run2" && ok || bad "a spurious failure: $(grep "failed: " "$work/run1" "$work/run2")"
+! find "$work/K" -name '.*lock' | grep -q . && ok || bad "locks left: $(find "$work/K" -name '.*lock')"
+
 # The pristine records collect cleanly again (the checks refuse only what is wrong).
 "$skyspec" job collect "${job[@]}" --quiet 2>"$work/stderr" && ok || bad "pristine records: $(cat "$work/stderr")"
 

@@ -1,0 +1,108 @@
+#include "job/job_tables.hpp"
+
+#include <map>
+#include <set>
+#include <tuple>
+#include <utility>
+
+#include "render/render_budget.hpp"
+#include "render/scene_tables.hpp"
+#include "transport/scattering_tables_cache.hpp"
+
+namespace skyspec {
+namespace {
+
+// What a build's time depends on besides the atmosphere's values: the tables' settings, the sun
+// table's resolution, the wavelengths, the view segments and the threads.
+using BuildCost = std::tuple<int, int, int, int, int, bool, int, int, int, int, int, int>;
+
+BuildCost build_cost(const Scene& scene) {
+  const auto ms = multiple_scattering_settings(scene);
+  const auto sun = sun_table_resolution(scene);
+  return {ms.orders,
+          ms.altitude_samples,
+          ms.sun_samples,
+          ms.view_segments,
+          ms.angular_degree,
+          ms.polarisation,
+          sun.n_r,
+          sun.n_mu,
+          sun.segments,
+          make_wavelength_grid(scene).size(),
+          scene.render.view_segments,
+          scene.render.threads};
+}
+
+std::string plural(int n, const std::string& one, const std::string& many) {
+  return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
+}  // namespace
+
+std::string JobTableEstimate::describe() const {
+  if (distinct == 0) return "none (single scattering)";
+  std::string text = plural(distinct, "distinct set", "distinct sets") + " of scattering-order tables (" +
+                     std::to_string(cached) + " cached): ";
+  if (builds == 0) return text + "nothing to build";
+  text += plural(builds, "build", "builds") + ", about " + format_duration(build_seconds);
+  if (cache_directory.empty())
+    text += ", not kept (render.cache_tables = false)";
+  else
+    text += ", " + format_bytes(cache_bytes) + " added to " + cache_directory.string();
+  return text;
+}
+
+JobTableEstimate estimate_job_tables(const JobPlan& plan) {
+  JobTableEstimate out;
+  // One scene per (site, parameter set): the tables do not depend on the date-time or the sun.
+  std::map<std::pair<int, int>, std::pair<std::uint64_t, bool>> key_of;  // -> (key hash, disk cache on)
+  std::map<std::uint64_t, const JobTask*> first_task;                   // a task of each distinct set
+  std::set<std::pair<int, std::uint64_t>> chunk_sets;                    // (chunk, set) without a disk cache
+  for (const JobTask& task : plan.tasks) {
+    const auto pair = std::make_pair(task.site, task.combination);
+    auto found = key_of.find(pair);
+    if (found == key_of.end()) {
+      const Scene scene = task_scene(plan, task);
+      if (scene.render.scattering_orders < 2) {
+        found = key_of.emplace(pair, std::make_pair(std::uint64_t{0}, false)).first;
+      } else {
+        const auto key = scattering_tables_key(scene);
+        found = key_of.emplace(pair, std::make_pair(key.hash, scene.render.cache_tables)).first;
+        first_task.emplace(key.hash, &task);
+      }
+    }
+    const auto [hash, disk] = found->second;
+    if (hash != 0 && !disk) chunk_sets.emplace(task.index / plan.job.tasks_per_chunk, hash);
+  }
+  out.distinct = static_cast<int>(first_task.size());
+  std::map<BuildCost, double> seconds_of;  // measured once per distinct cost
+  std::map<std::uint64_t, int> builds_of;
+  for (const auto& [hash, task] : first_task) {
+    const Scene scene = task_scene(plan, *task);
+    const auto key = scattering_tables_key(scene);
+    if (scattering_orders_cached(key, scene.render.cache_tables)) {
+      ++out.cached;
+      continue;
+    }
+    int builds = 1;
+    if (scene.render.cache_tables) {
+      out.cache_directory = table_cache_directory();
+      if (!out.cache_directory.empty())
+        out.cache_bytes += ScatteringOrders::table_bytes(multiple_scattering_settings(scene),
+                                                         make_wavelength_grid(scene).size()) +
+                           key.inputs.size();
+    } else {
+      builds = 0;
+      for (const auto& [chunk, h] : chunk_sets) builds += h == hash ? 1 : 0;
+    }
+    const auto cost = build_cost(scene);
+    auto measured = seconds_of.find(cost);
+    if (measured == seconds_of.end())
+      measured = seconds_of.emplace(cost, estimate_scattering_orders_seconds(scene)).first;
+    out.builds += builds;
+    out.build_seconds += builds * measured->second;
+  }
+  return out;
+}
+
+}  // namespace skyspec

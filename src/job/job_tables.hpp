@@ -1,0 +1,38 @@
+// What a job's tasks ask of the scattering-order tables, before any task runs: how many distinct
+// sets of tables they use (one per atmosphere and table settings: scattering_tables_key), how many
+// of those must still be built, the time that takes and the bytes the disk cache gains.
+//
+// A job that sweeps an atmosphere key (random aerosol loads, albedos) builds a set per sample:
+// tens of seconds and about 56 MB each at the default settings. The sun, the date-time, the camera
+// and the outputs do not change the tables, so the sets are found from one scene per (site,
+// parameter set) pair; the build time is measured once per distinct cost (table settings,
+// wavelengths, view segments) with ScatteringOrders::estimate_build_seconds and multiplied.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "job/job_plan.hpp"
+
+namespace skyspec {
+
+struct JobTableEstimate {
+  int distinct = 0;  ///< distinct sets of scattering-order tables among the tasks (0: single scattering)
+  int cached = 0;    ///< of them, already in this process's memory or the disk cache
+  /// Builds the job will do: one per set not cached when the disk cache is on (the tasks share it);
+  /// without it (render.cache_tables = false) one per set per chunk that uses it (each chunk is a process).
+  int builds = 0;
+  double build_seconds = 0.0;     ///< wall time of those builds, on the threads the tasks use
+  std::uint64_t cache_bytes = 0;  ///< what the disk cache gains (0 without it)
+  std::filesystem::path cache_directory;  ///< empty without a disk cache
+  /// "2 distinct sets (1 cached): 1 build, about 40 s, 56 MB added to ~/.cache/skyspec", or
+  /// "none (single scattering)".
+  std::string describe() const;
+};
+
+/// The estimate for every task of the plan (builds a few sun tables and times 16 entries per
+/// distinct cost: about a second each).
+JobTableEstimate estimate_job_tables(const JobPlan& plan);
+
+}  // namespace skyspec
