@@ -213,7 +213,7 @@ def rayleigh_cross_section(
     wavelengths_nm: Numbers, refractive_index: str = "peck-reeder", co2_ppm: Optional[float] = None
 ) -> npt.NDArray[np.float64]:
     """Rayleigh cross-section of dry air per molecule, m^2 (Bodhaine et al. 1999 eq. 2), 230-1690 nm (the refractive index formula's range);
-    co2_ppm defaults to the scenes' 420 ppm."""
+    shaped like wavelengths_nm (a number gives shape ()); co2_ppm defaults to the scenes' 420 ppm."""
 
 def scene_toml(
     preset: str = "default",

@@ -1009,21 +1009,24 @@ Example: skyspec.derive(pressure_Pa=25000, temperature_K=220)["conditions_raylei
         in.co2_ppv = co2_ppm ? *co2_ppm * kPpvPerPpm : default_scene().atmosphere.rayleigh.derivation.co2_ppv;
         if (co2_ppm && !(*co2_ppm >= 0.0 && *co2_ppm <= 1e6))
           throw InputError("co2_ppm", format_number(*co2_ppm), "0 to 1e6 ppm");
-        std::vector<double> s;
         const RefractiveIndexValidity valid = validity(in.formula);
-        for (double l : numbers_arg(wavelengths_nm, "wavelengths_nm")) {
+        const auto nm = numbers_array(wavelengths_nm, "wavelengths_nm");
+        py::array_t<double> s(nm.request().shape);  // shaped like the wavelengths (a scalar: shape ())
+        for (py::ssize_t i = 0; i < nm.size(); ++i) {
+          const double l = nm.data()[i];
           // The refractive index formula's range, as in the coefficient report.
           if (!std::isfinite(l) || l < valid.min_nm || l > valid.max_nm)
             throw InputError("wavelengths_nm", format_number(l),
                              "wavelengths from " + format_number(valid.min_nm) + " to " + format_number(valid.max_nm) +
                                  " nm, " + valid.reason);
-          s.push_back(rayleigh_cross_section_m2(l, in));
+          s.mutable_data()[i] = rayleigh_cross_section_m2(l, in);
         }
-        return array1(s);
+        return s;
       },
       py::arg("wavelengths_nm"), py::arg("refractive_index") = "peck-reeder", py::arg("co2_ppm") = py::none(),
       "Rayleigh cross-section of dry air per molecule, m^2 (Bodhaine et al. 1999 eq. 2), at each wavelength (nm;\n"
-      "a number or a list/array, 230-1690 nm: the refractive index formula's range), with co2_ppm of CO2 (default: the "
+      "a number or a list/array of any shape, 230-1690 nm: the refractive index formula's range; the result has\n"
+      "the wavelengths' shape), with co2_ppm of CO2 (default: the "
       "scenes' 420 ppm; Bodhaine's\n"
       "tables are at 360).");
 

@@ -367,14 +367,19 @@ class ScalarsAndDefaults(unittest.TestCase):
         listed = skyspec.derive([550.0], altitudes_m=[1000.0])
         self.assertEqual(one["rayleigh_scattering_per_m"].shape, (1, 1))
         np.testing.assert_array_equal(one["rayleigh_scattering_per_m"], listed["rayleigh_scattering_per_m"])
-        self.assertEqual(skyspec.rayleigh_cross_section(550).shape, (1,))
+        # Issue 41: shapes as NumPy keeps them (derive's arrays are tables: (altitudes, wavelengths)).
+        self.assertEqual(skyspec.rayleigh_cross_section(550).shape, ())
+        grid = skyspec.rayleigh_cross_section([[400, 500], [600, 700]])
+        self.assertEqual(grid.shape, (2, 2))
+        self.assertEqual(grid[1, 0], skyspec.rayleigh_cross_section(600))
+        self.assertEqual(skyspec.us_standard_atmosphere([[0, 1000]])["pressure_Pa"].shape, (1, 2))
         self.assertIn("550", skyspec.coefficient_report("csv", wavelengths_nm=550))
 
     def test_one_co2_default(self):
         scene_co2 = skyspec.derive(550)["co2_ppm"]
         self.assertEqual(scene_co2, 420.0)
-        self.assertEqual(skyspec.rayleigh_cross_section(550)[0], skyspec.rayleigh_cross_section(550, co2_ppm=scene_co2)[0])
-        self.assertNotEqual(skyspec.rayleigh_cross_section(550)[0], skyspec.rayleigh_cross_section(550, co2_ppm=360)[0])
+        self.assertEqual(skyspec.rayleigh_cross_section(550), skyspec.rayleigh_cross_section(550, co2_ppm=scene_co2))
+        self.assertNotEqual(skyspec.rayleigh_cross_section(550), skyspec.rayleigh_cross_section(550, co2_ppm=360))
 
 
 class HostileInput(unittest.TestCase):
