@@ -14,6 +14,7 @@
 #include <cstdlib>
 
 #include "io/spectral_exr.hpp"
+#include "release_stage.hpp"
 #include "scene_fixtures.hpp"
 #include "scratch_folder.hpp"
 #include "skyspec/camera.hpp"
@@ -25,16 +26,9 @@ BOOST_AUTO_TEST_SUITE(test_polarised_sky)
 
 using namespace skyspec;
 
+// The two longest cases (a Monte Carlo reference and whole panoramas) are left to the release
+// stage (release_stage.hpp); the other cases run the same polarised tables and sky-view table there.
 namespace {
-// The two longest cases (a Monte Carlo reference and whole panoramas; their cost under the
-// sanitizers is in docs/performance.md, "Build and test times") are left to the release stage of
-// scripts/test.sh, which sets this variable for the sanitizer stage; the other cases run the same
-// polarised tables and sky-view table there.
-boost::test_tools::assertion_result not_in_sanitizer_stage(boost::unit_test::test_unit_id) {
-  boost::test_tools::assertion_result result(std::getenv("SKYSPEC_SANITIZER_STAGE") == nullptr);
-  result.message() << "left to the release stage (SKYSPEC_SANITIZER_STAGE is set)";
-  return result;
-}
 
 Scene rayleigh_scene(double sun_elevation, bool polarisation) {
   char toml[320];
@@ -47,7 +41,7 @@ Scene rayleigh_scene(double sun_elevation, bool polarisation) {
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(vector_tables_match_the_vector_reference_in_rayleigh_air,
-                     *boost::unit_test::precondition(not_in_sanitizer_stage)) {
+                     *boost::unit_test::precondition(test::not_in_sanitizer_stage)) {
   for (double sun : {30.0, 2.0}) {
     const Scene scene = rayleigh_scene(sun, true);
     const std::vector<ReferenceProbe> probes = standard_reference_probes(scene);
@@ -172,7 +166,7 @@ BOOST_AUTO_TEST_CASE(stokes_rows_agree_with_the_image_and_the_probe) {
 // against every pixel marched: the degree of polarisation of a whole panorama, suns at 30 and 5
 // degrees. Near the sun the frame turns quickly from one table entry to the next, so the largest
 // differences are there; the message gives the figures docs/polarisation.md quotes.
-BOOST_AUTO_TEST_CASE(sky_view_table_keeps_the_polarisation, *boost::unit_test::precondition(not_in_sanitizer_stage)) {
+BOOST_AUTO_TEST_CASE(sky_view_table_keeps_the_polarisation, *boost::unit_test::precondition(test::not_in_sanitizer_stage)) {
   for (double sun : {30.0, 5.0}) {
     const auto panorama = [sun](bool sky_view_table) {
       char toml[400];

@@ -6,9 +6,12 @@
 
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "atmosphere_fixtures.hpp"
 #include "monte_carlo_fixtures.hpp"
+#include "natraj_tables.hpp"
+#include "release_stage.hpp"
 #include "physics/scattering_matrix.hpp"
 #include "skyspec/camera.hpp"
 #include "skyspec/phase_function.hpp"
@@ -63,6 +66,48 @@ BOOST_AUTO_TEST_CASE(plane_parallel_rayleigh_matches_natraj_2009) {
     BOOST_TEST(agrees("Q", q, c.Q, 4.0, 1e-4));
     BOOST_TEST(agrees("U", v[2], c.U, 4.0, 1e-4));
     BOOST_TEST(v[3].mean == 0.0);
+  }
+}
+
+// The same tables over a ground (tests/data/natraj2009: optical thickness 0.25, albedo 0.25), at
+// the top and the bottom, at geometries spread over the table (low and high sun, grazing and steep
+// views, the principal plane and across it): 200 000 paths each. The case above runs the same code
+// under the sanitizers.
+BOOST_AUTO_TEST_CASE(plane_parallel_rayleigh_over_a_ground_matches_natraj_2009,
+                     *boost::unit_test::precondition(test::not_in_sanitizer_stage)) {
+  const std::string folder = std::string(SKYSPEC_TEST_DATA_DIR) + "/natraj2009/";
+  struct Case {
+    int sun, view, azimuth;  // indices into the tables' grid
+  };
+  const Case cases[] = {{1, 0, 1}, {1, 8, 3}, {4, 5, 0}, {4, 12, 6}, {6, 3, 3}};
+  MonteCarloSettings settings;
+  settings.paths = 200000;
+  settings.seed = 11;
+  std::uint64_t stream = 0;
+  for (const bool up : {true, false}) {
+    const std::string end = up ? "_UP_TAU_0.25" : "_DN_TAU_0.25";
+    const test::NatrajTable I = test::read_natraj_table(folder + "I" + end),
+                            Q = test::read_natraj_table(folder + "Q" + end),
+                            U = test::read_natraj_table(folder + "U" + end);
+    for (const Case& c : cases) {
+      const double mu0 = test::kNatrajSunCosines[static_cast<size_t>(c.sun)];
+      const MonteCarloIntegrator mc(rayleigh_slab(0.25, 0.0, 0.25, kPi), Vec3(-std::sqrt(1.0 - mu0 * mu0), 0.0, mu0));
+      const double mu = I.row(1, c.sun, c.view)[1];
+      const double phi = test::kNatrajAzimuthsDeg[static_cast<size_t>(c.azimuth)] * kPi / 180.0;
+      const double s = std::sqrt(1.0 - mu * mu);
+      // The light leaving the layer: upwards at the top, downwards at the bottom.
+      const Vec3 k(s * std::cos(phi), s * std::sin(phi), up ? mu : -mu);
+      const MonteCarloStokes v =
+          mc.stokes_radiance(Vec3(0, 0, up ? 1.0 : 0.0), -k, Vec3(0, 0, 1), settings, ++stream);
+      BOOST_TEST_MESSAGE((up ? "top" : "bottom") << ", mu0 " << mu0 << ", mu " << mu << ", phi "
+                                                 << test::kNatrajAzimuthsDeg[static_cast<size_t>(c.azimuth)]);
+      const size_t column = 2 + static_cast<size_t>(c.azimuth);
+      BOOST_TEST(agrees("I", v[0], I.row(1, c.sun, c.view)[column], 4.0, 1e-4));
+      MonteCarloValue q = v[1];
+      q.mean = -q.mean;
+      BOOST_TEST(agrees("Q", q, Q.row(1, c.sun, c.view)[column], 4.0, 1e-4));
+      BOOST_TEST(agrees("U", v[2], U.row(1, c.sun, c.view)[column], 4.0, 1e-4));  // the same frames as above
+    }
   }
 }
 
