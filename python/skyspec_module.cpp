@@ -34,6 +34,7 @@
 #include "skyspec/display.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/monte_carlo_reference.hpp"
+#include "skyspec/preparation_progress.hpp"
 #include "skyspec/rayleigh.hpp"
 #include "skyspec/refractive_index.hpp"
 #include "skyspec/render.hpp"
@@ -76,7 +77,10 @@ class CallUnderWay {
  public:
   CallUnderWay() {
     const std::lock_guard<std::mutex> lock(g_calls_mutex);
-    if (g_calls_under_way++ == 0) clear_cancellation_request();
+    if (g_calls_under_way++ == 0) {
+      clear_cancellation_request();
+      reset_preparation_progress();
+    }
   }
   ~CallUnderWay() {
     const std::lock_guard<std::mutex> lock(g_calls_mutex);
@@ -131,7 +135,22 @@ class ProgressReport {
     const double elapsed = std::chrono::duration<double>(now - start_).count();
     char line[160];
     if (total <= 0) {
-      std::snprintf(line, sizeof line, "\rskyspec %s: preparing (tables), %.0f s", label_.c_str(), elapsed);
+      const PreparationProgress p = preparation_progress();
+      if (p.planned > 0) {
+        const double f = p.fraction();
+        if (building_ == std::chrono::steady_clock::time_point{}) building_ = now;
+        const double built = std::chrono::duration<double>(now - building_).count();
+        std::string bar(static_cast<size_t>(f * 30.0), '#');
+        bar.resize(30, '.');
+        if (f > 0.0)
+          std::snprintf(line, sizeof line, "\rskyspec %s: building the scattering tables [%s] %3.0f%%, ETA %.0f s  ",
+                        label_.c_str(), bar.c_str(), 100.0 * f, built / f - built);
+        else
+          std::snprintf(line, sizeof line, "\rskyspec %s: building the scattering tables [%s] %3.0f%%  ",
+                        label_.c_str(), bar.c_str(), 100.0 * f);
+      } else {
+        std::snprintf(line, sizeof line, "\rskyspec %s: preparing, %.0f s", label_.c_str(), elapsed);
+      }
     } else {
       const double f = static_cast<double>(done) / static_cast<double>(total);
       const int filled = static_cast<int>(f * 30.0);
@@ -177,7 +196,7 @@ class ProgressReport {
   std::string label_;
   Kind kind_ = Kind::None;
   long long done_ = -1, total_ = -1;
-  std::chrono::steady_clock::time_point start_, drawn_{};
+  std::chrono::steady_clock::time_point start_, drawn_{}, building_{};
 };
 
 // Runs work(counter) on a thread of its own (see above); called with the GIL held. Its result, or

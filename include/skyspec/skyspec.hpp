@@ -16,6 +16,7 @@
 #include "skyspec/king_factor.hpp"
 #include "skyspec/monte_carlo_reference.hpp"
 #include "skyspec/phase_function.hpp"
+#include "skyspec/preparation_progress.hpp"
 #include "skyspec/rayleigh.hpp"
 #include "skyspec/refractive_index.hpp"
 #include "skyspec/render.hpp"

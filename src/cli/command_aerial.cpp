@@ -152,6 +152,7 @@ int run(AerialOptions& o) {
         "the scene's wavelength grid (" + make_wavelength_grid(scene).describe() + "); set --lambda-* to match");
   const std::vector<float> dist = ray_distances(o, in, scene);
   ProgressBar bar("aerial perspective", o.quiet);
+  bar.watch_preparation();
   const AerialPerspectiveImage ap = aerial_perspective(
       scene, dist, [&bar](int done, int total) { bar.update(done, total); },
       [&](const SkyRenderer& r) {

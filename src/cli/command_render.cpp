@@ -132,6 +132,7 @@ int run_render(RenderOptions& o) {
       photometry = photometry_line(r);
   };
   ProgressBar bar("rendering", o.quiet);
+  bar.watch_preparation();
   const auto out = render_scene_to_files(
       scene, display, [&](int done, int total) { bar.update(done, total); }, prepared, tile);
   bar.finish();

@@ -169,6 +169,7 @@ int run(TimelapseOptions& o) {
     if (stale > 0 && !o.quiet) std::cout << "removed " << stale << " temporary file(s) of an earlier run\n";
   }
   ProgressBar bar("time-lapse", o.quiet);
+  bar.watch_preparation();
   int written = 0, skipped = 0, replaced = 0;
   for (int k = mine.first; k < mine.last; ++k) {
     Scene s = frame_scene(k, "output.name", "\"" + frame_name(first.output.name, k) + "\"");

@@ -16,6 +16,7 @@
 
 #include "base/atomic_file.hpp"
 #include "base/cancellation.hpp"
+#include "base/preparation_progress.hpp"
 #include "base/embedded_data.hpp"
 #include "base/hashing_streambuf.hpp"
 #include "skyspec/phase_function.hpp"
@@ -414,9 +415,10 @@ namespace {
 
 // Fill `table` with J and G computed from the radiance field that `sources` describes, integrated
 // over the directions of `q`; with a stride > 1, only every stride-th entry (altitude x sun angle,
-// row-major) is computed.
+// row-major) is computed. With count_progress, each entry adds its rays to the preparation's
+// progress (base/preparation_progress.hpp).
 void integrate_order(const SingleScattering& integrator, const ScatteringSources& sources, const DirectionQuadrature& q,
-                     SourceTable& table, int stride = 1) {
+                     SourceTable& table, int stride = 1, bool count_progress = false) {
   const AtmosphereModel& atm = integrator.atmosphere();
   const double R = atm.planet_radius_m();
   const int n = atm.grid().size();
@@ -497,6 +499,7 @@ void integrate_order(const SingleScattering& integrator, const ScatteringSources
     if (polarised)
       for (int c = 0; c < 3; ++c)
         std::copy(sc.p.col(c).data(), sc.p.col(c).data() + n, table.p_at(ih, imu) + static_cast<size_t>(c) * n);
+    if (count_progress) finish_preparation(q.rays());
   });
   table.prepare();
 }
@@ -535,6 +538,12 @@ ScatteringOrders::ScatteringOrders(const SingleScattering& integrator, const Mul
   // The tables are built with their own, coarser ray quadrature.
   const SingleScattering builder(atm, integrator.sun_columns(), IntegratorSettings{settings_.view_segments});
   throw_if_cancelled();  // each table may be large: a request stops before the next is allocated
+  // The work, in rays traced (each order's entries x its directions), for the progress a host shows.
+  const long long entries = static_cast<long long>(settings_.altitude_samples) * settings_.sun_samples;
+  long long rays = 0;
+  for (int k = 2; k <= settings_.orders; ++k)
+    rays += entries * quadrature_of_order(settings_.angular_degree, k, settings_.quadrature_refinement).rays();
+  plan_preparation(rays);
   sum_ = make_table();
   for (int k = 2; k <= settings_.orders; ++k) {
     throw_if_cancelled();
@@ -547,7 +556,7 @@ ScatteringOrders::ScatteringOrders(const SingleScattering& integrator, const Mul
     previous.single = k == 2;
     previous.higher = source_of_previous.get();
     integrate_order(builder, previous,
-                    quadrature_of_order(settings_.angular_degree, k, settings_.quadrature_refinement), *table);
+                    quadrature_of_order(settings_.angular_degree, k, settings_.quadrature_refinement), *table, 1, true);
     sum_->add(*table);
     orders_.push_back(std::move(table));
   }

@@ -194,6 +194,23 @@ else
   bad "polarised render failed"; cat "$work/stderr"
 fi
 
+# Progress on a terminal (issue 41): while the scattering-order tables build, the bar shows their
+# share built with an ETA (not silence), then the rows; not a character of it when stderr is not a
+# terminal. A pseudo-terminal from script(1), a cache of its own so that the tables are built.
+if command -v script >/dev/null; then
+  SKYSPEC_CACHE_DIR="$work/bar-cache" script -qec "'$skyspec' render --width 16 --height 64 --out '$work/bar' \
+    --set render.ms_altitude_samples=16 --set render.ms_sun_samples=64 --set render.scattering_orders=3" \
+    /dev/null >"$work/bar.txt" 2>&1 || bad "render on a terminal failed: $(tail -c 300 "$work/bar.txt")"
+  grep -qaE "rendering building the scattering tables \[#*\.*\] +[0-9]+%  ETA" "$work/bar.txt" && ok \
+    || bad "no table phase in the bar: $(tr '\r' '\n' <"$work/bar.txt" | head -5)"
+  grep -qaE "rendering \[#{30}\] 100%  elapsed" "$work/bar.txt" && ok || bad "no finished row bar: $(tail -c 300 "$work/bar.txt")"
+  SKYSPEC_CACHE_DIR="$work/bar-cache2" "$skyspec" render --width 16 --height 64 --out "$work/bar2" \
+    --set render.ms_altitude_samples=16 --set render.ms_sun_samples=64 --set render.scattering_orders=3 2>"$work/stderr" >/dev/null
+  [ ! -s "$work/stderr" ] && ok || bad "a bar without a terminal: $(head -c 200 "$work/stderr")"
+else
+  echo "SKIP progress on a terminal: no script(1)"
+fi
+
 # docs/scene-keys.md is generated from the key registry: it must be what the program prints now.
 "$skyspec" render --help-keys=markdown | cmp -s - "$(dirname "${BASH_SOURCE[0]}")/../../docs/scene-keys.md" && ok \
   || bad "docs/scene-keys.md is stale: regenerate it with skyspec render --help-keys=markdown > docs/scene-keys.md"
