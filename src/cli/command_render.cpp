@@ -112,9 +112,11 @@ int run_render(RenderOptions& o) {
   if (!o.force) refuse_if_over_budget(estimate);
   std::string photometry;
   const auto measure = [&](const SkyRenderer& r) {  // once the tables are built
-    estimate.table_seconds.reset();
+    const auto tables = estimate.table_seconds;
+    estimate.table_seconds.reset();  // built: only the image's time counts now
     estimate.seconds = measure_render_seconds(r, plan);
     if (!o.force) refuse_if_over_budget(estimate);
+    estimate.table_seconds = tables;  // for the summary: what the tables were estimated to take
   };
   if (o.dry_run) {  // nothing expensive: a light renderer, and the tables it leaves out estimated
     const SkyRenderer light(scene_for_estimate(scene));
@@ -125,7 +127,9 @@ int run_render(RenderOptions& o) {
     return kExitOk;
   }
   // The scattering-order tables can take hours at extreme settings: refused before they are built.
-  if (!o.force) refuse_if_tables_over_budget(scene, estimate);
+  // (The summary then quotes that estimate when they were built, beside the time they took.)
+  if (const double orders = estimate_scattering_orders_seconds(scene); orders > 0.0) estimate.table_seconds = orders;
+  if (!o.force) refuse_if_over_budget(estimate);
   const auto prepared = [&](const SkyRenderer& r) {
     measure(r);
     if (!o.quiet && scene.render.path == RenderSpec::Path::Spectral && r.grid().size() >= 2)
