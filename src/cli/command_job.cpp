@@ -25,6 +25,7 @@
 #include "job/job_plan.hpp"
 #include "job/job_tables.hpp"
 #include "job/task_record.hpp"
+#include "transport/scattering_tables_cache.hpp"
 #include "progress.hpp"
 #include "render/render_budget.hpp"
 #include "skyspec/error.hpp"
@@ -124,10 +125,15 @@ int run_plan(const JobOptions& o) {
     estimate.seconds = measure_render_seconds(light, rp);
   }
   std::cout << "estimate: " << estimate.describe() << " (" << rp.settings() << ")\n";
-  if (!tables.cache_directory.empty())
+  if (!tables.cache_directory.empty()) {
     if (const auto free = available_disk_bytes(tables.cache_directory); free && tables.cache_bytes > *free)
       std::cout << "warning: the tables would add " << format_bytes(tables.cache_bytes) << " to "
                 << tables.cache_directory.string() << " but it has " << format_bytes(*free) << " free\n";
+    if (const auto cap = table_cache_cap_bytes(); cap > 0 && tables.cache_bytes > cap)
+      std::cout << "warning: the tables (" << format_bytes(tables.cache_bytes) << ") exceed the table cache's cap ("
+                << format_bytes(cap) << ", SKYSPEC_CACHE_MAX_MB): the least recently used are removed as new "
+                << "ones are written, and a second run of the job builds them again\n";
+  }
   for (const auto& p : estimate.problems()) std::cout << "warning: " << p << "\n";
   return kExitOk;
 }

@@ -121,6 +121,7 @@ int run_render(RenderOptions& o) {
   if (o.dry_run) {  // nothing expensive: a light renderer, and the tables it leaves out estimated
     const SkyRenderer light(scene_for_estimate(scene));
     estimate.table_seconds = estimate_table_seconds(scene, light);
+    estimate.table_cache_bytes = estimate_table_cache_bytes(scene);
     estimate.seconds = measure_render_seconds(light, plan);
     if (!o.force) refuse_if_over_budget(estimate);
     std::cout << "estimate: " << estimate.describe() << " (" << plan.settings() << ")\n";

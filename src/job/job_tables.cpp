@@ -87,10 +87,7 @@ JobTableEstimate estimate_job_tables(const JobPlan& plan) {
     int builds = 1;
     if (scene.render.cache_tables) {
       out.cache_directory = table_cache_directory();
-      if (!out.cache_directory.empty())
-        out.cache_bytes += ScatteringOrders::table_bytes(multiple_scattering_settings(scene),
-                                                         make_wavelength_grid(scene).size()) +
-                           key.inputs.size();
+      out.cache_bytes += estimate_table_cache_bytes(scene);
     } else {
       builds = 0;
       for (const auto& [chunk, h] : chunk_sets) builds += h == hash ? 1 : 0;

@@ -151,6 +151,7 @@ std::string RenderEstimate::describe() const {
   if (memory_available_bytes) text += " (" + format_bytes(*memory_available_bytes) + " available)";
   if (seconds) text += ", about " + format_duration(*seconds) + " of rendering";
   if (table_seconds) text += ", tables about " + format_duration(*table_seconds);
+  if (table_seconds && table_cache_bytes > 0) text += " and " + format_bytes(table_cache_bytes) + " in the table cache";
   return text;
 }
 
@@ -217,6 +218,14 @@ double estimate_scattering_orders_seconds(const Scene& scene) {
     const SingleScattering integrator(atmosphere, columns, IntegratorSettings{scene.render.view_segments});
     return ScatteringOrders::estimate_build_seconds(integrator, multiple_scattering_settings(scene));
   });
+}
+
+std::uint64_t estimate_table_cache_bytes(const Scene& scene) {
+  if (scene.render.scattering_orders < 2 || !scene.render.cache_tables) return 0;
+  const auto key = scattering_tables_key(scene);
+  if (table_cache_directory().empty() || scattering_orders_cached(key, true)) return 0;
+  return ScatteringOrders::table_bytes(multiple_scattering_settings(scene), make_wavelength_grid(scene).size()) +
+         key.inputs.size();
 }
 
 double estimate_frame_table_seconds(const Scene& scene, const SkyRenderer& estimate_renderer) {

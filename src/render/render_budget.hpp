@@ -71,8 +71,10 @@ struct RenderEstimate {
   std::optional<std::uint64_t> memory_available_bytes;  ///< unknown: not checked
   std::optional<double> seconds;                        ///< wall time of the image; unknown until measured
   std::optional<double> table_seconds;                  ///< wall time of tables not yet built, if estimated
+  std::uint64_t table_cache_bytes = 0;                  ///< what the disk cache gains by them
   /// "outputs up to 46 MB (74 GB free), peak memory about 6 MB (22 GB available), about 2.1 s of
-  /// rendering[, tables about 40 s]" (the tables: everything before the first pixel).
+  /// rendering[, tables about 40 s[ and 56 MB in the table cache]]" (the tables: everything before
+  /// the first pixel).
   std::string describe() const;
   /// One sentence per limit exceeded: output > free disk, memory > MemAvailable, time > 24 h.
   std::vector<std::string> problems() const;
@@ -101,6 +103,9 @@ Scene scene_for_estimate(const Scene& scene);
 /// when they are cached (in this process or on disk): ScatteringOrders::estimate_build_seconds,
 /// which builds and times 16 entries of one order. Builds the scene's sun table to do so.
 double estimate_scattering_orders_seconds(const Scene& scene);
+/// Bytes the disk cache gains when the scene's scattering-order tables are built: their file, or 0
+/// when they are cached, single scattering is asked for or render.cache_tables is false.
+std::uint64_t estimate_table_cache_bytes(const Scene& scene);
 /// Seconds to build what every frame builds anew, measured on `estimate_renderer` (built from
 /// scene_for_estimate(scene)): its own construction (the atmosphere on the grid, the sun's
 /// optical-depth table, a small sky-view table) and the rest of the scene's sky-view table, its

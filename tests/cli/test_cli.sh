@@ -211,6 +211,25 @@ else
   echo "SKIP progress on a terminal: no script(1)"
 fi
 
+# The table cache has a cap (issue 41): SKYSPEC_CACHE_MAX_MB, least recently used first. Sets of
+# 4.2 MB under a 10 MB cap: A, B, A again (a use), then C evicts B, not A. A bad cap names the variable.
+cap_cache="$work/cap-cache"
+cap_render() {  # ALBEDO: a small-table render of that ground's atmosphere; prints nothing
+  SKYSPEC_CACHE_DIR="$cap_cache" SKYSPEC_CACHE_MAX_MB=10 "$skyspec" render -q --width 4 --height 4 --out "$work/cap" \
+    --set render.ms_altitude_samples=8 --set render.ms_sun_samples=24 --set render.scattering_orders=2 \
+    --set ground.albedo="$1" || bad "render with albedo $1 under a cache cap failed"
+}
+cap_render 0.1; a=$(ls "$cap_cache")
+cap_render 0.2; b=$(ls "$cap_cache" | grep -v "$a")
+sleep 0.05; cap_render 0.1; sleep 0.05
+cap_render 0.3
+[ -e "$cap_cache/$a" ] && [ ! -e "$cap_cache/$b" ] && [ "$(ls "$cap_cache" | wc -l)" = 2 ] && ok \
+  || bad "cache cap: after A, B, A, C the cache holds $(ls "$cap_cache" | tr '\n' ' ') (A $a, B $b)"
+SKYSPEC_CACHE_DIR="$cap_cache" SKYSPEC_CACHE_MAX_MB=2GB "$skyspec" render -q --width 4 --height 4 --out "$work/cap" \
+  --set render.scattering_orders=2 --set ground.albedo=0.4 2>"$work/stderr"
+[ $? = 2 ] && grep -q 'SKYSPEC_CACHE_MAX_MB = "2GB" is not allowed' "$work/stderr" && ok \
+  || bad "a bad cache cap: $(cat "$work/stderr")"
+
 # docs/scene-keys.md is generated from the key registry: it must be what the program prints now.
 "$skyspec" render --help-keys=markdown | cmp -s - "$(dirname "${BASH_SOURCE[0]}")/../../docs/scene-keys.md" && ok \
   || bad "docs/scene-keys.md is stale: regenerate it with skyspec render --help-keys=markdown > docs/scene-keys.md"
