@@ -129,6 +129,14 @@ struct SpectralImageBuffer {
   /// (without the sun's disk) at the metered pixels to 0.18 (exposure.hpp). The exposure the files
   /// record and apply is this unless the scene (output.exposure_ev) or the display settings fix one.
   double metered_exposure_scale = 1.0;
+
+  /// Pixel (x, y)'s spectral radiance: wavelengths_nm.size() values (W m^-2 sr^-1 nm^-1), row 0 at
+  /// the top as in the files. Error for a pixel outside the image.
+  const float* spectrum(int x, int y) const;
+  /// Pixel (x, y)'s linear Rec.709 (the spectrum through CIE XYZ, Y in cd m^-2).
+  Rgb pixel_rgb(int x, int y) const;
+  /// Pixel (x, y)'s view direction (as `directions`).
+  Vec3 direction(int x, int y) const;
 };
 SpectralImageBuffer render_to_memory(const Scene& scene, const ProgressFn& progress = {});
 

@@ -140,6 +140,16 @@ class SceneLoader {
   /// the flag that supplied it, e.g. "--width". A key the scene's camera does not read (the field
   /// of view of a fisheye, the panorama convention of a perspective view) is refused by finish().
   void apply_override(const std::string& key, const std::string& toml_value, const std::string& origin);
+  /// Typed overrides for C++ callers: loader.set("sun.elevation_deg", 10.0), set("camera.width",
+  /// 512), set("output.png", false), set("camera.type", "equirectangular"), set("camera.position_m",
+  /// {0, 0, 1500}). The same checks as apply_override (an integer key refuses 8.5; InputError names
+  /// the key, or `origin` when given).
+  void set(const std::string& key, double value, const std::string& origin = "");
+  void set(const std::string& key, int value, const std::string& origin = "");
+  void set(const std::string& key, bool value, const std::string& origin = "");
+  void set(const std::string& key, const std::string& value, const std::string& origin = "");
+  void set(const std::string& key, const char* value, const std::string& origin = "");
+  void set(const std::string& key, const std::vector<double>& values, const std::string& origin = "");
   /// Checks relations between keys (top above ground, camera above ground, grid vs fixed
   /// coefficients, ...) and returns the scene. SceneUse::Atmosphere (the coefficient report) checks
   /// the wavelengths against the refractive index of air only (230-1690 nm), not the render's

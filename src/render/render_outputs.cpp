@@ -318,6 +318,29 @@ const std::vector<FileOutput>& file_outputs() {
 
 }  // namespace
 
+namespace {
+size_t pixel_index(const SpectralImageBuffer& image, int x, int y) {
+  if (x < 0 || y < 0 || x >= image.width || y >= image.height)
+    throw Error("pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is outside the " +
+                std::to_string(image.width) + " x " + std::to_string(image.height) + " image");
+  return static_cast<size_t>(y) * static_cast<size_t>(image.width) + static_cast<size_t>(x);
+}
+}  // namespace
+
+const float* SpectralImageBuffer::spectrum(int x, int y) const {
+  return spectral.data() + pixel_index(*this, x, y) * wavelengths_nm.size();
+}
+
+Rgb SpectralImageBuffer::pixel_rgb(int x, int y) const {
+  const float* c = rgb.data() + pixel_index(*this, x, y) * 3;
+  return Rgb(c[0], c[1], c[2]);
+}
+
+Vec3 SpectralImageBuffer::direction(int x, int y) const {
+  const double* d = directions.data() + pixel_index(*this, x, y) * 3;
+  return Vec3(d[0], d[1], d[2]);
+}
+
 SpectralImageBuffer render_to_memory(const Scene& scene, const ProgressFn& progress) {
   SkyRenderer r(scene);
   SpectralImageBuffer img;

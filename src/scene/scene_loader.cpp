@@ -146,6 +146,67 @@ void SceneLoader::apply_file(const std::string& path) {
   apply_toml(text, path);
 }
 
+namespace {
+
+// TOML value text of typed C++ values, for SceneLoader::set.
+std::string toml_number(double v) {
+  std::ostringstream s;
+  s << std::setprecision(17) << v;  // "nan" and "inf" are TOML too: the key's own check refuses them
+  return s.str();
+}
+
+std::string toml_quoted(const std::string& text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    switch (c) {
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) {
+          char u[8];
+          std::snprintf(u, sizeof u, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
+          out += u;
+        } else {
+          out += c;
+        }
+    }
+  }
+  return out + "\"";
+}
+
+}  // namespace
+
+void SceneLoader::set(const std::string& key, double value, const std::string& origin) {
+  apply_override(key, toml_number(value), origin.empty() ? key : origin);
+}
+void SceneLoader::set(const std::string& key, int value, const std::string& origin) {
+  apply_override(key, std::to_string(value), origin.empty() ? key : origin);
+}
+void SceneLoader::set(const std::string& key, bool value, const std::string& origin) {
+  apply_override(key, value ? "true" : "false", origin.empty() ? key : origin);
+}
+void SceneLoader::set(const std::string& key, const std::string& value, const std::string& origin) {
+  apply_override(key, toml_quoted(value), origin.empty() ? key : origin);
+}
+void SceneLoader::set(const std::string& key, const char* value, const std::string& origin) {
+  set(key, std::string(value ? value : ""), origin);
+}
+void SceneLoader::set(const std::string& key, const std::vector<double>& values, const std::string& origin) {
+  std::string text = "[";
+  for (size_t i = 0; i < values.size(); ++i) text += (i ? ", " : "") + toml_number(values[i]);
+  apply_override(key, text + "]", origin.empty() ? key : origin);
+}
+
 void SceneLoader::apply_override(const std::string& key, const std::string& toml_value, const std::string& origin) {
   const KeyDef* def = find_key(key);
   if (!def) unknown_key(key, origin);

@@ -27,3 +27,11 @@ ociocheck --iconfig "$config" >"$work/ociocheck.txt" 2>&1 || { cat "$work/ocioch
 cmake -S "$here" -B "$work/build" -DCMAKE_PREFIX_PATH="$work/prefix" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$work/build" >/dev/null
 "$work/build/consumer" "$work"
+# The docs' C++ example: its files, the zenith's spectrum and its refusal of a bad width.
+mkdir -p "$work/example"
+"$work/build/render_sky" "$work/example" >"$work/example.txt"
+grep -q "^  *380 nm  [0-9]" "$work/example.txt" && grep -q 'refused: .*camera.width = 64.5 is not allowed' "$work/example.txt" \
+  && [ -s "$work/example/sky.exr" ] && [ -s "$work/example/sky.png" ] \
+  || { cat "$work/example.txt" >&2; echo "FAIL: docs/examples/render_sky.cpp" >&2; exit 1; }
+oiiotool --info "$work/example/sky.exr" >/dev/null || { echo "FAIL: the example's EXR does not open in oiiotool" >&2; exit 1; }
+

@@ -461,4 +461,28 @@ BOOST_AUTO_TEST_CASE(a_band_below_zero_nm_is_refused) {
   BOOST_TEST(ok.finish().spectrum.bandwidth_nm == 700.0);
 }
 
+// Typed overrides for C++ callers (issue 41): each type reaches its key; text is quoted, not parsed.
+BOOST_AUTO_TEST_CASE(typed_overrides) {
+  SceneLoader loader("default");
+  loader.set("camera.width", 320);
+  loader.set("sun.elevation_deg", 12.5);
+  loader.set("output.png", false);
+  loader.set("camera.type", "equirectangular");
+  loader.set("output.name", std::string("2026"));  // text, not the TOML integer
+  loader.set("camera.position_m", std::vector<double>{0.0, 0.0, 1500.0});
+  const Scene scene = loader.finish();
+  BOOST_TEST(scene.camera.width == 320);
+  BOOST_TEST(scene.sun.elevation_deg == 12.5);
+  BOOST_TEST(!scene.output.png);
+  BOOST_TEST((scene.camera.type == CameraSpec::Type::Equirectangular));
+  BOOST_TEST(scene.output.name == "2026");
+  BOOST_TEST(scene.camera.position_m.z() == 1500.0);
+  // The same checks as every other way in: the key and what is allowed; a given origin named.
+  BOOST_CHECK_EXCEPTION(loader.set("camera.width", 8.5), InputError, [](const InputError& e) {
+    return test::contains(e.what(), "camera.width = 8.5 is not allowed");
+  });
+  BOOST_CHECK_EXCEPTION(loader.set("sun.elevation_deg", 95.0, "my_elevation"), InputError,
+                        [](const InputError& e) { return test::contains(e.what(), "my_elevation"); });
+}
+
 BOOST_AUTO_TEST_SUITE_END()  // test_scene
