@@ -246,34 +246,11 @@ auto run_interruptible(Work&& work, const py::object& progress, const std::strin
 
 // ---- scenes from Python arguments -----------------------------------------------------------
 
-std::string toml_string(const std::string& s) {
-  std::string out = "\"";
-  for (char ch : s) {
-    switch (ch) {
-      case '"':
-        out += "\\\"";
-        break;
-      case '\\':
-        out += "\\\\";
-        break;
-      case '\n':
-        out += "\\n";
-        break;
-      case '\t':
-        out += "\\t";
-        break;
-      default:
-        out += ch;
-    }
-  }
-  return out + "\"";
-}
-
 /// A Python value as TOML value text: bool, int, float, str, or a sequence of them.
 std::string toml_value(const py::handle& v, const std::string& key) {
   if (py::isinstance<py::bool_>(v) || py::isinstance(v, py::module_::import("numpy").attr("bool_")))
     return v.cast<bool>() ? "true" : "false";
-  if (py::isinstance<py::str>(v)) return toml_string(v.cast<std::string>());
+  if (py::isinstance<py::str>(v)) return toml_quoted(v.cast<std::string>());
   if (py::isinstance<py::int_>(v)) return py::str(v).cast<std::string>();
   // Integers of any kind (NumPy's int64, uint8, ...: they have __index__), written as integers.
   if (!py::isinstance<py::array>(v) && PyIndex_Check(v.ptr())) {

@@ -162,6 +162,10 @@ class SceneLoader {
   std::map<std::string, std::string> overridden_;  ///< keys set by apply_override, and the flag that set each
 };
 
+/// Text as a TOML basic string ("...", with \", \\ and control characters escaped): the value text
+/// of a text key for SceneLoader::apply_override.
+std::string toml_quoted(const std::string& text);
+
 /// The quality levels, fastest first: draft, lean, default, high, reference.
 std::vector<std::string> quality_names();
 

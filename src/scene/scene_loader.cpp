@@ -155,6 +155,8 @@ std::string toml_number(double v) {
   return s.str();
 }
 
+}  // namespace
+
 std::string toml_quoted(const std::string& text) {
   std::string out = "\"";
   for (const char c : text) {
@@ -183,8 +185,6 @@ std::string toml_quoted(const std::string& text) {
   }
   return out + "\"";
 }
-
-}  // namespace
 
 void SceneLoader::set(const std::string& key, double value, const std::string& origin) {
   apply_override(key, toml_number(value), origin.empty() ? key : origin);
