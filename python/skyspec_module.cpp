@@ -102,7 +102,8 @@ struct ProgressCounter {
 };
 
 // progress=: None (nothing), a callable progress(done, total), or True: a bar with an ETA on
-// sys.stderr (a terminal or a notebook's output), redrawn at most every half second.
+// sys.stderr when it is a terminal or a notebook's output (nothing otherwise), redrawn at most every
+// half second.
 class ProgressReport {
  public:
   ProgressReport(py::object progress, std::string label)
@@ -110,7 +111,11 @@ class ProgressReport {
     if (progress_.is_none() || (py::isinstance<py::bool_>(progress_) && !progress_.cast<bool>())) {
       kind_ = Kind::None;
     } else if (py::isinstance<py::bool_>(progress_)) {
-      kind_ = Kind::Bar;
+      // A bar where someone watches: a terminal, or a Jupyter kernel's output; not in a pipe or log.
+      const auto err = py::module_::import("sys").attr("stderr");
+      const bool terminal = !err.is_none() && py::hasattr(err, "isatty") && err.attr("isatty")().cast<bool>();
+      const bool notebook = py::module_::import("sys").attr("modules").contains("ipykernel");
+      kind_ = terminal || notebook ? Kind::Bar : Kind::None;
     } else if (PyCallable_Check(progress_.ptr())) {
       kind_ = Kind::Callback;
     } else {

@@ -7,7 +7,9 @@ writes the EXR and PNG that `skyspec render` would write:
     python3 docs/examples/sky_at_a_glance.py --out sky-at-a-glance
 
 Needs the skyspec module installed (`cmake --install build`, see docs/python.md), NumPy and
-Matplotlib (Debian: python3-numpy, python3-matplotlib). It takes about 3 s on 2 cores.
+Matplotlib (Debian: python3-numpy, python3-matplotlib). The first run builds this atmosphere's
+scattering tables (tens of seconds on 2 cores, with a progress bar on stderr); they are cached, and
+later runs take a few seconds.
 """
 import argparse
 import os
@@ -31,7 +33,7 @@ sky = skyspec.render(overrides={
     "camera": {"type": "equirectangular", "width": 256, "height": 128, "panorama_convention": "blender"},
     "sun": {"elevation_deg": 15, "azimuth_deg": 225},
     "spectrum": {"step_nm": 5},
-})
+}, progress=True)
 print(sky)
 print("exposure:", sky.exposure)
 sky.write_exr(os.path.join(args.out, "sky.exr"))  # the spectral EXR, header and all

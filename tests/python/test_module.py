@@ -465,6 +465,14 @@ class LongCalls(unittest.TestCase):
         self.assertEqual(skyspec.render(overrides={**SMALL_TABLES, "camera.width": 2, "camera.height": 2,
                                                    "render.scattering_orders": 1}).spectral.shape[:2], (2, 2))
 
+    def test_no_bar_where_nobody_watches(self):
+        # progress=True in a pipe or a log (not a terminal, not a notebook): nothing on stderr.
+        done = subprocess.run([sys.executable, "-c",
+                               "import skyspec; skyspec.render(overrides={'camera.width': 2, 'camera.height': 2, "
+                               "'render.scattering_orders': 1}, progress=True)"],
+                              capture_output=True, text=True)
+        self.assertEqual((done.returncode, done.stderr), (0, ""))
+
     def test_a_bad_progress_argument_is_named(self):
         with self.assertRaisesRegex(ValueError, r"progress.*'yes'.*callable"):
             skyspec.render(overrides={"camera.width": 2, "camera.height": 2}, progress="yes")
@@ -475,7 +483,14 @@ class LongCalls(unittest.TestCase):
         # file behind.
         import signal
         import time
+        # stderr is a pipe here: it says it is a terminal, so that progress=True draws the bar.
         script = ("import sys, skyspec\n"
+                  "class Terminal:\n"
+                  "    def __init__(self, s): self.s = s\n"
+                  "    def write(self, t): return self.s.write(t)\n"
+                  "    def flush(self): self.s.flush()\n"
+                  "    def isatty(self): return True\n"
+                  "sys.stderr = Terminal(sys.stderr)\n"
                   "try:\n"
                   "    skyspec.render(overrides={'camera.width': 16, 'camera.height': 16}, progress=True)\n"
                   "except KeyboardInterrupt as e:\n"
