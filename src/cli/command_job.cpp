@@ -5,8 +5,10 @@
 #include <sys/prctl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
+#include <cstdint>
 #include <cstring>
 
 #include <cstdlib>
@@ -126,10 +128,12 @@ int run_plan(const JobOptions& o) {
   }
   std::cout << "estimate: " << estimate.describe() << " (" << rp.settings() << ")\n";
   if (!tables.cache_directory.empty()) {
-    if (const auto free = available_disk_bytes(tables.cache_directory); free && tables.cache_bytes > *free)
-      std::cout << "warning: the tables would add " << format_bytes(tables.cache_bytes) << " to "
-                << tables.cache_directory.string() << " but it has " << format_bytes(*free) << " free\n";
-    if (const auto cap = table_cache_cap_bytes(); cap > 0 && tables.cache_bytes > cap)
+    const auto cap = table_cache_cap_bytes();  // the cache never holds more than that
+    const std::uint64_t held = cap > 0 ? std::min<std::uint64_t>(tables.cache_bytes, cap) : tables.cache_bytes;
+    if (const auto free = available_disk_bytes(tables.cache_directory); free && held > *free)
+      std::cout << "warning: the tables would add " << format_bytes(held) << " to " << tables.cache_directory.string()
+                << " but it has " << format_bytes(*free) << " free\n";
+    if (cap > 0 && tables.cache_bytes > cap)
       std::cout << "warning: the tables (" << format_bytes(tables.cache_bytes) << ") exceed the table cache's cap ("
                 << format_bytes(cap) << ", SKYSPEC_CACHE_MAX_MB): the least recently used are removed as new "
                 << "ones are written, and a second run of the job builds them again\n";
