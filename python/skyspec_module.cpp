@@ -17,9 +17,9 @@
 #include <filesystem>
 #include <functional>
 #include <future>
-#include <mutex>
 #include <iomanip>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <sstream>
 #include <string>

@@ -1,8 +1,8 @@
 // How far the preparation of a render has come: the scattering-order tables being built, the
-// longest step before the first pixel (tens of seconds at the default settings, once per
-// atmosphere: they are cached). Process-wide, like skyspec/cancellation.hpp: the builders count
-// the work they plan and the work they finish, in units of equal cost (rays traced), and a host
-// reads it from a thread of its own to draw a progress bar (the CLI, the Python module).
+// longest step before the first pixel (once per atmosphere: they are cached). Process-wide, like
+// skyspec/cancellation.hpp: the builders count the work they plan and the work they finish, in
+// units of equal cost (rays traced), and a host reads it from a thread of its own to draw a
+// progress bar (the CLI, the Python module).
 #pragma once
 
 namespace skyspec {

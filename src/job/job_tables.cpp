@@ -55,9 +55,14 @@ std::string JobTableEstimate::describe() const {
 JobTableEstimate estimate_job_tables(const JobPlan& plan) {
   JobTableEstimate out;
   // One scene per (site, parameter set): the tables do not depend on the date-time or the sun.
+  struct DistinctSet {
+    const JobTask* task;      // the first task that uses it
+    ScatteringTablesKey key;  // (an atmosphere built on the grid: computed once per set)
+    int chunks = 0;           // the chunks (processes) that use it, each building it without a disk cache
+  };
   std::map<std::pair<int, int>, std::pair<std::uint64_t, bool>> key_of;  // -> (key hash, disk cache on)
-  std::map<std::uint64_t, const JobTask*> first_task;                   // a task of each distinct set
-  std::set<std::pair<int, std::uint64_t>> chunk_sets;                    // (chunk, set) without a disk cache
+  std::map<std::uint64_t, DistinctSet> sets;
+  std::set<std::pair<int, std::uint64_t>> chunk_sets;  // (chunk, set) without a disk cache
   for (const JobTask& task : plan.tasks) {
     const auto pair = std::make_pair(task.site, task.combination);
     auto found = key_of.find(pair);
@@ -66,31 +71,29 @@ JobTableEstimate estimate_job_tables(const JobPlan& plan) {
       if (scene.render.scattering_orders < 2) {
         found = key_of.emplace(pair, std::make_pair(std::uint64_t{0}, false)).first;
       } else {
-        const auto key = scattering_tables_key(scene);
+        ScatteringTablesKey key = scattering_tables_key(scene);
         found = key_of.emplace(pair, std::make_pair(key.hash, scene.render.cache_tables)).first;
-        first_task.emplace(key.hash, &task);
+        sets.emplace(key.hash, DistinctSet{&task, std::move(key)});
       }
     }
     const auto [hash, disk] = found->second;
-    if (hash != 0 && !disk) chunk_sets.emplace(task.index / plan.job.tasks_per_chunk, hash);
+    if (hash != 0 && !disk && chunk_sets.emplace(task.index / plan.job.tasks_per_chunk, hash).second)
+      ++sets.at(hash).chunks;
   }
-  out.distinct = static_cast<int>(first_task.size());
+  out.distinct = static_cast<int>(sets.size());
   std::map<BuildCost, double> seconds_of;  // measured once per distinct cost
-  std::map<std::uint64_t, int> builds_of;
-  for (const auto& [hash, task] : first_task) {
-    const Scene scene = task_scene(plan, *task);
-    const auto key = scattering_tables_key(scene);
-    if (scattering_orders_cached(key, scene.render.cache_tables)) {
+  for (const auto& [hash, set] : sets) {
+    const Scene scene = task_scene(plan, *set.task);
+    if (scattering_orders_cached(set.key, scene.render.cache_tables)) {
       ++out.cached;
       continue;
     }
     int builds = 1;
     if (scene.render.cache_tables) {
       out.cache_directory = table_cache_directory();
-      out.cache_bytes += estimate_table_cache_bytes(scene);
+      out.cache_bytes += scattering_tables_file_bytes(scene, set.key);
     } else {
-      builds = 0;
-      for (const auto& [chunk, h] : chunk_sets) builds += h == hash ? 1 : 0;
+      builds = set.chunks;
     }
     const auto cost = build_cost(scene);
     auto measured = seconds_of.find(cost);

@@ -2,11 +2,12 @@
 // sets of tables they use (one per atmosphere and table settings: scattering_tables_key), how many
 // of those must still be built, the time that takes and the bytes the disk cache gains.
 //
-// A job that sweeps an atmosphere key (random aerosol loads, albedos) builds a set per sample:
-// tens of seconds and about 56 MB each at the default settings. The sun, the date-time, the camera
-// and the outputs do not change the tables, so the sets are found from one scene per (site,
-// parameter set) pair; the build time is measured once per distinct cost (table settings,
-// wavelengths, view segments) with ScatteringOrders::estimate_build_seconds and multiplied.
+// A job that sweeps an atmosphere key (random aerosol loads, albedos) builds a set per sample, each
+// a build and a cache file (docs/jobs.md, "What a job costs before it runs"). The sun, the
+// date-time, the camera and the outputs do not change the tables, so the sets are found from one
+// scene per (site, parameter set) pair; the build time is measured once per distinct cost (table
+// settings, wavelengths, view segments) with ScatteringOrders::estimate_build_seconds and
+// multiplied.
 #pragma once
 
 #include <cstdint>
@@ -32,7 +33,7 @@ struct JobTableEstimate {
 };
 
 /// The estimate for every task of the plan (builds a few sun tables and times 16 entries per
-/// distinct cost: about a second each).
+/// distinct cost).
 JobTableEstimate estimate_job_tables(const JobPlan& plan);
 
 }  // namespace skyspec

@@ -220,12 +220,15 @@ double estimate_scattering_orders_seconds(const Scene& scene) {
   });
 }
 
-std::uint64_t estimate_table_cache_bytes(const Scene& scene) {
-  if (scene.render.scattering_orders < 2 || !scene.render.cache_tables) return 0;
-  const auto key = scattering_tables_key(scene);
-  if (table_cache_directory().empty() || scattering_orders_cached(key, true)) return 0;
+std::uint64_t scattering_tables_file_bytes(const Scene& scene, const ScatteringTablesKey& key) {
   return ScatteringOrders::table_bytes(multiple_scattering_settings(scene), make_wavelength_grid(scene).size()) +
          key.inputs.size();
+}
+
+std::uint64_t estimate_table_cache_bytes(const Scene& scene) {
+  if (scene.render.scattering_orders < 2 || !scene.render.cache_tables || table_cache_directory().empty()) return 0;
+  const auto key = scattering_tables_key(scene);
+  return scattering_orders_cached(key, true) ? 0 : scattering_tables_file_bytes(scene, key);
 }
 
 double estimate_frame_table_seconds(const Scene& scene, const SkyRenderer& estimate_renderer) {

@@ -19,6 +19,7 @@ namespace skyspec {
 
 class SkyRenderer;
 struct Scene;
+struct ScatteringTablesKey;
 
 /// Upper bound of a spectral EXR's size: width x height x (wavelengths + 3 RGB channels) floats,
 /// the scan-line offset table and 64 KiB for the header.
@@ -103,6 +104,8 @@ Scene scene_for_estimate(const Scene& scene);
 /// when they are cached (in this process or on disk): ScatteringOrders::estimate_build_seconds,
 /// which builds and times 16 entries of one order. Builds the scene's sun table to do so.
 double estimate_scattering_orders_seconds(const Scene& scene);
+/// The size of the cache file of the scene's scattering-order tables, named by `key`.
+std::uint64_t scattering_tables_file_bytes(const Scene& scene, const ScatteringTablesKey& key);
 /// Bytes the disk cache gains when the scene's scattering-order tables are built: their file, or 0
 /// when they are cached, single scattering is asked for or render.cache_tables is false.
 std::uint64_t estimate_table_cache_bytes(const Scene& scene);

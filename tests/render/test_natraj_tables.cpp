@@ -11,7 +11,7 @@
 // path within 0.13 % of the plane-parallel one; typed-in Rayleigh coefficients (no depolarisation:
 // gamma = 0) giving the optical thickness; no aerosol, no ozone; a flat solar spectrum of 1 W m^-2
 // nm^-1, so that pi I / F0 is pi times the radiance. Tables finer than the default: here 128 sun
-// angles, 32 altitudes and 10 orders (21 s on 2 cores), in the bench 192, 64 and 20; the limits are
+// angles, 32 altitudes and 10 orders, in the bench 192, 64 and 20; the limits are
 // the issue's: I within 0.5 % (or 1e-4 where it is small), Q and U within 0.002.
 //
 // The case here (optical thickness 0.25, ground albedo 0.25, every geometry; tests/data/natraj2009)
