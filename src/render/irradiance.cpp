@@ -7,6 +7,7 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "base/quadrature.hpp"
 #include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/units.hpp"

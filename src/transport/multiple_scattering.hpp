@@ -234,7 +234,4 @@ class ScatteringOrders : public InScatteringSource {
   double build_seconds_ = 0.0;
 };
 
-/// Gauss-Legendre nodes and weights on [a, b].
-void gauss_legendre(int n, double a, double b, std::vector<double>& nodes, std::vector<double>& weights);
-
 }  // namespace skyspec

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "base/quadrature.hpp"
 #include "skyspec/atmosphere.hpp"
 #include "skyspec/phase_function.hpp"
 #include "skyspec/units.hpp"

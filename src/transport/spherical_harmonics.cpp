@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "base/quadrature.hpp"
 #include "skyspec/units.hpp"
 #include "transport/multiple_scattering.hpp"
 

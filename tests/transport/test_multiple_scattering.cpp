@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "atmosphere_fixtures.hpp"
+#include "base/quadrature.hpp"
 #include "scratch_folder.hpp"
 #include "skyspec/camera.hpp"
 #include "skyspec/phase_function.hpp"

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "base/quadrature.hpp"
 #include "skyspec/phase_function.hpp"
 #include "skyspec/units.hpp"
 #include "transport/multiple_scattering.hpp"

@@ -1,0 +1,12 @@
+// Gauss-Legendre quadrature: the nodes and weights of the n-point rule on [a, b], exact for
+// polynomials of degree 2n - 1.
+#pragma once
+
+#include <vector>
+
+namespace skyspec {
+
+/// The n Gauss-Legendre nodes on [a, b], in descending order (from b towards a), and their weights.
+void gauss_legendre(int n, double a, double b, std::vector<double>& nodes, std::vector<double>& weights);
+
+}  // namespace skyspec
