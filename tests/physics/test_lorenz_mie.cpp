@@ -1,8 +1,8 @@
 // The Lorenz-Mie solver against published values: Wiscombe's MIEV0 test cases (NCAR/TN-140+STR,
 // 1979, rev. 1996: efficiencies, asymmetry, S1 and S2 every 30 degrees, the degree of
 // polarisation), the older MIEV0 cases, Bohren & Huffman's appendix example with its angular table,
-// and the independent code scattnlay; then closed forms: the Rayleigh limit of a small sphere and
-// the optical theorem. The values are tests/data/mie/published_cases.json (sources and
+// and the independent code scattnlay; Laven's rainbow and supernumeraries of a large drop; then
+// closed forms: the Rayleigh limit of a small sphere and the optical theorem. The values are tests/data/mie/published_cases.json (sources and
 // conventions inside: MIEV0's amplitudes are the complex conjugates of ours).
 
 #include <boost/test/unit_test.hpp>
@@ -13,6 +13,8 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
+#include <tuple>
+#include <vector>
 
 #include "skyspec/lorenz_mie.hpp"
 
@@ -182,6 +184,36 @@ BOOST_AUTO_TEST_CASE(optical_theorem_and_energy) {
         BOOST_TEST(std::abs(q.asymmetry) <= 1.0);
       }
     }
+}
+
+// The primary rainbow and its supernumeraries in one water drop, x = 1000, m = 1.333, light polarised
+// perpendicular to the scattering plane (|S1|^2): Laven 2003 (Appl. Opt. 42, 436) finds maxima
+// near 139, 141.1 and 142.6 degrees. |S1|^2 also carries a fine ripple (about 0.3 degree period,
+// interference with light reflected off the drop), averaged here over +-0.25 degree; the largest
+// average in each window lies within 0.2 degree of Laven's.
+BOOST_AUTO_TEST_CASE(rainbow_and_supernumeraries_of_a_large_drop) {
+  const MieSeries s = lorenz_mie(complex(1.333, 0.0), 1000.0);
+  const double step = 0.005, first = 136.0;
+  std::vector<double> mu;
+  for (int k = 0; k <= 1600; ++k) mu.push_back(std::cos((first + k * step) * M_PI / 180.0));
+  const std::vector<MieAmplitudes> amp = mie_amplitudes(s, mu);
+  const int half = 50;  // 0.25 degree
+  const auto average = [&](int k) {
+    double sum = 0.0;
+    for (int j = k - half; j <= k + half; ++j) sum += std::norm(amp[static_cast<size_t>(j)].s1);
+    return sum;
+  };
+  for (const auto& [low, high, laven] : {std::tuple{138.0, 140.0, 139.0}, {140.0, 142.0, 141.1}, {142.0, 143.3, 142.6}}) {
+    double best = -1.0, at = 0.0;
+    for (int k = half; k + half < static_cast<int>(mu.size()); ++k) {
+      const double theta = first + k * step;
+      if (theta < low || theta > high) continue;
+      const double a = average(k);
+      if (a > best) best = a, at = theta;
+    }
+    BOOST_TEST_MESSAGE("maximum of |S1|^2 in " << low << "-" << high << " deg at " << at << " deg (Laven: " << laven << ")");
+    BOOST_TEST(std::abs(at - laven) < 0.2);
+  }
 }
 
 BOOST_AUTO_TEST_CASE(bad_input_is_refused) {
