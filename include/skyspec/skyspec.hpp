@@ -30,3 +30,4 @@
 #include "skyspec/units.hpp"
 #include "skyspec/vec3.hpp"
 #include "skyspec/version.hpp"
+#include "skyspec/water.hpp"
