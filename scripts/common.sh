@@ -16,12 +16,15 @@ SKYSPEC_PACKAGES=(
   pybind11-dev python3-dev python3-numpy python3-matplotlib python3-openimageio
   jupyter-nbconvert python3-ipykernel
   python3-distributed python3-dask python3-netcdf4 slurm-wlm munge
-  clang-14 libclang-rt-14-dev
 )
+# Only live fuzzing (scripts/fuzz.sh) compiles with clang and its libFuzzer runtime; the main job
+# and the test command do not install them.
+SKYSPEC_FUZZ_PACKAGES=(clang-14 libclang-rt-14-dev)
 
+# install_missing_packages [PACKAGE...]: SKYSPEC_PACKAGES and these, those not installed yet.
 install_missing_packages() {
   local missing=()
-  for p in "${SKYSPEC_PACKAGES[@]}"; do
+  for p in "${SKYSPEC_PACKAGES[@]}" "$@"; do
     dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
   done
   [ ${#missing[@]} -eq 0 ] && return 0

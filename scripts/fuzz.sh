@@ -10,6 +10,6 @@
 #   SKYSPEC_FUZZ_SECONDS=3600 ./scripts/fuzz.sh  # an hour per target
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 export SKYSPEC_FUZZ_SECONDS=${SKYSPEC_FUZZ_SECONDS:-60}
-install_missing_packages
+install_missing_packages "${SKYSPEC_FUZZ_PACKAGES[@]}"
 build_fuzz
 ctest --test-dir build-fuzz --output-on-failure -j"$(nproc)" -R '^fuzz_'
