@@ -139,31 +139,39 @@ MieEfficiencies mie_efficiencies(const MieSeries& s) {
   return q;
 }
 
+namespace {
+// Adds term n of S1 and S2 at count angles and steps pi_n to pi_n+1 there (pi_0 = 0, pi_1 = 1,
+// pi_n+1 = ((2n+1) mu pi_n - (n+1) pi_n-1) / n, tau_n = n mu pi_n - (n+1) pi_n-1). The weights
+// (2n+1)/(n(n+1)) are in a and b. Angles are the inner loop, plain arrays, so that it vectorises.
+void add_term(int n, std::complex<double> a, std::complex<double> b, int count, const double* __restrict mu,
+              double* __restrict pi_prev, double* __restrict pi, double* __restrict s1_re, double* __restrict s1_im,
+              double* __restrict s2_re, double* __restrict s2_im) {
+  const double ar = a.real(), ai = a.imag(), br = b.real(), bi = b.imag();
+  const double nn = n, n1 = n + 1.0, inv_n = 1.0 / n, two_n1 = 2.0 * n + 1.0;
+  for (int j = 0; j < count; ++j) {
+    const double p = pi[j], pp = pi_prev[j], c = mu[j];
+    const double tau = nn * c * p - n1 * pp;
+    s1_re[j] += ar * p + br * tau;
+    s1_im[j] += ai * p + bi * tau;
+    s2_re[j] += ar * tau + br * p;
+    s2_im[j] += ai * tau + bi * p;
+    pi_prev[j] = p;
+    pi[j] = (two_n1 * c * p - n1 * pp) * inv_n;
+  }
+}
+}  // namespace
+
 std::vector<MieAmplitudes> mie_amplitudes(const MieSeries& s, const std::vector<double>& mu) {
-  std::vector<MieAmplitudes> out(mu.size());
-  // Per term, the weights (2n+1)/(n(n+1)) folded into the coefficients once.
-  std::vector<complex> wa(s.a.size()), wb(s.b.size());
+  const int count = static_cast<int>(mu.size());
+  std::vector<double> pi_prev(mu.size(), 0.0), pi(mu.size(), 1.0), s1_re(mu.size(), 0.0), s1_im(mu.size(), 0.0),
+      s2_re(mu.size(), 0.0), s2_im(mu.size(), 0.0);
   for (int n = 1; n <= s.terms(); ++n) {
     const double w = (2.0 * n + 1.0) / (n * (n + 1.0));
-    wa[static_cast<size_t>(n) - 1] = w * s.a[static_cast<size_t>(n) - 1];
-    wb[static_cast<size_t>(n) - 1] = w * s.b[static_cast<size_t>(n) - 1];
+    add_term(n, w * s.a[static_cast<size_t>(n) - 1], w * s.b[static_cast<size_t>(n) - 1], count, mu.data(),
+             pi_prev.data(), pi.data(), s1_re.data(), s1_im.data(), s2_re.data(), s2_im.data());
   }
-  for (size_t k = 0; k < mu.size(); ++k) {
-    const double c = mu[k];
-    // pi_0 = 0, pi_1 = 1, pi_n = (2n-1)/(n-1) mu pi_n-1 - n/(n-1) pi_n-2; tau_n = n mu pi_n - (n+1) pi_n-1.
-    double pi_prev = 0.0, pi = 1.0;
-    complex s1 = 0.0, s2 = 0.0;
-    for (int n = 1; n <= s.terms(); ++n) {
-      const double tau = n * c * pi - (n + 1.0) * pi_prev;
-      const complex a = wa[static_cast<size_t>(n) - 1], b = wb[static_cast<size_t>(n) - 1];
-      s1 += a * pi + b * tau;
-      s2 += a * tau + b * pi;
-      const double pi_next = ((2.0 * n + 1.0) * c * pi - (n + 1.0) * pi_prev) / n;
-      pi_prev = pi;
-      pi = pi_next;
-    }
-    out[k] = {s1, s2};
-  }
+  std::vector<MieAmplitudes> out(mu.size());
+  for (size_t j = 0; j < mu.size(); ++j) out[j] = {{s1_re[j], s1_im[j]}, {s2_re[j], s2_im[j]}};
   return out;
 }
 
