@@ -14,6 +14,7 @@
 #include "skyspec/error.hpp"
 #include "skyspec/geometry.hpp"
 #include "skyspec/king_factor.hpp"
+#include "skyspec/lee_diagram.hpp"
 #include "skyspec/lorenz_mie.hpp"
 #include "skyspec/monte_carlo_reference.hpp"
 #include "skyspec/phase_function.hpp"

@@ -4,6 +4,7 @@
 #include "render/render_budget.hpp"
 #include "report/comparison_report.hpp"
 #include "skyspec/display.hpp"
+#include "skyspec/lee_diagram.hpp"
 #include "skyspec/scene.hpp"
 
 namespace skyspec::cli {
@@ -30,6 +31,19 @@ const std::vector<std::pair<std::string, std::string>>& cli_spellings() {
       {kDeltaEMaxSetting, "--delta-e-max"},
       {kForceSetting, "--force"},
       {kSceneFileSetting, "--scene"},
+      {lee_setting::kRadiusMin, "--radius-min-um"},
+      {lee_setting::kRadiusMax, "--radius-max-um"},
+      {lee_setting::kAngleMin, "--angle-min"},
+      {lee_setting::kAngleMax, "--angle-max"},
+      {lee_setting::kWidth, "--width"},
+      {lee_setting::kHeight, "--height"},
+      {lee_setting::kLambdaMin, "--lambda-min"},
+      {lee_setting::kLambdaMax, "--lambda-max"},
+      {lee_setting::kLambdaStep, "--lambda-step"},
+      {lee_setting::kTemperature, "--water-temperature"},
+      {lee_setting::kSubsamples, "--angle-samples"},
+      {lee_setting::kDirectory, "--out"},
+      {lee_setting::kName, "--name"},
   };
   return table;
 }
