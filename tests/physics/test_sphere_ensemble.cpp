@@ -7,7 +7,10 @@
 
 #include <cmath>
 #include <complex>
+#include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 #include <stdexcept>
 
 #include "base/quadrature.hpp"
@@ -125,6 +128,44 @@ BOOST_AUTO_TEST_CASE(quadrature_converges, *boost::unit_test::precondition(test:
                                                << angles.str());
     }
   }
+}
+
+// OPAC's sulfate droplets at 99 % humidity (lognormal) and fog (modified gamma) at 550 nm, from the
+// size distributions and refractive indices OPAC states: the asymmetry parameter and the single
+// scattering albedo within 0.005 of OPAC's, the extinction per particle within 1 % (OPAC prints
+// four digits; tests/data/mie/opac_components.csv says where the values come from).
+BOOST_AUTO_TEST_CASE(opac_components_at_550nm) {
+  std::ifstream in(std::string(SKYSPEC_TEST_DATA_DIR) + "/mie/opac_components.csv");
+  BOOST_REQUIRE(in);
+  std::string line;
+  int checked = 0;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#' || line.rfind("component,", 0) == 0) continue;
+    std::vector<std::string> f;
+    std::stringstream fields(line);
+    for (std::string v; std::getline(fields, v, ',');) f.push_back(v);
+    BOOST_REQUIRE(f.size() == 12u);
+    const auto num = [&f](size_t i) { return std::stod(f[i]); };
+    const SizeDistribution shape =
+        f[1] == "lognormal" ? SizeDistribution::lognormal(num(2) * 1e-6, num(3))
+                            // n = A r^alpha exp(-B r^gamma), r in um: mode radius (alpha / (gamma B))^(1/gamma) um
+                            : SizeDistribution::modified_gamma(std::pow(num(2) / (num(4) * num(3)), 1.0 / num(4)) * 1e-6,
+                                                               num(2), num(4));
+    const SizeDistribution sizes = shape.truncated(num(5) * 1e-6, num(6) * 1e-6);
+    const SphereEnsembleOptics o = sphere_ensemble_optics(sizes, complex(num(7), num(8)), 550e-9, 1.0, {});
+    // 1 particle per cm^3 = 1e6 m^-3; 1 / km = 1e-3 / m.
+    const double ext_per_km = o.extinction_cross_section_m2 * 1e6 * 1e3;
+    BOOST_TEST_MESSAGE(f[0] << ": g " << o.asymmetry << " (OPAC " << f[11] << "), albedo " << o.single_scattering_albedo()
+                            << " (" << f[10] << "), extinction " << ext_per_km << " / km per particle / cm^3 (" << f[9]
+                            << ")");
+    BOOST_TEST_CONTEXT(f[0]) {
+      BOOST_TEST(std::abs(o.asymmetry - num(11)) < 0.005);
+      BOOST_TEST(std::abs(o.single_scattering_albedo() - num(10)) < 0.005);
+      BOOST_TEST(std::abs(ext_per_km / num(9) - 1.0) < 0.01);
+    }
+    ++checked;
+  }
+  BOOST_TEST(checked == 2);
 }
 
 BOOST_AUTO_TEST_CASE(out_of_reach_is_refused) {
