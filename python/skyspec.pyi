@@ -215,6 +215,34 @@ def rayleigh_cross_section(
     """Rayleigh cross-section of dry air per molecule, m^2 (Bodhaine et al. 1999 eq. 2), 230-1690 nm (the refractive index formula's range);
     shaped like wavelengths_nm (a number gives shape ()); co2_ppm defaults to the scenes' 420 ppm."""
 
+def lorenz_mie(m: complex, x: float, *, angles_deg: Optional[Numbers] = None) -> Dict[str, Any]:
+    """One homogeneous sphere by Lorenz-Mie theory (Wiscombe's algorithm): m the relative refractive index
+    (imaginary part >= 0 absorbs), x = 2 pi r n_medium / lambda (1e-3 to 2e4): qext, qsca, qabs, qback, g,
+    terms; with angles_deg (degrees) also s1, s2 (complex) and s11, s12, s33, s34, shaped like angles_deg."""
+
+def water_refractive_index(wavelengths_nm: Numbers, *, temperature_C: float = 10.0) -> npt.NDArray[np.float64]:
+    """The refractive index of liquid water (IAPWS R9-97), 200-1100 nm, 0-100 degC; shaped like wavelengths_nm."""
+
+def lee_diagram(
+    *,
+    radius_min_um: float = 10.0,
+    radius_max_um: float = 1000.0,
+    angle_min_deg: float = 125.0,
+    angle_max_deg: float = 145.0,
+    width: int = 400,
+    height: int = 100,
+    lambda_min_nm: float = 380.0,
+    lambda_max_nm: float = 780.0,
+    lambda_step_nm: float = 10.0,
+    water_temperature_C: float = 10.0,
+    angle_samples: int = 4,
+    polarisation: bool = False,
+    progress: Progress = None,
+) -> Dict[str, npt.NDArray[Any]]:
+    """The Lee diagram (`skyspec lee-diagram`): radiance (height, width, wavelengths; E_sun P_11 per unit
+    scattering optical depth, row 0 the largest radius), wavelengths_nm, angles_deg, radii_um and, with
+    polarisation, q (positive when polarised perpendicular to the scattering plane)."""
+
 def scene_toml(
     preset: str = "default",
     *,

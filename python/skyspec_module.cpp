@@ -3,6 +3,7 @@
 // C++ library: scenes are loaded by the same SceneLoader as the CLI, so presets, scene files and
 // key overrides are validated the same way, and errors name the key (ValueError for bad input,
 // OSError for files).
+#include <pybind11/complex.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -33,6 +34,8 @@
 #include "skyspec/colour.hpp"
 #include "skyspec/display.hpp"
 #include "skyspec/error.hpp"
+#include "skyspec/lee_diagram.hpp"
+#include "skyspec/lorenz_mie.hpp"
 #include "skyspec/monte_carlo_reference.hpp"
 #include "skyspec/preparation_progress.hpp"
 #include "skyspec/rayleigh.hpp"
@@ -42,6 +45,7 @@
 #include "skyspec/standard_atmosphere.hpp"
 #include "skyspec/units.hpp"
 #include "skyspec/version.hpp"
+#include "skyspec/water.hpp"
 
 namespace py = pybind11;
 using namespace skyspec;
@@ -476,6 +480,79 @@ py::dict standard_atmosphere(const py::object& altitude) {
   return d;
 }
 
+// ---- spheres: Lorenz-Mie, water, the Lee diagram ----------------------------------------------
+
+py::dict lorenz_mie_py(std::complex<double> m, double x, const py::object& angles_deg) {
+  const MieSeries series = lorenz_mie(m, x);
+  const MieEfficiencies q = mie_efficiencies(series);
+  py::dict d;
+  d["qext"] = q.extinction;
+  d["qsca"] = q.scattering;
+  d["qabs"] = q.absorption();
+  d["qback"] = q.backscatter;
+  d["g"] = q.asymmetry;
+  d["terms"] = series.terms();
+  if (angles_deg.is_none()) return d;
+  const auto angles = numbers_array(angles_deg, "angles_deg");
+  std::vector<double> mu(static_cast<size_t>(angles.size()));
+  for (py::ssize_t i = 0; i < angles.size(); ++i) {
+    const double a = angles.data()[i];
+    if (!(a >= 0.0 && a <= 180.0))
+      throw InputError("angles_deg", std::to_string(a), "scattering angles from 0 to 180 degrees");
+    mu[static_cast<size_t>(i)] = std::cos(a * kPi / 180.0);
+  }
+  const std::vector<MieAmplitudes> amp = mie_amplitudes(series, mu);
+  const auto shape = angles.request().shape;
+  py::array_t<std::complex<double>> s1(shape), s2(shape);
+  py::array_t<double> s11(shape), s12(shape), s33(shape), s34(shape);
+  for (size_t i = 0; i < amp.size(); ++i) {
+    const SphereScatteringMatrix f = sphere_scattering_matrix(amp[i]);
+    s1.mutable_data()[i] = amp[i].s1;
+    s2.mutable_data()[i] = amp[i].s2;
+    s11.mutable_data()[i] = f.s11;
+    s12.mutable_data()[i] = f.s12;
+    s33.mutable_data()[i] = f.s33;
+    s34.mutable_data()[i] = f.s34;
+  }
+  d["s1"] = s1;
+  d["s2"] = s2;
+  d["s11"] = s11;
+  d["s12"] = s12;
+  d["s33"] = s33;
+  d["s34"] = s34;
+  return d;
+}
+
+py::array_t<double> water_index_py(const py::object& wavelengths_nm, double temperature_C) {
+  const auto nm = numbers_array(wavelengths_nm, "wavelengths_nm");
+  if (!(temperature_C >= 0.0 && temperature_C <= 100.0))
+    throw InputError("temperature_C", std::to_string(temperature_C), "0-100 degC (liquid water at atmospheric pressure)");
+  const double t = temperature_C + 273.15, density = liquid_water_density_kg_per_m3(t);
+  py::array_t<double> n(nm.request().shape);
+  for (py::ssize_t i = 0; i < nm.size(); ++i) n.mutable_data()[i] = water_refractive_index(t, density, nm.data()[i]);
+  return n;
+}
+
+py::dict lee_diagram_py(const LeeDiagramSettings& settings, const py::object& progress) {
+  check_lee_diagram_settings(settings);
+  const auto diagram = std::make_shared<LeeDiagram>(run_interruptible(
+      [&settings](ProgressCounter& counter) { return compute_lee_diagram(settings, counter.rows()); }, progress,
+      "lee_diagram"));
+  const py::ssize_t h = diagram->height, w = diagram->width, n = static_cast<py::ssize_t>(diagram->wavelengths_nm.size());
+  // The arrays share the diagram's memory, which a capsule keeps alive.
+  const py::capsule owner(new std::shared_ptr<LeeDiagram>(diagram),
+                          [](void* p) { delete static_cast<std::shared_ptr<LeeDiagram>*>(p); });
+  py::dict d;
+  d["radiance"] = py::array_t<float>({h, w, n}, diagram->spectral.data(), owner);
+  if (!diagram->stokes.empty())
+    d["q"] = py::array_t<float>({h, w, py::ssize_t{3}, n}, diagram->stokes.data(), owner)[py::make_tuple(
+        py::ellipsis(), 0, py::slice(py::none(), py::none(), py::none()))];
+  d["wavelengths_nm"] = py::array_t<double>(n, diagram->wavelengths_nm.data());
+  d["angles_deg"] = py::array_t<double>(w, diagram->angles_deg.data());
+  d["radii_um"] = py::array_t<double>(h, diagram->radii_um.data());
+  return d;
+}
+
 // ---- rendering ------------------------------------------------------------------------------
 
 // A render in memory with what it shows. The NumPy arrays spectral, rgb, directions and
@@ -677,6 +754,17 @@ const std::vector<std::pair<std::string, std::string>>& python_spellings() {
       {d::kPngBits, "bits"},
       {d::kExposureEv, "exposure_ev"},
       {kSceneFileSetting, "scene_file"},
+      {lee_setting::kRadiusMin, "radius_min_um"},
+      {lee_setting::kRadiusMax, "radius_max_um"},
+      {lee_setting::kAngleMin, "angle_min_deg"},
+      {lee_setting::kAngleMax, "angle_max_deg"},
+      {lee_setting::kWidth, "width"},
+      {lee_setting::kHeight, "height"},
+      {lee_setting::kLambdaMin, "lambda_min_nm"},
+      {lee_setting::kLambdaMax, "lambda_max_nm"},
+      {lee_setting::kLambdaStep, "lambda_step_nm"},
+      {lee_setting::kTemperature, "water_temperature_C"},
+      {lee_setting::kSubsamples, "angle_samples"},
   };
   return table;
 }
@@ -901,6 +989,9 @@ PYBIND11_MODULE(skyspec, m) {
       "published_comparisons()     skyspec against Bodhaine et al. 1999, Bucholtz 1995 and the seed constants\n"
       "us_standard_atmosphere(z)   temperature, pressure, number density of the U.S. Standard Atmosphere 1976\n"
       "rayleigh_cross_section(...) sigma(lambda) in m^2\n"
+      "lorenz_mie(m, x, ...)       one sphere by Lorenz-Mie theory: efficiencies, g, S1, S2, scattering matrix\n"
+      "water_refractive_index(nm)  IAPWS R9-97\n"
+      "lee_diagram(...)            water drops' light against scattering angle and radius (NumPy arrays)\n"
       "render(...)                 a spectral sky image with its directions, sun, exposure and scene (RenderResult)\n"
       "scene_toml(...), preset_names(), scene_keys()\n"
       "run_job(job, ...)           a job file (sites x times x parameters) on a Dask cluster\n\n"
@@ -997,6 +1088,46 @@ Example: skyspec.derive(pressure_Pa=25000, temperature_K=220)["conditions_raylei
         "title, quantity, conditions, source, method, wavelength_nm, published, skyspec, difference_percent\n"
         "(arrays), max_abs_difference_percent and a plain-language explanation.");
 
+  m.def("lorenz_mie", &lorenz_mie_py, py::arg("m"), py::arg("x"), py::kw_only(), py::arg("angles_deg") = py::none(),
+        "One homogeneous sphere by Lorenz-Mie theory (Wiscombe's algorithm): m the relative refractive index\n"
+        "(complex, imaginary part >= 0 absorbs), x = 2 pi r n_medium / lambda (1e-3 to 2e4). A dict of qext, qsca,\n"
+        "qabs, qback (4 |S1(180)|^2 / x^2), g and terms; with angles_deg (scattering angles, degrees), also the\n"
+        "amplitudes s1, s2 (Bohren & Huffman's convention) and the scattering matrix s11, s12, s33, s34, shaped\n"
+        "like angles_deg.");
+  m.def("water_refractive_index", &water_index_py, py::arg("wavelengths_nm"), py::kw_only(),
+        py::arg("temperature_C") = 10.0,
+        "The refractive index of liquid water (IAPWS R9-97; its density at 1 atm from Kell 1975), 200-1100 nm,\n"
+        "0-100 degC; shaped like wavelengths_nm.");
+  m.def(
+      "lee_diagram",
+      [](double radius_min_um, double radius_max_um, double angle_min_deg, double angle_max_deg, int width,
+         int height, double lambda_min_nm, double lambda_max_nm, double lambda_step_nm, double water_temperature_C,
+         int angle_samples, bool polarisation, const py::object& progress) {
+        LeeDiagramSettings s;
+        s.radius_min_um = radius_min_um;
+        s.radius_max_um = radius_max_um;
+        s.angle_min_deg = angle_min_deg;
+        s.angle_max_deg = angle_max_deg;
+        s.width = width;
+        s.height = height;
+        s.lambda_min_nm = lambda_min_nm;
+        s.lambda_max_nm = lambda_max_nm;
+        s.lambda_step_nm = lambda_step_nm;
+        s.water_temperature_C = water_temperature_C;
+        s.angle_subsamples = angle_samples;
+        s.polarisation = polarisation;
+        return lee_diagram_py(s, progress);
+      },
+      py::kw_only(), py::arg("radius_min_um") = 10.0, py::arg("radius_max_um") = 1000.0,
+      py::arg("angle_min_deg") = 125.0, py::arg("angle_max_deg") = 145.0, py::arg("width") = 400,
+      py::arg("height") = 100, py::arg("lambda_min_nm") = 380.0, py::arg("lambda_max_nm") = 780.0,
+      py::arg("lambda_step_nm") = 10.0, py::arg("water_temperature_C") = 10.0, py::arg("angle_samples") = 4,
+      py::arg("polarisation") = false, py::arg("progress") = py::none(),
+      "The Lee diagram (`skyspec lee-diagram`): E_sun(lambda) P_11 of water drops, W m^-2 sr^-1 nm^-1 per unit\n"
+      "scattering optical depth, as a dict of radiance (height, width, wavelengths; row 0 the largest radius),\n"
+      "wavelengths_nm, angles_deg (column centres), radii_um (row centres) and, with polarisation, q (the same\n"
+      "shape: positive when polarised perpendicular to the scattering plane). progress: True for a bar, or a\n"
+      "callable (rows done, rows). Ctrl-C stops it.");
   m.def("us_standard_atmosphere", &standard_atmosphere, py::arg("altitude_m"),
         "U.S. Standard Atmosphere 1976 at geometric altitudes (m, scalar or array, -5 km to 100 km): a dict of\n"
         "arrays temperature_K, pressure_Pa and number_density_per_m3 (= P / (k T)), shaped like altitude_m.");

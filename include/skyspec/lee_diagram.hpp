@@ -29,7 +29,7 @@ struct LeeDiagramSettings {
   double angle_min_deg = 125.0, angle_max_deg = 145.0;  ///< columns: scattering angle
   int width = 400, height = 100;
   double lambda_min_nm = 380.0, lambda_max_nm = 780.0, lambda_step_nm = 10.0;
-  double water_temperature_K = 283.15;
+  double water_temperature_C = 10.0;  ///< liquid: 0-100 degC
   int angle_subsamples = 4;
   bool polarisation = false;
 };
@@ -45,7 +45,7 @@ inline constexpr const char* kHeight = "lee.height";
 inline constexpr const char* kLambdaMin = "lee.lambda_min_nm";
 inline constexpr const char* kLambdaMax = "lee.lambda_max_nm";
 inline constexpr const char* kLambdaStep = "lee.lambda_step_nm";
-inline constexpr const char* kTemperature = "lee.water_temperature_K";
+inline constexpr const char* kTemperature = "lee.water_temperature_C";
 inline constexpr const char* kSubsamples = "lee.angle_subsamples";
 inline constexpr const char* kDirectory = "lee.directory";  ///< write_lee_diagram's folder
 inline constexpr const char* kName = "lee.name";            ///< and its files' base name

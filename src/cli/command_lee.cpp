@@ -15,21 +15,14 @@ namespace {
 
 struct LeeOptions {
   LeeDiagramSettings settings;
-  double water_temperature_c = 10.0;
   std::string out = "skyspec-out", name = "lee";
   bool no_png = false, quiet = false;
   DisplayOptions display;
 };
 
-LeeDiagramSettings settings_of(const LeeOptions& o) {
-  LeeDiagramSettings s = o.settings;
-  s.water_temperature_K = o.water_temperature_c + 273.15;
-  return s;
-}
-
 int run_lee(const LeeOptions& o) {
   if (list_displays_if_asked(o.display)) return kExitOk;
-  const LeeDiagramSettings s = settings_of(o);
+  const LeeDiagramSettings s = o.settings;
   check_lee_diagram_settings(s);
   const DisplaySettings display = display_settings(o.display);
   DisplayPipeline{display};  // the display's names, before the computation
@@ -70,7 +63,7 @@ Command add_lee_command(CLI::App& app) {
   lee->add_option("--lambda-min", s.lambda_min_nm, "shortest wavelength, nm")->capture_default_str();
   lee->add_option("--lambda-max", s.lambda_max_nm, "longest wavelength, nm")->capture_default_str();
   lee->add_option("--lambda-step", s.lambda_step_nm, "wavelength step, nm")->capture_default_str();
-  lee->add_option("--water-temperature", opts->water_temperature_c, "water temperature, degC")->capture_default_str();
+  lee->add_option("--water-temperature", s.water_temperature_C, "water temperature, degC")->capture_default_str();
   lee->add_option("--angle-samples", s.angle_subsamples, "scattering angles averaged per column")->capture_default_str();
   lee->add_flag("--polarisation", s.polarisation, "also write S1 (Q: positive perpendicular to the scattering plane)");
   lee->add_option("--out", opts->out, "output folder")->capture_default_str();
@@ -81,7 +74,7 @@ Command add_lee_command(CLI::App& app) {
   return {lee, [opts] { return run_lee(*opts); },
           [opts] {  // run_lee's checks, without computing or writing
             if (opts->display.list) return void(OcioConfig(display_settings(opts->display).config));
-            check_lee_diagram_settings(settings_of(*opts));
+            check_lee_diagram_settings(opts->settings);
             DisplayPipeline{display_settings(opts->display)};
           }};
 }

@@ -45,7 +45,7 @@ std::string describe(const LeeDiagramSettings& s) {
   d << "Lee diagram: L = E_sun P_11 of water drops (W m^-2 sr^-1 nm^-1 per unit scattering optical depth); "
     << "columns: scattering angle " << s.angle_min_deg << "-" << s.angle_max_deg << " deg, left to right; rows: drop radius "
     << s.radius_max_um << "-" << s.radius_min_um << " um, top to bottom, logarithmic; water at "
-    << s.water_temperature_K << " K (IAPWS R9-97) in standard air; " << s.angle_subsamples
+    << s.water_temperature_C << " degC (IAPWS R9-97) in standard air; " << s.angle_subsamples
     << " angles averaged per column";
   return d.str();
 }
@@ -71,8 +71,8 @@ void check_lee_diagram_settings(const LeeDiagramSettings& s) {
                      "a step of at least 1 nm that divides " + std::string(k::kLambdaMax) + " - " + k::kLambdaMin +
                          " evenly, at most 1024 wavelengths");
   }
-  require(s.water_temperature_K >= 273.15 && s.water_temperature_K <= 373.15, k::kTemperature,
-          s.water_temperature_K, "273.15-373.15 K (liquid water at atmospheric pressure)");
+  require(s.water_temperature_C >= 0.0 && s.water_temperature_C <= 100.0, k::kTemperature, s.water_temperature_C,
+          "0-100 degC (liquid water at atmospheric pressure)");
   require(s.radius_min_um > 0.0 && std::isfinite(s.radius_min_um), k::kRadiusMin, s.radius_min_um, "a positive radius");
   // The largest drop at the shortest wavelength must stay within the solver's size parameter.
   const double largest_um = 2e4 * s.lambda_min_nm * 1e-3 / (2.0 * kPi * air_index(s.lambda_min_nm));
@@ -94,7 +94,8 @@ LeeDiagram compute_lee_diagram(const LeeDiagramSettings& s, const std::function<
   const int n = grid.size();
   d.wavelengths_nm = grid.nanometres();
   const SpectrumD sun = solar_irradiance_on_grid(grid, lee_setting::kLambdaMin);
-  const double density = liquid_water_density_kg_per_m3(s.water_temperature_K);
+  const double temperature_K = s.water_temperature_C + 273.15;
+  const double density = liquid_water_density_kg_per_m3(temperature_K);
   const double column = (s.angle_max_deg - s.angle_min_deg) / s.width;
   std::vector<double> mu;  // every column's subsamples, column-major
   for (int x = 0; x < s.width; ++x) {
@@ -117,7 +118,7 @@ LeeDiagram compute_lee_diagram(const LeeDiagramSettings& s, const std::function<
       throw_if_cancelled();
       const int y = first + task / n, i = task % n;
       const double lambda_nm = grid.nm(i), n_air = air_index(lambda_nm);
-      const std::complex<double> m(water_refractive_index(s.water_temperature_K, density, lambda_nm) / n_air, 0.0);
+      const std::complex<double> m(water_refractive_index(temperature_K, density, lambda_nm) / n_air, 0.0);
       const double x = 2.0 * kPi * d.radii_um[static_cast<size_t>(y)] * 1e3 * n_air / lambda_nm;  // um over nm
       const MieSeries series = lorenz_mie(m, x);
       // P_ij = S_ij / (k^2 C_sca) = S_ij / (pi x^2 Q_sca): per unit solid angle, integrating to 1.

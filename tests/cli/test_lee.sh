@@ -40,7 +40,7 @@ expect_error radius_too_large "--radius-max-um = 5000 is not allowed: from 10 (-
   --radius-max-um 5000
 expect_error angles_reversed "--angle-max" --angle-min 140 --angle-max 130
 expect_error ultraviolet "--lambda-min" --lambda-min 250
-expect_error frozen "--water-temperature" --water-temperature -20
+expect_error frozen "--water-temperature = -20 is not allowed: 0-100 degC" --water-temperature -20
 expect_error no_width "--width" --width 0
 expect_error bad_name "--name" --name a/b
 expect_error bad_view "--view" --view "no such view"

@@ -522,5 +522,41 @@ class LongCalls(unittest.TestCase):
             self.assertEqual(os.listdir(cache), [], "a table file was left behind")
 
 
+
+class Spheres(unittest.TestCase):
+    """Lorenz-Mie, water and the Lee diagram from Python: the values of the C++ tests' sources."""
+
+    def test_lorenz_mie_water_case_of_wiscombe(self):
+        # MIEV0 case 10: m = 1.33 - 1e-5 i (MIEV0's sign), x = 100.
+        r = skyspec.lorenz_mie(1.33 + 1e-5j, 100.0, angles_deg=np.array([[0.0, 90.0], [120.0, 180.0]]))
+        self.assertAlmostEqual(r["qext"] / 2.101321, 1.0, delta=2e-6)
+        self.assertAlmostEqual(r["qsca"] / 2.096594, 1.0, delta=2e-6)
+        self.assertEqual(r["s1"].shape, (2, 2))
+        self.assertEqual(r["s1"].dtype, np.complex128)
+        # The optical theorem: Qext = 4 / x^2 Re S(0).
+        self.assertAlmostEqual(4.0 / 100.0**2 * r["s1"][0, 0].real / r["qext"], 1.0, delta=1e-9)
+        with self.assertRaisesRegex(ValueError, "angles_deg"):
+            skyspec.lorenz_mie(1.33, 10.0, angles_deg=[200.0])
+
+    def test_water_index_check_value_and_shape(self):
+        # IAPWS R9-97's check value is at 997.047 kg/m^3 (25 degC); Kell's density there differs by 2.5e-3.
+        n = skyspec.water_refractive_index([589.3], temperature_C=25.0)
+        self.assertAlmostEqual(n[0], 1.3328581926, delta=2e-6)
+        self.assertEqual(skyspec.water_refractive_index(550.0).shape, ())
+        with self.assertRaisesRegex(ValueError, "temperature_C"):
+            skyspec.water_refractive_index(550.0, temperature_C=-5.0)
+
+    def test_lee_diagram_arrays_and_errors(self):
+        calls = []
+        d = skyspec.lee_diagram(width=40, height=5, lambda_step_nm=50, polarisation=True,
+                                progress=lambda done, total: calls.append((done, total)))
+        self.assertEqual(d["radiance"].shape, (5, 40, 9))
+        self.assertEqual(d["q"].shape, (5, 40, 9))
+        self.assertEqual(list(d["radii_um"][[0, -1]]), [1000.0, 10.0])
+        self.assertTrue(np.all(np.isfinite(d["radiance"])) and np.all(d["radiance"] > 0))
+        self.assertEqual(calls[-1], (5, 5))
+        with self.assertRaisesRegex(ValueError, r"radius_max_um = 5000 is not allowed"):
+            skyspec.lee_diagram(radius_max_um=5000)
+
 if __name__ == "__main__":
     unittest.main()

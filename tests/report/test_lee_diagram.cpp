@@ -153,7 +153,7 @@ BOOST_AUTO_TEST_CASE(bad_settings_are_refused) {
   s.lambda_min_nm = 250.0;
   BOOST_TEST(setting_of(s) == lee_setting::kLambdaMin);
   s = {};
-  s.water_temperature_K = 250.0;
+  s.water_temperature_C = -20.0;
   BOOST_TEST(setting_of(s) == lee_setting::kTemperature);
   s = {};
   s.width = 0;
