@@ -24,19 +24,19 @@ build_sanitized
 stage "sanitizer build"
 # Not repeated here, for time: the Python and notebook tests (no module in that build), the
 # installed package, the Slurm cluster (its skyspec commands run here in cli_job), the layering
-# check (it reads sources and preprocesses probes: nothing a sanitizer sees); six tests of
+# check (it reads sources and preprocesses probes: nothing a sanitizer sees); seven tests of
 # properties a sanitizer does not change (byte-identical renders, provenance round trips, the
-# multiple-scattering physics, grid independence, the Monte Carlo reference and the renderer
-# against it); and two long ones whose code the others run under the sanitizers: cli_display (the
+# multiple-scattering physics, grid independence, the Monte Carlo reference, its polarised cases
+# and the renderer against it: cli_reference runs the scalar and the vector Monte Carlo here); and
+# two long ones whose code the others run under the sanitizers: cli_display (the
 # display pipeline; every PNG of the other tests goes through it) and test_properties (random
 # scenes; the renderer's code). cli (renders, time-lapses, aerial perspective) runs here with small
 # scattering-order tables (docs/performance.md, "Build and test times").
 # SKYSPEC_SANITIZER_STAGE also leaves a test's longest parts to the release stage where it says so
 # (cli_hostile, cli_tiles, cli_budget's job, cli's progress bar and cache cap, test_polarised_sky,
-# test_natraj_tables, one case of test_monte_carlo_polarisation) and makes cli's renders use small
-# tables.
+# test_natraj_tables, test_sphere_ensemble's convergence) and makes cli's renders use small tables.
 SKYSPEC_SANITIZER_STAGE=1 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan --output-on-failure -j"$(nproc)" \
-    -E '^(python_.*|notebook_.*|install_consumer|slurm_job|layering|cli_determinism|cli_reproduce|test_multiple_scattering|test_grid_independence|test_monte_carlo|test_monte_carlo_reference|cli_display|test_properties)$'
+    -E '^(python_.*|notebook_.*|install_consumer|slurm_job|layering|cli_determinism|cli_reproduce|test_multiple_scattering|test_grid_independence|test_monte_carlo|test_monte_carlo_reference|test_monte_carlo_polarisation|cli_display|test_properties)$'
 stage "sanitizer tests"
