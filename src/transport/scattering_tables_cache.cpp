@@ -25,13 +25,16 @@ std::uint64_t table_cache_cap_bytes() {
   if (!text || !*text) return kDefaultTableCacheCapBytes;
   const std::string value(text);
   constexpr std::uint64_t kMaxMegabytes = 1000ull * 1000 * 1000;  // a petabyte
+  const auto refuse = [&value] {
+    throw InputError("SKYSPEC_CACHE_MAX_MB", "\"" + value + "\"",
+                     "a whole number of megabytes for the table cache, 0 to 1000000000 (0: no cap; unset: 2000)");
+  };
   std::uint64_t mb = 0;
   for (char c : value) {
-    if (c < '0' || c > '9' || mb > kMaxMegabytes)
-      throw InputError("SKYSPEC_CACHE_MAX_MB", "\"" + value + "\"",
-                       "a whole number of megabytes for the table cache (0: no cap; unset: 2000)");
+    if (c < '0' || c > '9' || mb > kMaxMegabytes) refuse();
     mb = mb * 10 + static_cast<std::uint64_t>(c - '0');
   }
+  if (mb > kMaxMegabytes) refuse();
   return mb * 1000 * 1000;
 }
 

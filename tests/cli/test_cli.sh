@@ -243,6 +243,10 @@ SKYSPEC_CACHE_DIR="$cap_cache" SKYSPEC_CACHE_MAX_MB=2GB "$skyspec" render -q --w
   --set render.scattering_orders=2 --set ground.albedo=0.4 2>"$work/stderr"
 [ $? = 2 ] && grep -q 'SKYSPEC_CACHE_MAX_MB = "2GB" is not allowed' "$work/stderr" && ok \
   || bad "a bad cache cap: $(cat "$work/stderr")"
+SKYSPEC_CACHE_DIR="$cap_cache" SKYSPEC_CACHE_MAX_MB=9999999999 "$skyspec" render -q --width 4 --height 4 --out "$work/cap" \
+  --set render.scattering_orders=2 --set ground.albedo=0.4 2>"$work/stderr"
+[ $? = 2 ] && grep -q '0 to 1000000000 (0: no cap; unset: 2000)' "$work/stderr" && ok \
+  || bad "a cache cap above the largest: $(cat "$work/stderr")"
 fi
 
 # docs/scene-keys.md is generated from the key registry: it must be what the program prints now.
