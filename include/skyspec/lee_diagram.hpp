@@ -8,7 +8,7 @@
 //   L(theta, r, lambda) = E_sun(lambda) P_11(theta; r, lambda),  P_11 = S11 / (pi x^2 Q_sca)
 //
 // the radiance of sunlight singly scattered by an optically thin layer of such drops, per unit
-// scattering optical depth and per unit air mass (W m^-2 sr^-1 nm^-1); P_11 integrates to 1 over
+// scattering optical depth (W m^-2 sr^-1 nm^-1); P_11 integrates to 1 over
 // the sphere. Polarised, also Q = -E_sun P_12 in the frame whose first axis is perpendicular to
 // the scattering plane (positive: polarised perpendicular to it, as a rainbow is); U = V = 0 for
 // unpolarised sunlight. Each pixel averages its column's angles (angle_subsamples of them), which
@@ -63,7 +63,7 @@ struct LeeDiagram {
 
 /// Throws InputError naming a lee.* setting when a value is out of range (radii whose size
 /// parameter would exceed the solver's 2e4 at the shortest wavelength, an angle outside 0-180
-/// degrees, wavelengths outside water's 200-1100 nm, a too large image). `progress` (may be empty)
+/// degrees, wavelengths outside 280-1100 nm, a too large image). `progress` (may be empty)
 /// is called with (rows done, rows) from the calling thread.
 LeeDiagram compute_lee_diagram(const LeeDiagramSettings& settings,
                                const std::function<void(int, int)>& progress = {});
@@ -77,7 +77,8 @@ struct LeeDiagramFiles {
 /// Writes DIR/NAME.exr (the spectral layout; polarised: S0-S3) and, unless png is false,
 /// DIR/NAME.png: each row's colour through the display pipeline, every row scaled so that its
 /// brightest pixel has luminance 1 (rows of small drops scatter far less into these angles than
-/// rows of large ones; the EXR keeps the values unscaled). Atomic files.
+/// rows of large ones; the EXR keeps the values unscaled). Atomic files; if the PNG fails, the EXR
+/// is removed again.
 LeeDiagramFiles write_lee_diagram(const LeeDiagram& diagram, const std::filesystem::path& dir, const std::string& name,
                                   const DisplaySettings& display, bool png);
 

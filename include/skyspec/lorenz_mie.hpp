@@ -13,10 +13,10 @@
 // logarithmic derivative, summed to Wiscombe's N_stop terms. The algorithm follows Wiscombe 1980,
 // "Improved Mie scattering algorithms", Appl. Opt. 19, 1505-1509 (NCAR/TN-140+STR, rev. 1996):
 //   - N_stop = x + 4 x^(1/3) + 1 (x <= 8), x + 4.05 x^(1/3) + 2 (8 < x < 4200), x + 4 x^(1/3) + 2;
-//   - D_n(mx) by downward recurrence D_n-1 = n/z - 1 / (D_n + n/z), started at n = max(N_stop, |mx|)
-//     with the exact value from Lentz's continued fraction (Lentz 1976, Appl. Opt. 15, 668), not
-//     from zero: the zero start of Bohren & Huffman's BHMIE is wrong for large, nearly transparent
-//     spheres (water at x = 10^4: Qsca off by 3.4e-3);
+//   - D_n(mx) by downward recurrence D_n-1 = n/z - 1 / (D_n + n/z), started at n = N_stop with
+//     the exact value from Lentz's continued fraction (Lentz 1976, Appl. Opt. 15, 668), not from
+//     zero: the zero start of Bohren & Huffman's BHMIE is wrong for large, nearly transparent
+//     spheres (Wiscombe's water cases 10 and 11 show it);
 //   - psi_n and chi_n by upward recurrence, stable to N_stop.
 // The amplitude functions S1 (perpendicular to the scattering plane) and S2 (parallel) follow from
 // the angular functions pi_n, tau_n by their upward recurrences (Bohren & Huffman eqs. 4.74, 4.47).

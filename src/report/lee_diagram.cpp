@@ -182,7 +182,8 @@ LeeDiagramFiles write_lee_diagram(const LeeDiagram& d, const std::filesystem::pa
     }
     writer.finish();
   }
-  if (png) {
+  if (!png) return out;
+  try {
     // Each row scaled so that its brightest pixel has luminance 1, then the display transform.
     std::vector<float> scaled = rgb;
     for (int y = 0; y < d.height; ++y) {
@@ -195,6 +196,10 @@ LeeDiagramFiles write_lee_diagram(const LeeDiagram& d, const std::filesystem::pa
     out.png = dir / (name + ".png");
     write_png_display(out.png, d.width, d.height, pipeline.encode(std::move(scaled), 1.0), display.png_bit_depth,
                       pipeline.png_tag(), {{"Software", std::string("skyspec ") + version_string()}, {"Description", describe(d.settings)}});
+  } catch (...) {  // the pair or nothing: a failed PNG takes its EXR with it, as a failed render's files do
+    std::error_code ec;
+    std::filesystem::remove(out.exr, ec);
+    throw;
   }
   return out;
 }

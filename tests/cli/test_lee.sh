@@ -30,6 +30,13 @@ exrheader "$work/b/p.exr" | grep -q "S1.430,000000nm" && ok || bad "--polarisati
 script -qc "'$skyspec' lee-diagram ${small[*]} --out '$work/tty'" /dev/null 2>&1 | grep -qa "lee diagram \[" \
   && ok || bad "no progress bar on a terminal"
 
+# A PNG that cannot be written (a folder has its name): exit 3, and the EXR written before it is
+# removed again (the pair or nothing).
+mkdir -p "$work/c/lee.png"
+"$skyspec" lee-diagram "${small[@]}" --out "$work/c" -q 2>"$work/stderr"
+[ $? = 3 ] && [ ! -e "$work/c/lee.exr" ] && [ "$(ls -A "$work/c")" = lee.png ] && ok \
+  || bad "failed PNG: $(ls -A "$work/c"); $(cat "$work/stderr")"
+
 expect_error() {  # expect_error NAME 'text' ARGS...
   local name=$1 text=$2
   shift 2
