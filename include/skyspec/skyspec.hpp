@@ -3,6 +3,7 @@
 #pragma once
 
 #include "skyspec/aerial_perspective.hpp"
+#include "skyspec/aerosol_components.hpp"
 #include "skyspec/atmosphere.hpp"
 #include "skyspec/camera.hpp"
 #include "skyspec/camera_spec.hpp"
@@ -28,6 +29,7 @@
 #include "skyspec/spectrum.hpp"
 #include "skyspec/sphere_ensemble.hpp"
 #include "skyspec/standard_atmosphere.hpp"
+#include "skyspec/tabulated_scattering.hpp"
 #include "skyspec/units.hpp"
 #include "skyspec/vec3.hpp"
 #include "skyspec/version.hpp"

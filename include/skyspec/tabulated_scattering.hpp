@@ -1,0 +1,71 @@
+// A scattering matrix tabulated per wavelength at cosines of the scattering angle: what Lorenz-Mie
+// theory over a size distribution gives (sphere_ensemble.hpp), in the form the renderer, the
+// scattering-order tables and the Monte Carlo use. For randomly oriented spheres the matrix has four
+// independent elements (Bohren & Huffman 1983, eq. 4.77; the block form of
+// physics/scattering_matrix.hpp with a2 = a1, a4 = a3):
+//
+//   a1 = P11 (the phase function, sr^-1), b1 = P12, a3 = P33, b2 = P34.
+//
+// Between the tabulated cosines every element is linear in mu. That interpolant IS the phase
+// function here: it is normalised so that 2 pi integral a1 dmu = 1 exactly (the trapezoidal rule
+// is exact for it), the Monte Carlo samples it exactly (a linear density on each interval), and
+// the renderer evaluates it, so that both see the same function. How fine the cosines must be is
+// the caller's choice (aerosol_components.hpp states its grid and what it misses).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+namespace skyspec {
+
+/// The elements of one scattering matrix (sr^-1), Bohren & Huffman's convention: b1 < 0 where
+/// scattered unpolarised light is polarised perpendicular to the scattering plane.
+struct SphereMatrixElements {
+  double a1 = 0.0, b1 = 0.0, a3 = 0.0, b2 = 0.0;
+};
+
+class TabulatedScatteringMatrix {
+ public:
+  /// mu: strictly increasing from -1 to 1. a1, b1, a3, b2: [wavelength][mu] (rows of mu.size()),
+  /// any positive scale per wavelength (a1 > 0 somewhere); each wavelength's four rows are scaled
+  /// together so that its a1 integrates to 1. Throws std::invalid_argument otherwise.
+  TabulatedScatteringMatrix(std::vector<double> mu, std::vector<std::vector<double>> a1,
+                            std::vector<std::vector<double>> b1, std::vector<std::vector<double>> a3,
+                            std::vector<std::vector<double>> b2);
+
+  int wavelengths() const { return static_cast<int>(a1_.size()); }
+  const std::vector<double>& mu() const { return mu_; }
+  /// Where mu lies: the interval [k, k + 1] of the table and the weight of node k + 1.
+  struct Position {
+    int k = 0;
+    double w = 0.0;
+  };
+  Position locate(double mu) const;
+  /// The phase function a1 of wavelength i at mu (sr^-1).
+  double phase(int i, double mu) const { return phase(i, locate(mu)); }
+  double phase(int i, Position p) const { return lerp(a1_[static_cast<std::size_t>(i)], p); }
+  /// b1 (P12) of wavelength i at a located cosine.
+  double b1(int i, Position p) const { return lerp(b1_[static_cast<std::size_t>(i)], p); }
+  SphereMatrixElements elements(int i, double mu) const;
+  /// The asymmetry parameter g = 2 pi integral a1 mu dmu of wavelength i (exact for the interpolant).
+  double asymmetry(int i) const { return g_[static_cast<std::size_t>(i)]; }
+  /// A cosine drawn from a1 of wavelength i given u uniform in [0, 1): exact inversion of the
+  /// piecewise-linear density.
+  double sample_mu(int i, double u) const;
+  /// The table's rows, for hashing (a1 normalised; then b1, a3, b2).
+  const std::vector<std::vector<double>>& a1() const { return a1_; }
+  const std::vector<std::vector<double>>& b1() const { return b1_; }
+  const std::vector<std::vector<double>>& a3() const { return a3_; }
+  const std::vector<std::vector<double>>& b2() const { return b2_; }
+
+ private:
+  double lerp(const std::vector<double>& row, Position p) const {
+    return row[static_cast<std::size_t>(p.k)] * (1.0 - p.w) + row[static_cast<std::size_t>(p.k) + 1] * p.w;
+  }
+  std::vector<double> mu_;
+  std::vector<std::vector<double>> a1_, b1_, a3_, b2_;
+  std::vector<std::vector<double>> cdf_;  // [wavelength][node]: probability of mu below the node
+  std::vector<double> g_;
+};
+
+}  // namespace skyspec

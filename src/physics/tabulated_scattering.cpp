@@ -1,0 +1,85 @@
+#include "skyspec/tabulated_scattering.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "skyspec/units.hpp"
+
+namespace skyspec {
+
+TabulatedScatteringMatrix::TabulatedScatteringMatrix(std::vector<double> mu, std::vector<std::vector<double>> a1,
+                                                     std::vector<std::vector<double>> b1,
+                                                     std::vector<std::vector<double>> a3,
+                                                     std::vector<std::vector<double>> b2)
+    : mu_(std::move(mu)), a1_(std::move(a1)), b1_(std::move(b1)), a3_(std::move(a3)), b2_(std::move(b2)) {
+  const size_t n = mu_.size();
+  if (n < 2 || mu_.front() != -1.0 || mu_.back() != 1.0)
+    throw std::invalid_argument("tabulated scattering matrix: the cosines must run from -1 to 1");
+  for (size_t k = 1; k < n; ++k)
+    if (!(mu_[k] > mu_[k - 1])) throw std::invalid_argument("tabulated scattering matrix: cosines not increasing");
+  if (b1_.size() != a1_.size() || a3_.size() != a1_.size() || b2_.size() != a1_.size() || a1_.empty())
+    throw std::invalid_argument("tabulated scattering matrix: one row of each element per wavelength");
+  cdf_.resize(a1_.size());
+  g_.resize(a1_.size());
+  for (size_t i = 0; i < a1_.size(); ++i) {
+    for (const auto* row : {&a1_[i], &b1_[i], &a3_[i], &b2_[i]}) {
+      if (row->size() != n) throw std::invalid_argument("tabulated scattering matrix: a row's length is not the cosines'");
+      for (double v : *row)
+        if (!std::isfinite(v)) throw std::invalid_argument("tabulated scattering matrix: a value is not finite");
+    }
+    // The trapezoidal rule is exact for the piecewise-linear a1; so is its first moment's rule
+    // integral of (p_k (1 - t) + p_k+1 t) mu dmu over an interval, mu linear in t.
+    std::vector<double>& c = cdf_[i];
+    c.assign(n, 0.0);
+    double g = 0.0;
+    for (size_t k = 0; k + 1 < n; ++k) {
+      const double h = mu_[k + 1] - mu_[k], p0 = a1_[i][k], p1 = a1_[i][k + 1];
+      if (p0 < 0.0 || p1 < 0.0) throw std::invalid_argument("tabulated scattering matrix: a negative phase function");
+      c[k + 1] = c[k] + 0.5 * h * (p0 + p1);
+      g += h * (p0 * (2.0 * mu_[k] + mu_[k + 1]) + p1 * (mu_[k] + 2.0 * mu_[k + 1])) / 6.0;
+    }
+    const double total = c.back();
+    if (!(total > 0.0)) throw std::invalid_argument("tabulated scattering matrix: a phase function that is zero");
+    const double scale = 1.0 / (2.0 * kPi * total);
+    for (auto* row : {&a1_[i], &b1_[i], &a3_[i], &b2_[i]})
+      for (double& v : *row) v *= scale;
+    for (double& v : c) v /= total;
+    c.back() = 1.0;
+    g_[i] = g / total;
+  }
+}
+
+TabulatedScatteringMatrix::Position TabulatedScatteringMatrix::locate(double mu) const {
+  mu = std::clamp(mu, -1.0, 1.0);
+  const auto it = std::upper_bound(mu_.begin(), mu_.end(), mu);
+  int k = static_cast<int>(it - mu_.begin()) - 1;
+  k = std::clamp(k, 0, static_cast<int>(mu_.size()) - 2);
+  const double w = (mu - mu_[static_cast<size_t>(k)]) / (mu_[static_cast<size_t>(k) + 1] - mu_[static_cast<size_t>(k)]);
+  return {k, std::clamp(w, 0.0, 1.0)};
+}
+
+SphereMatrixElements TabulatedScatteringMatrix::elements(int i, double mu) const {
+  const Position p = locate(mu);
+  const size_t s = static_cast<size_t>(i);
+  return {lerp(a1_[s], p), lerp(b1_[s], p), lerp(a3_[s], p), lerp(b2_[s], p)};
+}
+
+double TabulatedScatteringMatrix::sample_mu(int i, double u) const {
+  const std::vector<double>& c = cdf_[static_cast<size_t>(i)];
+  const std::vector<double>& p = a1_[static_cast<size_t>(i)];
+  const auto it = std::upper_bound(c.begin(), c.end(), u);
+  size_t k = static_cast<size_t>(std::clamp<long>(static_cast<long>(it - c.begin()) - 1, 0, static_cast<long>(c.size()) - 2));
+  while (k + 2 < c.size() && c[k + 1] <= c[k]) ++k;  // skip intervals of zero probability
+  // On [mu_k, mu_k+1] the density is p_k + s t (t = mu - mu_k, s the slope); the probability
+  // below mu_k + t is c_k + 2 pi (p_k t + s t^2 / 2), solved for t (the root that stays finite
+  // as s -> 0).
+  const double h = mu_[k + 1] - mu_[k], s = (p[k + 1] - p[k]) / h;
+  const double target = std::max(0.0, (u - c[k]) / (2.0 * kPi));
+  const double disc = std::max(0.0, p[k] * p[k] + 2.0 * s * target);
+  const double denom = p[k] + std::sqrt(disc);
+  const double t = denom > 0.0 ? 2.0 * target / denom : h * (u - c[k]) / std::max(c[k + 1] - c[k], 1e-300);
+  return std::clamp(mu_[k] + std::clamp(t, 0.0, h), -1.0, 1.0);
+}
+
+}  // namespace skyspec
