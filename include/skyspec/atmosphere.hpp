@@ -9,6 +9,9 @@
 #include <string>
 #include <vector>
 
+#include <memory>
+
+#include "skyspec/aerosol_components.hpp"
 #include "skyspec/density_profile.hpp"
 #include "skyspec/phase_function.hpp"
 #include "skyspec/rayleigh.hpp"
@@ -38,6 +41,14 @@ struct RayleighSpec {
 };
 
 struct MieSpec {
+  /// Angstrom: the Angstrom law (or the optional tables below) and an analytic phase function that
+  /// does not polarise. Opac: OPAC components by Lorenz-Mie theory (aerosol_components.hpp):
+  /// extinction, scattering and the full scattering matrix per wavelength from the mixture's number
+  /// concentrations and humidity; the Angstrom model's amount, exponent, ratio, phase and tables
+  /// are then not used.
+  enum class Model { Angstrom, Opac };
+  Model model = Model::Angstrom;
+  AerosolMixture opac = AerosolMixture::continental_average();
   bool enabled = true;
   ProfileKind profile = ProfileKind::Exponential;
   double scale_height_m = 1200.0;
@@ -117,6 +128,12 @@ class AtmosphereModel {
   /// The aerosol asymmetry parameter per wavelength (constant unless the aerosol has tables).
   const SpectrumD& mie_g() const { return mie_g_; }
   bool mie_g_varies() const { return mie_g_.size() > 0 && mie_g_.maxCoeff() != mie_g_.minCoeff(); }
+  /// The aerosol's scattering matrix per wavelength when it comes from microphysics (model Opac),
+  /// else null (the analytic phase function mie_phase() with mie_g()).
+  const TabulatedScatteringMatrix* mie_matrix() const { return mie_matrix_.get(); }
+  const std::shared_ptr<const TabulatedScatteringMatrix>& shared_mie_matrix() const { return mie_matrix_; }
+  /// The aerosol's phase function at wavelength i: the tabulated one or the analytic model.
+  double mie_phase_at(int i, double mu) const;
 
   /// Molecular number density at altitude 0, m^-3, and how it was obtained.
   double rayleigh_number_density_per_m3() const { return rayleigh_n0_per_m3_; }
@@ -130,6 +147,7 @@ class AtmosphereModel {
   ScatteringSpecies rayleigh_, mie_, ozone_;
   double ozone_peak_per_m3_ = 0.0;
   SpectrumD mie_g_;
+  std::shared_ptr<const TabulatedScatteringMatrix> mie_matrix_;
   SpectrumD rayleigh_gamma_;
   SpectrumD ground_albedo_;
   double rayleigh_n0_per_m3_ = 0.0;

@@ -9,6 +9,7 @@
 
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "skyspec/atmosphere.hpp"
@@ -105,6 +106,10 @@ struct CoefficientReport {
   double mie_scattering_at_reference_per_m = 0.0, mie_reference_wavelength_nm = 550.0;
   double mie_angstrom_exponent = 0.0, mie_extinction_to_scattering = 1.0;
   bool mie_tabulated = false;  ///< spectral tables (Q_ext, albedo, g) replace the Angstrom law
+  /// Microphysics (atmosphere.mie.model = "opac"): OPAC component -> particles per cm^3 (those
+  /// above 0) and the humidity; empty for the Angstrom model.
+  std::vector<std::pair<std::string, double>> mie_opac_components;
+  double mie_opac_relative_humidity_percent = 0.0;
   std::string mie_profile_description;
 
   // Ozone (absorption only), when the atmosphere has it.

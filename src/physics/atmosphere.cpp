@@ -128,6 +128,15 @@ AtmosphereModel::AtmosphereModel(const AtmosphereSpec& spec, const WavelengthGri
     }
   }
 
+  if (m.enabled && m.model == MieSpec::Model::Opac) {
+    // Microphysics: Lorenz-Mie over each component's size distribution (aerosol_components.hpp).
+    AerosolMixtureOptics optics = aerosol_mixture_optics(m.opac, grid, "atmosphere.mie.opac");
+    mie_.scattering_per_m = optics.scattering_per_m;
+    mie_.extinction_per_m = optics.extinction_per_m;
+    mie_matrix_ = optics.matrix;
+    for (int i = 0; i < n; ++i) mie_g_[i] = mie_matrix_->asymmetry(i);
+  }
+
   // --- Ozone: absorption cross-section x number density at the layer's peak -----------------
   const auto& o = spec.ozone;
   ozone_.profile = DensityProfile::tent(o.bottom_m, o.peak_m, o.top_m);
@@ -146,6 +155,13 @@ AtmosphereModel::AtmosphereModel(const AtmosphereSpec& spec, const WavelengthGri
   for (int i = 0; i < n; ++i)
     ground_albedo_[i] =
         g.albedo_values.empty() ? g.albedo : interpolate_linear(g.albedo_wavelengths_nm, g.albedo_values, grid.nm(i));
+}
+
+double AtmosphereModel::mie_phase_at(int i, double mu) const {
+  if (mie_matrix_) return mie_matrix_->phase(i, mu);
+  AerosolPhase p = spec_.mie.phase;
+  p.g = mie_g_[i];
+  return p(mu);
 }
 
 double interpolate_linear(const std::vector<double>& x, const std::vector<double>& y, double x0) {

@@ -22,6 +22,7 @@
 #include "base/text_format.hpp"
 #include "physics/ozone.hpp"
 #include "report/published_references.hpp"
+#include "skyspec/aerosol_components.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/refractive_index.hpp"
 #include "skyspec/scene.hpp"
@@ -145,7 +146,14 @@ std::vector<ReportFormula> report_formulas(const CoefficientReport& r) {
          "sigma_O3 in m^2 per molecule, column in Dobson units",
          "the scene's table, or the built-in one (233 K: Serdyuchenko et al. 2014, 360-840 nm; Bogumil et al. 2003, "
          "230-360 and 840-1060 nm; data/ozone/)"});
-  if (r.mie_tabulated)
+  if (!r.mie_opac_components.empty())
+    f.push_back({"aerosol (microphysics)",
+                 "beta_ext(lambda) = sum_c N_c f_c <C_ext,c>(lambda), beta_sca likewise, "
+                 "P_ij = sum_c N_c f_c <C_sca,c> P_ij,c / beta_sca; <C> = integral C(r) dN/dr dr by Lorenz-Mie",
+                 "N_c particles per m^3 of component c, f_c its share between OPAC's minimum and maximum radius",
+                 "Hess, Koepke & Schult 1998 (OPAC 3.1 size distributions and refractive indices, "
+                 "data/aerosols/); Wiscombe 1980 (Lorenz-Mie)"});
+  else if (r.mie_tabulated)
     f.push_back({"aerosol (tabulated)",
                  "beta_sca(lambda) = beta_ref Q(lambda) w(lambda) / (Q(lambda_ref) w(lambda_ref)), "
                  "beta_ext = beta_sca / w",
@@ -428,6 +436,13 @@ CoefficientReport make_coefficient_report(const CoefficientReportRequest& req) {
   r.mie_angstrom_exponent = spec.mie.angstrom_exponent;
   r.mie_extinction_to_scattering = spec.mie.extinction_to_scattering;
   r.mie_tabulated = !spec.mie.table_wavelengths_nm.empty();
+  if (spec.mie.model == MieSpec::Model::Opac) {
+    for (int c = 0; c < kAerosolComponentCount; ++c)
+      if (spec.mie.opac.number_per_cm3[static_cast<size_t>(c)] > 0.0)
+        r.mie_opac_components.emplace_back(aerosol_component_names()[static_cast<size_t>(c)],
+                                           spec.mie.opac.number_per_cm3[static_cast<size_t>(c)]);
+    r.mie_opac_relative_humidity_percent = spec.mie.opac.relative_humidity_percent;
+  }
   r.mie_profile_description = model.mie().profile.describe();
 
   r.ozone_enabled = spec.ozone.enabled;

@@ -102,7 +102,14 @@ Document build_document(const CoefficientReport& r) {
       (r.rayleigh_derived ? "derived (beta = sigma N)" : "typed in (atmosphere.rayleigh.source = \"fixed\")") +
       "; density profile: " + r.profile_description + "; top of the atmosphere " + format_number(r.top_altitude_m) +
       " m.");
-  if (r.mie_enabled && r.mie_tabulated)
+  if (r.mie_enabled && !r.mie_opac_components.empty()) {
+    std::string parts;
+    for (const auto& [name, n] : r.mie_opac_components)
+      parts += (parts.empty() ? "" : ", ") + name + " " + sig(n);
+    inputs.push_back("Aerosols: OPAC components by Lorenz-Mie theory (atmosphere.mie.model = \"opac\"): " + parts +
+                     " particles per cm^3 at altitude 0, relative humidity " +
+                     sig(r.mie_opac_relative_humidity_percent) + " %; profile: " + r.mie_profile_description + ".");
+  } else if (r.mie_enabled && r.mie_tabulated)
     inputs.push_back("Aerosols: beta_sca = " + sig(r.mie_scattering_at_reference_per_m) + " m^-1 at " +
                      sig(r.mie_reference_wavelength_nm) +
                      " nm and altitude 0, spectral shape, albedo and g from the "
@@ -498,6 +505,13 @@ std::string report_to_json(const CoefficientReport& r) {
               {"angstrom_exponent", r.mie_angstrom_exponent},
               {"extinction_to_scattering", r.mie_extinction_to_scattering},
               {"profile", r.mie_profile_description}};
+  if (!r.mie_opac_components.empty()) {
+    nlohmann::json components = nlohmann::json::object();
+    for (const auto& [name, n] : r.mie_opac_components) components[name + "_per_cm3"] = n;
+    j["mie"]["model"] = "opac";
+    j["mie"]["opac_components"] = components;
+    j["mie"]["relative_humidity_percent"] = r.mie_opac_relative_humidity_percent;
+  }
   if (r.ozone_enabled)
     j["ozone"] = {{"column_DU", r.ozone_column_DU},
                   {"peak_number_density_per_m3", r.ozone_peak_number_density_per_m3},

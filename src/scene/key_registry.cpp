@@ -27,6 +27,7 @@
 #include "physics/solar_position.hpp"
 #include "physics/solar_spectrum.hpp"
 #include "scene/toml_limits.hpp"
+#include "skyspec/aerosol_components.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/refractive_index.hpp"
 #include "skyspec/units.hpp"
@@ -126,6 +127,26 @@ const std::vector<KeyDef>& registry() {
     // Mie
     r.push_back(bool_key("atmosphere.mie.enabled", "aerosols on or off",
                          [](Scene& s) -> bool& { return s.atmosphere.mie.enabled; }));
+    r.push_back(choice_key(
+        "atmosphere.mie.model", {"angstrom", "opac"},
+        "angstrom: the Angstrom law (or the spectral tables) with an analytic phase function that does not "
+        "polarise; opac: OPAC components by Lorenz-Mie theory (atmosphere.mie.opac.*: extinction, "
+        "scattering and the full scattering matrix from number concentrations and humidity)",
+        [](Scene& s, const std::string& v) {
+          s.atmosphere.mie.model = v == "opac" ? MieSpec::Model::Opac : MieSpec::Model::Angstrom;
+        },
+        [](const Scene& s) { return std::string(s.atmosphere.mie.model == MieSpec::Model::Opac ? "opac" : "angstrom"); }));
+    for (int c = 0; c < kAerosolComponentCount; ++c) {
+      const std::string name = aerosol_component_names()[static_cast<size_t>(c)];
+      r.push_back(number_key("atmosphere.mie.opac." + name + "_per_cm3", "cm^-3", {0.0, 1e7},
+                             "model = opac: number concentration of OPAC's " + aerosol_component_description(c) +
+                                 " component at altitude 0 (all radii, OPAC's unit)",
+                             [c](Scene& s) -> double& { return s.atmosphere.mie.opac.number_per_cm3[static_cast<size_t>(c)]; }));
+    }
+    r.push_back(number_key("atmosphere.mie.opac.relative_humidity_percent", "%", {0.0, 99.0},
+                           "model = opac: relative humidity, which swells the components that take up water "
+                           "(OPAC's tables at 0, 50, 70, 80, 90, 95, 98 and 99 %, linear between them)",
+                           [](Scene& s) -> double& { return s.atmosphere.mie.opac.relative_humidity_percent; }));
     r.push_back(profile_key(
         "atmosphere.mie.profile", [](Scene& s) -> ProfileKind& { return s.atmosphere.mie.profile; },
         "aerosol density profile (us1976 is not meaningful for aerosols but allowed)"));

@@ -114,7 +114,12 @@ MonteCarloMedium MonteCarloMedium::from_atmosphere(const AtmosphereModel& atm, i
   };
   m.components.push_back(
       component(atm.rayleigh(), MonteCarloComponent::Phase::Rayleigh, atm.rayleigh_phase_gamma()[i]));
-  if (atm.mie().enabled())
+  if (atm.mie().enabled() && atm.mie_matrix()) {
+    MonteCarloComponent c = component(atm.mie(), MonteCarloComponent::Phase::Tabulated, atm.mie_g()[i]);
+    c.table = atm.shared_mie_matrix();
+    c.table_row = i;
+    m.components.push_back(std::move(c));
+  } else if (atm.mie().enabled())
     m.components.push_back(component(atm.mie(),
                                      atm.mie_phase().model == AerosolPhase::Model::HenyeyGreenstein
                                          ? MonteCarloComponent::Phase::HenyeyGreenstein
@@ -224,6 +229,9 @@ double MonteCarloIntegrator::phase_to_sun(const double* scattering, double total
       case MonteCarloComponent::Phase::CornetteShanks:
         pk = cornette_shanks_phase(mu, c.phase_parameter);
         break;
+      case MonteCarloComponent::Phase::Tabulated:
+        pk = c.table->phase(c.table_row, mu);
+        break;
       case MonteCarloComponent::Phase::None:
         break;
     }
@@ -248,6 +256,15 @@ ScatteringMatrix MonteCarloIntegrator::mixture_matrix(const double* scattering, 
       case MonteCarloComponent::Phase::CornetteShanks:
         fk = non_polarising_scattering_matrix(cornette_shanks_phase(mu, c.phase_parameter));
         break;
+      case MonteCarloComponent::Phase::Tabulated: {
+        // Spheres: a2 = a1, a4 = a3 (tabulated_scattering.hpp).
+        const SphereMatrixElements e = c.table->elements(c.table_row, mu);
+        fk.a1 = fk.a2 = e.a1;
+        fk.a3 = fk.a4 = e.a3;
+        fk.b1 = e.b1;
+        fk.b2 = e.b2;
+        break;
+      }
       case MonteCarloComponent::Phase::None:
         continue;
     }
@@ -292,6 +309,9 @@ Vec3 MonteCarloIntegrator::sample_scattering(const double* scattering, double to
       // with probability (1 + mu^2) / 2.
       do mu = henyey_greenstein(a);
       while (rng.uniform() * 2.0 > 1.0 + mu * mu);
+      break;
+    case MonteCarloComponent::Phase::Tabulated:
+      mu = c.table->sample_mu(c.table_row, rng.uniform());
       break;
     case MonteCarloComponent::Phase::None:
       mu = 1.0;

@@ -34,23 +34,28 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "physics/scattering_matrix.hpp"
 #include "skyspec/atmosphere.hpp"
 #include "skyspec/density_profile.hpp"
 #include "skyspec/geometry.hpp"
+#include "skyspec/tabulated_scattering.hpp"
 
 namespace skyspec {
 
 /// One species of the medium at one wavelength.
 struct MonteCarloComponent {
-  enum class Phase { None, Rayleigh, HenyeyGreenstein, CornetteShanks };
+  enum class Phase { None, Rayleigh, HenyeyGreenstein, CornetteShanks, Tabulated };
   DensityProfile profile = DensityProfile::constant();
   double scattering_per_m = 0.0;  ///< at relative density 1
   double extinction_per_m = 0.0;  ///< at relative density 1, >= scattering_per_m
   Phase phase = Phase::None;      ///< None only for a purely absorbing species
   double phase_parameter = 0.0;   ///< Rayleigh: gamma (phase_function.hpp); the aerosol models: g
+  /// Tabulated: the scattering matrix (polarising) and the wavelength's row in it.
+  std::shared_ptr<const TabulatedScatteringMatrix> table;
+  int table_row = 0;
 };
 
 /// The medium at one wavelength.

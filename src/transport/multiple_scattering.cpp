@@ -60,9 +60,7 @@ std::shared_ptr<const PhaseMoments> PhaseMoments::of(const AtmosphereModel& atm,
   for (int i = 0; i < n; ++i) {
     const double gamma = atm.rayleigh_phase_gamma()[i];
     const std::vector<double> r = legendre_moments([gamma](double mu) { return rayleigh_phase(mu, gamma); }, degree);
-    AerosolPhase aerosol = atm.mie_phase();
-    aerosol.g = atm.mie_g()[i];
-    const std::vector<double> a = legendre_moments([&aerosol](double mu) { return aerosol(mu); }, degree);
+    const std::vector<double> a = legendre_moments([&atm, i](double mu) { return atm.mie_phase_at(i, mu); }, degree);
     for (int l = 0; l <= degree; ++l) {
       m->rayleigh[static_cast<size_t>(l) * n + i] = static_cast<float>(r[static_cast<size_t>(l)]);
       m->mie[static_cast<size_t>(l) * n + i] = static_cast<float>(a[static_cast<size_t>(l)]);

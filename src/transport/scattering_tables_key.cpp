@@ -43,6 +43,13 @@ ScatteringTablesKey scattering_tables_key(const AtmosphereModel& atm, const SunC
   write_species(out, "ozone", atm.ozone());
   out << "mie.phase " << to_string(atm.mie_phase().model) << '\n';
   write_array(out, "mie.g", atm.mie_g());
+  if (const TabulatedScatteringMatrix* m = atm.mie_matrix()) {  // absent otherwise (keys stay as they were)
+    write_array(out, "mie.matrix.mu", m->mu());
+    for (int i = 0; i < m->wavelengths(); ++i) {
+      write_array(out, "mie.matrix.a1", m->a1()[static_cast<size_t>(i)]);
+      write_array(out, "mie.matrix.b1", m->b1()[static_cast<size_t>(i)]);
+    }
+  }
   write_array(out, "ground.albedo", atm.ground_albedo());
   out << "sun_table " << sun_table.n_r << ' ' << sun_table.n_mu << ' ' << sun_table.segments << '\n';
   out << "orders " << ms.orders << "\naltitude_samples " << ms.altitude_samples << "\nsun_samples " << ms.sun_samples

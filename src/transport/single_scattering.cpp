@@ -65,11 +65,10 @@ SingleScattering::SingleScattering(const AtmosphereModel& atm, const SunColumns&
     std::vector<double> mu, w;
     gauss_legendre(512, -1.0, 1.0, mu, w);
     mie_spin2_moment_.resize(gamma.size());
-    AerosolPhase aerosol = atm.mie_phase();
     for (Eigen::Index i = 0; i < gamma.size(); ++i) {
-      aerosol.g = atm.mie_g()[i];
       double sum = 0.0;
-      for (size_t k = 0; k < mu.size(); ++k) sum += w[k] * aerosol(mu[k]) * (1.0 + mu[k]) * (1.0 + mu[k]) / 4.0;
+      for (size_t k = 0; k < mu.size(); ++k)
+        sum += w[k] * atm.mie_phase_at(static_cast<int>(i), mu[k]) * (1.0 + mu[k]) * (1.0 + mu[k]) / 4.0;
       mie_spin2_moment_[i] = static_cast<float>(2.0 * kPi * sum);
     }
   }
@@ -247,8 +246,16 @@ void combine_parts(Eigen::Index n, const float* rayleigh, const float* mie, cons
     o = (In(rayleigh, n) * (pr_a + pr_b * mu2) + In(mie, n) * pm + In(phase_free, n)) * sun_irradiance;
 }
 
-// A spectral aerosol: the phase function's asymmetry differs per wavelength.
+// The aerosol's phase function differs per wavelength: tabulated (microphysics), or an analytic
+// model whose asymmetry differs per wavelength.
+bool mie_phase_is_spectral(const AtmosphereModel& atm) { return atm.mie_matrix() || atm.mie_g_varies(); }
+
 void spectral_mie_phase(const AtmosphereModel& atm, double mu, Spectrum& phase) {
+  if (const TabulatedScatteringMatrix* table = atm.mie_matrix()) {
+    const TabulatedScatteringMatrix::Position at = table->locate(mu);
+    for (int i = 0; i < phase.size(); ++i) phase[i] = static_cast<float>(table->phase(i, at));
+    return;
+  }
   AerosolPhase p = atm.mie_phase();
   for (int i = 0; i < phase.size(); ++i) {
     p.g = atm.mie_g()[i];
@@ -261,7 +268,7 @@ void SingleScattering::combine(const RadianceParts& parts, double mu, const Spec
                                ScatteringWorkspace& ws, Spectrum& out) const {
   const Eigen::Index n = parts.rayleigh.size();
   out.resize(n);
-  const bool varies = atm_.mie_g_varies();
+  const bool varies = mie_phase_is_spectral(atm_);
   if (varies) spectral_mie_phase(atm_, mu, ws.phase);
   const float phase_m = varies ? 0.0f : static_cast<float>(atm_.mie_phase()(mu));
   combine_parts(n, parts.rayleigh.data(), parts.mie.data(), parts.phase_free.data(), rayleigh_phase_a_,
@@ -282,6 +289,12 @@ void SingleScattering::stokes(const RadianceParts& parts, const Vec3& view, cons
   const float c2 = static_cast<float>(c * c - s * s), s2 = static_cast<float>(2.0 * c * s);
   // Order 1 in the parts' frame, which contains the scattering plane: Q = E rayleigh b1(mu), U = 0.
   Spectrum q_plane = -(rayleigh_phase_b_ * static_cast<float>(1.0 - mu * mu)) * parts.rayleigh * sun_irradiance;
+  // An aerosol from microphysics polarises its order-1 light too: Q = E mie b1_M(mu).
+  if (const TabulatedScatteringMatrix* table = atm_.mie_matrix()) {
+    const TabulatedScatteringMatrix::Position at = table->locate(mu);
+    for (Eigen::Index i = 0; i < q_plane.size(); ++i)
+      q_plane[i] += static_cast<float>(table->b1(static_cast<int>(i), at)) * parts.mie[i] * sun_irradiance[i];
+  }
   Spectrum u_plane = Spectrum::Zero(q_plane.size());
   if (parts.polarised_q.size() == q_plane.size()) {
     q_plane += parts.polarised_q * sun_irradiance;
@@ -294,7 +307,7 @@ void SingleScattering::stokes(const RadianceParts& parts, const Vec3& view, cons
 void SingleScattering::combine_many(int count, const float* packed, const double* mu, const bool* use,
                                     const Spectrum& sun_irradiance, float* const* out, ScatteringWorkspace& ws) const {
   const Eigen::Index n = sca_rayleigh_.size();
-  const bool varies = atm_.mie_g_varies();
+  const bool varies = mie_phase_is_spectral(atm_);
   const AerosolPhase mie = atm_.mie_phase();
   const bool hg = mie.model == AerosolPhase::Model::HenyeyGreenstein;
   constexpr int kChunk = 64;
