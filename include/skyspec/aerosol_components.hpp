@@ -36,6 +36,12 @@ const std::array<const char*, kAerosolComponentCount>& aerosol_component_names()
 /// "water-soluble" for "waso", ...
 std::string aerosol_component_description(int component);
 
+/// The wavelengths OPAC's refractive indices cover here (250-2500 nm).
+struct AerosolComponentWavelengths {
+  double min_nm, max_nm;
+};
+AerosolComponentWavelengths aerosol_component_wavelengths();
+
 /// A component at a relative humidity: its size distribution (number, lognormal, OPAC's radius
 /// range) and refractive index at a wavelength, interpolated as stated above.
 struct AerosolComponentState {
@@ -83,8 +89,10 @@ struct AerosolMixtureOptics {
 /// Computes (Lorenz-Mie per component, wavelength and radius node, on all threads; polls
 /// cancellation). `setting` names the scene key in errors. Results are kept in memory per
 /// (mixture, grid) for the process's life, so that a scene's renderer, tables and Monte Carlo
-/// share one computation.
+/// share one computation; with use_disk_cache also in the disk cache of tables (render.cache_tables;
+/// "aerosol-<hash>.bin" beside the scattering-order tables, under the same cap), named by a hash of
+/// exactly what they depend on and checked when read back.
 AerosolMixtureOptics aerosol_mixture_optics(const AerosolMixture& mixture, const WavelengthGrid& grid,
-                                            const std::string& setting);
+                                            const std::string& setting, bool use_disk_cache = false);
 
 }  // namespace skyspec

@@ -105,7 +105,9 @@ struct ScatteringSpecies {
 class AtmosphereModel {
  public:
   /// Throws InputError naming the scene key when the spec cannot be evaluated on the grid.
-  AtmosphereModel(const AtmosphereSpec& spec, const WavelengthGrid& grid);
+  /// cache_on_disk: a microphysical aerosol's optics come from / go to the disk cache of tables
+  /// (aerosol_components.hpp; a scene's render.cache_tables).
+  AtmosphereModel(const AtmosphereSpec& spec, const WavelengthGrid& grid, bool cache_on_disk = false);
 
   const AtmosphereSpec& spec() const { return spec_; }
   const WavelengthGrid& grid() const { return grid_; }

@@ -3,11 +3,19 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 #include <mutex>
 #include <sstream>
 
+#include "base/atomic_file.hpp"
 #include "base/csv_table.hpp"
+#include "base/disk_cache.hpp"
 #include "base/embedded_data.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/size_distribution.hpp"
@@ -18,6 +26,7 @@ namespace skyspec {
 
 namespace {
 constexpr const char* kFile = "aerosols/opac_components.csv";
+constexpr int kAerosolCacheFormat = 1;
 constexpr std::array<const char*, kAerosolComponentCount> kNames = {"inso", "waso", "soot", "ssam", "sscm",
                                                                     "minm", "miam", "micm", "mitr", "suso"};
 constexpr std::array<const char*, kAerosolComponentCount> kDescriptions = {
@@ -73,6 +82,13 @@ std::complex<double> index_at(const Humidity& h, double nm) {
   return {r[k].m_re + f * (r[k + 1].m_re - r[k].m_re), r[k].m_im + f * (r[k + 1].m_im - r[k].m_im)};
 }
 
+// A mixture's optics as computed: volume coefficients and the scattering matrix's rows before
+// TabulatedScatteringMatrix normalises them.
+struct RawOptics {
+  std::vector<double> sca, ext;
+  std::vector<std::vector<double>> a1, b1, a3, b2;
+};
+
 // The tabulated scattering angles: fine near the forward peak, where aerosols scatter most.
 std::vector<double> make_cosines() {
   std::vector<double> deg;
@@ -89,6 +105,11 @@ std::vector<double> make_cosines() {
 
 const std::array<const char*, kAerosolComponentCount>& aerosol_component_names() { return kNames; }
 std::string aerosol_component_description(int c) { return kDescriptions[static_cast<size_t>(c)]; }
+
+AerosolComponentWavelengths aerosol_component_wavelengths() {
+  const auto& rows = table()[0].humidities.front().rows;
+  return {rows.front().wavelength_nm, rows.back().wavelength_nm};
+}
 
 const std::vector<double>& aerosol_scattering_cosines() {
   static const std::vector<double> mu = make_cosines();
@@ -154,20 +175,22 @@ AerosolMixture AerosolMixture::continental_average() {
 }
 
 namespace {
-AerosolMixtureOptics compute(const AerosolMixture& mix, const WavelengthGrid& grid, const std::string& setting) {
+RawOptics compute(const AerosolMixture& mix, const WavelengthGrid& grid, const std::string& setting) {
   const std::vector<double>& mu = aerosol_scattering_cosines();
   const int n = grid.size();
   const size_t nm = mu.size();
-  AerosolMixtureOptics o;
-  o.scattering_per_m = SpectrumD::Zero(n);
-  o.extinction_per_m = SpectrumD::Zero(n);
-  std::vector<std::vector<double>> a1(n, std::vector<double>(nm, 0.0)), b1 = a1, a3 = a1, b2 = a1;
+  RawOptics o;
+  o.sca.assign(static_cast<size_t>(n), 0.0);
+  o.ext.assign(static_cast<size_t>(n), 0.0);
+  o.a1.assign(static_cast<size_t>(n), std::vector<double>(nm, 0.0));
+  o.b1 = o.a3 = o.b2 = o.a1;
   bool any = false;
   for (int c = 0; c < kAerosolComponentCount; ++c) {
     const double per_m3 = mix.number_per_cm3[static_cast<size_t>(c)] * 1e6;
     if (!(per_m3 > 0.0)) continue;
     any = true;
     for (int i = 0; i < n; ++i) {
+      const size_t w = static_cast<size_t>(i);
       const AerosolComponentState s = aerosol_component_state(c, mix.relative_humidity_percent, grid.nm(i), setting);
       const SizeDistribution sizes = SizeDistribution::lognormal(s.median_radius_m, s.geometric_standard_deviation)
                                          .truncated(s.min_radius_m, s.max_radius_m);
@@ -175,43 +198,165 @@ AerosolMixtureOptics compute(const AerosolMixture& mix, const WavelengthGrid& gr
           sphere_ensemble_optics(sizes, {s.m_real, s.m_imag}, grid.nm(i) * 1e-9, 1.0, mu);
       const double in_range = per_m3 * aerosol_component_fraction_in_range(s);
       const double sca = in_range * e.scattering_cross_section_m2;
-      o.scattering_per_m[i] += sca;
-      o.extinction_per_m[i] += in_range * e.extinction_cross_section_m2;
+      o.sca[w] += sca;
+      o.ext[w] += in_range * e.extinction_cross_section_m2;
       for (size_t k = 0; k < nm; ++k) {
         const SphereScatteringMatrix& p = e.phase_matrix[k];
-        a1[static_cast<size_t>(i)][k] += sca * p.s11;
-        b1[static_cast<size_t>(i)][k] += sca * p.s12;
-        a3[static_cast<size_t>(i)][k] += sca * p.s33;
-        b2[static_cast<size_t>(i)][k] += sca * p.s34;
+        o.a1[w][k] += sca * p.s11;
+        o.b1[w][k] += sca * p.s12;
+        o.a3[w][k] += sca * p.s33;
+        o.b2[w][k] += sca * p.s34;
       }
     }
   }
   if (!any)
     throw InputError(setting + ".*_per_cm3", "0 for every component", "at least one component with a number concentration > 0");
-  o.matrix = std::make_shared<const TabulatedScatteringMatrix>(mu, std::move(a1), std::move(b1), std::move(a3),
-                                                              std::move(b2));
   return o;
 }
 }  // namespace
 
-AerosolMixtureOptics aerosol_mixture_optics(const AerosolMixture& mix, const WavelengthGrid& grid,
-                                            const std::string& setting) {
+namespace {
+// What the optics depend on, as text: the mixture, the grid, the angles, the quadrature and the
+// component table's bytes (a changed table is a new key).
+std::string optics_key(const AerosolMixture& mix, const WavelengthGrid& grid) {
   std::ostringstream key;
   key.precision(17);
-  for (double v : mix.number_per_cm3) key << v << ',';
-  key << mix.relative_humidity_percent << '|';
-  for (double v : grid.nanometres()) key << v << ',';
+  key << "skyspec aerosol optics, format " << kAerosolCacheFormat << "\nnumber_per_cm3";
+  for (double v : mix.number_per_cm3) key << ' ' << v;
+  key << "\nrelative_humidity_percent " << mix.relative_humidity_percent << "\nwavelengths_nm";
+  for (double v : grid.nanometres()) key << ' ' << v;
+  const SphereEnsembleSettings quadrature;
+  key << "\ncosines " << aerosol_scattering_cosines().size() << "\nquadrature " << quadrature.panel_ln_radius << ' '
+      << quadrature.panel_size_parameter << "\ntable " << std::hex << fnv1a64(embedded_file(kFile)) << '\n';
+  return key.str();
+}
+
+// The cache file: "skyspec-aerosol\n", the key's length and text, the sizes, the raw sums
+// (scattering, extinction, then a1, b1, a3, b2 per wavelength: what compute() hands to the
+// TabulatedScatteringMatrix, so that a loaded file gives bit for bit the optics just computed),
+// and the FNV-1a 64 hash of everything before it. Host byte order, with a marker.
+constexpr char kMagic[] = "skyspec-aerosol\n";
+constexpr std::uint32_t kByteOrder = 0x01020304u;
+
+template <typename T>
+void put(std::string& out, const T& v) {
+  out.append(reinterpret_cast<const char*>(&v), sizeof v);
+}
+template <typename T>
+bool get(const std::string& in, size_t& at, T& v) {
+  if (in.size() - at < sizeof v) return false;
+  std::memcpy(&v, in.data() + at, sizeof v);
+  at += sizeof v;
+  return true;
+}
+
+std::string serialise(const std::string& key, const RawOptics& r) {
+  std::string out(kMagic);
+  put(out, kByteOrder);
+  put(out, static_cast<std::uint64_t>(key.size()));
+  out += key;
+  const auto n = static_cast<std::uint32_t>(r.sca.size());
+  const auto m = static_cast<std::uint32_t>(r.a1.empty() ? 0 : r.a1[0].size());
+  put(out, n);
+  put(out, m);
+  for (const auto* v : {&r.sca, &r.ext})
+    for (double x : *v) put(out, x);
+  for (const auto* rows : {&r.a1, &r.b1, &r.a3, &r.b2})
+    for (const auto& row : *rows)
+      for (double x : row) put(out, x);
+  put(out, fnv1a64(out));
+  return out;
+}
+
+// A file read back is untrusted: every size is checked against the key's and the file's, the
+// checksum must hold and every value be finite; anything else is "not cached".
+bool deserialise(const std::string& in, const std::string& key, size_t n_expected, size_t m_expected, RawOptics& r) {
+  const std::string magic(kMagic);
+  if (in.size() < magic.size() + sizeof(std::uint64_t) || in.compare(0, magic.size(), magic) != 0) return false;
+  std::uint64_t stored = 0;
+  std::memcpy(&stored, in.data() + in.size() - sizeof stored, sizeof stored);
+  if (fnv1a64(std::string_view(in.data(), in.size() - sizeof stored)) != stored) return false;
+  size_t at = magic.size();
+  std::uint32_t order = 0, n = 0, m = 0;
+  std::uint64_t key_size = 0;
+  if (!get(in, at, order) || order != kByteOrder || !get(in, at, key_size) || key_size != key.size()) return false;
+  if (in.size() - at < key_size || in.compare(at, key_size, key) != 0) return false;
+  at += key_size;
+  if (!get(in, at, n) || !get(in, at, m) || n != n_expected || m != m_expected) return false;
+  const size_t values = 2 * static_cast<size_t>(n) + 4 * static_cast<size_t>(n) * m;
+  if (in.size() - at != values * sizeof(double) + sizeof stored) return false;
+  auto read = [&](std::vector<double>& v, size_t count) {
+    v.resize(count);
+    for (double& x : v)
+      if (!get(in, at, x) || !std::isfinite(x)) return false;
+    return true;
+  };
+  if (!read(r.sca, n) || !read(r.ext, n)) return false;
+  for (auto* rows : {&r.a1, &r.b1, &r.a3, &r.b2}) {
+    rows->resize(n);
+    for (auto& row : *rows)
+      if (!read(row, m)) return false;
+  }
+  return true;
+}
+
+AerosolMixtureOptics from_raw(RawOptics r) {
+  AerosolMixtureOptics o;
+  const int n = static_cast<int>(r.sca.size());
+  o.scattering_per_m = Eigen::Map<const SpectrumD>(r.sca.data(), n);
+  o.extinction_per_m = Eigen::Map<const SpectrumD>(r.ext.data(), n);
+  o.matrix = std::make_shared<const TabulatedScatteringMatrix>(aerosol_scattering_cosines(), std::move(r.a1),
+                                                              std::move(r.b1), std::move(r.a3), std::move(r.b2));
+  return o;
+}
+
+AerosolMixtureOptics load_or_compute(const AerosolMixture& mix, const WavelengthGrid& grid, const std::string& setting,
+                                     const std::string& key, bool use_disk_cache) {
+  const std::filesystem::path dir = use_disk_cache ? table_cache_directory() : std::filesystem::path();
+  std::filesystem::path path;
+  if (!dir.empty()) {
+    char name[48];
+    std::snprintf(name, sizeof name, "aerosol-%016llx.bin", static_cast<unsigned long long>(fnv1a64(key)));
+    path = dir / name;
+  }
+  const std::uint64_t cap = path.empty() ? 0 : table_cache_cap_bytes();  // a bad value: refused before any work
+  if (!path.empty() && is_regular_input(path)) {
+    std::ifstream in(path, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    RawOptics raw;
+    if (in.good() || in.eof())
+      if (deserialise(bytes, key, static_cast<size_t>(grid.size()), aerosol_scattering_cosines().size(), raw)) {
+        mark_cache_file_used(path);
+        return from_raw(std::move(raw));
+      }
+  }
+  RawOptics raw = compute(mix, grid, setting);
+  if (!path.empty() && usable_cache_directory(dir)) {
+    try {
+      write_file_atomically(path, serialise(key, raw));
+      evict_table_cache(dir, cap, path);
+    } catch (const std::exception&) {
+      warn_cache_unusable(dir, "the aerosol file could not be written");
+    }
+  }
+  return from_raw(std::move(raw));
+}
+}  // namespace
+
+AerosolMixtureOptics aerosol_mixture_optics(const AerosolMixture& mix, const WavelengthGrid& grid,
+                                            const std::string& setting, bool use_disk_cache) {
+  const std::string key = optics_key(mix, grid);
   static std::mutex mutex;
   static std::map<std::string, AerosolMixtureOptics> cache;
   {
     std::lock_guard<std::mutex> lock(mutex);
-    const auto it = cache.find(key.str());
+    const auto it = cache.find(key);
     if (it != cache.end()) return it->second;
   }
-  AerosolMixtureOptics o = compute(mix, grid, setting);
+  AerosolMixtureOptics o = load_or_compute(mix, grid, setting, key, use_disk_cache);
   std::lock_guard<std::mutex> lock(mutex);
   if (cache.size() > 16) cache.clear();  // a bound for long-lived processes (the viewer, Python)
-  return cache.emplace(key.str(), std::move(o)).first->second;
+  return cache.emplace(key, std::move(o)).first->second;
 }
 
 }  // namespace skyspec

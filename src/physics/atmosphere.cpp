@@ -52,7 +52,8 @@ DensityProfile make_profile(ProfileKind kind, double scale_height_m, double top_
   return DensityProfile::constant();
 }
 
-AtmosphereModel::AtmosphereModel(const AtmosphereSpec& spec, const WavelengthGrid& grid) : spec_(spec), grid_(grid) {
+AtmosphereModel::AtmosphereModel(const AtmosphereSpec& spec, const WavelengthGrid& grid, bool cache_on_disk)
+    : spec_(spec), grid_(grid) {
   const int n = grid.size();
   const auto& r = spec.rayleigh;
 
@@ -130,7 +131,7 @@ AtmosphereModel::AtmosphereModel(const AtmosphereSpec& spec, const WavelengthGri
 
   if (m.enabled && m.model == MieSpec::Model::Opac) {
     // Microphysics: Lorenz-Mie over each component's size distribution (aerosol_components.hpp).
-    AerosolMixtureOptics optics = aerosol_mixture_optics(m.opac, grid, "atmosphere.mie.opac");
+    AerosolMixtureOptics optics = aerosol_mixture_optics(m.opac, grid, "atmosphere.mie.opac", cache_on_disk);
     mie_.scattering_per_m = optics.scattering_per_m;
     mie_.extinction_per_m = optics.extinction_per_m;
     mie_matrix_ = optics.matrix;

@@ -82,7 +82,7 @@ ReferenceResult monte_carlo_reference(const Scene& scene, const std::vector<Refe
     throw InputError("orders", std::to_string(settings.max_orders), "0 (all orders) or a positive number of orders");
   const auto start = std::chrono::steady_clock::now();
   const WavelengthGrid grid = make_wavelength_grid(scene);
-  const AtmosphereModel atmosphere(scene.atmosphere, grid);
+  const AtmosphereModel atmosphere(scene.atmosphere, grid, scene.render.cache_tables);
   const Spectrum sun_irradiance = scene_sun_irradiance(scene, grid);
   const Vec3 sun = sun_direction(scene);
   // Scene coordinates (east, north, height) to world space: the planet's centre at (0, 0, -R).

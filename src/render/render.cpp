@@ -139,7 +139,7 @@ struct SkyRenderer::Impl {
   explicit Impl(const Scene& s)
       : scene(s),
         grid(make_wavelength_grid(s)),
-        atmosphere(s.atmosphere, grid),
+        atmosphere(s.atmosphere, grid, s.render.cache_tables),
         table(atmosphere, sun_table_resolution(s), sun_band(s, atmosphere)),
         sun_columns(table),
         integrator(atmosphere, sun_columns, IntegratorSettings{s.render.view_segments}),

@@ -17,7 +17,7 @@ MultipleScatteringSettings multiple_scattering_settings(const Scene& s) {
 }
 
 ScatteringTablesKey scattering_tables_key(const Scene& s) {
-  const AtmosphereModel atmosphere(s.atmosphere, make_wavelength_grid(s));
+  const AtmosphereModel atmosphere(s.atmosphere, make_wavelength_grid(s), s.render.cache_tables);
   return scattering_tables_key(atmosphere, sun_table_resolution(s), multiple_scattering_settings(s));
 }
 

@@ -354,8 +354,9 @@ const std::vector<KeyDef>& registry() {
                             "(0: isotropic; 2: Rayleigh exact; more: the aerosol's forward scattering)",
                             [](Scene& s) -> int& { return s.render.ms_angular_degree; }));
     r.push_back(bool_key("render.cache_tables",
-                         "keep multiple-scattering tables on disk ($SKYSPEC_CACHE_DIR, $XDG_CACHE_HOME/skyspec or "
-                         "~/.cache/skyspec) and reuse them for the same atmosphere",
+                         "keep multiple-scattering tables (and a microphysical aerosol's optics) on disk "
+                         "($SKYSPEC_CACHE_DIR, $XDG_CACHE_HOME/skyspec or ~/.cache/skyspec) and reuse them for the "
+                         "same atmosphere",
                          [](Scene& s) -> bool& { return s.render.cache_tables; }));
     r.push_back(bool_key("render.sky_view_table",
                          "interpolate the image from a table of marched view directions where the camera is "

@@ -25,6 +25,7 @@
 #include "physics/solar_position.hpp"
 #include "physics/solar_spectrum.hpp"
 #include "scene/toml_limits.hpp"
+#include "skyspec/aerosol_components.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/refractive_index.hpp"
 #include "skyspec/units.hpp"
@@ -79,6 +80,11 @@ std::vector<SpectralLimit> spectral_limits(const Scene& s) {
     const TabulatedSpectrum& sun = solar_irradiance_table();
     limits.push_back(
         {sun.min_nm(), sun.max_nm(), "the extraterrestrial solar spectrum (ASTM G173-03, sun.spectrum = \"solar\")"});
+  }
+  if (s.atmosphere.mie.enabled && s.atmosphere.mie.model == MieSpec::Model::Opac) {
+    const AerosolComponentWavelengths opac = aerosol_component_wavelengths();
+    limits.push_back({opac.min_nm, opac.max_nm,
+                      "OPAC's refractive indices of the aerosol components (atmosphere.mie.model = \"opac\")"});
   }
   const OzoneSpec& o3 = s.atmosphere.ozone;
   if (o3.enabled && o3.cross_section_m2.empty()) {

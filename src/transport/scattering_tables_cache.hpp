@@ -7,26 +7,11 @@
 #include <filesystem>
 #include <memory>
 
+#include "base/disk_cache.hpp"  // the folder, its cap and eviction
 #include "transport/multiple_scattering.hpp"
 #include "transport/scattering_tables_key.hpp"
 
 namespace skyspec {
-
-/// The disk cache's folder: $SKYSPEC_CACHE_DIR, else $XDG_CACHE_HOME/skyspec, else
-/// ~/.cache/skyspec; empty when none can be named.
-std::filesystem::path table_cache_directory();
-
-/// The default cap of the disk cache: 2000 MB (about 35 sets of tables at the default settings).
-inline constexpr std::uint64_t kDefaultTableCacheCapBytes = 2000ull * 1000 * 1000;
-/// The disk cache's cap in bytes: $SKYSPEC_CACHE_MAX_MB megabytes (10^6 bytes; 0: no cap), else
-/// kDefaultTableCacheCapBytes. InputError naming SKYSPEC_CACHE_MAX_MB for a value that is not a
-/// whole number of megabytes.
-std::uint64_t table_cache_cap_bytes();
-/// Removes the least recently used table files of `dir` ("orders-*.bin"; a load refreshes a file's
-/// modification time, so that is its last use) until they take at most `cap` bytes, never `keep`
-/// (the file just written). cap 0: nothing is removed. Returns the bytes removed. A file another
-/// process is reading stays readable for it (POSIX unlink).
-std::uint64_t evict_table_cache(const std::filesystem::path& dir, std::uint64_t cap, const std::filesystem::path& keep);
 
 /// The tables for the integrator's atmosphere and sun columns (whose resolution is sun_table) with
 /// these settings. With use_disk_cache, a file in table_cache_directory() named by the key is used
