@@ -14,7 +14,7 @@ SKYSPEC_PACKAGES=(
   openexr openimageio-tools opencolorio-tools time
   nlohmann-json3-dev
   pybind11-dev python3-dev python3-numpy python3-matplotlib python3-openimageio
-  jupyter-nbconvert python3-ipykernel
+  jupyter-nbconvert python3-ipykernel python3-mypy
   python3-distributed python3-dask python3-netcdf4 slurm-wlm munge
 )
 # Only live fuzzing (scripts/fuzz.sh) compiles with clang and its libFuzzer runtime; the main job

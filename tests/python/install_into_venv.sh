@@ -3,7 +3,10 @@
 # Debian's python3 (seeing Debian's numpy, matplotlib and Jupyter), with `cmake --install
 # --component python`, and gives the environment its own Jupyter kernel. Then checks, from a
 # folder outside the repository and without PYTHONPATH, that `import skyspec` loads the installed
-# module with its type stubs beside it. Usage: install_into_venv.sh PYTHON BUILD_DIR VENV
+# module with its type stubs beside it, and that mypy (Debian's python3-mypy) type-checks a script
+# against the installed stubs (the stub-only package skyspec-stubs, PEP 561): it must find the
+# module and report the one type error planted in the script. Usage: install_into_venv.sh PYTHON
+# BUILD_DIR VENV
 set -euo pipefail
 python=$1 build=$2 venv=$3
 rm -rf "$venv"
@@ -23,3 +26,17 @@ stubs = os.path.join(os.path.dirname(where), "skyspec.pyi")
 assert os.path.exists(stubs), f"no type stubs beside the module ({stubs})"
 print(f"import skyspec: {where} (version {skyspec.__version__}), stubs {stubs}")
 PY
+cat >"$outside/typed.py" <<'PY'
+import skyspec
+version: str = skyspec.__version__
+names: list = skyspec.preset_names()
+wrong: int = skyspec.__version__  # the planted error: a str is not an int
+PY
+if env -u PYTHONPATH "$venv/bin/python" -m mypy --no-incremental --cache-dir=/dev/null "$outside/typed.py" \
+  >"$outside/mypy.txt" 2>&1; then
+  echo "mypy found no error in a script with one:"; cat "$outside/mypy.txt"; exit 1
+fi
+grep -q 'typed.py:4: error: Incompatible types in assignment (expression has type "str", variable has type "int")' \
+  "$outside/mypy.txt" && grep -q "Found 1 error" "$outside/mypy.txt" \
+  || { echo "mypy did not check the script against the installed stubs:"; cat "$outside/mypy.txt"; exit 1; }
+echo "mypy: the installed stubs are found (skyspec-stubs) and checked"
