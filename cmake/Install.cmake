@@ -9,6 +9,9 @@
 include(CMakePackageConfigHelpers)
 
 install(TARGETS skyspec_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+# The Python module's run_job runs this program for the tasks of a job: `--component python`
+# installs it too (PREFIX/bin: a virtual environment's bin, beside its python).
+install(TARGETS skyspec_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT python)
 install(TARGETS skyspec EXPORT skyspecTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/skyspec DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})

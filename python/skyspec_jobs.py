@@ -43,9 +43,12 @@ class JobFailed(RuntimeError):
 
 
 def find_skyspec(skyspec=None):
-    """The skyspec program: the argument, $SKYSPEC_CLI, the build tree beside this module, or PATH."""
+    """The skyspec program: the argument, $SKYSPEC_CLI, the build tree beside this module, the
+    interpreter's own bin folder (where `cmake --install --component python --prefix VENV` puts it,
+    whether or not the environment is activated), or PATH."""
     candidates = [skyspec, os.environ.get("SKYSPEC_CLI"),
                   os.path.join(os.path.dirname(os.path.abspath(__file__)), os.pardir, "skyspec"),
+                  os.path.join(os.path.dirname(sys.executable), "skyspec"),
                   shutil.which("skyspec")]
     for c in candidates:
         if c and os.path.isfile(c) and os.access(c, os.X_OK):

@@ -1219,7 +1219,7 @@ and number of threads.
       py::arg("quiet") = false,
       R"(Run a job file (docs/jobs.md) on Dask: a LocalCluster of `workers` processes by default, or the cluster
 of `scheduler` ("tcp://host:8786"). Each chunk of tasks runs `skyspec job run --tasks` in a child
-process (`skyspec`: the program, default $SKYSPEC_CLI, beside this module or on PATH) with `threads`
+process (`skyspec`: the program, default $SKYSPEC_CLI, the build tree, the interpreter's bin folder or PATH) with `threads`
 render threads; finished tasks are kept, so running it again runs only what is missing. Returns a
 summary dict (tasks, ok, failed, missing, output); raises skyspec_jobs.JobFailed when tasks failed or did not run.)");
 }

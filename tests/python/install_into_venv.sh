@@ -3,7 +3,8 @@
 # Debian's python3 (seeing Debian's numpy, matplotlib and Jupyter), with `cmake --install
 # --component python`, and gives the environment its own Jupyter kernel. Then checks, from a
 # folder outside the repository and without PYTHONPATH, that `import skyspec` loads the installed
-# module with its type stubs beside it, and that mypy (Debian's python3-mypy) type-checks a script
+# module with its type stubs beside it and finds the program run_job runs (installed by the same
+# component into the environment's bin, found with neither SKYSPEC_CLI nor PATH), and that mypy (Debian's python3-mypy) type-checks a script
 # against the installed stubs (the stub-only package skyspec-stubs, PEP 561): it must find the
 # module and report the one type error planted in the script. Usage: install_into_venv.sh PYTHON
 # BUILD_DIR VENV
@@ -16,7 +17,7 @@ cmake --install "$build" --component python --prefix "$venv"
 outside=$(mktemp -d)
 trap 'rm -rf "$outside"' EXIT
 cd "$outside"
-env -u PYTHONPATH "$venv/bin/python" - "$venv" <<'PY'
+env -u PYTHONPATH -u SKYSPEC_CLI PATH=/usr/bin:/bin "$venv/bin/python" - "$venv" <<'PY'
 import os, sys
 import skyspec
 venv = os.path.realpath(sys.argv[1])
@@ -25,6 +26,12 @@ assert where.startswith(venv + os.sep), f"skyspec was imported from {where}, not
 stubs = os.path.join(os.path.dirname(where), "skyspec.pyi")
 assert os.path.exists(stubs), f"no type stubs beside the module ({stubs})"
 print(f"import skyspec: {where} (version {skyspec.__version__}), stubs {stubs}")
+# run_job's program: installed by the same component, found without SKYSPEC_CLI or PATH.
+import skyspec_jobs, subprocess
+program = skyspec_jobs.find_skyspec()
+assert os.path.realpath(program) == os.path.join(venv, "bin", "skyspec"), f"run_job would run {program}"
+version = subprocess.run([program, "--version"], capture_output=True, text=True, check=True).stdout.strip()
+print(f"run_job's program: {program} ({version})")
 PY
 cat >"$outside/typed.py" <<'PY'
 import skyspec
