@@ -14,13 +14,13 @@ import numpy.typing as npt
 
 __version__: str
 
-Numbers = Union[float, Sequence[float], npt.NDArray[np.float64]]
+_Numbers = Union[float, Sequence[float], npt.NDArray[np.float64]]
 """A number, or a list/array of numbers (a wavelength in nm, an altitude in m)."""
 
-PathLike = Union[str, "os.PathLike[str]"]
+_PathLike = Union[str, "os.PathLike[str]"]
 """A file's path: a str or a pathlib.Path (any os.PathLike)."""
 
-Progress = Union[None, bool, Callable[[int, int], Any]]
+_Progress = Union[None, bool, Callable[[int, int], Any]]
 """None, True (a bar with an ETA on stderr) or a callable progress(done, total) called as the work advances."""
 
 class RenderResult:
@@ -92,12 +92,12 @@ class RenderResult:
         elevation), degrees."""
     def spectrum_at(self, azimuth_deg: float, elevation_deg: float) -> npt.NDArray[np.float64]:
         """(n,): the spectral radiance of the pixel nearest that direction, W m^-2 sr^-1 nm^-1."""
-    def write_exr(self, path: PathLike) -> None:
+    def write_exr(self, path: _PathLike) -> None:
         """Write the spectral EXR as `skyspec render` writes it for this scene (channels, values and
         header), atomically."""
     def write_png(
         self,
-        path: PathLike,
+        path: _PathLike,
         *,
         display: Optional[str] = None,
         view: Optional[str] = None,
@@ -113,10 +113,10 @@ class RenderResult:
 def render(
     preset: str = "default",
     *,
-    scene_file: Optional[PathLike] = None,
+    scene_file: Optional[_PathLike] = None,
     scene_toml: Optional[str] = None,
     overrides: Optional[Dict[str, Any]] = None,
-    progress: Progress = None,
+    progress: _Progress = None,
 ) -> RenderResult:
     """Render a scene into memory; no files are written until you ask (RenderResult.write_exr)."""
 
@@ -125,10 +125,10 @@ def aerial_perspective(
     *,
     depth_is: str = "distance",
     preset: str = "default",
-    scene_file: Optional[PathLike] = None,
+    scene_file: Optional[_PathLike] = None,
     scene_toml: Optional[str] = None,
     overrides: Optional[Dict[str, Any]] = None,
-    progress: Progress = None,
+    progress: _Progress = None,
 ) -> Dict[str, Any]:
     """Aerial perspective for a (height, width) depth pass in metres (depth_is="z": along the view
     axis): transmittance and inscatter (h, w, n), their RGB (h, w, 3), wavelengths_nm, scene_toml."""
@@ -136,7 +136,7 @@ def aerial_perspective(
 def monte_carlo(
     preset: str = "default",
     *,
-    scene_file: Optional[PathLike] = None,
+    scene_file: Optional[_PathLike] = None,
     scene_toml: Optional[str] = None,
     overrides: Optional[Dict[str, Any]] = None,
     probes: Optional[Sequence[Sequence[float]]] = None,
@@ -145,7 +145,7 @@ def monte_carlo(
     orders: int = 0,
     irradiance: bool = False,
     stokes: bool = False,
-    progress: Progress = None,
+    progress: _Progress = None,
 ) -> Dict[str, Any]:
     """The Monte Carlo reference (all scattering orders) at (azimuth_deg, elevation_deg) probes:
     radiance and standard_error arrays (probes x wavelengths), optionally the diffuse horizontal
@@ -166,13 +166,13 @@ def run_job(
     skyspec_jobs.JobFailed when tasks failed or did not run. docs/jobs.md."""
 
 def derive(
-    wavelengths_nm: Optional[Numbers] = None,
+    wavelengths_nm: Optional[_Numbers] = None,
     *,
     preset: str = "default",
-    scene_file: Optional[PathLike] = None,
+    scene_file: Optional[_PathLike] = None,
     scene_toml: Optional[str] = None,
     overrides: Optional[Dict[str, Any]] = None,
-    altitudes_m: Numbers = 0.0,
+    altitudes_m: _Numbers = 0.0,
     pressure_Pa: Optional[float] = None,
     temperature_K: Optional[float] = None,
     latitude_deg: float = 45.0,
@@ -187,12 +187,12 @@ def derive(
 def coefficient_report(
     format: str = "md",
     *,
-    wavelengths_nm: Optional[Numbers] = None,
+    wavelengths_nm: Optional[_Numbers] = None,
     preset: str = "default",
-    scene_file: Optional[PathLike] = None,
+    scene_file: Optional[_PathLike] = None,
     scene_toml: Optional[str] = None,
     overrides: Optional[Dict[str, Any]] = None,
-    altitudes_m: Numbers = 0.0,
+    altitudes_m: _Numbers = 0.0,
     pressure_Pa: Optional[float] = None,
     temperature_K: Optional[float] = None,
     latitude_deg: float = 45.0,
@@ -205,22 +205,22 @@ def coefficient_report(
 def published_comparisons() -> List[Dict[str, Any]]:
     """skyspec's derivation against published values at the published conditions."""
 
-def us_standard_atmosphere(altitude_m: Numbers) -> Dict[str, npt.NDArray[np.float64]]:
+def us_standard_atmosphere(altitude_m: _Numbers) -> Dict[str, npt.NDArray[np.float64]]:
     """U.S. Standard Atmosphere 1976 at geometric altitudes (m, -5 km to 100 km): temperature_K,
     pressure_Pa and number_density_per_m3, shaped like altitude_m."""
 
 def rayleigh_cross_section(
-    wavelengths_nm: Numbers, refractive_index: str = "peck-reeder", co2_ppm: Optional[float] = None
+    wavelengths_nm: _Numbers, refractive_index: str = "peck-reeder", co2_ppm: Optional[float] = None
 ) -> npt.NDArray[np.float64]:
     """Rayleigh cross-section of dry air per molecule, m^2 (Bodhaine et al. 1999 eq. 2), 230-1690 nm (the refractive index formula's range);
     shaped like wavelengths_nm (a number gives shape ()); co2_ppm defaults to the scenes' 420 ppm."""
 
-def lorenz_mie(m: complex, x: float, *, angles_deg: Optional[Numbers] = None) -> Dict[str, Any]:
+def lorenz_mie(m: complex, x: float, *, angles_deg: Optional[_Numbers] = None) -> Dict[str, Any]:
     """One homogeneous sphere by Lorenz-Mie theory (Wiscombe's algorithm): m the relative refractive index
     (imaginary part >= 0 absorbs), x = 2 pi r n_medium / lambda (1e-3 to 2e4): qext, qsca, qabs, qback, g,
     terms; with angles_deg (degrees) also s1, s2 (complex) and s11, s12, s33, s34, shaped like angles_deg."""
 
-def water_refractive_index(wavelengths_nm: Numbers, *, temperature_C: float = 10.0) -> npt.NDArray[np.float64]:
+def water_refractive_index(wavelengths_nm: _Numbers, *, temperature_C: float = 10.0) -> npt.NDArray[np.float64]:
     """The refractive index of liquid water (IAPWS R9-97), 200-1100 nm, 0-100 degC; shaped like wavelengths_nm."""
 
 def lee_diagram(
@@ -237,7 +237,7 @@ def lee_diagram(
     water_temperature_C: float = 10.0,
     angle_samples: int = 4,
     polarisation: bool = False,
-    progress: Progress = None,
+    progress: _Progress = None,
 ) -> Dict[str, npt.NDArray[Any]]:
     """The Lee diagram (`skyspec lee-diagram`): radiance (height, width, wavelengths; E_sun P_11 per unit
     scattering optical depth, row 0 the largest radius), wavelengths_nm, angles_deg, radii_um and, with
@@ -246,7 +246,7 @@ def lee_diagram(
 def scene_toml(
     preset: str = "default",
     *,
-    scene_file: Optional[PathLike] = None,
+    scene_file: Optional[_PathLike] = None,
     scene_toml: Optional[str] = None,
     overrides: Optional[Dict[str, Any]] = None,
 ) -> str:

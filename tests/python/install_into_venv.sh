@@ -6,7 +6,8 @@
 # module with its type stubs beside it and finds the program run_job runs (installed by the same
 # component into the environment's bin, found with neither SKYSPEC_CLI nor PATH), and that mypy (Debian's python3-mypy) type-checks a script
 # against the installed stubs (the stub-only package skyspec-stubs, PEP 561): it must find the
-# module and report the one type error planted in the script. Usage: install_into_venv.sh PYTHON
+# module and report the one type error planted in the script; and that mypy's stubtest finds the
+# installed stubs equal to the installed module. Usage: install_into_venv.sh PYTHON
 # BUILD_DIR VENV
 set -euo pipefail
 python=$1 build=$2 venv=$3
@@ -47,3 +48,8 @@ grep -q 'typed.py:4: error: Incompatible types in assignment (expression has typ
   "$outside/mypy.txt" && grep -q "Found 1 error" "$outside/mypy.txt" \
   || { echo "mypy did not check the script against the installed stubs:"; cat "$outside/mypy.txt"; exit 1; }
 echo "mypy: the installed stubs are found (skyspec-stubs) and checked"
+# stubtest (mypy's): the installed stubs against the installed module, every name and signature;
+# python/stubtest-allowlist.txt lists what is as intended and why.
+allowlist=$(cd "$(dirname "${BASH_SOURCE[0]}")/../../python" && pwd)/stubtest-allowlist.txt
+(cd "$outside" && env -u PYTHONPATH "$venv/bin/python" -m mypy.stubtest skyspec --allowlist "$allowlist") \
+  || { echo "stubtest: the installed stubs differ from the module"; exit 1; }
