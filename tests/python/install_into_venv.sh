@@ -53,3 +53,19 @@ echo "mypy: the installed stubs are found (skyspec-stubs) and checked"
 allowlist=$(cd "$(dirname "${BASH_SOURCE[0]}")/../../python" && pwd)/stubtest-allowlist.txt
 (cd "$outside" && env -u PYTHONPATH "$venv/bin/python" -m mypy.stubtest skyspec --allowlist "$allowlist") \
   || { echo "stubtest: the installed stubs differ from the module"; exit 1; }
+# docs/python.md's Jupyter recipe as written, in a scratch home: a user kernel "skyspec" running
+# the environment's Python, which Debian's Jupyter (not the environment's) finds and runs a notebook in.
+home="$outside/home"
+mkdir -p "$home"
+HOME="$home" "$venv/bin/python" -m ipykernel install --user --name skyspec --display-name "Python 3 (skyspec)" >/dev/null
+cat >"$outside/check.ipynb" <<'NB'
+{"cells": [{"cell_type": "code", "execution_count": null, "metadata": {}, "outputs": [],
+  "source": ["import sys, skyspec\n", "print(sys.executable, skyspec.__file__, skyspec.__version__)"]}],
+ "metadata": {}, "nbformat": 4, "nbformat_minor": 5}
+NB
+(cd "$outside" && env -u PYTHONPATH -u JUPYTER_PATH -u JUPYTER_DATA_DIR HOME="$home" PATH=/usr/bin:/bin \
+  /usr/bin/jupyter nbconvert --to notebook --execute --ExecutePreprocessor.kernel_name=skyspec \
+  --output executed.ipynb check.ipynb >/dev/null 2>&1) || { echo "the Jupyter recipe's kernel did not run the notebook"; exit 1; }
+grep -q "$venv/bin/python" "$outside/executed.ipynb" && grep -q "site-packages/skyspec" "$outside/executed.ipynb" \
+  || { echo "the notebook did not import skyspec from $venv:"; cat "$outside/executed.ipynb"; exit 1; }
+echo "Jupyter: the docs' kernel \"skyspec\" runs $venv/bin/python and imports skyspec"
