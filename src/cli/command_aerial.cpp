@@ -100,7 +100,7 @@ AerialInputs read_inputs(const AerialOptions& o) {
 // is built.
 RenderPlan check_budget(const Scene& scene, const AerialInputs& in, bool force) {
   RenderPlan plan = RenderPlan::for_scene(scene);
-  plan.png = false;
+  plan.drop("png");  // no preview PNG of the sky alone
   const double n_lambda = plan.wavelengths;
   const int w = in.width, h = in.height;
   plan.extra_output_bytes = in.spectral_image

@@ -108,7 +108,7 @@ int run_plan(const JobOptions& o) {
             << "produces: " << produce_list(job) << " per task, in " << plan.task_directory().string() << "\n";
   // The budget of render --dry-run for the first task's scene, times the tasks.
   const Scene first = task_scene(plan, plan.tasks.front());
-  RenderPlan rp = RenderPlan::for_scene(first, false, 8, static_cast<int>(plan.tasks.size()));
+  RenderPlan rp = RenderPlan::for_scene(first, static_cast<int>(plan.tasks.size()));
   if (const auto& tile = plan.tasks.front().tile) {  // strips, and the merged frames besides them
     rp.height = tile->y1 - tile->y0;
     rp.extra_output_bytes = spectral_exr_bytes(first.camera.width, first.camera.height, rp.wavelengths) *

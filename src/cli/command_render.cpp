@@ -103,7 +103,7 @@ int run_render(RenderOptions& o) {
   // Absurd requests are refused up front (render_budget.hpp): the sizes and the memory before the
   // renderer is built, the time once it is (measured on it, inside render_scene_to_files).
   const std::optional<PixelBounds> tile = tile_of(o, scene);
-  RenderPlan plan = RenderPlan::for_scene(scene, !display.exr_space.empty(), display.png_bit_depth);
+  RenderPlan plan = RenderPlan::for_scene(scene, display, 1, tile.has_value());
   if (tile) plan.width = tile->x1 - tile->x0, plan.height = tile->y1 - tile->y0;
   // Its errors first; a folder created here is removed again if the render is refused or fails.
   std::optional<OutputFolderGuard> folder;

@@ -129,7 +129,7 @@ int run(TimelapseOptions& o) {
   Scene first = frame_scene(0);
   // Absurd requests are refused up front (render_budget.hpp): all frames' files and one frame's
   // memory now, the time of all frames once the first frame's renderer is built.
-  const RenderPlan plan = RenderPlan::for_scene(first, false, 8, mine.size());
+  const RenderPlan plan = RenderPlan::for_scene(first, static_cast<int>(mine.size()));
   ensure_writable_directory(first.output.directory, "output.directory");  // its errors first
   RenderEstimate estimate = estimate_render(plan);
   if (!o.force) refuse_if_over_budget(estimate);

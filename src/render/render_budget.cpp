@@ -17,6 +17,7 @@
 #include "io/spectral_exr_encode.hpp"
 #include "render/scene_tables.hpp"
 #include "skyspec/camera.hpp"
+#include "skyspec/display.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/render.hpp"
 #include "skyspec/scene.hpp"
@@ -78,7 +79,15 @@ std::string format_duration(double seconds) {
   return printf_text("%.1f %s", seconds / 86400.0, "days");
 }
 
-RenderPlan RenderPlan::for_scene(const Scene& scene, bool working_exr, int png_bit_depth, int frames) {
+RenderPlan RenderPlan::for_scene(const Scene& scene, int frames) { return for_scene(scene, DisplaySettings{}, frames); }
+
+bool RenderPlan::writes(const std::string& id) const {
+  return std::find(outputs.begin(), outputs.end(), id) != outputs.end();
+}
+
+void RenderPlan::drop(const std::string& id) { outputs.erase(std::remove(outputs.begin(), outputs.end(), id), outputs.end()); }
+
+RenderPlan RenderPlan::for_scene(const Scene& scene, const DisplaySettings& display, int frames, bool tile) {
   RenderPlan p;
   p.width = scene.camera.width;
   p.height = scene.camera.height;
@@ -87,12 +96,9 @@ RenderPlan RenderPlan::for_scene(const Scene& scene, bool working_exr, int png_b
   const int cores = std::max(1, tbb::this_task_arena::max_concurrency());
   p.threads = scene.render.threads > 0 ? std::min(scene.render.threads, cores) : cores;
   p.frames = frames;
-  p.spectral_exr = scene.output.exr;
-  p.png = scene.output.png;
+  p.outputs = planned_outputs(scene, display, tile);
   p.stokes_components = scene.output.polarisation ? 4 : 1;
-  p.polarisation_png = scene.output.polarisation && scene.output.polarisation_png && scene.output.png;
-  p.working_exr = working_exr;
-  p.png_bit_depth = png_bit_depth;
+  p.png_bit_depth = display.png_bit_depth;
   p.directory = scene.output.directory;
   if (scene.render.scattering_orders >= 2)
     p.table_bytes = ScatteringOrders::table_bytes(multiple_scattering_settings(scene), p.wavelengths);
@@ -100,14 +106,7 @@ RenderPlan RenderPlan::for_scene(const Scene& scene, bool working_exr, int png_b
 }
 
 std::uint64_t RenderPlan::output_bytes() const {
-  std::uint64_t one = 0;
-  if (spectral_exr) one += spectral_exr_bytes(width, height, wavelengths * stokes_components);
-  if (spectral_exr && stokes_components > 1) one += rgb_exr_bytes(width, height);  // Y, DoLP, AoLP
-  if (png) one += png_bytes(width, height, png_bit_depth);
-  if (polarisation_png) one += png_bytes(width, height, 8);
-  if (working_exr) one += rgb_exr_bytes(width, height);
-  one += extra_output_bytes;
-  return one * static_cast<std::uint64_t>(std::max(frames, 1));
+  return (planned_output_bytes(*this) + extra_output_bytes) * static_cast<std::uint64_t>(std::max(frames, 1));
 }
 
 std::uint64_t RenderPlan::peak_memory_bytes() const {
@@ -124,6 +123,7 @@ std::uint64_t RenderPlan::peak_memory_bytes() const {
   // estimates"): for a PNG, the whole-image RGB, the copy the display pipeline encodes, its output,
   // the PNG's samples and the allocator's pages around them; for a spectral EXR alone, less.
   // With both, the PNG's part is the peak (the same measurements).
+  const bool spectral_exr = writes("spectral_exr"), png = writes("png"), working_exr = writes("working_exr");
   const std::uint64_t exr_part = spectral_exr ? 2 * band + px * 18 : 0;
   std::uint64_t display_part = 0;
   if (png || working_exr) {
@@ -162,7 +162,7 @@ std::vector<std::string> RenderEstimate::problems() const {
     if (plan.frames > 1)
       what += " (" + std::to_string(plan.frames) + " frames of up to " +
               format_bytes(output_bytes / static_cast<std::uint64_t>(plan.frames)) + ")";
-    else if (plan.spectral_exr)
+    else if (plan.writes("spectral_exr"))
       what += " (a " + format_bytes(spectral_exr_bytes(plan.width, plan.height, plan.wavelengths)) + " EXR)";
     out.push_back("would write " + what + " but " + plan.directory.string() + " has " +
                   format_bytes(*disk_available_bytes) + " free");
@@ -298,7 +298,7 @@ double measure_render_seconds(const SkyRenderer& renderer, const RenderPlan& pla
   // And writing: the last row rendered, 16 times, encoded as a spectral EXR with the scene's
   // compression into memory (spectral_exr_encode.hpp), timed the same way.
   double write = 0.0;
-  if (plan.spectral_exr) {
+  if (plan.writes("spectral_exr")) {
     const int rows = 16;
     std::vector<float> band_spectral(spectral.size() * rows), band_rgb(rgb.size() * rows);
     for (int r = 0; r < rows; ++r) {
@@ -318,7 +318,7 @@ double measure_render_seconds(const SkyRenderer& renderer, const RenderPlan& pla
   // libpng's compression, into memory, as 16 rows each shifted along by a few pixels (identical rows
   // would compress to nothing under libpng's "Up" filter), exposed to a mean of 0.18.
   double png = 0.0;
-  if (plan.png) {
+  if (plan.writes("png")) {
     const int rows = 16;
     double mean = 0.0;
     for (size_t i = 1; i < rgb.size(); i += 3) mean += rgb[i];

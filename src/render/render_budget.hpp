@@ -20,6 +20,8 @@ namespace skyspec {
 class SkyRenderer;
 struct Scene;
 struct ScatteringTablesKey;
+struct DisplaySettings;
+struct RenderPlan;
 
 /// Upper bound of a spectral EXR's size: width x height x (wavelengths + 3 RGB channels) floats,
 /// the scan-line offset table and 64 KiB for the header.
@@ -35,14 +37,23 @@ std::string format_bytes(std::uint64_t bytes);
 /// "0.8 s", "12 min", "3.5 h", "3.2 days".
 std::string format_duration(double seconds);
 
+/// The outputs list's part of a plan (render_outputs.cpp, one row per file a render can write):
+/// the ids of the files a render of `scene` with `display` writes (`tile`: a tile of the image),
+/// and the bytes of one frame's files of a plan, each row's own upper bound.
+std::vector<std::string> planned_outputs(const Scene& scene, const DisplaySettings& display, bool tile);
+std::uint64_t planned_output_bytes(const RenderPlan& plan);
+
 /// What a request asks for: image size, grid, outputs and how many frames.
 struct RenderPlan {
   int width = 0, height = 0, wavelengths = 0, view_segments = 0, threads = 1;
   int frames = 1;
-  bool spectral_exr = true, png = true, working_exr = false;
+  /// The files of one frame, by their id in the outputs list: "spectral_exr", "png",
+  /// "working_exr", "polarisation_exr", "polarisation_png".
+  std::vector<std::string> outputs;
+  bool writes(const std::string& id) const;
+  void drop(const std::string& id);
   /// 4 for a polarised render (S0-S3 per wavelength, output.polarisation; its Y/DoLP/AoLP EXR too), else 1.
   int stokes_components = 1;
-  bool polarisation_png = false;  ///< output.polarisation_png
   int png_bit_depth = 8;
   std::filesystem::path directory;
   /// What a caller writes and holds besides what render_scene_to_files does (aerial perspective
@@ -55,7 +66,10 @@ struct RenderPlan {
 
   /// The plan of render_scene_to_files for a scene: its size, grid, outputs and directory;
   /// threads as the renderer will use them (render.threads, at most the cores available).
-  static RenderPlan for_scene(const Scene& scene, bool working_exr = false, int png_bit_depth = 8, int frames = 1);
+  /// `tile`: the plan of a tile (render --pixel-bounds; the caller sets its width and height).
+  static RenderPlan for_scene(const Scene& scene, const DisplaySettings& display, int frames = 1, bool tile = false);
+  /// The same with the default display settings (8-bit PNG, no working-space EXR).
+  static RenderPlan for_scene(const Scene& scene, int frames = 1);
   /// All files of all frames.
   std::uint64_t output_bytes() const;
   /// Peak memory of one frame.

@@ -25,6 +25,7 @@
 #include "io/rgb_exr.hpp"
 #include "io/spectral_exr.hpp"
 #include "physics/unmodelled_absorption.hpp"
+#include "render/render_budget.hpp"
 #include "render/scene_provenance.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/render.hpp"
@@ -261,8 +262,9 @@ struct FinishedImage {
 };
 
 // The outputs of a render, one row each: the one list that render_output_paths, render_scene_to_files
-// (what to write, in which order, what to remove when another fails) and RenderOutputs::files (the
-// job records) read. A new output is one row here (and its field in RenderOutputs, render.hpp).
+// (what to write, in which order, what to remove when another fails), RenderOutputs::files (the
+// job records) and the render budget (planned_outputs, planned_output_bytes) read. A new output is
+// one row here (and its field in RenderOutputs, render.hpp).
 struct FileOutput {
   const char* id;
   /// Asked for by the scene and the display settings (`tile`: a tile of the image is rendered).
@@ -274,19 +276,23 @@ struct FileOutput {
   bool needs_stokes_luminance;  ///< reads the luminance-weighted Stokes vectors
   /// Writes the file (atomically); null for the spectral EXR, streamed while the image renders.
   void (*write)(const FinishedImage& image, const std::filesystem::path& path);
+  /// An upper bound of its size for the render budget (render_budget.hpp).
+  std::uint64_t (*bytes)(const RenderPlan& plan);
 };
 
 const std::vector<FileOutput>& file_outputs() {
   static const std::vector<FileOutput> outputs = {
       {"spectral_exr", [](const Scene& s, const DisplaySettings&, bool) { return s.output.exr; },
        [](const Scene& s, const DisplaySettings&) { return s.output.name + ".exr"; }, &RenderOutputs::exr, false, false,
-       nullptr},
+       nullptr,
+       [](const RenderPlan& p) { return spectral_exr_bytes(p.width, p.height, p.wavelengths * p.stokes_components); }},
       {"png", [](const Scene& s, const DisplaySettings&, bool) { return s.output.png; },
        [](const Scene& s, const DisplaySettings&) { return s.output.name + ".png"; }, &RenderOutputs::png, true, false,
        [](const FinishedImage& i, const std::filesystem::path& path) {
          write_preview_png(path, i.scene.camera.width, i.scene.camera.height, *i.pipeline, i.display, i.rgb,
                            i.exposure.resolved, i.provenance);
-       }},
+       },
+       [](const RenderPlan& p) { return png_bytes(p.width, p.height, p.png_bit_depth); }},
       {"working_exr", [](const Scene&, const DisplaySettings& d, bool) { return !d.exr_space.empty(); },
        [](const Scene& s, const DisplaySettings& d) {
          return s.output.name + "-" + find_working_space(d.exr_space).file_suffix + ".exr";
@@ -295,14 +301,16 @@ const std::vector<FileOutput>& file_outputs() {
        [](const FinishedImage& i, const std::filesystem::path& path) {
          write_working_space_exr(path, i.scene, *i.pipeline, find_working_space(i.display.exr_space), i.rgb,
                                  i.exposure.settings, i.exposure.resolved.scale, i.provenance);
-       }},
+       },
+       [](const RenderPlan& p) { return rgb_exr_bytes(p.width, p.height); }},
       {"polarisation_exr",
        [](const Scene& s, const DisplaySettings&, bool tile) { return s.output.polarisation && s.output.exr && !tile; },
        [](const Scene& s, const DisplaySettings&) { return s.output.name + "-polarisation.exr"; },
        &RenderOutputs::polarisation_exr, false, true,
        [](const FinishedImage& i, const std::filesystem::path& path) {
          write_polarisation_exr(path, i.scene, i.stokes_y, i.provenance);
-       }},
+       },
+       [](const RenderPlan& p) { return rgb_exr_bytes(p.width, p.height); }},  // Y, DoLP, AoLP
       {"polarisation_png",
        [](const Scene& s, const DisplaySettings&, bool) {
          return s.output.polarisation && s.output.polarisation_png && s.output.png;
@@ -311,7 +319,8 @@ const std::vector<FileOutput>& file_outputs() {
        &RenderOutputs::polarisation_png, false, true,
        [](const FinishedImage& i, const std::filesystem::path& path) {
          write_polarisation_png(path, i.scene, i.stokes_y, i.provenance);
-       }},
+       },
+       [](const RenderPlan& p) { return png_bytes(p.width, p.height, 8); }},
   };
   return outputs;
 }
@@ -469,6 +478,20 @@ RenderOutputs render_output_paths(const Scene& scene, const DisplaySettings& dis
   for (const FileOutput& o : file_outputs())
     if (o.wanted(scene, display, false)) out.*o.field = dir / o.file_name(scene, display);
   return out;
+}
+
+std::vector<std::string> planned_outputs(const Scene& scene, const DisplaySettings& display, bool tile) {
+  std::vector<std::string> ids;
+  for (const FileOutput& o : file_outputs())
+    if (o.wanted(scene, display, tile)) ids.emplace_back(o.id);
+  return ids;
+}
+
+std::uint64_t planned_output_bytes(const RenderPlan& plan) {
+  std::uint64_t bytes = 0;
+  for (const FileOutput& o : file_outputs())
+    if (plan.writes(o.id)) bytes += o.bytes(plan);
+  return bytes;
 }
 
 std::vector<std::filesystem::path> RenderOutputs::files() const {

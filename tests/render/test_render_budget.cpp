@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "render/render_budget.hpp"
 #include "scene_fixtures.hpp"
+#include "skyspec/display.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/render.hpp"
 #include "skyspec/scene.hpp"
@@ -41,7 +43,11 @@ BOOST_AUTO_TEST_CASE(file_size_bounds) {
 
 BOOST_AUTO_TEST_CASE(plan_of_a_scene) {
   const Scene s = scene_with("[camera]\nwidth = 300\nheight = 200\n[render]\nthreads = 1\nview_segments = 32\n");
-  RenderPlan p = RenderPlan::for_scene(s, true, 16, 5);
+  DisplaySettings display;
+  display.exr_space = "ACEScg";  // the working-space EXR too
+  display.png_bit_depth = 16;
+  RenderPlan p = RenderPlan::for_scene(s, display, 5);
+  BOOST_TEST(p.outputs == (std::vector<std::string>{"spectral_exr", "png", "working_exr"}), boost::test_tools::per_element());
   BOOST_TEST(p.wavelengths == 41);
   BOOST_TEST(p.threads == 1);
   BOOST_TEST(p.output_bytes() ==
@@ -56,7 +62,7 @@ BOOST_AUTO_TEST_CASE(plan_of_a_scene) {
   const std::uint64_t band = 64ull * 300 * 44 * 4, px = 300ull * 200;
   BOOST_TEST(p.table_bytes == 16ull * 72 * 41 * 4 * (66 + 66 + 55 + 45 + 36 + 28));
   BOOST_TEST(p.peak_memory_bytes() == 2 * band + std::max(2 * band + px * 18, px * 73) + p.table_bytes);
-  p.spectral_exr = p.png = p.working_exr = false;
+  p.outputs.clear();
   p.table_bytes = 0;
   BOOST_TEST(p.peak_memory_bytes() == 2 * band);
   p.extra_bytes_per_pixel = 10;
@@ -67,6 +73,24 @@ BOOST_AUTO_TEST_CASE(plan_of_a_scene) {
   p.height = 1000;
   BOOST_TEST(p.peak_memory_bytes() == 2 * 8ull * 65536 * 44 * 4 + 65536ull * 1000 * 10);
   BOOST_TEST(p.output_bytes() == 5u * 7u);
+}
+
+// The bytes come from the outputs list (render_outputs.cpp): every file a render writes, each
+// row's own bound; a tile writes neither the PNG (render --pixel-bounds turns it off) nor the
+// polarisation EXR, so its plan counts neither.
+BOOST_AUTO_TEST_CASE(bytes_follow_the_outputs_list) {
+  const Scene s = scene_with("[camera]\nwidth = 64\nheight = 32\n[output]\npolarisation = true\npolarisation_png = true\n");
+  const RenderPlan whole = RenderPlan::for_scene(s);
+  BOOST_TEST(whole.outputs == (std::vector<std::string>{"spectral_exr", "png", "polarisation_exr", "polarisation_png"}),
+             boost::test_tools::per_element());
+  BOOST_TEST(whole.output_bytes() == spectral_exr_bytes(64, 32, 41 * 4) + png_bytes(64, 32, 8) + rgb_exr_bytes(64, 32) +
+                                         png_bytes(64, 32, 8));
+  Scene tile_scene = s;
+  tile_scene.output.png = false;
+  RenderPlan tile = RenderPlan::for_scene(tile_scene, DisplaySettings{}, 1, true);
+  tile.width = 16;
+  BOOST_TEST(tile.outputs == (std::vector<std::string>{"spectral_exr"}), boost::test_tools::per_element());
+  BOOST_TEST(tile.output_bytes() == spectral_exr_bytes(16, 32, 41 * 4));
 }
 
 BOOST_AUTO_TEST_CASE(limits_and_messages) {
