@@ -147,16 +147,16 @@ class ProgressReport {
       const PreparationProgress p = preparation_progress();
       if (p.planned > 0) {
         const double f = p.fraction();
-        if (building_ == std::chrono::steady_clock::time_point{}) building_ = now;
+        if (p.phase != phase_) building_ = now, phase_ = p.phase;  // each phase's own ETA
         const double built = std::chrono::duration<double>(now - building_).count();
         std::string bar(static_cast<size_t>(f * 30.0), '#');
         bar.resize(30, '.');
         if (f > 0.0)
-          std::snprintf(line, sizeof line, "\rskyspec %s: building the scattering tables [%s] %3.0f%%, ETA %.0f s  ",
-                        label_.c_str(), bar.c_str(), 100.0 * f, built / f - built);
+          std::snprintf(line, sizeof line, "\rskyspec %s: %s [%s] %3.0f%%, ETA %.0f s  ", label_.c_str(), p.what,
+                        bar.c_str(), 100.0 * f, built / f - built);
         else
-          std::snprintf(line, sizeof line, "\rskyspec %s: building the scattering tables [%s] %3.0f%%  ",
-                        label_.c_str(), bar.c_str(), 100.0 * f);
+          std::snprintf(line, sizeof line, "\rskyspec %s: %s [%s] %3.0f%%  ", label_.c_str(), p.what, bar.c_str(),
+                        100.0 * f);
       } else {
         std::snprintf(line, sizeof line, "\rskyspec %s: preparing, %.0f s", label_.c_str(), elapsed);
       }
@@ -206,6 +206,7 @@ class ProgressReport {
   Kind kind_ = Kind::None;
   long long done_ = -1, total_ = -1;
   std::chrono::steady_clock::time_point start_, drawn_{}, building_{};
+  long long phase_ = -1;
 };
 
 // Runs work(counter) on a thread of its own (see above); called with the GIL held. Its result, or

@@ -1,15 +1,20 @@
-// How far the preparation of a render has come: the scattering-order tables being built, the
-// longest step before the first pixel (once per atmosphere: they are cached). Process-wide, like
-// skyspec/cancellation.hpp: the builders count the work they plan and the work they finish, in
-// units of equal cost (rays traced), and a host reads it from a thread of its own to draw a
-// progress bar (the CLI, the Python module).
+// How far the preparation of a render has come: the longest steps before the first pixel, each
+// once per atmosphere (their results are cached): a microphysical aerosol's optics, then the
+// scattering-order tables. Process-wide, like skyspec/cancellation.hpp: each builder names its
+// phase and counts the work it plans and finishes in units of its own (rays traced; component
+// and wavelength pairs), and a host reads it from a thread of its own to draw a progress bar
+// (the CLI, the Python module). A new phase starts its counts from zero.
 #pragma once
 
 namespace skyspec {
 
 struct PreparationProgress {
-  long long done = 0;     ///< units finished
-  long long planned = 0;  ///< units planned (0: nothing being built since the last reset)
+  long long done = 0;     ///< units finished in this phase
+  long long planned = 0;  ///< units planned in this phase (0: nothing being built since the last reset)
+  /// What is being prepared, e.g. "building the scattering tables" ("" when nothing is).
+  const char* what = "";
+  /// Counts the phases since the last reset: a host restarts its time estimate when it changes.
+  long long phase = 0;
   /// done / planned, 0 when nothing is planned.
   double fraction() const { return planned > 0 ? static_cast<double>(done) / static_cast<double>(planned) : 0.0; }
 };

@@ -6,7 +6,13 @@
 
 namespace skyspec {
 
-void plan_preparation(long long units) noexcept;
+/// Plans `units` more of the phase `what` (a string literal that outlives the process's builds);
+/// a `what` other than the current phase's starts a new phase with its counts at zero.
+void plan_preparation(long long units, const char* what) noexcept;
 void finish_preparation(long long units) noexcept;
+
+/// The phases' names.
+inline constexpr const char* kBuildingScatteringTables = "building the scattering tables";
+inline constexpr const char* kComputingAerosolOptics = "computing the aerosol's optics (Lorenz-Mie)";
 
 }  // namespace skyspec

@@ -127,6 +127,10 @@ int run_render(RenderOptions& o) {
     std::cout << "estimate: " << estimate.describe() << " (" << plan.settings() << ")\n";
     return kExitOk;
   }
+  // The bar shows the preparation from here: the estimate below computes a microphysical aerosol's
+  // optics (it names the tables by them), which can take a minute.
+  ProgressBar bar("rendering", o.quiet);
+  bar.watch_preparation();
   // The scattering-order tables can take hours at extreme settings: refused before they are built.
   // (The summary then quotes that estimate when they were built, beside the time they took.)
   if (const double orders = estimate_scattering_orders_seconds(scene); orders > 0.0) estimate.table_seconds = orders;
@@ -136,8 +140,6 @@ int run_render(RenderOptions& o) {
     if (!o.quiet && scene.render.path == RenderSpec::Path::Spectral && r.grid().size() >= 2)
       photometry = photometry_line(r);
   };
-  ProgressBar bar("rendering", o.quiet);
-  bar.watch_preparation();
   const auto out = render_scene_to_files(
       scene, display, [&](int done, int total) { bar.update(done, total); }, prepared, tile);
   bar.finish();

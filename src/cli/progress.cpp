@@ -56,15 +56,16 @@ void ProgressBar::watch_preparation() {
   watcher_ = std::thread([this] {
     std::unique_lock<std::mutex> lock(mutex_);
     auto first_build = std::chrono::steady_clock::time_point{};
+    long long phase = -1;
     while (!stop_ && !updated_) {
       wake_.wait_for(lock, std::chrono::milliseconds(250));
       if (stop_ || updated_) break;
       const auto now = std::chrono::steady_clock::now();
       const PreparationProgress p = preparation_progress();
       if (p.planned > 0) {
-        if (first_build == std::chrono::steady_clock::time_point{}) first_build = now;
+        if (p.phase != phase) first_build = now, phase = p.phase;  // each phase's own ETA
         const double f = p.fraction(), elapsed = std::chrono::duration<double>(now - first_build).count();
-        draw("building the scattering tables " + bar_text(f, f > 0.0 ? elapsed / f - elapsed : -1.0, elapsed));
+        draw(std::string(p.what) + " " + bar_text(f, f > 0.0 ? elapsed / f - elapsed : -1.0, elapsed));
       } else if (now - start_ > std::chrono::seconds(1)) {
         draw("preparing, " + format_seconds(std::chrono::duration<double>(now - start_).count()));
       }

@@ -17,6 +17,7 @@
 #include "base/csv_table.hpp"
 #include "base/disk_cache.hpp"
 #include "base/embedded_data.hpp"
+#include "base/preparation_progress.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/size_distribution.hpp"
 #include "skyspec/sphere_ensemble.hpp"
@@ -184,11 +185,14 @@ RawOptics compute(const AerosolMixture& mix, const WavelengthGrid& grid, const s
   o.ext.assign(static_cast<size_t>(n), 0.0);
   o.a1.assign(static_cast<size_t>(n), std::vector<double>(nm, 0.0));
   o.b1 = o.a3 = o.b2 = o.a1;
-  bool any = false;
+  long long pairs = 0;
+  for (double number : mix.number_per_cm3) pairs += number > 0.0 ? n : 0;
+  if (pairs == 0)
+    throw InputError(setting + ".*_per_cm3", "0 for every component", "at least one component with a number concentration > 0");
+  plan_preparation(pairs, kComputingAerosolOptics);
   for (int c = 0; c < kAerosolComponentCount; ++c) {
     const double per_m3 = mix.number_per_cm3[static_cast<size_t>(c)] * 1e6;
     if (!(per_m3 > 0.0)) continue;
-    any = true;
     for (int i = 0; i < n; ++i) {
       const size_t w = static_cast<size_t>(i);
       const AerosolComponentState s = aerosol_component_state(c, mix.relative_humidity_percent, grid.nm(i), setting);
@@ -207,10 +211,9 @@ RawOptics compute(const AerosolMixture& mix, const WavelengthGrid& grid, const s
         o.a3[w][k] += sca * p.s33;
         o.b2[w][k] += sca * p.s34;
       }
+      finish_preparation(1);
     }
   }
-  if (!any)
-    throw InputError(setting + ".*_per_cm3", "0 for every component", "at least one component with a number concentration > 0");
   return o;
 }
 }  // namespace

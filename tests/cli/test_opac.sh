@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The microphysical aerosol from the command line (atmosphere.mie.model = "opac"): a render, its
 # optics cached on disk beside the tables and read back bit for bit (a damaged cache file is
-# recomputed, not trusted; render.cache_tables = false writes none), the coefficient report naming
-# the mixture, and bad values refused naming the key. Usage: test_opac.sh SKYSPEC
+# recomputed, not trusted; render.cache_tables = false writes none), the progress bar's phase while
+# they are computed, the coefficient report naming the mixture, and bad values refused naming the key. Usage: test_opac.sh SKYSPEC
 set -u
 skyspec=$1
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
@@ -30,6 +30,12 @@ printf '\x7f' | dd of="${files[0]}" bs=1 seek=$((size - 100)) conv=notrunc statu
 # Without the cache, nothing is written there.
 SKYSPEC_CACHE_DIR="$work/cache-off" "$skyspec" render "${small[@]}" --set render.cache_tables=false --out "$work/e" \
   && [ ! -e "$work/cache-off" ] && ok || bad "render.cache_tables = false wrote $(ls -A "$work/cache-off" 2>/dev/null)"
+
+# On a terminal (script(1) gives it one) the bar shows the optics being computed.
+SKYSPEC_CACHE_DIR="$work/cache-tty" script -qc "'$skyspec' render --width 8 --height 8 --wavelengths 400,500,600,700 \
+  --set atmosphere.mie.model=opac --set render.scattering_orders=1 --out '$work/tty'" /dev/null >"$work/bar.txt" 2>&1
+grep -qaE "rendering computing the aerosol's optics \(Lorenz-Mie\) \[#*\.*\] +[0-9]+%" "$work/bar.txt" && ok \
+  || bad "no bar while the aerosol's optics were computed: $(tr '\r' '\n' <"$work/bar.txt" | head -5)"
 
 # The coefficient report says what the aerosol is made of.
 "$skyspec" coefficients --wavelengths 450,550 --set atmosphere.mie.model=opac --out "$work/report.md" \
