@@ -220,6 +220,18 @@ def lorenz_mie(m: complex, x: float, *, angles_deg: Optional[_Numbers] = None) -
     (imaginary part >= 0 absorbs), x = 2 pi r n_medium / lambda (1e-3 to 2e4): qext, qsca, qabs, qback, g,
     terms; with angles_deg (degrees) also s1, s2 (complex) and s11, s12, s33, s34, shaped like angles_deg."""
 
+def aerosol_optics(
+    wavelengths_nm: _Numbers,
+    *,
+    components: Dict[str, float],
+    relative_humidity_percent: float = 70.0,
+    progress: _Progress = None,
+) -> Dict[str, npt.NDArray[np.float64]]:
+    """An aerosol from its microphysics, as atmosphere.mie.model = "opac" computes it: OPAC's components by
+    Lorenz-Mie theory. components: OPAC's name -> particles per cm^3 (inso, waso, soot, ssam, sscm, minm, miam,
+    micm, mitr, suso); 250-2500 nm. Returns wavelengths_nm, extinction_per_m, scattering_per_m,
+    single_scattering_albedo, asymmetry, angles_deg (0-180) and p11 (sr^-1), p12, p33, p34 [wavelength, angle]."""
+
 def water_refractive_index(wavelengths_nm: _Numbers, *, temperature_C: float = 10.0) -> npt.NDArray[np.float64]:
     """The refractive index of liquid water (IAPWS R9-97), 200-1100 nm, 0-100 degC; shaped like wavelengths_nm."""
 

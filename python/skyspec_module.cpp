@@ -10,6 +10,7 @@
 #include <pybind11/stl/filesystem.h>
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -19,6 +20,7 @@
 #include <functional>
 #include <future>
 #include <iomanip>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -28,6 +30,7 @@
 #include <vector>
 
 #include "skyspec/aerial_perspective.hpp"
+#include "skyspec/aerosol_components.hpp"
 #include "skyspec/camera.hpp"
 #include "skyspec/cancellation.hpp"
 #include "skyspec/coefficient_report.hpp"
@@ -532,6 +535,72 @@ py::array_t<double> water_index_py(const py::object& wavelengths_nm, double temp
   py::array_t<double> n(nm.request().shape);
   for (py::ssize_t i = 0; i < nm.size(); ++i) n.mutable_data()[i] = water_refractive_index(t, density, nm.data()[i]);
   return n;
+}
+
+// OPAC components by Lorenz-Mie (skyspec/aerosol_components.hpp): the mixture's coefficients per
+// wavelength and its normalised scattering matrix, angles ascending from 0 to 180 degrees.
+py::dict aerosol_optics_py(const py::object& wavelengths_nm, const py::dict& components, double humidity,
+                           const py::object& progress) {
+  const auto nm = numbers_array(wavelengths_nm, "wavelengths_nm");
+  const WavelengthGrid grid =
+      WavelengthGrid::from_list(std::vector<double>(nm.data(), nm.data() + nm.size()));
+  if (!(humidity >= 0.0 && humidity <= 99.0))
+    throw InputError("relative_humidity_percent", py::repr(py::float_(humidity)).cast<std::string>(),
+                     "a relative humidity in percent, >= 0 and <= 99 (OPAC's range)");
+  AerosolMixture mix;
+  mix.relative_humidity_percent = humidity;
+  const auto& names = aerosol_component_names();
+  std::string allowed;
+  for (const char* n : names) allowed += (allowed.empty() ? "" : ", ") + std::string(n);
+  for (const auto& [key, value] : components) {
+    const std::string name = py::str(key);
+    const auto it = std::find(names.begin(), names.end(), name);
+    if (it == names.end())
+      throw InputError("components", "\"" + name + "\"", "OPAC's component names: " + allowed);
+    double n = std::numeric_limits<double>::quiet_NaN();  // not a number: refused below
+    if (PyObject* as_float = PyNumber_Float(value.ptr())) {  // int, float, NumPy scalars
+      n = PyFloat_AsDouble(as_float);
+      Py_DECREF(as_float);
+    } else {
+      PyErr_Clear();
+    }
+    if (!(n >= 0.0 && n <= 1e7))
+      throw InputError("components[\"" + name + "\"]", py::repr(value).cast<std::string>(),
+                       "a number concentration in particles per cm^3, >= 0 and <= 1e7");
+    mix.number_per_cm3[static_cast<size_t>(it - names.begin())] = n;
+  }
+  const AerosolMixtureOptics o = run_interruptible(
+      [&](ProgressCounter&) { return aerosol_mixture_optics(mix, grid, "components"); }, progress, "aerosol_optics");
+  const TabulatedScatteringMatrix& t = *o.matrix;
+  const py::ssize_t n = grid.size(), m = static_cast<py::ssize_t>(t.mu().size());
+  py::array_t<double> ext(n), sca(n), ssa(n), g(n), angles(m), p11({n, m}), p12({n, m}), p33({n, m}), p34({n, m});
+  for (py::ssize_t i = 0; i < n; ++i) {
+    ext.mutable_data()[i] = o.extinction_per_m[i];
+    sca.mutable_data()[i] = o.scattering_per_m[i];
+    ssa.mutable_data()[i] = o.extinction_per_m[i] > 0.0 ? o.scattering_per_m[i] / o.extinction_per_m[i] : 0.0;
+    g.mutable_data()[i] = t.asymmetry(static_cast<int>(i));
+    for (py::ssize_t k = 0; k < m; ++k) {
+      const size_t node = static_cast<size_t>(m - 1 - k);  // the table's cosines ascend: angles descend
+      const size_t row = static_cast<size_t>(i), at = static_cast<size_t>(i * m + k);
+      p11.mutable_data()[at] = t.a1()[row][node];
+      p12.mutable_data()[at] = t.b1()[row][node];
+      p33.mutable_data()[at] = t.a3()[row][node];
+      p34.mutable_data()[at] = t.b2()[row][node];
+      if (i == 0) angles.mutable_data()[k] = std::acos(t.mu()[node]) * 180.0 / kPi;
+    }
+  }
+  py::dict d;
+  d["wavelengths_nm"] = py::array_t<double>(n, grid.nanometres().data());
+  d["extinction_per_m"] = ext;
+  d["scattering_per_m"] = sca;
+  d["single_scattering_albedo"] = ssa;
+  d["asymmetry"] = g;
+  d["angles_deg"] = angles;
+  d["p11"] = p11;
+  d["p12"] = p12;
+  d["p33"] = p33;
+  d["p34"] = p34;
+  return d;
 }
 
 py::dict lee_diagram_py(const LeeDiagramSettings& settings, const py::object& progress) {
@@ -1095,6 +1164,15 @@ Example: skyspec.derive(pressure_Pa=25000, temperature_K=220)["conditions_raylei
         "qabs, qback (4 |S1(180)|^2 / x^2), g and terms; with angles_deg (scattering angles, degrees), also the\n"
         "amplitudes s1, s2 (Bohren & Huffman's convention) and the scattering matrix s11, s12, s33, s34, shaped\n"
         "like angles_deg.");
+  m.def("aerosol_optics", &aerosol_optics_py, py::arg("wavelengths_nm"), py::kw_only(), py::arg("components"),
+        py::arg("relative_humidity_percent") = 70.0, py::arg("progress") = py::none(),
+        "An aerosol from its microphysics, as atmosphere.mie.model = \"opac\" computes it: OPAC's components\n"
+        "(Hess, Koepke & Schult 1998) by Lorenz-Mie theory over their size distributions. components: OPAC's name\n"
+        "-> particles per cm^3 (inso, waso, soot, ssam, sscm, minm, miam, micm, mitr, suso); wavelengths 250-2500 nm\n"
+        "(sorted ascending in the result). Returns wavelengths_nm, extinction_per_m, scattering_per_m,\n"
+        "single_scattering_albedo, asymmetry (per wavelength), angles_deg (0-180, ascending) and the normalised\n"
+        "scattering matrix p11 (the phase function, sr^-1, integral 1 over the sphere), p12, p33, p34\n"
+        "([wavelength, angle]; linear in cos(angle) between the angles).");
   m.def("water_refractive_index", &water_index_py, py::arg("wavelengths_nm"), py::kw_only(),
         py::arg("temperature_C") = 10.0,
         "The refractive index of liquid water (IAPWS R9-97; its density at 1 atm from Kell 1975), 200-1100 nm,\n"

@@ -546,6 +546,24 @@ class Spheres(unittest.TestCase):
         with self.assertRaisesRegex(ValueError, "temperature_C"):
             skyspec.water_refractive_index(550.0, temperature_C=-5.0)
 
+    def test_aerosol_optics_reproduce_opac(self):
+        # OPAC 3.1's continental polluted mixture at 80 % and 550 nm (test_aerosol_components has the source).
+        r = skyspec.aerosol_optics([650.0, 550.0], components={"inso": 0.6, "waso": 15700, "soot": 34300},
+                                   relative_humidity_percent=80)
+        self.assertEqual(list(r["wavelengths_nm"]), [550.0, 650.0])
+        self.assertAlmostEqual(r["extinction_per_m"][0] * 1e3 / 0.1746, 1.0, delta=0.01)
+        self.assertAlmostEqual(r["single_scattering_albedo"][0], 0.8925, delta=0.005)
+        self.assertAlmostEqual(r["asymmetry"][0], 0.6977, delta=0.005)
+        self.assertEqual(r["p11"].shape, (2, r["angles_deg"].size))
+        self.assertEqual((r["angles_deg"][0], r["angles_deg"][-1]), (0.0, 180.0))
+        # The phase function integrates to 1 over the sphere (linear in mu between the angles).
+        mu = np.cos(np.radians(r["angles_deg"]))
+        self.assertAlmostEqual(2 * np.pi * -np.trapz(r["p11"][0], mu), 1.0, delta=1e-9)
+        with self.assertRaisesRegex(ValueError, "components = \"dust\" is not allowed: OPAC's component names"):
+            skyspec.aerosol_optics(550.0, components={"dust": 1.0})
+        with self.assertRaisesRegex(ValueError, "relative_humidity_percent = 100.0 is not allowed"):
+            skyspec.aerosol_optics(550.0, components={"waso": 1.0}, relative_humidity_percent=100)
+
     def test_lee_diagram_arrays_and_errors(self):
         calls = []
         d = skyspec.lee_diagram(width=40, height=5, lambda_step_nm=50, polarisation=True,
