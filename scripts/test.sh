@@ -34,7 +34,8 @@ stage "sanitizer build"
 # scattering-order tables (docs/performance.md, "Build and test times").
 # SKYSPEC_SANITIZER_STAGE also leaves a test's longest parts to the release stage where it says so
 # (cli_hostile, cli_tiles, cli_budget's job, cli's progress bar and cache cap, test_polarised_sky,
-# test_natraj_tables, test_sphere_ensemble's convergence) and makes cli's renders use small tables.
+# test_natraj_tables, test_sphere_ensemble's convergence, test_microphysical_aerosol's Monte Carlo comparison)
+# and makes cli's renders use small tables.
 SKYSPEC_SANITIZER_STAGE=1 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan --output-on-failure -j"$(nproc)" \
