@@ -569,6 +569,10 @@ py::dict aerosol_optics_py(const py::object& wavelengths_nm, const py::dict& com
                        "a number concentration in particles per cm^3, >= 0 and <= 1e7");
     mix.number_per_cm3[static_cast<size_t>(it - names.begin())] = n;
   }
+  // The mixture's own checks name its scene keys; here they are arguments, checked first.
+  if (std::none_of(mix.number_per_cm3.begin(), mix.number_per_cm3.end(), [](double n) { return n > 0.0; }))
+    throw InputError("components", py::repr(components).cast<std::string>(),
+                     "at least one component with a number concentration > 0 (particles per cm^3)");
   const AerosolMixtureOptics o = run_interruptible(
       [&](ProgressCounter&) { return aerosol_mixture_optics(mix, grid, "components"); }, progress, "aerosol_optics");
   const TabulatedScatteringMatrix& t = *o.matrix;

@@ -87,7 +87,8 @@ struct AerosolMixtureOptics {
   std::shared_ptr<const TabulatedScatteringMatrix> matrix;
 };
 /// Computes (Lorenz-Mie per component, wavelength and radius node, on all threads; polls
-/// cancellation). `setting` names the scene key in errors. Results are kept in memory per
+/// cancellation). `setting` is the prefix of the mixture's keys that errors name
+/// (setting.relative_humidity_percent, setting.*_per_cm3). Results are kept in memory per
 /// (mixture, grid) for the process's life, so that a scene's renderer, tables and Monte Carlo
 /// share one computation; with use_disk_cache also in the disk cache of tables (render.cache_tables;
 /// "aerosol-<hash>.bin" beside the scattering-order tables, under the same cap), named by a hash of

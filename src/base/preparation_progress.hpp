@@ -11,8 +11,4 @@ namespace skyspec {
 void plan_preparation(long long units, const char* what) noexcept;
 void finish_preparation(long long units) noexcept;
 
-/// The phases' names.
-inline constexpr const char* kBuildingScatteringTables = "building the scattering tables";
-inline constexpr const char* kComputingAerosolOptics = "computing the aerosol's optics (Lorenz-Mie)";
-
 }  // namespace skyspec

@@ -12,6 +12,7 @@
 #include <map>
 #include <mutex>
 #include <sstream>
+#include <system_error>
 
 #include "base/atomic_file.hpp"
 #include "base/csv_table.hpp"
@@ -189,13 +190,14 @@ RawOptics compute(const AerosolMixture& mix, const WavelengthGrid& grid, const s
   for (double number : mix.number_per_cm3) pairs += number > 0.0 ? n : 0;
   if (pairs == 0)
     throw InputError(setting + ".*_per_cm3", "0 for every component", "at least one component with a number concentration > 0");
-  plan_preparation(pairs, kComputingAerosolOptics);
+  plan_preparation(pairs, "computing the aerosol's optics (Lorenz-Mie)");
   for (int c = 0; c < kAerosolComponentCount; ++c) {
     const double per_m3 = mix.number_per_cm3[static_cast<size_t>(c)] * 1e6;
     if (!(per_m3 > 0.0)) continue;
     for (int i = 0; i < n; ++i) {
       const size_t w = static_cast<size_t>(i);
-      const AerosolComponentState s = aerosol_component_state(c, mix.relative_humidity_percent, grid.nm(i), setting);
+      const AerosolComponentState s =
+          aerosol_component_state(c, mix.relative_humidity_percent, grid.nm(i), setting + ".relative_humidity_percent");
       const SizeDistribution sizes = SizeDistribution::lognormal(s.median_radius_m, s.geometric_standard_deviation)
                                          .truncated(s.min_radius_m, s.max_radius_m);
       const SphereEnsembleOptics e =
@@ -216,9 +218,7 @@ RawOptics compute(const AerosolMixture& mix, const WavelengthGrid& grid, const s
   }
   return o;
 }
-}  // namespace
 
-namespace {
 // What the optics depend on, as text: the mixture, the grid, the angles, the quadrature and the
 // component table's bytes (a changed table is a new key).
 std::string optics_key(const AerosolMixture& mix, const WavelengthGrid& grid) {
@@ -323,7 +323,14 @@ AerosolMixtureOptics load_or_compute(const AerosolMixture& mix, const Wavelength
     path = dir / name;
   }
   const std::uint64_t cap = path.empty() ? 0 : table_cache_cap_bytes();  // a bad value: refused before any work
-  if (!path.empty() && is_regular_input(path)) {
+  // Only a regular file of exactly the size this key's optics take is read (a file read back is
+  // untrusted: never read a huge one whole).
+  const size_t values = static_cast<size_t>(grid.size()) * (2 + 4 * aerosol_scattering_cosines().size());
+  const std::uintmax_t expected = sizeof(kMagic) - 1 + sizeof(kByteOrder) + sizeof(std::uint64_t) + key.size() +
+                                  2 * sizeof(std::uint32_t) + values * sizeof(double) + sizeof(std::uint64_t);
+  std::error_code size_error;
+  if (!path.empty() && is_regular_input(path) && std::filesystem::file_size(path, size_error) == expected &&
+      !size_error) {
     std::ifstream in(path, std::ios::binary);
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     RawOptics raw;

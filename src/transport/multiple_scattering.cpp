@@ -516,7 +516,7 @@ ScatteringOrders::ScatteringOrders(const SingleScattering& integrator, const Mul
   long long rays = 0;
   for (int k = 2; k <= settings_.orders; ++k)
     rays += entries * quadrature_of_order(settings_.angular_degree, k, settings_.quadrature_refinement).rays();
-  plan_preparation(rays, kBuildingScatteringTables);
+  plan_preparation(rays, "building the scattering tables");
   sum_ = make_table();
   for (int k = 2; k <= settings_.orders; ++k) {
     throw_if_cancelled();

@@ -23,11 +23,14 @@ touch -d '2001-01-01' "${files[0]}"
 "$skyspec" render "${small[@]}" --out "$work/b" && cmp -s "$work/a/sky.exr" "$work/b/sky.exr" && ok \
   || bad "the cached optics give another image"
 [ "$(stat -c %Y "${files[0]}")" -gt "$(date -d 2002-01-01 +%s)" ] && ok || bad "the cache file was not read"
-# A damaged file (one byte of its values changed) is not trusted: computed again, the same image.
+# A damaged file (one byte of its values changed) is not trusted: computed again (the same image)
+# and written again (the same bytes as before the damage).
+cp "${files[0]}" "$work/intact.bin"
 size=$(stat -c %s "${files[0]}")
 printf '\x7f' | dd of="${files[0]}" bs=1 seek=$((size - 100)) conv=notrunc status=none
 "$skyspec" render "${small[@]}" --out "$work/c" 2>"$work/stderr" && cmp -s "$work/a/sky.exr" "$work/c/sky.exr" && ok \
   || bad "a damaged cache file changed the image: $(cat "$work/stderr")"
+cmp -s "$work/intact.bin" "${files[0]}" && ok || bad "the damaged cache file was used, not replaced"
 "$skyspec" render "${small[@]}" --out "$work/d" && cmp -s "$work/a/sky.exr" "$work/d/sky.exr" && ok \
   || bad "the rewritten cache file gives another image"
 # Without the cache, nothing is written there.

@@ -561,6 +561,8 @@ class Spheres(unittest.TestCase):
         self.assertAlmostEqual(2 * np.pi * -np.trapz(r["p11"][0], mu), 1.0, delta=1e-9)
         with self.assertRaisesRegex(ValueError, "components = \"dust\" is not allowed: OPAC's component names"):
             skyspec.aerosol_optics(550.0, components={"dust": 1.0})
+        with self.assertRaisesRegex(ValueError, r"components = \{'waso': 0\} is not allowed: at least one component"):
+            skyspec.aerosol_optics(550.0, components={"waso": 0})
         with self.assertRaisesRegex(ValueError, "relative_humidity_percent = 100.0 is not allowed"):
             skyspec.aerosol_optics(550.0, components={"waso": 1.0}, relative_humidity_percent=100)
 
