@@ -229,6 +229,11 @@ timed "ref2-c1-2" "$skyspec" render -q --no-png --out "$out" --name "ref2-c1-2" 
   "${REF[@]}" --view-segments 512
 printf 'refcheck\tref2-c1-2\treference check\t2\n' >> "$manifest"
 
+echo "viewer (skyspec view over HTTP: frames with the sun moved, the atmosphere changed) ..."
+/usr/bin/python3 "$here/viewer_frames.py" "$skyspec" > "$out/viewer.txt"
+
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo
 /usr/bin/python3 "$here/bench_stats.py" "$out"
+echo
+cat "$out/viewer.txt"

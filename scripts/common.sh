@@ -10,13 +10,16 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 SKYSPEC_PACKAGES=(
   build-essential cmake pkg-config
   libeigen3-dev libopenexr-dev libimath-dev libopencolorio-dev libtbb-dev libpng-dev
-  libtomlplusplus-dev libcli11-dev libboost-test-dev libhowardhinnant-date-dev liblcms2-dev libssl-dev libnetcdf-dev
+  libtomlplusplus-dev libcli11-dev libboost-test-dev libhowardhinnant-date-dev liblcms2-dev libssl-dev libnetcdf-dev libcpp-httplib-dev
   openexr openimageio-tools opencolorio-tools time
   nlohmann-json3-dev
   pybind11-dev python3-dev python3-numpy python3-matplotlib python3-openimageio
   jupyter-nbconvert python3-ipykernel python3-mypy
   python3-distributed python3-dask python3-netcdf4 slurm-wlm munge
 )
+# The test command also drives the viewer's page in a real browser (tests/viewer): Debian's
+# Chromium, its WebDriver and Selenium's Python client.
+SKYSPEC_TEST_PACKAGES=(chromium chromium-driver python3-selenium)
 # Only live fuzzing (scripts/fuzz.sh) compiles with clang and its libFuzzer runtime; the main job
 # and the test command do not install them.
 SKYSPEC_FUZZ_PACKAGES=(clang-14 libclang-rt-14-dev)

@@ -14,7 +14,7 @@ stage() {  # stage NAME: the time since the previous stage
   echo "skyspec test: $1 $((SECONDS - stage_start)) s" >&2
   stage_start=$SECONDS
 }
-install_missing_packages
+install_missing_packages "${SKYSPEC_TEST_PACKAGES[@]}"
 stage "packages"
 build
 stage "release build"

@@ -163,6 +163,14 @@ double write_display_png(const SpectralImageBuffer& image, const std::filesystem
 double write_display_png(const SpectralImageBuffer& image, const std::filesystem::path& path,
                          const DisplaySettings& display);
 
+/// The PNG write_display_png writes for the image and settings, as bytes in memory (the same code
+/// values and text chunks, no file): the viewer's frames.
+std::string display_png_bytes(const SpectralImageBuffer& image, const DisplaySettings& display = {});
+/// The picture of a polarised image's polarisation (scene output.polarisation; InputError
+/// otherwise) as PNG bytes: the colours of <name>-polarisation.png (hue: the angle of linear
+/// polarisation of the luminance-weighted Stokes vector, brightness: its degree).
+std::string polarisation_png_bytes(const SpectralImageBuffer& image);
+
 struct RenderOutputs {
   std::filesystem::path exr, png;     ///< empty when not written
   std::filesystem::path working_exr;  ///< the RGB EXR in DisplaySettings::exr_space, if asked for

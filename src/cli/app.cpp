@@ -20,7 +20,7 @@ CliApp::CliApp()
       add_render_command(app),       add_convert_command(app),   add_compare_command(app),
       add_irradiance_command(app),   add_timelapse_command(app), add_aerial_command(app),
       add_coefficients_command(app), add_job_command(app),       add_merge_command(app),
-      add_reference_command(app),    add_lee_command(app),
+      add_reference_command(app),    add_lee_command(app),       add_view_command(app),
   };
 }
 

@@ -37,5 +37,6 @@ Command add_job_command(CLI::App& app);
 Command add_merge_command(CLI::App& app);
 Command add_reference_command(CLI::App& app);
 Command add_lee_command(CLI::App& app);
+Command add_view_command(CLI::App& app);
 
 }  // namespace skyspec::cli

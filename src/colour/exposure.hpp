@@ -43,8 +43,12 @@ double camera_ev100(double f_number, double shutter_s, double iso);
 /// 1 / (1.2 * 2^EV100): the scale that maps the saturating luminance to 1.
 double camera_exposure_scale(double f_number, double shutter_s, double iso);
 
-/// Luminance of a linear Rec.709 triple.
-inline double rec709_luminance(const float* rgb) { return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2]; }
+/// Luminance of a linear Rec.709 triple: Y = these weights . (R, G, B) (ITU-R BT.709).
+inline constexpr double kRec709LuminanceWeights[3] = {0.2126, 0.7152, 0.0722};
+inline double rec709_luminance(const float* rgb) {
+  return kRec709LuminanceWeights[0] * rgb[0] + kRec709LuminanceWeights[1] * rgb[1] +
+         kRec709LuminanceWeights[2] * rgb[2];
+}
 
 /// The metered pixels (x, y) of a width x height image: every k-th column and row, k =
 /// ceil(max(width, height) / 64), starting at k / 2 (all pixels when both sides are <= 64).

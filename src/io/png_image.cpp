@@ -165,20 +165,16 @@ std::vector<png_byte> quantised_pixels(const std::string& where, int width, int 
 
 }  // namespace
 
-void write_png_display(const std::filesystem::path& path, int width, int height, const std::vector<float>& code_values,
-                       int bit_depth, PngColourTag tag, const std::vector<std::pair<std::string, std::string>>& text) {
-  const std::string where = "PNG '" + path.string() + "': ";
-  for (const auto& [key, value] : text)
-    if (key.empty() || key.size() > 79)
-      throw IoError(where + "text keyword '" + key + "' must have 1 to 79 characters");
-  const std::vector<png_byte> pixels = quantised_pixels(where, width, height, code_values, bit_depth);
+namespace {
 
-  AtomicOutputFile file(path);
-  FILE* out = std::fopen(file.temporary_path().c_str(), "wb");
-  if (!out) throw IoError(where + "cannot open '" + file.temporary_path().string() + "': " + std::strerror(errno));
-  PngErrorMessage error;
+// The text chunks as libpng takes them (pointing into `text`, which must outlive them); keywords
+// checked first.
+std::vector<png_text> text_chunks(const std::string& where,
+                                  const std::vector<std::pair<std::string, std::string>>& text) {
   std::vector<png_text> chunks;
   for (const auto& [key, value] : text) {
+    if (key.empty() || key.size() > 79)
+      throw IoError(where + "text keyword '" + key + "' must have 1 to 79 characters");
     png_text t{};
     t.compression = PNG_TEXT_COMPRESSION_NONE;
     t.key = const_cast<png_charp>(key.c_str());
@@ -186,6 +182,21 @@ void write_png_display(const std::filesystem::path& path, int width, int height,
     t.text_length = value.size();
     chunks.push_back(t);
   }
+  return chunks;
+}
+
+}  // namespace
+
+void write_png_display(const std::filesystem::path& path, int width, int height, const std::vector<float>& code_values,
+                       int bit_depth, PngColourTag tag, const std::vector<std::pair<std::string, std::string>>& text) {
+  const std::string where = "PNG '" + path.string() + "': ";
+  std::vector<png_text> chunks = text_chunks(where, text);
+  const std::vector<png_byte> pixels = quantised_pixels(where, width, height, code_values, bit_depth);
+
+  AtomicOutputFile file(path);
+  FILE* out = std::fopen(file.temporary_path().c_str(), "wb");
+  if (!out) throw IoError(where + "cannot open '" + file.temporary_path().string() + "': " + std::strerror(errno));
+  PngErrorMessage error;
   const DisplayPngLayout layout{width, height, bit_depth, tag, chunks.data(), static_cast<int>(chunks.size())};
   const bool encoded = encode_display_png(out, layout, pixels.data(), &error);
   const bool stream_ok = std::ferror(out) == 0;
@@ -196,21 +207,28 @@ void write_png_display(const std::filesystem::path& path, int width, int height,
   file.commit();
 }
 
-std::size_t encoded_png_display_bytes(int width, int height, const std::vector<float>& code_values, int bit_depth,
-                                      PngColourTag tag) {
+std::string png_display_in_memory(int width, int height, const std::vector<float>& code_values, int bit_depth,
+                                  PngColourTag tag, const std::vector<std::pair<std::string, std::string>>& text) {
   const std::string where = "PNG (in memory): ";
+  std::vector<png_text> chunks = text_chunks(where, text);
   const std::vector<png_byte> pixels = quantised_pixels(where, width, height, code_values, bit_depth);
   char* buffer = nullptr;
   size_t size = 0;
   FILE* out = open_memstream(&buffer, &size);
   if (!out) throw IoError(where + "cannot open a memory stream: " + std::strerror(errno));
   PngErrorMessage error;
-  const DisplayPngLayout layout{width, height, bit_depth, tag, nullptr, 0};
+  const DisplayPngLayout layout{width, height, bit_depth, tag, chunks.data(), static_cast<int>(chunks.size())};
   const bool encoded = encode_display_png(out, layout, pixels.data(), &error);
   std::fclose(out);  // sets buffer and size
+  std::string bytes(buffer ? buffer : "", buffer ? size : 0);
   std::free(buffer);
   if (!encoded) throw IoError(where + error.text);
-  return size;
+  return bytes;
+}
+
+std::size_t encoded_png_display_bytes(int width, int height, const std::vector<float>& code_values, int bit_depth,
+                                      PngColourTag tag) {
+  return png_display_in_memory(width, height, code_values, bit_depth, tag).size();
 }
 
 namespace {

@@ -25,6 +25,11 @@ void write_png_display(const std::filesystem::path& path, int width, int height,
                        int bit_depth, PngColourTag tag,
                        const std::vector<std::pair<std::string, std::string>>& text = {});
 
+/// The file write_png_display writes, as bytes in memory (the viewer's frames). Throws IoError as
+/// write_png_display does.
+std::string png_display_in_memory(int width, int height, const std::vector<float>& code_values, int bit_depth,
+                                  PngColourTag tag, const std::vector<std::pair<std::string, std::string>>& text = {});
+
 /// The bytes write_png_display would write for these values (without text chunks), encoded into
 /// memory: the same quantisation and libpng compression, no file (the render budget times it on a
 /// sample of rows). Throws IoError as write_png_display does.

@@ -27,8 +27,10 @@
 #include "physics/unmodelled_absorption.hpp"
 #include "render/render_budget.hpp"
 #include "render/scene_provenance.hpp"
+#include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/render.hpp"
+#include "skyspec/units.hpp"
 #include "skyspec/version.hpp"
 
 namespace skyspec {
@@ -178,18 +180,23 @@ void render_bands(const SkyRenderer& r, SpectralExrWriter* exr, std::vector<floa
   if (writing.valid()) writing.get();
 }
 
+// The text chunks of the PNG preview.
+std::vector<std::pair<std::string, std::string>> preview_png_text(
+    const DisplayPipeline& pipeline, const ResolvedExposure& exposure,
+    const std::map<std::string, std::string>& provenance) {
+  return {{"Software", std::string("skyspec ") + version_string()},
+          {"skyspec:display", pipeline.describe()},
+          {"skyspec:exposure", exposure.description},
+          {kVersionAttribute, provenance.at(kVersionAttribute)},
+          {kSceneAttribute, provenance.at(kSceneAttribute)},
+          {kDataAttribute, provenance.at(kDataAttribute)}};
+}
+
 void write_preview_png(const std::filesystem::path& path, int width, int height, const DisplayPipeline& pipeline,
                        const DisplaySettings& display, const std::vector<float>& rgb, const ResolvedExposure& exposure,
                        const std::map<std::string, std::string>& provenance) {
-  const std::vector<std::pair<std::string, std::string>> text = {
-      {"Software", std::string("skyspec ") + version_string()},
-      {"skyspec:display", pipeline.describe()},
-      {"skyspec:exposure", exposure.description},
-      {kVersionAttribute, provenance.at(kVersionAttribute)},
-      {kSceneAttribute, provenance.at(kSceneAttribute)},
-      {kDataAttribute, provenance.at(kDataAttribute)}};
   write_png_display(path, width, height, pipeline.encode(rgb, exposure.scale), display.png_bit_depth,
-                    pipeline.png_tag(), text);
+                    pipeline.png_tag(), preview_png_text(pipeline, exposure, provenance));
 }
 
 void write_working_space_exr(const std::filesystem::path& path, const Scene& scene, const DisplayPipeline& pipeline,
@@ -229,24 +236,33 @@ void write_polarisation_exr(const std::filesystem::path& path, const Scene& scen
                            is_latlong_envmap(scene.camera));
 }
 
-// The polarisation as a picture (polarisation_colour.hpp), 8-bit sRGB.
-void write_polarisation_png(const std::filesystem::path& path, const Scene& scene, const std::vector<float>& stokes_y,
-                            const std::map<std::string, std::string>& provenance) {
+// The polarisation as a picture (polarisation_colour.hpp): sRGB code values and the text chunks.
+std::vector<float> polarisation_code_values(const std::vector<float>& stokes_y) {
   std::vector<float> code(stokes_y.size());
   for (size_t p = 0; p < stokes_y.size() / 3; ++p) {
     const std::array<float, 3> c =
         polarisation_colour(linear_polarisation(stokes_y[3 * p], stokes_y[3 * p + 1], stokes_y[3 * p + 2]));
     std::copy(c.begin(), c.end(), code.begin() + static_cast<long>(3 * p));
   }
-  const std::vector<std::pair<std::string, std::string>> text = {
-      {"Software", std::string("skyspec ") + version_string()},
-      {"skyspec:polarisation",
-       "hue: angle of linear polarisation of the luminance-weighted Stokes vector, once round the "
-       "colour wheel over 180 degrees (red at +-90, yellow -60, green -30, cyan 0, blue 30, "
-       "magenta 60 degrees from e1 towards e2); brightness: its degree (black 0, full 1)"},
-      {kVersionAttribute, provenance.at(kVersionAttribute)},
-      {kSceneAttribute, provenance.at(kSceneAttribute)}};
-  write_png_display(path, scene.camera.width, scene.camera.height, code, 8, PngColourTag::Srgb, text);
+  return code;
+}
+
+std::vector<std::pair<std::string, std::string>> polarisation_png_text(
+    const std::map<std::string, std::string>& provenance) {
+  return {{"Software", std::string("skyspec ") + version_string()},
+          {"skyspec:polarisation",
+           "hue: angle of linear polarisation of the luminance-weighted Stokes vector, once round the "
+           "colour wheel over 180 degrees (red at +-90, yellow -60, green -30, cyan 0, blue 30, "
+           "magenta 60 degrees from e1 towards e2); brightness: its degree (black 0, full 1)"},
+          {kVersionAttribute, provenance.at(kVersionAttribute)},
+          {kSceneAttribute, provenance.at(kSceneAttribute)}};
+}
+
+// The polarisation as a picture, 8-bit sRGB.
+void write_polarisation_png(const std::filesystem::path& path, const Scene& scene, const std::vector<float>& stokes_y,
+                            const std::map<std::string, std::string>& provenance) {
+  write_png_display(path, scene.camera.width, scene.camera.height, polarisation_code_values(stokes_y), 8,
+                    PngColourTag::Srgb, polarisation_png_text(provenance));
 }
 
 // What a rendered image hands to the files written after it (every output but the streamed
@@ -468,6 +484,50 @@ double write_display_png(const SpectralImageBuffer& image, const std::filesystem
   const auto provenance = render_provenance(image.scene, exposure.resolved, pipeline.config().is_builtin());
   write_preview_png(path, image.width, image.height, pipeline, display, image.rgb, exposure.resolved, provenance);
   return exposure.resolved.scale;
+}
+
+std::string display_png_bytes(const SpectralImageBuffer& image, const DisplaySettings& display) {
+  check_image_buffer(image, "(in memory)");
+  const DisplayPipeline pipeline(display);
+  const ChosenExposure exposure = exposure_of(image, display);
+  const auto provenance = render_provenance(image.scene, exposure.resolved, pipeline.config().is_builtin());
+  return png_display_in_memory(image.width, image.height, pipeline.encode(image.rgb, exposure.resolved.scale),
+                               display.png_bit_depth, pipeline.png_tag(),
+                               preview_png_text(pipeline, exposure.resolved, provenance));
+}
+
+std::string polarisation_png_bytes(const SpectralImageBuffer& image) {
+  check_image_buffer(image, "(in memory)");
+  if (!image.scene.output.polarisation)
+    throw InputError("output.polarisation", "false", "true for a picture of the polarisation");
+  // The luminance of each Stokes component's spectrum, as render_bands takes it for the files
+  // (SkyRenderer::spectrum_to_rgb, then Rec.709 luminance): one weight per wavelength.
+  const WavelengthGrid grid = make_wavelength_grid(image.scene);
+  const size_t n = image.wavelengths_nm.size(), pixels = static_cast<size_t>(image.width) * image.height;
+  Eigen::VectorXd luminance = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(n));
+  const double* y_of_rgb = kRec709LuminanceWeights;
+  if (image.scene.render.path == RenderSpec::Path::RgbFast) {
+    const int index[3] = {grid.index_of(680), grid.index_of(550), grid.index_of(440)};
+    for (int c = 0; c < 3; ++c) luminance[index[c]] += y_of_rgb[c];
+  } else {
+    const SpectrumToXyz xyz(grid, constants::kMaxLuminousEfficacy_lm_per_W);
+    luminance = (Eigen::RowVector3d(y_of_rgb[0], y_of_rgb[1], y_of_rgb[2]) * xyz_to_linear_rec709() * xyz.weights())
+                    .transpose();
+  }
+  std::vector<float> stokes_y(pixels * 3);
+  for (size_t p = 0; p < pixels; ++p) {
+    const float* components[3] = {image.spectral.data() + p * n, image.stokes.data() + p * 3 * n,
+                                  image.stokes.data() + p * 3 * n + n};
+    for (int c = 0; c < 3; ++c) {
+      double sum = 0.0;
+      for (size_t k = 0; k < n; ++k) sum += luminance[static_cast<Eigen::Index>(k)] * components[c][k];
+      stokes_y[3 * p + static_cast<size_t>(c)] = static_cast<float>(sum);
+    }
+  }
+  const ChosenExposure exposure = exposure_of(image, DisplaySettings{});
+  const auto provenance = render_provenance(image.scene, exposure.resolved, true);
+  return png_display_in_memory(image.width, image.height, polarisation_code_values(stokes_y), 8, PngColourTag::Srgb,
+                               polarisation_png_text(provenance));
 }
 
 RenderOutputs render_output_paths(const Scene& scene, const DisplaySettings& display) {

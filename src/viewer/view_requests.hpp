@@ -1,0 +1,83 @@
+// What the viewer's page asks for, without the HTTP: a query (the page's controls as scene keys
+// and a few viewer words) -> the scene and display settings it means -> a frame (PNG bytes), the
+// spectrum under a pixel, or an export of full-quality files. The server (viewer_server.hpp) only
+// routes requests here; tests call these directly.
+//
+// A query's names are scene keys (any key of docs/scene-keys.md but the ones the viewer owns,
+// kViewerOwnedKeys) whose values are TOML value text as `skyspec render --set` takes it
+// ("10.5", "\"fisheye\"", "[0, 0, 2]"), and these words:
+//   preset  start from this preset instead of the viewer's scene
+//   view    the display's view (OpenColorIO), e.g. "Un-tone-mapped"
+//   mode    colour (the display image) or polarisation (angle as hue, degree as brightness)
+//   x, y    the pixel of a spectrum request (image pixels, 0 at the top-left)
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "skyspec/display.hpp"
+#include "skyspec/scene.hpp"
+
+namespace skyspec::viewer {
+
+/// (name, value) pairs in the order the page sent them.
+using Query = std::vector<std::pair<std::string, std::string>>;
+
+/// Scene keys a query may not set: where and under which name files go is the server's choice
+/// (its export folder), threads and the disk cache its command line's.
+inline const std::vector<std::string> kViewerOwnedKeys = {"output.directory", "output.name",    "output.exr",
+                                                          "output.png",       "render.threads", "render.cache_tables"};
+/// The largest frame the page may ask for, in pixels (an export is held to the render budget).
+constexpr std::int64_t kMaxFramePixels = std::int64_t{2048} * 2048;
+
+/// The viewer's starting point: the scene (its TOML, every key), the display settings of its
+/// command line (config, display, look; the view is the page's), and the render threads.
+struct ViewerBase {
+  std::string scene_toml;
+  DisplaySettings display;
+  int threads = 0;
+};
+
+struct ViewRequest {
+  enum class Mode { Colour, Polarisation };
+  Scene scene;
+  DisplaySettings display;
+  Mode mode = Mode::Colour;
+};
+
+/// The scene and settings a query means. InputError names the query's name (a scene key, "view",
+/// "mode", "preset"), its value and what is allowed; unknown names and owned keys are refused.
+ViewRequest parse_view_request(const ViewerBase& base, const Query& query);
+
+/// A frame as PNG bytes: the display image (the PNG `skyspec render` writes for the same scene and
+/// view) or the polarisation picture.
+struct Frame {
+  std::string png;
+  int width = 0, height = 0;
+  double render_seconds = 0.0, encode_seconds = 0.0;
+  std::string exposure;  ///< how the exposure was chosen, in words
+};
+Frame render_frame(const ViewRequest& request);
+
+/// The sky's spectral radiance through the centre of pixel (x, y), all the orders the scene asks
+/// for and single scattering alone, both integrated along the ray (not read from the sky-view
+/// table): {"x", "y", "azimuth_deg", "elevation_deg", "wavelengths_nm", "radiance",
+/// "single_scattering", "units"}. InputError naming "x" or "y" for a pixel outside the image or
+/// one the camera has no ray for.
+nlohmann::json spectrum_at(const ViewRequest& request, const Query& query);
+
+/// Writes the request's scene as `<folder>/view-NNNN.toml` and renders it to view-NNNN.exr and
+/// .png with render_scene_to_files (the files `skyspec render --scene view-NNNN.toml` writes),
+/// NNNN the first number none of whose files exist. Returns {"scene", "files", "command"}.
+nlohmann::json export_view(const ViewRequest& request, const std::filesystem::path& folder);
+
+/// Every scene key's current value in the base scene (TOML value text) and its help, the presets,
+/// the camera types and the display's views: what the page builds its controls from.
+nlohmann::json viewer_state(const ViewerBase& base);
+
+}  // namespace skyspec::viewer

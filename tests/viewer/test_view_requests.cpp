@@ -1,0 +1,160 @@
+// The viewer's requests without HTTP (src/viewer/view_requests.hpp): a query's names are scene keys
+// or the viewer's words, checked with the name and the allowed values in the error; the keys the
+// viewer owns are refused; a frame is the PNG `skyspec render` writes; a spectrum is the renderer's
+// radiance along the pixel's ray; an export never replaces a file and renders what its TOML says.
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include "scratch_folder.hpp"
+#include "skyspec/error.hpp"
+#include "skyspec/render.hpp"
+#include "viewer/view_requests.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_view_requests)
+
+using namespace skyspec;
+using viewer::Query;
+
+namespace {
+// A small, quick scene: single scattering, 24 x 12 panorama.
+viewer::ViewerBase small_base() {
+  SceneLoader l("default");
+  l.apply_toml("[camera]\ntype = \"equirectangular\"\nwidth = 24\nheight = 12\n[render]\nscattering_orders = 1\n",
+               "test");
+  viewer::ViewerBase base;
+  base.scene_toml = scene_to_toml(l.finish());
+  base.threads = 2;
+  return base;
+}
+
+std::string setting_of(const viewer::ViewerBase& base, const Query& q) {
+  try {
+    viewer::parse_view_request(base, q);
+  } catch (const InputError& e) {
+    return e.setting() + " | " + e.what();
+  }
+  return "";
+}
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(queries_set_scene_keys_and_bad_ones_are_named) {
+  const auto base = small_base();
+  const viewer::ViewRequest r = viewer::parse_view_request(base, {{"sun.elevation_deg", "12.5"},
+                                                                  {"camera.type", "\"fisheye\""},
+                                                                  {"camera.width", "16"},
+                                                                  {"camera.height", "16"},
+                                                                  {"view", "Raw"}});
+  BOOST_TEST(r.scene.sun.elevation_deg == 12.5);
+  BOOST_TEST(r.scene.camera.width == 16);
+  BOOST_TEST(r.display.view == "Raw");
+  BOOST_TEST(r.scene.render.threads == 2);  // the command line's, never the page's
+  BOOST_TEST((r.mode == viewer::ViewRequest::Mode::Colour));
+
+  std::string e = setting_of(base, {{"sun.elevation_deg", "abc"}});
+  BOOST_TEST(e.rfind("sun.elevation_deg |", 0) == 0, e);
+  BOOST_TEST(e.find("a number in degrees") != std::string::npos, e);
+  e = setting_of(base, {{"sun.elevation_deg", "91"}});
+  BOOST_TEST(e.rfind("sun.elevation_deg |", 0) == 0, e);
+  e = setting_of(base, {{"colour", "1"}});
+  BOOST_TEST(e.rfind("colour |", 0) == 0, e);
+  BOOST_TEST(e.find("a scene key") != std::string::npos, e);
+  e = setting_of(base, {{"mode", "infrared"}});
+  BOOST_TEST(e.find("colour or polarisation") != std::string::npos, e);
+  e = setting_of(base, {{"view", "Nope"}});
+  BOOST_TEST(e.rfind("display.view |", 0) == 0, e);  // the server respells it "view"
+  e = setting_of(base, {{"preset", "venus"}});
+  BOOST_TEST(e.rfind("preset |", 0) == 0, e);
+  for (const std::string& owned : viewer::kViewerOwnedKeys) {
+    e = setting_of(base, {{owned, "\"x\""}});
+    BOOST_TEST(e.rfind(owned + " |", 0) == 0, e);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(a_preset_replaces_the_viewers_scene_and_polarisation_mode_polarises) {
+  const auto base = small_base();
+  const auto r = viewer::parse_view_request(base, {{"preset", "hazy"}, {"mode", "polarisation"}});
+  SceneLoader hazy("hazy");
+  hazy.set("output.polarisation", true);
+  Scene expected = hazy.finish();
+  expected.render.threads = 2;
+  BOOST_TEST(scene_to_toml(r.scene) == scene_to_toml(expected));
+  BOOST_TEST((r.mode == viewer::ViewRequest::Mode::Polarisation));
+}
+
+BOOST_AUTO_TEST_CASE(frames_are_the_display_png_and_too_large_ones_are_refused) {
+  const auto base = small_base();
+  const auto request = viewer::parse_view_request(base, {{"sun.elevation_deg", "20"}});
+  const viewer::Frame frame = viewer::render_frame(request);
+  BOOST_TEST(frame.width == 24);
+  BOOST_TEST(frame.height == 12);
+  BOOST_TEST(frame.png == display_png_bytes(render_to_memory(request.scene)));
+  BOOST_TEST(frame.png.substr(1, 3) == "PNG");
+
+  const auto polarised = viewer::parse_view_request(base, {{"mode", "polarisation"}});
+  const viewer::Frame p = viewer::render_frame(polarised);
+  BOOST_TEST(p.png.substr(1, 3) == "PNG");
+  BOOST_TEST(p.png != frame.png);
+
+  const auto huge = viewer::parse_view_request(base, {{"camera.width", "4096"}, {"camera.height", "2048"}});
+  BOOST_CHECK_EXCEPTION(viewer::render_frame(huge), InputError,
+                        [](const InputError& e) { return e.setting() == "camera.width"; });
+}
+
+BOOST_AUTO_TEST_CASE(a_spectrum_is_the_radiance_along_the_pixels_ray) {
+  const auto base = small_base();
+  const auto request = viewer::parse_view_request(base, {{"sun.elevation_deg", "20"}});
+  const auto s = viewer::spectrum_at(request, {{"x", "6"}, {"y", "3"}});
+  const auto& wl = s.at("wavelengths_nm");
+  BOOST_TEST(wl.size() == 41u);
+  // Single scattering alone (the scene's single order): both the same.
+  for (size_t i = 0; i < wl.size(); ++i) {
+    const double all = s.at("radiance")[i], first = s.at("single_scattering")[i];
+    BOOST_TEST(std::isfinite(all));
+    BOOST_TEST(all > 0.0);
+    BOOST_TEST(first == all);
+  }
+  // Pixel (6, 3) of a 24 x 12 skyspec panorama: azimuth (6.5 / 24) 360, elevation 90 - (3.5 / 12) 180.
+  BOOST_TEST(double(s.at("azimuth_deg")) == 97.5, boost::test_tools::tolerance(1e-9));
+  BOOST_TEST(double(s.at("elevation_deg")) == 37.5, boost::test_tools::tolerance(1e-9));
+  const SkyRenderer r(request.scene);
+  Vec3 dir;
+  BOOST_TEST(make_camera(request.scene)->direction(6.5, 3.5, dir));
+  const Spectrum direct = r.radiance(dir);
+  BOOST_TEST(double(s.at("radiance")[20]) == direct[20], boost::test_tools::tolerance(1e-5));
+
+  for (const Query& q : {Query{{"x", "24"}, {"y", "0"}}, Query{{"x", "-1"}, {"y", "0"}},
+                         Query{{"x", "1e3"}, {"y", "0"}}, Query{{"y", "0"}}})
+    BOOST_CHECK_EXCEPTION(viewer::spectrum_at(request, q), InputError,
+                          [](const InputError& e) { return e.setting() == "x"; });
+  BOOST_CHECK_EXCEPTION(viewer::spectrum_at(request, {{"x", "0"}, {"y", "12"}}), InputError,
+                        [](const InputError& e) { return e.setting() == "y"; });
+}
+
+BOOST_AUTO_TEST_CASE(an_export_never_replaces_a_file_and_its_toml_renders_the_same_files) {
+  const auto base = small_base();
+  test::ScratchFolder folder("viewer-export");
+  // Files of another run (and a link) with the first names: left as they are.
+  test::write_text(folder.path / "view-0001.png", "not ours");
+  std::filesystem::create_symlink("/nonexistent", folder.path / "view-0002.toml");
+  const auto request = viewer::parse_view_request(base, {{"sun.elevation_deg", "7"}});
+  const auto e = viewer::export_view(request, folder.path);
+  BOOST_TEST(std::string(e.at("scene")) == (folder.path / "view-0003.toml").string());
+  BOOST_TEST(test::read_all(folder.path / "view-0001.png") == "not ours");
+  BOOST_TEST(std::filesystem::is_symlink(folder.path / "view-0002.toml"));
+  BOOST_TEST(e.at("files").size() == 2u);
+
+  SceneLoader again("default");
+  again.apply_file((folder.path / "view-0003.toml").string());
+  Scene s = again.finish();
+  s.output.directory = (folder.path / "again").string();
+  std::filesystem::create_directories(s.output.directory);
+  render_scene_to_files(s);
+  for (const char* ext : {".exr", ".png"})
+    BOOST_TEST(test::read_all(folder.path / (std::string("view-0003") + ext)) ==
+               test::read_all(folder.path / "again" / (std::string("view-0003") + ext)));
+}
+
+BOOST_AUTO_TEST_SUITE_END()
