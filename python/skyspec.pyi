@@ -133,6 +133,26 @@ def aerial_perspective(
     """Aerial perspective for a (height, width) depth pass in metres (depth_is="z": along the view
     axis): transmittance and inscatter (h, w, n), their RGB (h, w, 3), wavelengths_nm, scene_toml."""
 
+def timelapse(
+    start: str,
+    end: str,
+    step_minutes: float,
+    *,
+    preset: str = "default",
+    scene_file: Optional[_PathLike] = None,
+    scene_toml: Optional[str] = None,
+    overrides: Optional[Dict[str, Any]] = None,
+    out: Optional[_PathLike] = None,
+    name: Optional[str] = None,
+    frames: Optional[str] = None,
+    resume: bool = False,
+    force: bool = False,
+    progress: _Progress = None,
+) -> Dict[str, Any]:
+    """A time-lapse: one image per step_minutes from start to end (ISO 8601 with a UTC offset) at the
+    scene's location, one exposure for every frame; files <name>_0000.exr/.png with records and
+    manifest.jsonl in out. Returns frames, written, kept, failed, exposure_ev, files, manifest, ..."""
+
 def monte_carlo(
     preset: str = "default",
     *,

@@ -46,6 +46,7 @@
 #include "skyspec/render.hpp"
 #include "skyspec/scene.hpp"
 #include "skyspec/standard_atmosphere.hpp"
+#include "skyspec/timelapse.hpp"
 #include "skyspec/units.hpp"
 #include "skyspec/version.hpp"
 #include "skyspec/water.hpp"
@@ -530,7 +531,8 @@ py::dict lorenz_mie_py(std::complex<double> m, double x, const py::object& angle
 py::array_t<double> water_index_py(const py::object& wavelengths_nm, double temperature_C) {
   const auto nm = numbers_array(wavelengths_nm, "wavelengths_nm");
   if (!(temperature_C >= 0.0 && temperature_C <= 100.0))
-    throw InputError("temperature_C", std::to_string(temperature_C), "0-100 degC (liquid water at atmospheric pressure)");
+    throw InputError("temperature_C", std::to_string(temperature_C),
+                     "0-100 degC (liquid water at atmospheric pressure)");
   const double t = temperature_C + 273.15, density = liquid_water_density_kg_per_m3(t);
   py::array_t<double> n(nm.request().shape);
   for (py::ssize_t i = 0; i < nm.size(); ++i) n.mutable_data()[i] = water_refractive_index(t, density, nm.data()[i]);
@@ -542,8 +544,7 @@ py::array_t<double> water_index_py(const py::object& wavelengths_nm, double temp
 py::dict aerosol_optics_py(const py::object& wavelengths_nm, const py::dict& components, double humidity,
                            const py::object& progress) {
   const auto nm = numbers_array(wavelengths_nm, "wavelengths_nm");
-  const WavelengthGrid grid =
-      WavelengthGrid::from_list(std::vector<double>(nm.data(), nm.data() + nm.size()));
+  const WavelengthGrid grid = WavelengthGrid::from_list(std::vector<double>(nm.data(), nm.data() + nm.size()));
   if (!(humidity >= 0.0 && humidity <= 99.0))
     throw InputError("relative_humidity_percent", py::repr(py::float_(humidity)).cast<std::string>(),
                      "a relative humidity in percent, >= 0 and <= 99 (OPAC's range)");
@@ -555,9 +556,8 @@ py::dict aerosol_optics_py(const py::object& wavelengths_nm, const py::dict& com
   for (const auto& [key, value] : components) {
     const std::string name = py::str(key);
     const auto it = std::find(names.begin(), names.end(), name);
-    if (it == names.end())
-      throw InputError("components", "\"" + name + "\"", "OPAC's component names: " + allowed);
-    double n = std::numeric_limits<double>::quiet_NaN();  // not a number: refused below
+    if (it == names.end()) throw InputError("components", "\"" + name + "\"", "OPAC's component names: " + allowed);
+    double n = std::numeric_limits<double>::quiet_NaN();     // not a number: refused below
     if (PyObject* as_float = PyNumber_Float(value.ptr())) {  // int, float, NumPy scalars
       n = PyFloat_AsDouble(as_float);
       Py_DECREF(as_float);
@@ -609,18 +609,20 @@ py::dict aerosol_optics_py(const py::object& wavelengths_nm, const py::dict& com
 
 py::dict lee_diagram_py(const LeeDiagramSettings& settings, const py::object& progress) {
   check_lee_diagram_settings(settings);
-  const auto diagram = std::make_shared<LeeDiagram>(run_interruptible(
-      [&settings](ProgressCounter& counter) { return compute_lee_diagram(settings, counter.rows()); }, progress,
-      "lee_diagram"));
-  const py::ssize_t h = diagram->height, w = diagram->width, n = static_cast<py::ssize_t>(diagram->wavelengths_nm.size());
+  const auto diagram = std::make_shared<LeeDiagram>(
+      run_interruptible([&settings](ProgressCounter& counter) { return compute_lee_diagram(settings, counter.rows()); },
+                        progress, "lee_diagram"));
+  const py::ssize_t h = diagram->height, w = diagram->width,
+                    n = static_cast<py::ssize_t>(diagram->wavelengths_nm.size());
   // The arrays share the diagram's memory, which a capsule keeps alive.
   const py::capsule owner(new std::shared_ptr<LeeDiagram>(diagram),
                           [](void* p) { delete static_cast<std::shared_ptr<LeeDiagram>*>(p); });
   py::dict d;
   d["radiance"] = py::array_t<float>({h, w, n}, diagram->spectral.data(), owner);
   if (!diagram->stokes.empty())
-    d["q"] = py::array_t<float>({h, w, py::ssize_t{3}, n}, diagram->stokes.data(), owner)[py::make_tuple(
-        py::ellipsis(), 0, py::slice(py::none(), py::none(), py::none()))];
+    d["q"] =
+        py::array_t<float>({h, w, py::ssize_t{3}, n}, diagram->stokes.data(),
+                           owner)[py::make_tuple(py::ellipsis(), 0, py::slice(py::none(), py::none(), py::none()))];
   d["wavelengths_nm"] = py::array_t<double>(n, diagram->wavelengths_nm.data());
   d["angles_deg"] = py::array_t<double>(w, diagram->angles_deg.data());
   d["radii_um"] = py::array_t<double>(h, diagram->radii_um.data());
@@ -680,6 +682,45 @@ RenderResult render(const std::string& preset, const std::optional<std::filesyst
   auto image = std::make_shared<SpectralImageBuffer>(run_interruptible(
       [&scene](ProgressCounter& counter) { return render_to_memory(scene, counter.rows()); }, progress, "render"));
   return {image, xyz_of(*image)};
+}
+
+// A time-lapse (skyspec/timelapse.hpp): the frames' files in `out` (output.directory), named after
+// `name` (output.name).
+py::dict timelapse_py(const std::string& start, const std::string& end, double step_minutes, const std::string& preset,
+                      const std::optional<std::filesystem::path>& scene_file,
+                      const std::optional<std::string>& scene_toml, const std::optional<py::dict>& overrides,
+                      const std::optional<std::filesystem::path>& out, const std::optional<std::string>& name,
+                      const std::optional<std::string>& frames, bool resume, bool force, const py::object& progress) {
+  const Scene scene = load_scene(preset, scene_file, scene_toml, overrides, [&](SceneLoader& loader) {
+    if (out) loader.apply_override("output.directory", toml_quoted(out->string()), "out");
+    if (name) loader.apply_override("output.name", toml_quoted(*name), "name");
+  });
+  TimelapseSettings settings;
+  settings.start = start;
+  settings.end = end;
+  settings.step_minutes = step_minutes;
+  settings.frames = frames.value_or("");
+  settings.resume = resume;
+  settings.force = force;
+  const TimelapseResult r =
+      run_interruptible([&](ProgressCounter& counter) { return render_timelapse(scene, settings, counter.rows()); },
+                        progress, "time-lapse");
+  py::dict d;
+  d["frames"] = r.frames;
+  d["first"] = r.first;
+  d["last"] = r.last;
+  d["written"] = r.written;
+  d["kept"] = r.kept;
+  d["failed"] = r.failed;
+  d["replaced"] = r.replaced;
+  d["failures"] = r.failures;
+  d["exposure_ev"] = r.exposure_ev;
+  d["exposure"] = r.exposure;
+  py::list files;
+  for (const auto& f : r.files) files.append(f.string());
+  d["files"] = files;
+  d["manifest"] = r.manifest.string();
+  return d;
 }
 
 // Aerial perspective for a depth pass given as an (h, w) array: the camera's size is the array's.
@@ -839,6 +880,11 @@ const std::vector<std::pair<std::string, std::string>>& python_spellings() {
       {lee_setting::kLambdaStep, "lambda_step_nm"},
       {lee_setting::kTemperature, "water_temperature_C"},
       {lee_setting::kSubsamples, "angle_samples"},
+      {timelapse_setting::kStart, "start"},
+      {timelapse_setting::kEnd, "end"},
+      {timelapse_setting::kStepMinutes, "step_minutes"},
+      {timelapse_setting::kFrames, "frames"},
+      {kForceSetting, "force"},
   };
   return table;
 }
@@ -1049,8 +1095,8 @@ wavelengths_nm are read-only views.)")
 }  // namespace
 
 // The long calls' common paragraph.
-#define PROGRESS_DOC                                                                                     \
-  "\nprogress: None, True (a bar with an ETA on stderr, in a terminal or a notebook) or a callable\n"     \
+#define PROGRESS_DOC                                                                                       \
+  "\nprogress: None, True (a bar with an ETA on stderr, in a terminal or a notebook) or a callable\n"      \
   "progress(done, total), called from this thread as the work advances (rows of the image, estimates of\n" \
   "the Monte Carlo); an exception it raises stops the call. Ctrl-C (KeyboardInterrupt) stops the call\n"   \
   "within about a second, also while the scattering tables are built."
@@ -1183,8 +1229,8 @@ Example: skyspec.derive(pressure_Pa=25000, temperature_K=220)["conditions_raylei
         "0-100 degC; shaped like wavelengths_nm.");
   m.def(
       "lee_diagram",
-      [](double radius_min_um, double radius_max_um, double angle_min_deg, double angle_max_deg, int width,
-         int height, double lambda_min_nm, double lambda_max_nm, double lambda_step_nm, double water_temperature_C,
+      [](double radius_min_um, double radius_max_um, double angle_min_deg, double angle_max_deg, int width, int height,
+         double lambda_min_nm, double lambda_max_nm, double lambda_step_nm, double water_temperature_C,
          int angle_samples, bool polarisation, const py::object& progress) {
         LeeDiagramSettings s;
         s.radius_min_um = radius_min_um;
@@ -1267,6 +1313,21 @@ metres along each pixel's ray (depth_is="z": along the camera's view axis); infi
 Returns a dict: wavelengths_nm (n), transmittance and inscatter (float32 (h, w, n); inscatter in
 W m^-2 sr^-1 nm^-1), transmittance_rgb and inscatter_rgb (float32 (h, w, 3), linear Rec.709) and scene_toml.
 A surface image I becomes I * transmittance + inscatter (per wavelength, or per channel with the RGB pair).
+)" PROGRESS_DOC);
+
+  m.def("timelapse", &timelapse_py, py::arg("start"), py::arg("end"), py::arg("step_minutes"), py::kw_only(),
+        py::arg("preset") = "default", py::arg("scene_file") = py::none(), py::arg("scene_toml") = py::none(),
+        py::arg("overrides") = py::none(), py::arg("out") = py::none(), py::arg("name") = py::none(),
+        py::arg("frames") = py::none(), py::arg("resume") = false, py::arg("force") = false,
+        py::arg("progress") = py::none(),
+        R"(A time-lapse (`skyspec timelapse`): one image per step_minutes from start to end (ISO 8601 with a UTC
+offset) at the scene's location (location.latitude_deg, location.longitude_deg), the sun placed by the NREL
+algorithm, one exposure for every frame (output.exposure_ev, or metered once on the frame with the highest
+sun). Files: <name>_0000.exr/.png ... in `out` (default: the scene's output.directory and output.name), each
+with a record <name>_0000.json, and manifest.jsonl. frames="A-B" renders only those (inclusive, 0-based);
+resume=True keeps the frames an earlier run finished (record, scene and files checked); force=True skips the
+render budget's refusals. Returns a dict: frames, first, last, written, kept, failed, replaced, failures,
+exposure_ev, exposure, files, manifest.
 )" PROGRESS_DOC);
 
   m.def("monte_carlo", &monte_carlo, py::arg("preset") = "default", py::kw_only(), py::arg("scene_file") = py::none(),

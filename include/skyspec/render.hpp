@@ -15,6 +15,11 @@
 
 namespace skyspec {
 
+/// The neutral id of the setting that renders anyway although the render budget refuses (a
+/// render's, a time-lapse's or an export's files exceed the free disk, a frame the memory, the
+/// time a day): the CLI's --force, Python's force=. Refusals name it.
+inline constexpr const char* kForceSetting = "budget.force";
+
 /// Called after each band of rows with (rows done, rows in total).
 using ProgressFn = std::function<void(int rows_done, int rows_total)>;
 

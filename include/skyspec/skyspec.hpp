@@ -30,6 +30,7 @@
 #include "skyspec/sphere_ensemble.hpp"
 #include "skyspec/standard_atmosphere.hpp"
 #include "skyspec/tabulated_scattering.hpp"
+#include "skyspec/timelapse.hpp"
 #include "skyspec/units.hpp"
 #include "skyspec/vec3.hpp"
 #include "skyspec/version.hpp"

@@ -25,13 +25,14 @@
 #include "interrupt.hpp"
 #include "job/job_collect.hpp"
 #include "job/job_plan.hpp"
+#include "job/job_run.hpp"
 #include "job/job_tables.hpp"
 #include "job/task_record.hpp"
-#include "transport/scattering_tables_cache.hpp"
 #include "progress.hpp"
 #include "render/render_budget.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/render.hpp"
+#include "transport/scattering_tables_cache.hpp"
 
 #ifndef SKYSPEC_PYTHON_EXECUTABLE
 #define SKYSPEC_PYTHON_EXECUTABLE "/usr/bin/python3"
@@ -122,8 +123,7 @@ int run_plan(const JobOptions& o) {
   estimate.table_seconds = tables.build_seconds;
   if (job.exr || job.png) {
     const SkyRenderer light(scene_for_estimate(first));
-    *estimate.table_seconds +=
-        estimate_frame_table_seconds(first, light) * static_cast<double>(plan.tasks.size());
+    *estimate.table_seconds += estimate_frame_table_seconds(first, light) * static_cast<double>(plan.tasks.size());
     estimate.seconds = measure_render_seconds(light, rp);
   }
   std::cout << "estimate: " << estimate.describe() << " (" << rp.settings() << ")\n";
@@ -142,61 +142,24 @@ int run_plan(const JobOptions& o) {
   return kExitOk;
 }
 
-// The tasks of [range] one after the other in this process; skips the ones done.
+// The tasks of [range] one after the other in this process (job/job_run.hpp), with a progress bar.
 int run_here(const JobOptions& o, const JobPlan& plan, TaskRange range, bool collect) {
-  ensure_writable_directory(plan.job.output_directory, "job.output");
-  std::filesystem::create_directories(plan.task_directory());
   ProgressBar bar("job " + plan.job.name, o.quiet);
-  int ran = 0, skipped = 0, failed = 0, elsewhere_done = 0, finished = 0;
-  const auto run_locked = [&](const JobTask& task) {  // holding the task's lock
-    std::string why;
-    if (task_done(plan, task, why)) {  // finished by another run since we looked
-      ++skipped;
-      return;
-    }
-    const auto record = run_task(plan, task, o.threads);
-    ++ran;
-    if (record.value("status", "") != "ok") {
-      ++failed;
-      std::cerr << "skyspec: task " << task.id() << " failed: " << record.value("error", std::string()) << "\n";
-    }
+  LocalRunOptions run;
+  run.threads = o.threads;
+  run.progress = [&bar](int done, int total) { bar.update(done, total); };
+  run.on_failure = [](const std::string& id, const std::string& error) {
+    std::cerr << "skyspec: task " << id << " failed: " << error << "\n";
   };
-  // Tasks another run holds are taken up last, when their lock is free: done by then (skipped), or
-  // run here if that run stopped before finishing them.
-  std::vector<int> held_elsewhere;
-  for (int k = range.first; k < range.last; ++k) {
-    throw_if_interrupted();
-    const JobTask& task = plan.tasks[k];
-    std::string why;
-    if (task_done(plan, task, why)) {
-      ++skipped;
-    } else if (const auto lock = try_lock_task(plan, task)) {
-      run_locked(task);
-    } else {
-      held_elsewhere.push_back(k);
-      continue;
-    }
-    bar.update(++finished, range.size());
-  }
-  for (const int k : held_elsewhere) {
-    const JobTask& task = plan.tasks[k];
-    std::unique_ptr<OutputLock> lock;
-    while (!(lock = try_lock_task(plan, task))) {
-      throw_if_interrupted();
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    }
-    const int before = skipped;
-    run_locked(task);
-    elsewhere_done += skipped - before;
-    bar.update(++finished, range.size());
-  }
+  const LocalRunSummary s = run_tasks_here(plan, range, run);
   bar.finish();
   if (!o.quiet)
     std::cout << (range.size() > 0 ? "tasks " + std::to_string(range.first) + "-" + std::to_string(range.last - 1)
                                    : std::string("no tasks (this shard is empty: the job has fewer tasks than shards)"))
-              << ": ran " << ran << ", " << skipped << " already done"
-              << (elsewhere_done ? " (" + std::to_string(elsewhere_done) + " by another run meanwhile)" : std::string())
-              << ", " << failed << " failed\n";
+              << ": ran " << s.ran << ", " << s.kept << " already done"
+              << (s.kept_from_elsewhere ? " (" + std::to_string(s.kept_from_elsewhere) + " by another run meanwhile)"
+                                        : std::string())
+              << ", " << s.failed << " failed\n";
   if (collect) {
     const JobSummary summary = collect_job(plan);
     if (!o.quiet)
@@ -204,7 +167,7 @@ int run_here(const JobOptions& o, const JobPlan& plan, TaskRange range, bool col
                 << "\n";
     return summary.failed || summary.missing || summary.damaged ? kExitTasksFailed : kExitOk;
   }
-  return failed ? kExitTasksFailed : kExitOk;
+  return s.failed ? kExitTasksFailed : kExitOk;
 }
 
 // This program's own path, for the driver's workers.
@@ -273,7 +236,7 @@ int run_job(const JobOptions& o) {
 
 int run_collect(const JobOptions& o) {
   const JobPlan plan = load_plan(o);
-  const int stale = remove_stale_temporaries(plan.task_directory(), "t");
+  const int stale = remove_stale_temporaries(plan.task_directory(), plan.job.task_prefix);
   if (stale > 0 && !o.quiet) std::cout << "removed " << stale << " temporary file(s) of killed tasks\n";
   const JobSummary summary = collect_job(plan);
   if (!o.quiet) {

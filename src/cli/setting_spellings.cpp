@@ -6,6 +6,7 @@
 #include "skyspec/display.hpp"
 #include "skyspec/lee_diagram.hpp"
 #include "skyspec/scene.hpp"
+#include "skyspec/timelapse.hpp"
 
 namespace skyspec::cli {
 
@@ -44,6 +45,10 @@ const std::vector<std::pair<std::string, std::string>>& cli_spellings() {
       {lee_setting::kSubsamples, "--angle-samples"},
       {lee_setting::kDirectory, "--out"},
       {lee_setting::kName, "--name"},
+      {timelapse_setting::kStart, "--start"},
+      {timelapse_setting::kEnd, "--end"},
+      {timelapse_setting::kStepMinutes, "--step-minutes"},
+      {timelapse_setting::kFrames, "--frames"},
   };
   return table;
 }

@@ -98,11 +98,13 @@ void apply_site(SceneLoader& l, const Scene& base, const JobSite& site, const st
 
 }  // namespace
 
-std::string JobTask::id() const {
+namespace {
+std::string task_name(const JobSpec& job, int index) {
   char buf[24];
-  std::snprintf(buf, sizeof buf, "t%06d", index);
-  return buf;
+  std::snprintf(buf, sizeof buf, "%0*d", job.task_digits, index);
+  return job.task_prefix + buf;
 }
+}  // namespace
 
 int JobPlan::chunk_count() const {
   const int per = job.tasks_per_chunk;
@@ -119,7 +121,9 @@ TaskRange JobPlan::shard(int i, int n) const {
   return {static_cast<int>(total * (i - 1) / n), static_cast<int>(total * i / n)};
 }
 
-std::filesystem::path JobPlan::task_directory() const { return job.output_directory / "tasks"; }
+std::filesystem::path JobPlan::task_directory() const {
+  return job.task_folder.empty() ? job.output_directory : job.output_directory / job.task_folder;
+}
 
 std::string JobPlan::frame_id(int frame) {
   char buf[24];
@@ -222,6 +226,7 @@ JobPlan plan_job(const JobSpec& job) {
           t.sun_elevation_deg = f.elevation;
           t.frame = static_cast<int>(plan.frame_tasks.size());
           t.tile = strip;
+          t.name = task_name(job, t.index);
           plan.tasks.push_back(t);
         }
         plan.frame_tasks.push_back({first, static_cast<int>(plan.tasks.size())});
@@ -246,6 +251,7 @@ Scene task_scene(const JobPlan& plan, const JobTask& task) {
   l.apply_override("output.name", task.id(), "task id");
   l.apply_override("output.exr", job.exr ? "true" : "false", "job.produce");
   l.apply_override("output.png", job.png ? "true" : "false", "job.produce");
+  if (job.exposure_ev) l.apply_override("output.exposure_ev", format_exact(*job.exposure_ev), "the job's exposure");
   return l.finish();
 }
 

@@ -26,8 +26,9 @@ struct JobTask {
   double sun_elevation_deg = 0.0;   ///< apparent (refracted), at the site and time; the scene's without a time
   int frame = 0;                    ///< the image it renders (or a strip of): its index among the job's frames
   std::optional<PixelBounds> tile;  ///< with job.tile_rows: the strip of the frame it renders
-  /// "t000012": names the task's files.
-  std::string id() const;
+  std::string name;                 ///< JobSpec's task_prefix and index
+  /// "t000012" (a time-lapse: "sky_0012"): names the task's files and its record.
+  const std::string& id() const { return name; }
 };
 
 /// A half-open range of task indices [first, last).
@@ -48,7 +49,7 @@ struct JobPlan {
   TaskRange chunk(int k) const;
   /// The i-th (1-based) of n shards: contiguous, balanced; all shards together are every task once.
   TaskRange shard(int i, int n) const;
-  /// The folder of the tasks' files (<output>/tasks).
+  /// The folder of the tasks' files (<output>/tasks; a time-lapse's: <output>).
   std::filesystem::path task_directory() const;
   /// The site's name, or "scene" for the scene's own location.
   std::string site_name(const JobTask& task) const;

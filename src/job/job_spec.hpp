@@ -65,6 +65,14 @@ struct JobSpec {
   /// pixel bounds) and `job collect` merges them into <output>/frames/f<frame>.exr.
   int tile_rows = 0;
   std::filesystem::path output_directory;  ///< job.output (absolute; relative to the working folder)
+  /// How tasks are named and where their files go: "<task_prefix><index in task_digits digits>" in
+  /// <output>/<task_folder> ("" = the output folder itself). A job file's tasks are "t000012" in
+  /// tasks/; a time-lapse's frames "<output.name>_0012" beside its manifest (skyspec/timelapse.hpp).
+  std::string task_prefix = "t";
+  int task_digits = 6;
+  std::string task_folder = "tasks";
+  /// When set, every task's output.exposure_ev: one exposure for all (a time-lapse's).
+  std::optional<double> exposure_ev;
 };
 
 /// Reads and checks a job file. InputError names the key (e.g. "time[1].step_minutes") with the

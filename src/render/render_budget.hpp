@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "skyspec/render.hpp"  // kForceSetting
+
 namespace skyspec {
 
 class SkyRenderer;
@@ -132,8 +134,6 @@ double estimate_frame_table_seconds(const Scene& scene, const SkyRenderer& estim
 /// orders (estimate_scattering_orders_seconds; 0 when cached).
 double estimate_table_seconds(const Scene& scene, const SkyRenderer& estimate_renderer);
 
-/// The neutral id of the setting that renders anyway (the CLI's --force).
-inline constexpr const char* kForceSetting = "budget.force";
 /// Throws InputError::refused naming every limit exceeded, the estimate and `force_flag`.
 void refuse_if_over_budget(const RenderEstimate& estimate, const std::string& force_flag = kForceSetting);
 

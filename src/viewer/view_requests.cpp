@@ -140,7 +140,7 @@ nlohmann::json export_view(const ViewRequest& request, const std::filesystem::pa
   // The first number none of whose files exist: an export never replaces a file.
   for (int k = 1;; ++k) {
     if (k > 9999) throw IoError("'" + folder.string() + "': view-0001 .. view-9999 are all taken");
-    char name[16];
+    char name[32];
     std::snprintf(name, sizeof name, "view-%04d", k);
     scene.output.name = name;
     bool taken = false;

@@ -86,7 +86,9 @@ fi
 tl="$work/tl"
 if "$skyspec" timelapse -q --latitude 48.14 --longitude 11.58 --start 2026-06-21T20:00:00+02:00 \
     --end 2026-06-21T20:30:00+02:00 --step-minutes 15 --out "$tl" --width 8 --height 8 "${small_tables[@]}" 2>"$work/stderr"; then
-  [ "$(ls "$tl" | wc -l)" = 6 ] && ok || bad "timelapse: expected 6 files, got $(ls "$tl")"
+  # Each frame's EXR, PNG and record, and the manifest.
+  [ "$(ls "$tl" | grep -c '^sky_000[0-2]\.\(exr\|png\|json\)$')" = 9 ] && [ -f "$tl/manifest.jsonl" ] && ok \
+    || bad "timelapse: expected 3 frames with records and a manifest, got $(ls "$tl")"
   touch -d '2001-01-01' "$tl/sky_0001.exr"
   "$skyspec" timelapse -q --resume --latitude 48.14 --longitude 11.58 --start 2026-06-21T20:00:00+02:00 \
     --end 2026-06-21T20:30:00+02:00 --step-minutes 15 --out "$tl" --width 8 --height 8 "${small_tables[@]}"

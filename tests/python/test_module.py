@@ -276,6 +276,38 @@ class RenderAgainstCli(unittest.TestCase):
         self.assertIn("unknown key", str(e.exception))
 
 
+class TimelapseAgainstCli(unittest.TestCase):
+    """skyspec.timelapse is `skyspec timelapse`: the same frames, byte for byte, and the same resume."""
+
+    def test_timelapse_equals_the_cli(self):
+        overrides = {"camera.width": 12, "camera.height": 12, "render.scattering_orders": 1,
+                     "location.latitude_deg": 48.14, "location.longitude_deg": 11.58}
+        times = ("2026-06-21T20:00:00+02:00", "2026-06-21T20:30:00+02:00")
+        with tempfile.TemporaryDirectory() as tmp:
+            got = skyspec.timelapse(*times, 15, overrides=overrides, out=os.path.join(tmp, "py"), name="dusk")
+            self.assertEqual((got["frames"], got["written"], got["kept"], got["failed"]), (3, 3, 0, 0))
+            self.assertTrue(got["exposure"].startswith("metered on frame 0"), got["exposure"])
+            self.assertEqual([os.path.basename(f) for f in got["files"]],
+                             [f"dusk_{k:04d}.{e}" for k in range(3) for e in ("exr", "png")])
+            cli("timelapse", "-q", "--start", times[0], "--end", times[1], "--step-minutes", "15",
+                "--out", os.path.join(tmp, "cli"), "--name", "dusk", *set_args(overrides))
+            for f in got["files"]:
+                with open(f, "rb") as a, open(os.path.join(tmp, "cli", os.path.basename(f)), "rb") as b:
+                    self.assertEqual(a.read(), b.read(), os.path.basename(f))
+            with open(got["manifest"]) as m:
+                self.assertEqual(len(m.read().splitlines()), 3)
+            again = skyspec.timelapse(*times, 15, overrides=overrides, out=os.path.join(tmp, "py"), name="dusk",
+                                      resume=True, frames="1-2")
+            self.assertEqual((again["first"], again["last"], again["written"], again["kept"]), (1, 3, 0, 2))
+            with self.assertRaises(ValueError) as e:
+                skyspec.timelapse(times[1], times[0], 15, overrides=overrides, out=tmp)
+            self.assertIn("end", str(e.exception))
+            self.assertNotIn("--end", str(e.exception))
+            with self.assertRaises(ValueError) as e:
+                skyspec.timelapse(*times, 15, overrides=overrides, out=tmp, frames="5-6")
+            self.assertIn("frames", str(e.exception))
+
+
 class MonteCarloAgainstCli(unittest.TestCase):
     def test_reference_equals_the_cli_json(self):
         overrides = {"spectrum.wavelengths_nm": [450, 650], "sun.elevation_deg": 15}
