@@ -30,7 +30,8 @@ stage "sanitizer build"
 # and the renderer against it: cli_reference runs the scalar and the vector Monte Carlo here); and
 # two long ones whose code the others run under the sanitizers: cli_display (the
 # display pipeline; every PNG of the other tests goes through it) and test_properties (random
-# scenes; the renderer's code). cli (renders, time-lapses, aerial perspective) runs here with small
+# scenes; the renderer's code), and viewer_browser (Chromium drives the page; the viewer's requests
+# run here in test_view_requests). cli (renders, time-lapses, aerial perspective) runs here with small
 # scattering-order tables (docs/performance.md, "Build and test times").
 # SKYSPEC_SANITIZER_STAGE also leaves a test's longest parts to the release stage where it says so
 # (cli_hostile, cli_tiles, cli_budget's job, cli's progress bar and cache cap, test_polarised_sky,
@@ -39,5 +40,5 @@ stage "sanitizer build"
 SKYSPEC_SANITIZER_STAGE=1 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan --output-on-failure -j"$(nproc)" \
-    -E '^(python_.*|notebook_.*|install_consumer|slurm_job|layering|cli_determinism|cli_reproduce|test_multiple_scattering|test_grid_independence|test_monte_carlo|test_monte_carlo_reference|test_monte_carlo_polarisation|cli_display|test_properties)$'
+    -E '^(python_.*|notebook_.*|install_consumer|slurm_job|layering|cli_determinism|cli_reproduce|test_multiple_scattering|test_grid_independence|test_monte_carlo|test_monte_carlo_reference|test_monte_carlo_polarisation|cli_display|test_properties|viewer_browser)$'
 stage "sanitizer tests"

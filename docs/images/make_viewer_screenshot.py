@@ -19,8 +19,7 @@ from selenium.webdriver.support.ui import WebDriverWait  # noqa: E402
 
 
 def settled(driver, seen):
-    return viewer.frames(driver) > seen and not driver.execute_script(
-        "return window.skyspec.inFlight || window.skyspec.dirty")
+    return viewer.frames(driver) > seen and viewer.settled(driver)
 
 
 folder = tempfile.mkdtemp(prefix="skyspec-screenshot-")
@@ -29,7 +28,7 @@ driver = viewer.browser()
 try:
     driver.set_window_size(1400, 900)
     driver.get(url)
-    WebDriverWait(driver, viewer.FIRST_FRAME_TIMEOUT_S).until(lambda d: viewer.frames(d) >= 1)
+    WebDriverWait(driver, viewer.FIRST_FRAME_TIMEOUT_S).until(lambda d: settled(d, 0))
     seen = viewer.frames(driver)
     driver.execute_script(
         "const set = (id, v) => { const e = document.getElementById(id); e.value = v; };"

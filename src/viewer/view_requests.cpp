@@ -9,11 +9,13 @@
 #include "base/atomic_file.hpp"
 #include "colour/display_pipeline.hpp"
 #include "render/render_budget.hpp"
+#include "render/scene_tables.hpp"
 #include "scene/key_registry.hpp"
 #include "skyspec/camera.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/render.hpp"
 #include "skyspec/units.hpp"
+#include "transport/scattering_tables_cache.hpp"
 
 namespace skyspec::viewer {
 namespace {
@@ -22,10 +24,10 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-const std::string kWords = "a scene key (skyspec render --help-keys), preset, view, mode, x or y";
+const std::string kWords = "a scene key (skyspec render --help-keys), preset, view, mode, preview, x or y";
 
 bool viewer_word(const std::string& name) {
-  return name == "preset" || name == "view" || name == "mode" || name == "x" || name == "y";
+  return name == "preset" || name == "view" || name == "mode" || name == "x" || name == "y" || name == "preview";
 }
 
 // The last value of a viewer word in the query, or null.
@@ -75,6 +77,10 @@ ViewRequest parse_view_request(const ViewerBase& base, const Query& query) {
     else if (*mode != "colour")
       throw InputError("mode", "\"" + *mode + "\"", "colour or polarisation");
   }
+  if (const std::string* preview = word(query, "preview")) {
+    if (*preview != "0" && *preview != "1") throw InputError("preview", "\"" + *preview + "\"", "0 or 1");
+    request.preview = *preview == "1";
+  }
   if (request.mode == ViewRequest::Mode::Polarisation) loader.set("output.polarisation", true, "mode");
   request.scene = loader.finish();
   request.scene.render.threads = base.threads;
@@ -82,14 +88,38 @@ ViewRequest parse_view_request(const ViewerBase& base, const Query& query) {
   return request;
 }
 
-Frame render_frame(const ViewRequest& request) {
+bool scattering_tables_ready(const Scene& scene) {
+  if (scene.render.scattering_orders < 2) return true;
+  return scattering_orders_cached(skyspec::scattering_tables_key(scene), scene.render.cache_tables);
+}
+
+void build_scattering_tables(const Scene& scene) {
+  // A renderer of one pixel without a sky-view table: its construction is the tables' build.
+  Scene s = scene;
+  s.camera.width = s.camera.height = 1;
+  s.render.sky_view_table = false;
+  s.output.polarisation = false;
+  const SkyRenderer renderer(s);
+}
+
+Frame render_frame(const ViewRequest& request, bool tables_ready) {
   const CameraSpec& camera = request.scene.camera;
   if (static_cast<std::int64_t>(camera.width) * camera.height > kMaxFramePixels)
     throw InputError("camera.width", std::to_string(camera.width) + " x " + std::to_string(camera.height),
                      "a frame of at most " + std::to_string(kMaxFramePixels) + " pixels (Export renders any size)");
   Frame frame;
+  Scene scene = request.scene;
+  if (request.preview || !tables_ready) {
+    scene.render.sky_view_zenith_samples = std::min(scene.render.sky_view_zenith_samples, kPreviewZenithSamples);
+    scene.render.sky_view_azimuth_samples = std::min(scene.render.sky_view_azimuth_samples, kPreviewAzimuthSamples);
+    frame.preview = "coarse sky-view table";
+  }
+  if (!tables_ready) {
+    scene.render.scattering_orders = 1;
+    frame.preview = "single scattering (the scattering tables are being built)";
+  }
   const auto start = std::chrono::steady_clock::now();
-  const SpectralImageBuffer image = render_to_memory(request.scene);
+  const SpectralImageBuffer image = render_to_memory(scene);
   frame.render_seconds = seconds_since(start);
   const auto encode = std::chrono::steady_clock::now();
   frame.png = request.mode == ViewRequest::Mode::Polarisation ? polarisation_png_bytes(image)

@@ -10,6 +10,14 @@
 //   view    the display's view (OpenColorIO), e.g. "Un-tone-mapped"
 //   mode    colour (the display image) or polarisation (angle as hue, degree as brightness)
 //   x, y    the pixel of a spectrum request (image pixels, 0 at the top-left)
+//   preview 1: a quick frame while a control is being dragged (a coarser sky-view table)
+//
+// Previews: a frame is exact (the scene as asked) unless the query asks for a preview or the
+// scene's scattering-order tables are not at hand yet; then it is a preview, and says which:
+//   coarse sky-view table   the sky-view table at kPreviewZenithSamples x kPreviewAzimuthSamples
+//                           (everything else as asked; docs/viewer.md measures the difference)
+//   single scattering       the tables are being built (the server starts that): the orders
+//                           above the first are missing until they are ready
 #pragma once
 
 #include <cstdint>
@@ -32,6 +40,8 @@ using Query = std::vector<std::pair<std::string, std::string>>;
 /// (its export folder), threads and the disk cache its command line's.
 inline const std::vector<std::string> kViewerOwnedKeys = {"output.directory", "output.name",    "output.exr",
                                                           "output.png",       "render.threads", "render.cache_tables"};
+/// The sky-view table of a preview: rows from the horizon to the zenith, and azimuths.
+constexpr int kPreviewZenithSamples = 32, kPreviewAzimuthSamples = 16;
 /// The largest frame the page may ask for, in pixels (an export is held to the render budget).
 constexpr std::int64_t kMaxFramePixels = std::int64_t{2048} * 2048;
 
@@ -48,6 +58,7 @@ struct ViewRequest {
   Scene scene;
   DisplaySettings display;
   Mode mode = Mode::Colour;
+  bool preview = false;  ///< the query's preview=1
 };
 
 /// The scene and settings a query means. InputError names the query's name (a scene key, "view",
@@ -61,8 +72,17 @@ struct Frame {
   int width = 0, height = 0;
   double render_seconds = 0.0, encode_seconds = 0.0;
   std::string exposure;  ///< how the exposure was chosen, in words
+  std::string preview;   ///< "" for an exact frame, else what the preview leaves out (see above)
 };
-Frame render_frame(const ViewRequest& request);
+/// `tables_ready`: whether the scene's scattering-order tables are at hand (scattering_tables_ready).
+Frame render_frame(const ViewRequest& request, bool tables_ready = true);
+
+/// Whether the scene's scattering-order tables are in memory or in the disk cache (true for single
+/// scattering): a frame of it is then exact without a table build.
+bool scattering_tables_ready(const Scene& scene);
+/// Builds (and caches) the scene's scattering-order tables; what the server runs in the background
+/// while previews are shown.
+void build_scattering_tables(const Scene& scene);
 
 /// The sky's spectral radiance through the centre of pixel (x, y), all the orders the scene asks
 /// for and single scattering alone, both integrated along the ray (not read from the sky-view

@@ -6,6 +6,7 @@
 #include <iostream>
 #include <mutex>
 #include <sstream>
+#include <thread>
 
 #include "base/cancellation.hpp"
 #include "base/embedded_data.hpp"
@@ -47,6 +48,49 @@ struct ViewerServer::Impl {
   httplib::Server server;
   std::mutex rendering;  // one render at a time: each uses every thread it may
   std::string state_json;
+  // The scattering tables of an atmosphere not at hand are built on a thread of their own while
+  // frames are previews (view_requests.hpp); one build at a time.
+  std::mutex building;
+  std::thread builder;
+  bool builder_running = false;  // guarded by `building`
+  std::string build_error;       // the last build's failure, reported by the next frame
+
+  ~Impl() { join_builder(); }
+
+  // Waits for a table build under way (outside the lock: the builder takes it to finish).
+  void join_builder() {
+    std::thread finishing;
+    {
+      std::lock_guard<std::mutex> lock(building);
+      finishing = std::move(builder);
+    }
+    if (finishing.joinable()) finishing.join();
+  }
+
+  // Starts building the scene's tables unless a build is under way; throws a failed build's error.
+  void start_build(const Scene& scene) {
+    std::lock_guard<std::mutex> lock(building);
+    if (builder_running) return;
+    if (!build_error.empty()) {
+      const std::string error = build_error;
+      build_error.clear();  // the next frame tries again
+      throw Error("building the scattering tables failed: " + error);
+    }
+    if (builder.joinable()) builder.join();
+    builder_running = true;
+    builder = std::thread([this, scene] {
+      std::string error;
+      try {
+        build_scattering_tables(scene);
+      } catch (const Cancelled&) {  // the server is stopping
+      } catch (const std::exception& e) {
+        error = e.what();
+      }
+      std::lock_guard<std::mutex> done(building);
+      build_error = error;
+      builder_running = false;
+    });
+  }
 
   // Runs `work` and maps the library's errors to HTTP: bad input 400, cancelled 503, others 500.
   template <typename Work>
@@ -86,13 +130,16 @@ struct ViewerServer::Impl {
       answer(res, [&] {
         const ViewRequest request = parse_view_request(base, query_of(req));
         std::lock_guard<std::mutex> lock(rendering);
-        const Frame frame = render_frame(request);
+        const bool ready = scattering_tables_ready(request.scene);
+        if (!ready) start_build(request.scene);
+        const Frame frame = render_frame(request, ready);
         char seconds[64];
         std::snprintf(seconds, sizeof seconds, "%.4f", frame.render_seconds);
         res.set_header("X-Skyspec-Render-Seconds", seconds);
         std::snprintf(seconds, sizeof seconds, "%.4f", frame.encode_seconds);
         res.set_header("X-Skyspec-Encode-Seconds", seconds);
         res.set_header("X-Skyspec-Exposure", frame.exposure);
+        res.set_header("X-Skyspec-Preview", frame.preview);
         res.set_header("Cache-Control", "no-store");
         res.set_content(frame.png, "image/png");
       });
@@ -150,6 +197,9 @@ int ViewerServer::bind() {
 
 void ViewerServer::serve() { impl_->server.listen_after_bind(); }
 
-void ViewerServer::stop() { impl_->server.stop(); }
+void ViewerServer::stop() {
+  impl_->server.stop();
+  impl_->join_builder();  // a table build under way ends first (at once when cancelled)
+}
 
 }  // namespace skyspec::viewer

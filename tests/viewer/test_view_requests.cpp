@@ -98,6 +98,17 @@ BOOST_AUTO_TEST_CASE(frames_are_the_display_png_and_too_large_ones_are_refused) 
   BOOST_TEST(p.png.substr(1, 3) == "PNG");
   BOOST_TEST(p.png != frame.png);
 
+  BOOST_TEST(frame.preview == "");
+  // A preview: the coarse sky-view table (this scene marches no table rows beyond it: single
+  // scattering); without the tables: single scattering.
+  const auto asked = viewer::parse_view_request(base, {{"sun.elevation_deg", "20"}, {"preview", "1"}});
+  BOOST_TEST(asked.preview);
+  BOOST_TEST(viewer::render_frame(asked).preview == "coarse sky-view table");
+  BOOST_TEST(viewer::render_frame(request, false).preview.rfind("single scattering", 0) == 0);
+  BOOST_TEST(viewer::scattering_tables_ready(request.scene));  // single scattering needs none
+  BOOST_CHECK_EXCEPTION(viewer::parse_view_request(base, {{"preview", "yes"}}), InputError,
+                        [](const InputError& e) { return e.setting() == "preview"; });
+
   const auto huge = viewer::parse_view_request(base, {{"camera.width", "4096"}, {"camera.height", "2048"}});
   BOOST_CHECK_EXCEPTION(viewer::render_frame(huge), InputError,
                         [](const InputError& e) { return e.setting() == "camera.width"; });

@@ -81,13 +81,18 @@ def browser():
     # this closed network refuses.
     for arg in ["--headless=new", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
                 "--disable-background-networking", "--disable-component-update", "--disable-sync",
-                "--window-size=1200,800"]:
+                "--window-size=900,640"]:
         options.add_argument(arg)
     return webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=options)
 
 
 def frames(driver):
     return int(driver.execute_script("return window.skyspec.frames"))
+
+
+def settled(driver):
+    """The page shows the exact frame of its controls (no preview, nothing pending)."""
+    return driver.execute_script("return window.skyspec.settled()")
 
 
 def canvas_digest(driver):
@@ -99,7 +104,7 @@ def page_tests(url, folder):
     driver = browser()
     try:
         driver.get(url)
-        WebDriverWait(driver, FIRST_FRAME_TIMEOUT_S).until(lambda d: frames(d) >= 1)
+        WebDriverWait(driver, FIRST_FRAME_TIMEOUT_S).until(lambda d: frames(d) >= 1 and settled(d))
         check(driver.find_element(By.ID, "error").text == "", "the first frame arrives without an error")
         size = driver.execute_script("return window.skyspec.frameSize")
         check(size[0] >= 64 and size[1] >= 64, f"the frame has the page's size ({size[0]} x {size[1]})")
@@ -113,8 +118,7 @@ def page_tests(url, folder):
         slider.send_keys(Keys.PAGE_UP)
         after = float(slider.get_attribute("value"))
         check(after != before, f"the sun slider moved from {before} to {after} degrees")
-        WebDriverWait(driver, TIMEOUT_S).until(
-            lambda d: frames(d) > seen and not d.execute_script("return window.skyspec.inFlight || window.skyspec.dirty"))
+        WebDriverWait(driver, TIMEOUT_S).until(lambda d: frames(d) > seen and settled(d))
         check(canvas_digest(driver) != first, "moving the sun changes the image")
         check(f"sun.elevation_deg={after}" in driver.execute_script("return window.skyspec.lastQuery"),
               "the frame shown is of the new sun elevation")
@@ -155,8 +159,7 @@ def page_tests(url, folder):
         digest = canvas_digest(driver)
         driver.execute_script("const m = document.getElementById('mode'); m.value = 'polarisation';"
                               "m.dispatchEvent(new Event('input'));")
-        WebDriverWait(driver, TIMEOUT_S).until(
-            lambda d: frames(d) > seen and not d.execute_script("return window.skyspec.inFlight || window.skyspec.dirty"))
+        WebDriverWait(driver, TIMEOUT_S).until(lambda d: frames(d) > seen and settled(d))
         check(canvas_digest(driver) != digest and driver.find_element(By.ID, "error").text == "",
               "the polarisation view shows another picture")
 
@@ -179,6 +182,25 @@ def server_tests(url):
         status, body, _ = get(url + "api/frame?" + query)
         answer = json.loads(body)
         check(status == 400 and answer["setting"] == key, f"{query}: 400 naming {key}: {answer['error']}")
+    # Previews: asked for (a coarser sky-view table), and while a new atmosphere's tables are built
+    # (single scattering; small tables of an aerosol load no other test uses, so they are not cached).
+    small = "camera.width=32&camera.height=32&render.scattering_orders=2&render.ms_altitude_samples=8" \
+            "&render.ms_sun_samples=24&render.ms_angular_degree=4"
+    status, _, headers = get(url + "api/frame?" + small + "&preview=1")
+    check(status == 200 and headers["X-Skyspec-Preview"] == "coarse sky-view table", "a preview frame says so")
+    fresh = small + f"&atmosphere.mie.scattering_per_m={1.1e-5 + 1e-9 * (os.getpid() % 1000)!r}" \
+        + f"&atmosphere.ozone.column_DU={200 + time.time() % 100:.6f}"
+    status, _, headers = get(url + "api/frame?" + fresh)
+    check(status == 200 and headers["X-Skyspec-Preview"].startswith("single scattering"),
+          "a new atmosphere's first frame is a single-scattering preview: " + headers["X-Skyspec-Preview"])
+    start = time.time()
+    while headers["X-Skyspec-Preview"] and time.time() - start < TIMEOUT_S:
+        time.sleep(0.5)
+        status, _, headers = get(url + "api/frame?" + fresh)
+    check(status == 200 and headers["X-Skyspec-Preview"] == "",
+          f"the exact frame follows once its tables are built ({time.time() - start:.1f} s)")
+    status, body, _ = get(url + "api/frame?preview=2")
+    check(status == 400 and json.loads(body)["setting"] == "preview", "preview=2: 400 naming preview")
     status, body, _ = get(url + "api/spectrum?x=-1&y=0")
     check(status == 400 and json.loads(body)["setting"] == "x", "a spectrum outside the image: 400 naming x")
     status, body, _ = get(url + "no/such/page")
