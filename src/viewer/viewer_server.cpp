@@ -149,6 +149,13 @@ struct ViewerServer::Impl {
         const Query query = query_of(req);
         const ViewRequest request = parse_view_request(base, query);
         std::lock_guard<std::mutex> lock(rendering);
+        if (!scattering_tables_ready(request.scene)) {  // all orders need them: ask again once they are built
+          start_build(request.scene);
+          res.set_header("Retry-After", "2");
+          send_json(res, 503,
+                    {{"error", "the scattering tables of this atmosphere are being built: click again in a moment"}});
+          return;
+        }
         send_json(res, 200, spectrum_at(request, query));
       });
     });

@@ -7,7 +7,7 @@
 //   GET  /api/frame?...    a frame, image/png; X-Skyspec-Render-Seconds, X-Skyspec-Encode-Seconds,
 //                          X-Skyspec-Exposure, X-Skyspec-Preview (a new atmosphere's tables are
 //                          built on a thread of their own meanwhile)
-//   GET  /api/spectrum?... the spectrum under pixel (x, y), JSON
+//   GET  /api/spectrum?... the spectrum under pixel (x, y), JSON (503 while its tables are built)
 //   POST /api/export?...   full-quality files of the query's scene, JSON
 // A bad query gets 400 with {"error", "setting"}; a failed write 500 with {"error"}.
 #pragma once
