@@ -36,8 +36,9 @@ int main() {
   for (double x : {10.0, 100.0, 1000.0, 1e4, 2e4}) {
     MieSeries s;
     const double t_series = seconds([&] {
-      for (int i = 0; i < 10; ++i) s = lorenz_mie({water, 1e-9}, x);
-    }) / 10;
+                              for (int i = 0; i < 10; ++i) s = lorenz_mie({water, 1e-9}, x);
+                            }) /
+                            10;
     const std::vector<double> mu = angles(1801);
     const double t_angles = seconds([&] { mie_amplitudes(s, mu); });
     std::printf("%10g %8d %14.3f %14.3f\n", x, s.terms(), 1e3 * t_series, 1e3 * t_angles);
@@ -50,7 +51,8 @@ int main() {
   const Case cases[] = {
       {"water-soluble aerosol (OPAC waso, dry)", SizeDistribution::lognormal(0.0212e-6, 2.24), {1.53, 0.006}},
       {"fog (modified gamma, 8 um, alpha 3)", SizeDistribution::modified_gamma(8e-6, 3.0, 1.0), {water, 1e-9}},
-      {"drizzle (Marshall-Palmer 2 mm/h, 50-150 um)", SizeDistribution::marshall_palmer(2.0).truncated(50e-6, 150e-6),
+      {"drizzle (Marshall-Palmer 2 mm/h, 50-150 um)",
+       SizeDistribution::marshall_palmer(2.0).truncated(50e-6, 150e-6),
        {water, 1e-9}}};
   std::printf("\nsize distributions at 550 nm, default quadrature, all cores\n");
   std::printf("%-46s %8s %10s %16s %16s\n", "", "x_max", "nodes", "181 angles (s)", "1801 angles (s)");

@@ -33,8 +33,7 @@ int main(int argc, char** argv) {
     skyspec::DisplaySettings display;  // skyspec's OpenColorIO config unless display.config names one
     display.display = "Display P3";
     const double scale = skyspec::write_display_png(image, out / "sky.png", display);
-    std::printf("wrote %s and %s (exposure scale %.4g)\n", (out / "sky.exr").c_str(), (out / "sky.png").c_str(),
-                scale);
+    std::printf("wrote %s and %s (exposure scale %.4g)\n", (out / "sky.exr").c_str(), (out / "sky.png").c_str(), scale);
 
     loader.set("camera.width", 64.5);  // bad input: an InputError naming the key and what is allowed
   } catch (const skyspec::InputError& e) {

@@ -65,8 +65,7 @@ struct LeeDiagram {
 /// parameter would exceed the solver's 2e4 at the shortest wavelength, an angle outside 0-180
 /// degrees, wavelengths outside 280-1100 nm, a too large image). `progress` (may be empty)
 /// is called with (rows done, rows) from the calling thread.
-LeeDiagram compute_lee_diagram(const LeeDiagramSettings& settings,
-                               const std::function<void(int, int)>& progress = {});
+LeeDiagram compute_lee_diagram(const LeeDiagramSettings& settings, const std::function<void(int, int)>& progress = {});
 
 /// The checks compute_lee_diagram makes, without computing.
 void check_lee_diagram_settings(const LeeDiagramSettings& settings);

@@ -25,18 +25,18 @@
 namespace skyspec {
 
 struct SphereEnsembleSettings {
-  double panel_ln_radius = 0.05;       ///< the widest quadrature panel in ln r
-  double panel_size_parameter = 1.0;   ///< the widest panel in size parameter (8 nodes per panel)
+  double panel_ln_radius = 0.05;      ///< the widest quadrature panel in ln r
+  double panel_size_parameter = 1.0;  ///< the widest panel in size parameter (8 nodes per panel)
 };
 
 struct SphereEnsembleOptics {
   double wavelength_m = 0.0;
-  double extinction_cross_section_m2 = 0.0;  ///< <C_ext>, per particle
-  double scattering_cross_section_m2 = 0.0;  ///< <C_sca>
-  double geometric_cross_section_m2 = 0.0;   ///< pi <r^2>
-  double asymmetry = 0.0;                    ///< g
-  int radius_nodes = 0;                      ///< quadrature nodes used
-  std::vector<double> mu;                    ///< cosines of the scattering angle asked for
+  double extinction_cross_section_m2 = 0.0;          ///< <C_ext>, per particle
+  double scattering_cross_section_m2 = 0.0;          ///< <C_sca>
+  double geometric_cross_section_m2 = 0.0;           ///< pi <r^2>
+  double asymmetry = 0.0;                            ///< g
+  int radius_nodes = 0;                              ///< quadrature nodes used
+  std::vector<double> mu;                            ///< cosines of the scattering angle asked for
   std::vector<SphereScatteringMatrix> phase_matrix;  ///< P_ij at each mu, sr^-1
   double single_scattering_albedo() const {
     return extinction_cross_section_m2 > 0.0 ? scattering_cross_section_m2 / extinction_cross_section_m2 : 0.0;

@@ -36,7 +36,8 @@ std::uint64_t table_cache_cap_bytes() {
   return mb * 1000 * 1000;
 }
 
-std::uint64_t evict_table_cache(const std::filesystem::path& dir, std::uint64_t cap, const std::filesystem::path& keep) {
+std::uint64_t evict_table_cache(const std::filesystem::path& dir, std::uint64_t cap,
+                                const std::filesystem::path& keep) {
   if (cap == 0) return 0;
   struct Entry {
     std::filesystem::path path;

@@ -95,8 +95,8 @@ int run(IrradianceOptions& o) {
         std::snprintf(line, sizeof line, "%.*f,", q.decimals, q.value(rep));
         text << line;
       }
-    text << cct_text(rep.global_horizontal_cct, !md) << (md ? " | " : ",")
-         << cct_text(rep.diffuse_horizontal_cct, !md) << (md ? " |\n" : "\n");
+    text << cct_text(rep.global_horizontal_cct, !md) << (md ? " | " : ",") << cct_text(rep.diffuse_horizontal_cct, !md)
+         << (md ? " |\n" : "\n");
   }
   if (o.format == "md")
     text << "\nBroadband W/m2 over " << make_wavelength_grid(base).min_nm() << "-"

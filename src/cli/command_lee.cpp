@@ -32,7 +32,8 @@ int run_lee(const LeeOptions& o) {
   const LeeDiagramFiles files = write_lee_diagram(diagram, o.out, o.name, display, !o.no_png);
   if (!o.quiet) {
     std::cout << "wrote " << files.exr.string() << "\n";
-    if (!files.png.empty()) std::cout << "wrote " << files.png.string() << " (each row scaled to its brightest pixel)\n";
+    if (!files.png.empty())
+      std::cout << "wrote " << files.png.string() << " (each row scaled to its brightest pixel)\n";
     std::cout << diagram.width << " x " << diagram.height << " pixels: scattering angle " << s.angle_min_deg << "-"
               << s.angle_max_deg << " deg, drop radius " << s.radius_max_um << "-" << s.radius_min_um << " um, "
               << diagram.wavelengths_nm.size() << " wavelengths\n";
@@ -64,7 +65,8 @@ Command add_lee_command(CLI::App& app) {
   lee->add_option("--lambda-max", s.lambda_max_nm, "longest wavelength, nm")->capture_default_str();
   lee->add_option("--lambda-step", s.lambda_step_nm, "wavelength step, nm")->capture_default_str();
   lee->add_option("--water-temperature", s.water_temperature_C, "water temperature, degC")->capture_default_str();
-  lee->add_option("--angle-samples", s.angle_subsamples, "scattering angles averaged per column")->capture_default_str();
+  lee->add_option("--angle-samples", s.angle_subsamples, "scattering angles averaged per column")
+      ->capture_default_str();
   lee->add_flag("--polarisation", s.polarisation, "also write S1 (Q: positive perpendicular to the scattering plane)");
   lee->add_option("--out", opts->out, "output folder")->capture_default_str();
   lee->add_option("--name", opts->name, "base name of the files")->capture_default_str();

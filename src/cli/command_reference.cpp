@@ -297,8 +297,8 @@ int run(const ReferenceOptions& o) {
     pilot.diffuse_irradiance = false;
     const auto t0 = std::chrono::steady_clock::now();
     monte_carlo_reference(c.scene, {c.probes.front()}, pilot, {});
-    const double per_path = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() /
-                            static_cast<double>(pilot.paths);
+    const double per_path =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / static_cast<double>(pilot.paths);
     const double seconds =
         per_path * static_cast<double>(o.paths) * static_cast<double>(c.probes.size() + (o.irradiance ? 1 : 0));
     if (seconds > 86400.0)

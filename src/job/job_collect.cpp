@@ -58,7 +58,8 @@ std::string table_header(const JobPlan& plan, const json& first) {
   h += ",band_min_nm,band_max_nm";
   const auto& wl = first.at("irradiance").at("wavelengths_nm");
   for (const IrradianceQuantity& q : irradiance_quantities()) {
-    if (!q.spectral()) h += std::string(",") + q.key;
+    if (!q.spectral())
+      h += std::string(",") + q.key;
     else
       for (const auto& w : wl) h += std::string(",") + q.key + "_" + csv_number(w.get<double>());
   }
@@ -74,7 +75,8 @@ std::string table_row(const JobPlan& plan, const json& r) {
   const auto& wl = irr.at("wavelengths_nm");
   row += "," + csv_number(wl.front().get<double>()) + "," + csv_number(wl.back().get<double>());
   for (const IrradianceQuantity& q : irradiance_quantities()) {
-    if (!q.spectral()) row += "," + csv_number(irr.at(q.key).get<double>());
+    if (!q.spectral())
+      row += "," + csv_number(irr.at(q.key).get<double>());
     else
       for (const auto& v : irr.at(q.key)) row += "," + csv_number(v.get<double>());
   }

@@ -24,8 +24,8 @@ struct JobTableEstimate {
   /// Builds the job will do: one per set not cached when the disk cache is on (the tasks share it);
   /// without it (render.cache_tables = false) one per set per chunk that uses it (each chunk is a process).
   int builds = 0;
-  double build_seconds = 0.0;     ///< wall time of those builds, on the threads the tasks use
-  std::uint64_t cache_bytes = 0;  ///< what the disk cache gains (0 without it)
+  double build_seconds = 0.0;             ///< wall time of those builds, on the threads the tasks use
+  std::uint64_t cache_bytes = 0;          ///< what the disk cache gains (0 without it)
   std::filesystem::path cache_directory;  ///< empty without a disk cache
   /// "2 distinct sets (1 cached): 1 build, about 40 s, 56 MB added to ~/.cache/skyspec", or
   /// "none (single scattering)".

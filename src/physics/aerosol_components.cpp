@@ -31,11 +31,16 @@ constexpr const char* kFile = "aerosols/opac_components.csv";
 constexpr int kAerosolCacheFormat = 1;
 constexpr std::array<const char*, kAerosolComponentCount> kNames = {"inso", "waso", "soot", "ssam", "sscm",
                                                                     "minm", "miam", "micm", "mitr", "suso"};
-constexpr std::array<const char*, kAerosolComponentCount> kDescriptions = {
-    "insoluble",        "water-soluble",          "soot",
-    "sea salt (accumulation mode)", "sea salt (coarse mode)", "mineral (nucleation mode)",
-    "mineral (accumulation mode)",  "mineral (coarse mode)",  "mineral (transported)",
-    "sulfate droplets"};
+constexpr std::array<const char*, kAerosolComponentCount> kDescriptions = {"insoluble",
+                                                                           "water-soluble",
+                                                                           "soot",
+                                                                           "sea salt (accumulation mode)",
+                                                                           "sea salt (coarse mode)",
+                                                                           "mineral (nucleation mode)",
+                                                                           "mineral (accumulation mode)",
+                                                                           "mineral (coarse mode)",
+                                                                           "mineral (transported)",
+                                                                           "sulfate droplets"};
 
 struct Row {
   double wavelength_nm, m_re, m_im, ext_per_km, ssa, g;
@@ -52,18 +57,22 @@ struct Component {
 const std::array<Component, kAerosolComponentCount>& table() {
   static const std::array<Component, kAerosolComponentCount> t = [] {
     std::array<Component, kAerosolComponentCount> c;
-    const auto rows = parse_csv(kFile, embedded_file(kFile),
-                                {"component", "rh_percent", "r_min_um", "r_max_um", "sigma", "r_mod_wet_um",
-                                 "r_mod_dry_um", "wavelength_um", "m_re", "m_im", "ext_per_km",
-                                 "single_scattering_albedo", "asymmetry"});
+    const auto rows =
+        parse_csv(kFile, embedded_file(kFile),
+                  {"component", "rh_percent", "r_min_um", "r_max_um", "sigma", "r_mod_wet_um", "r_mod_dry_um",
+                   "wavelength_um", "m_re", "m_im", "ext_per_km", "single_scattering_albedo", "asymmetry"});
     for (const CsvRow& r : rows) {
       const auto it = std::find(kNames.begin(), kNames.end(), r.fields[0]);
       if (it == kNames.end()) throw Error(std::string(kFile) + ": unknown component " + r.fields[0]);
       Component& comp = c[static_cast<size_t>(it - kNames.begin())];
       const int rh = static_cast<int>(csv_number(kFile, r, 1));
       if (comp.humidities.empty() || comp.humidities.back().rh_percent != rh)
-        comp.humidities.push_back({rh, csv_number(kFile, r, 2), csv_number(kFile, r, 3), csv_number(kFile, r, 4),
-                                   csv_number(kFile, r, 5), {}});
+        comp.humidities.push_back({rh,
+                                   csv_number(kFile, r, 2),
+                                   csv_number(kFile, r, 3),
+                                   csv_number(kFile, r, 4),
+                                   csv_number(kFile, r, 5),
+                                   {}});
       comp.humidities.back().rows.push_back({csv_number(kFile, r, 7) * 1e3, csv_number(kFile, r, 8),
                                              csv_number(kFile, r, 9), csv_number(kFile, r, 10),
                                              csv_number(kFile, r, 11), csv_number(kFile, r, 12)});
@@ -79,7 +88,8 @@ const std::array<Component, kAerosolComponentCount>& table() {
 std::complex<double> index_at(const Humidity& h, double nm) {
   const auto& r = h.rows;
   auto it = std::upper_bound(r.begin(), r.end(), nm, [](double x, const Row& row) { return x < row.wavelength_nm; });
-  size_t k = static_cast<size_t>(std::clamp<long>(static_cast<long>(it - r.begin()) - 1, 0, static_cast<long>(r.size()) - 2));
+  size_t k =
+      static_cast<size_t>(std::clamp<long>(static_cast<long>(it - r.begin()) - 1, 0, static_cast<long>(r.size()) - 2));
   const double f = (nm - r[k].wavelength_nm) / (r[k + 1].wavelength_nm - r[k].wavelength_nm);
   return {r[k].m_re + f * (r[k + 1].m_re - r[k].m_re), r[k].m_im + f * (r[k + 1].m_im - r[k].m_im)};
 }
@@ -94,8 +104,8 @@ struct RawOptics {
 // The tabulated scattering angles: fine near the forward peak, where aerosols scatter most.
 std::vector<double> make_cosines() {
   std::vector<double> deg;
-  for (int k = 0; k < 40; ++k) deg.push_back(0.05 * k);        // 0 - 1.95
-  for (int k = 0; k < 32; ++k) deg.push_back(2.0 + 0.25 * k);  // 2 - 9.75
+  for (int k = 0; k < 40; ++k) deg.push_back(0.05 * k);          // 0 - 1.95
+  for (int k = 0; k < 32; ++k) deg.push_back(2.0 + 0.25 * k);    // 2 - 9.75
   for (int k = 0; k <= 340; ++k) deg.push_back(10.0 + 0.5 * k);  // 10 - 180
   std::vector<double> mu;
   for (auto it = deg.rbegin(); it != deg.rend(); ++it) mu.push_back(std::cos(*it * kPi / 180.0));
@@ -189,7 +199,8 @@ RawOptics compute(const AerosolMixture& mix, const WavelengthGrid& grid, const s
   long long pairs = 0;
   for (double number : mix.number_per_cm3) pairs += number > 0.0 ? n : 0;
   if (pairs == 0)
-    throw InputError(setting + ".*_per_cm3", "0 for every component", "at least one component with a number concentration > 0");
+    throw InputError(setting + ".*_per_cm3", "0 for every component",
+                     "at least one component with a number concentration > 0");
   plan_preparation(pairs, "computing the aerosol's optics (Lorenz-Mie)");
   for (int c = 0; c < kAerosolComponentCount; ++c) {
     const double per_m3 = mix.number_per_cm3[static_cast<size_t>(c)] * 1e6;
@@ -200,8 +211,7 @@ RawOptics compute(const AerosolMixture& mix, const WavelengthGrid& grid, const s
           aerosol_component_state(c, mix.relative_humidity_percent, grid.nm(i), setting + ".relative_humidity_percent");
       const SizeDistribution sizes = SizeDistribution::lognormal(s.median_radius_m, s.geometric_standard_deviation)
                                          .truncated(s.min_radius_m, s.max_radius_m);
-      const SphereEnsembleOptics e =
-          sphere_ensemble_optics(sizes, {s.m_real, s.m_imag}, grid.nm(i) * 1e-9, 1.0, mu);
+      const SphereEnsembleOptics e = sphere_ensemble_optics(sizes, {s.m_real, s.m_imag}, grid.nm(i) * 1e-9, 1.0, mu);
       const double in_range = per_m3 * aerosol_component_fraction_in_range(s);
       const double sca = in_range * e.scattering_cross_section_m2;
       o.sca[w] += sca;
@@ -309,7 +319,7 @@ AerosolMixtureOptics from_raw(RawOptics r) {
   o.scattering_per_m = Eigen::Map<const SpectrumD>(r.sca.data(), n);
   o.extinction_per_m = Eigen::Map<const SpectrumD>(r.ext.data(), n);
   o.matrix = std::make_shared<const TabulatedScatteringMatrix>(aerosol_scattering_cosines(), std::move(r.a1),
-                                                              std::move(r.b1), std::move(r.a3), std::move(r.b2));
+                                                               std::move(r.b1), std::move(r.a3), std::move(r.b2));
   return o;
 }
 

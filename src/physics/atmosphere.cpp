@@ -131,7 +131,8 @@ AtmosphereModel::AtmosphereModel(const AtmosphereSpec& spec, const WavelengthGri
 
   if (m.enabled && m.model == MieSpec::Model::Opac) {
     // Microphysics: Lorenz-Mie over each component's size distribution (aerosol_components.hpp).
-    AerosolMixtureOptics optics = aerosol_mixture_optics(m.opac, grid, "atmosphere.mie.opac", cache_on_disk);  // its keys' prefix
+    AerosolMixtureOptics optics =
+        aerosol_mixture_optics(m.opac, grid, "atmosphere.mie.opac", cache_on_disk);  // its keys' prefix
     mie_.scattering_per_m = optics.scattering_per_m;
     mie_.extinction_per_m = optics.extinction_per_m;
     mie_matrix_ = optics.matrix;

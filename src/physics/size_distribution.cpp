@@ -49,7 +49,8 @@ SizeDistribution SizeDistribution::lognormal(double median_radius_m, double geom
 }
 
 SizeDistribution SizeDistribution::modified_gamma(double mode_radius_m, double alpha, double gamma) {
-  if (!(mode_radius_m > 0.0) || !std::isfinite(mode_radius_m)) refuse("mode radius (m)", mode_radius_m, "a positive length");
+  if (!(mode_radius_m > 0.0) || !std::isfinite(mode_radius_m))
+    refuse("mode radius (m)", mode_radius_m, "a positive length");
   if (!(alpha > 0.0 && alpha <= 100.0)) refuse("alpha", alpha, "0 < alpha <= 100");
   if (!(gamma > 0.0 && gamma <= 10.0)) refuse("gamma", gamma, "0 < gamma <= 10");
   SizeDistribution d;
@@ -62,7 +63,8 @@ SizeDistribution SizeDistribution::modified_gamma(double mode_radius_m, double a
   const double a1 = alpha + 1.0;
   d.r_min_ = std::exp((std::log(kTail * a1 / gamma) + std::lgamma(a1 / gamma) - (a1 / gamma) * std::log(d.p2_)) / a1);
   const double r3 = std::pow((alpha + 3.0) / (gamma * d.p2_), 1.0 / gamma);  // the peak of r^3 dN/dr
-  d.r_max_ = upper_tail(r3, [&d](double r) { return d.unnormalised(r); }, 3);
+  d.r_max_ = upper_tail(
+      r3, [&d](double r) { return d.unnormalised(r); }, 3);
   d.normalise();
   return d;
 }
@@ -77,7 +79,8 @@ SizeDistribution SizeDistribution::marshall_palmer(double rain_rate_mm_per_h) {
   d.p1_ = 2.0 * lambda_per_m;                                               // in radius
   // dN/dr is flat near r = 0: below r_min lies 2 Lambda r_min of the number.
   d.r_min_ = kTail / d.p1_;
-  d.r_max_ = upper_tail(3.0 / d.p1_, [&d](double r) { return d.unnormalised(r); }, 3);
+  d.r_max_ = upper_tail(
+      3.0 / d.p1_, [&d](double r) { return d.unnormalised(r); }, 3);
   d.normalise();
   d.number_per_m3_ = 8e6 / lambda_per_m;  // N0 = 8000 m^-3 mm^-1 = 8e6 m^-4
   return d;

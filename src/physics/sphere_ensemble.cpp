@@ -38,12 +38,11 @@ SphereEnsembleOptics sphere_ensemble_optics(const SizeDistribution& sizes, std::
   if (x_max > 2e4) {
     std::ostringstream s;
     s << "sphere ensemble: " << sizes.description() << " reaches radius " << sizes.max_radius_m() * 1e6
-      << " um, size parameter " << x_max << " at " << wavelength_m * 1e9
-      << " nm; Lorenz-Mie here goes to 2e4 (radius " << 2e4 / k * 1e6 << " um): truncate the distribution";
+      << " um, size parameter " << x_max << " at " << wavelength_m * 1e9 << " nm; Lorenz-Mie here goes to 2e4 (radius "
+      << 2e4 / k * 1e6 << " um): truncate the distribution";
     throw std::invalid_argument(s.str());
   }
-  const std::vector<RadiusNode> nodes =
-      sizes.quadrature(settings.panel_ln_radius, settings.panel_size_parameter / k);
+  const std::vector<RadiusNode> nodes = sizes.quadrature(settings.panel_ln_radius, settings.panel_size_parameter / k);
   const size_t blocks = (nodes.size() + kBlock - 1) / kBlock;
   std::vector<PartialSums> partial(blocks);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, blocks), [&](const tbb::blocked_range<size_t>& range) {

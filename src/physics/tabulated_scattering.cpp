@@ -24,7 +24,8 @@ TabulatedScatteringMatrix::TabulatedScatteringMatrix(std::vector<double> mu, std
   g_.resize(a1_.size());
   for (size_t i = 0; i < a1_.size(); ++i) {
     for (const auto* row : {&a1_[i], &b1_[i], &a3_[i], &b2_[i]}) {
-      if (row->size() != n) throw std::invalid_argument("tabulated scattering matrix: a row's length is not the cosines'");
+      if (row->size() != n)
+        throw std::invalid_argument("tabulated scattering matrix: a row's length is not the cosines'");
       for (double v : *row)
         if (!std::isfinite(v)) throw std::invalid_argument("tabulated scattering matrix: a value is not finite");
     }
@@ -69,7 +70,8 @@ double TabulatedScatteringMatrix::sample_mu(int i, double u) const {
   const std::vector<double>& c = cdf_[static_cast<size_t>(i)];
   const std::vector<double>& p = a1_[static_cast<size_t>(i)];
   const auto it = std::upper_bound(c.begin(), c.end(), u);
-  size_t k = static_cast<size_t>(std::clamp<long>(static_cast<long>(it - c.begin()) - 1, 0, static_cast<long>(c.size()) - 2));
+  size_t k =
+      static_cast<size_t>(std::clamp<long>(static_cast<long>(it - c.begin()) - 1, 0, static_cast<long>(c.size()) - 2));
   while (k + 2 < c.size() && c[k + 1] <= c[k]) ++k;  // skip intervals of zero probability
   // On [mu_k, mu_k+1] the density is p_k + s t (t = mu - mu_k, s the slope); the probability
   // below mu_k + t is c_k + 2 pi (p_k t + s t^2 / 2), solved for t (the root that stays finite

@@ -50,7 +50,7 @@ struct IrradianceQuantity {
   const char* long_name;  ///< what it is (NetCDF long_name)
   const char* units;      ///< UDUNITS
   int decimals;           ///< in tables for people (the CLI's CSV)
-  double (*value)(const IrradianceReport&);     ///< broadband; null for a spectral quantity
+  double (*value)(const IrradianceReport&);        ///< broadband; null for a spectral quantity
   SpectrumD (*spectrum)(const IrradianceReport&);  ///< spectral; null for a broadband one
   bool spectral() const { return spectrum != nullptr; }
   /// True for an integral of W m^-2 nm^-1 over the band (illuminance is complete once the band

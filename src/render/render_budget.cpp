@@ -85,7 +85,9 @@ bool RenderPlan::writes(const std::string& id) const {
   return std::find(outputs.begin(), outputs.end(), id) != outputs.end();
 }
 
-void RenderPlan::drop(const std::string& id) { outputs.erase(std::remove(outputs.begin(), outputs.end(), id), outputs.end()); }
+void RenderPlan::drop(const std::string& id) {
+  outputs.erase(std::remove(outputs.begin(), outputs.end(), id), outputs.end());
+}
 
 RenderPlan RenderPlan::for_scene(const Scene& scene, const DisplaySettings& display, int frames, bool tile) {
   RenderPlan p;

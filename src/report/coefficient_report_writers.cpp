@@ -104,8 +104,7 @@ Document build_document(const CoefficientReport& r) {
       " m.");
   if (r.mie_enabled && !r.mie_opac_components.empty()) {
     std::string parts;
-    for (const auto& [name, n] : r.mie_opac_components)
-      parts += (parts.empty() ? "" : ", ") + name + " " + sig(n);
+    for (const auto& [name, n] : r.mie_opac_components) parts += (parts.empty() ? "" : ", ") + name + " " + sig(n);
     inputs.push_back("Aerosols: OPAC components by Lorenz-Mie theory (atmosphere.mie.model = \"opac\"): " + parts +
                      " particles per cm^3 at altitude 0, relative humidity " +
                      sig(r.mie_opac_relative_humidity_percent) + " %; profile: " + r.mie_profile_description + ".");

@@ -43,10 +43,10 @@ WavelengthGrid lee_grid(const LeeDiagramSettings& s) {
 std::string describe(const LeeDiagramSettings& s) {
   std::ostringstream d;
   d << "Lee diagram: L = E_sun P_11 of water drops (W m^-2 sr^-1 nm^-1 per unit scattering optical depth); "
-    << "columns: scattering angle " << s.angle_min_deg << "-" << s.angle_max_deg << " deg, left to right; rows: drop radius "
-    << s.radius_max_um << "-" << s.radius_min_um << " um, top to bottom, logarithmic; water at "
-    << s.water_temperature_C << " degC (IAPWS R9-97) in standard air; " << s.angle_subsamples
-    << " angles averaged per column";
+    << "columns: scattering angle " << s.angle_min_deg << "-" << s.angle_max_deg
+    << " deg, left to right; rows: drop radius " << s.radius_max_um << "-" << s.radius_min_um
+    << " um, top to bottom, logarithmic; water at " << s.water_temperature_C << " degC (IAPWS R9-97) in standard air; "
+    << s.angle_subsamples << " angles averaged per column";
   return d.str();
 }
 }  // namespace
@@ -77,8 +77,9 @@ void check_lee_diagram_settings(const LeeDiagramSettings& s) {
   // The largest drop at the shortest wavelength must stay within the solver's size parameter.
   const double largest_um = 2e4 * s.lambda_min_nm * 1e-3 / (2.0 * kPi * air_index(s.lambda_min_nm));
   require(s.radius_max_um >= s.radius_min_um && s.radius_max_um <= largest_um, k::kRadiusMax, s.radius_max_um,
-          "from " + format_number(s.radius_min_um) + " (" + k::kRadiusMin + ") to " + format_number(std::floor(largest_um)) +
-              " um (size parameter 2e4 at " + format_number(s.lambda_min_nm) + " nm)");
+          "from " + format_number(s.radius_min_um) + " (" + k::kRadiusMin + ") to " +
+              format_number(std::floor(largest_um)) + " um (size parameter 2e4 at " + format_number(s.lambda_min_nm) +
+              " nm)");
   const double pixels = static_cast<double>(s.width) * s.height;
   require(pixels * lee_grid(s).size() <= 2e8, k::kWidth, s.width,
           "width x height x wavelengths at most 2e8 (" + format_number(pixels * lee_grid(s).size()) + " asked)");
@@ -127,7 +128,8 @@ LeeDiagram compute_lee_diagram(const LeeDiagramSettings& s, const std::function<
       for (int c = 0; c < s.width; ++c) {
         double s11 = 0.0, s12 = 0.0;
         for (int k = 0; k < s.angle_subsamples; ++k) {
-          const SphereScatteringMatrix m4 = sphere_scattering_matrix(amp[static_cast<size_t>(c * s.angle_subsamples + k)]);
+          const SphereScatteringMatrix m4 =
+              sphere_scattering_matrix(amp[static_cast<size_t>(c * s.angle_subsamples + k)]);
           s11 += m4.s11;
           s12 += m4.s12;
         }
@@ -194,8 +196,9 @@ LeeDiagramFiles write_lee_diagram(const LeeDiagram& d, const std::filesystem::pa
         scaled[v] = static_cast<float>(scaled[v] * f);
     }
     out.png = dir / (name + ".png");
-    write_png_display(out.png, d.width, d.height, pipeline.encode(std::move(scaled), 1.0), display.png_bit_depth,
-                      pipeline.png_tag(), {{"Software", std::string("skyspec ") + version_string()}, {"Description", describe(d.settings)}});
+    write_png_display(
+        out.png, d.width, d.height, pipeline.encode(std::move(scaled), 1.0), display.png_bit_depth, pipeline.png_tag(),
+        {{"Software", std::string("skyspec ") + version_string()}, {"Description", describe(d.settings)}});
   } catch (...) {  // the pair or nothing: a failed PNG takes its EXR with it, as a failed render's files do
     std::error_code ec;
     std::filesystem::remove(out.exr, ec);

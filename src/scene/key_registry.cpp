@@ -135,13 +135,16 @@ const std::vector<KeyDef>& registry() {
         [](Scene& s, const std::string& v) {
           s.atmosphere.mie.model = v == "opac" ? MieSpec::Model::Opac : MieSpec::Model::Angstrom;
         },
-        [](const Scene& s) { return std::string(s.atmosphere.mie.model == MieSpec::Model::Opac ? "opac" : "angstrom"); }));
+        [](const Scene& s) {
+          return std::string(s.atmosphere.mie.model == MieSpec::Model::Opac ? "opac" : "angstrom");
+        }));
     for (int c = 0; c < kAerosolComponentCount; ++c) {
       const std::string name = aerosol_component_names()[static_cast<size_t>(c)];
-      r.push_back(number_key("atmosphere.mie.opac." + name + "_per_cm3", "cm^-3", {0.0, 1e7},
-                             "model = opac: number concentration of OPAC's " + aerosol_component_description(c) +
-                                 " component at altitude 0 (all radii, OPAC's unit)",
-                             [c](Scene& s) -> double& { return s.atmosphere.mie.opac.number_per_cm3[static_cast<size_t>(c)]; }));
+      r.push_back(number_key(
+          "atmosphere.mie.opac." + name + "_per_cm3", "cm^-3", {0.0, 1e7},
+          "model = opac: number concentration of OPAC's " + aerosol_component_description(c) +
+              " component at altitude 0 (all radii, OPAC's unit)",
+          [c](Scene& s) -> double& { return s.atmosphere.mie.opac.number_per_cm3[static_cast<size_t>(c)]; }));
     }
     r.push_back(number_key("atmosphere.mie.opac.relative_humidity_percent", "%", {0.0, 99.0},
                            "model = opac: relative humidity, which swells the components that take up water "
@@ -290,11 +293,11 @@ const std::vector<KeyDef>& registry() {
     r.push_back(only_for(Type::Perspective,
                          number_key("camera.fov_deg", "degrees", {0.0, 179.0, true}, "vertical field of view",
                                     [](Scene& s) -> double& { return s.camera.fov_deg; })));
-    r.push_back(only_for(Type::Equirectangular,
-                         number_key("camera.min_elevation_deg", "degrees", {-90.0, 89.0},
-                                    "elevation of the bottom edge (-90: the whole sphere; 0: the upper "
-                                    "hemisphere only, as sky-dome textures are)",
-                                    [](Scene& s) -> double& { return s.camera.min_elevation_deg; })));
+    r.push_back(
+        only_for(Type::Equirectangular, number_key("camera.min_elevation_deg", "degrees", {-90.0, 89.0},
+                                                   "elevation of the bottom edge (-90: the whole sphere; 0: the upper "
+                                                   "hemisphere only, as sky-dome textures are)",
+                                                   [](Scene& s) -> double& { return s.camera.min_elevation_deg; })));
     r.push_back(only_for(
         Type::Equirectangular,
         choice_key(

@@ -16,9 +16,9 @@
 
 #include "base/atomic_file.hpp"
 #include "base/cancellation.hpp"
-#include "base/preparation_progress.hpp"
 #include "base/embedded_data.hpp"
 #include "base/hashing_streambuf.hpp"
+#include "base/preparation_progress.hpp"
 #include "base/quadrature.hpp"
 #include "skyspec/phase_function.hpp"
 #include "skyspec/units.hpp"

@@ -17,8 +17,8 @@ namespace skyspec {
 /// these settings. With use_disk_cache, a file in table_cache_directory() named by the key is used
 /// when it holds exactly this key's inputs and its checksum holds (and is then marked as used);
 /// otherwise the tables are built and saved there (a cache that cannot be written only costs
-/// time), and the least recently used files beyond the cap are removed (table_cache_cap_bytes). The last four sets are kept
-/// in memory for the process (a time-lapse changes only the sun).
+/// time), and the least recently used files beyond the cap are removed (table_cache_cap_bytes). The last four sets are
+/// kept in memory for the process (a time-lapse changes only the sun).
 std::shared_ptr<const ScatteringOrders> scattering_orders_for(const SingleScattering& integrator,
                                                               const SunColumnTable::Resolution& sun_table,
                                                               const MultipleScatteringSettings& settings,

@@ -30,8 +30,8 @@ struct Computed {
 // One particle per cm^3 of a component, as OPAC counts it (all radii; the optics over its range).
 Computed component_optics(int c, double rh, double nm) {
   const AerosolComponentState s = aerosol_component_state(c, rh, nm, "test");
-  const SizeDistribution sizes =
-      SizeDistribution::lognormal(s.median_radius_m, s.geometric_standard_deviation).truncated(s.min_radius_m, s.max_radius_m);
+  const SizeDistribution sizes = SizeDistribution::lognormal(s.median_radius_m, s.geometric_standard_deviation)
+                                     .truncated(s.min_radius_m, s.max_radius_m);
   const SphereEnsembleOptics e = sphere_ensemble_optics(sizes, {s.m_real, s.m_imag}, nm * 1e-9, 1.0, {1.0});
   return {e.extinction_cross_section_m2 * aerosol_component_fraction_in_range(s) * 1e6 * 1e3,
           e.single_scattering_albedo(), e.asymmetry};
@@ -67,7 +67,8 @@ Worst compare_with_opac(int c, const std::vector<int>& humidities, const std::ve
 // quadrature steps moves it by less than 1e-5), so the difference is OPAC's own integration of its
 // coarsest particles; it gets 0.01. (Left to the release stage: the mixture below runs the same
 // code under the sanitizers.)
-BOOST_AUTO_TEST_CASE(components_reproduce_opac_at_550nm, *boost::unit_test::precondition(test::not_in_sanitizer_stage)) {
+BOOST_AUTO_TEST_CASE(components_reproduce_opac_at_550nm,
+                     *boost::unit_test::precondition(test::not_in_sanitizer_stage)) {
   for (int c = 0; c < kAerosolComponentCount; ++c) {
     const std::string name = aerosol_component_names()[static_cast<size_t>(c)];
     const bool swells = name == "waso" || name == "ssam" || name == "suso";
@@ -90,8 +91,10 @@ BOOST_AUTO_TEST_CASE(a_mixture_reproduces_opac) {
   mix.relative_humidity_percent = 80.0;
   const AerosolMixtureOptics o = aerosol_mixture_optics(mix, WavelengthGrid::from_list({550.0}), "test");
   const double ext = o.extinction_per_m[0] * 1e3, sca = o.scattering_per_m[0] * 1e3;
-  std::printf("continental polluted, 80 %%, 550 nm: extinction %.4f km^-1 (OPAC 0.1746), albedo %.4f (0.8925), g %.4f (0.6977)\n",
-              ext, sca / ext, o.matrix->asymmetry(0));
+  std::printf(
+      "continental polluted, 80 %%, 550 nm: extinction %.4f km^-1 (OPAC 0.1746), albedo %.4f (0.8925), g %.4f "
+      "(0.6977)\n",
+      ext, sca / ext, o.matrix->asymmetry(0));
   BOOST_TEST(std::abs(ext / 0.1746 - 1.0) < 0.01);
   BOOST_TEST(std::abs(sca / ext - 0.8925) < 0.005);
   // g of the tabulated matrix (its piecewise-linear phase function), not of the series.
@@ -199,10 +202,10 @@ boost::test_tools::assertion_result asked_for_by_the_benchmark(boost::unit_test:
   return result;
 }
 
-BOOST_AUTO_TEST_CASE(all_opac_tables, *boost::unit_test::disabled() *
-                                          boost::unit_test::precondition(asked_for_by_the_benchmark)) {
+BOOST_AUTO_TEST_CASE(all_opac_tables,
+                     *boost::unit_test::disabled() * boost::unit_test::precondition(asked_for_by_the_benchmark)) {
   const std::vector<int> humidities = {0, 50, 70, 80, 90, 95, 98, 99};
-  const std::vector<double> wavelengths = {250, 300, 350, 400, 450, 500, 550, 600, 650, 700,
+  const std::vector<double> wavelengths = {250, 300, 350, 400,  450,  500,  550,  600,  650, 700,
                                            750, 800, 900, 1000, 1250, 1500, 1750, 2000, 2500};
   for (int c = 0; c < kAerosolComponentCount; ++c) {
     const Worst w = compare_with_opac(c, humidities, wavelengths);

@@ -58,8 +58,8 @@ BOOST_AUTO_TEST_CASE(wiscombe_miev0_cases) {
       const double tolerance = small_particle_expansion ? 1e-4 : 2e-6;
       const MieSeries s = series_of(c);
       const MieEfficiencies q = mie_efficiencies(s);
-      for (auto [ours, key] : {std::pair{q.extinction, "qext"}, {q.scattering, "qsca"}, {q.asymmetry, "g"},
-                               {q.backscatter, "qback"}}) {
+      for (auto [ours, key] :
+           {std::pair{q.extinction, "qext"}, {q.scattering, "qsca"}, {q.asymmetry, "g"}, {q.backscatter, "qback"}}) {
         const double e = relative(ours, c[key].get<double>());
         if (!small_particle_expansion) worst_q = std::max(worst_q, e);
         BOOST_TEST(e < tolerance, key << ": " << ours << " vs " << c[key].get<double>());
@@ -75,7 +75,7 @@ BOOST_AUTO_TEST_CASE(wiscombe_miev0_cases) {
         const double e = std::max(std::abs(amp[k].s1 - s1), std::abs(amp[k].s2 - s2)) / scale;
         if (!small_particle_expansion) worst_s = std::max(worst_s, e);
         BOOST_TEST(e < tolerance, "angle " << c["angles_deg"][k] << ": S1 " << amp[k].s1 << " vs " << s1 << ", S2 "
-                                       << amp[k].s2 << " vs " << s2);
+                                           << amp[k].s2 << " vs " << s2);
         // MIEV0's DegPol = (i2 - i1) / (i2 + i1) = S12 / S11 = -(our degree of polarisation).
         const double degpol = c["degpol_miev0"][k].get<double>();
         BOOST_TEST(std::abs(-sphere_scattering_matrix(amp[k]).degree_of_polarisation() - degpol) < 5.0 * tolerance);
@@ -84,8 +84,8 @@ BOOST_AUTO_TEST_CASE(wiscombe_miev0_cases) {
     }
   }
   BOOST_TEST(checked == 19);
-  BOOST_TEST_MESSAGE("MIEV0 cases 2-19: largest relative difference of Q and g " << worst_q
-                                                                                  << ", of S1/S2 " << worst_s);
+  BOOST_TEST_MESSAGE("MIEV0 cases 2-19: largest relative difference of Q and g " << worst_q << ", of S1/S2 "
+                                                                                 << worst_s);
 }
 
 // The older MIEV0 cases (x = 10 .. 5000, m = 1.5 and 1.5 + 0.1i; 4-5 significant digits), Bohren &
@@ -104,8 +104,8 @@ BOOST_AUTO_TEST_CASE(other_published_cases) {
     BOOST_TEST_CONTEXT(id) {
       const MieSeries s = series_of(c);
       const MieEfficiencies q = mie_efficiencies(s);
-      for (auto [ours, key] : {std::pair{q.extinction, "qext"}, {q.scattering, "qsca"}, {q.asymmetry, "g"},
-                               {q.backscatter, "qback"}}) {
+      for (auto [ours, key] :
+           {std::pair{q.extinction, "qext"}, {q.scattering, "qsca"}, {q.asymmetry, "g"}, {q.backscatter, "qback"}}) {
         const double theirs = c[key].get<double>();
         if (c.contains("tolerance_rel")) {
           const double tolerance = c["tolerance_rel"].get<double>() * (std::string(key) == "qback" ? 2.0 : 1.0);
@@ -133,8 +133,8 @@ BOOST_AUTO_TEST_CASE(other_published_cases) {
 // every 9 degrees: S11 / S11(0), -S12 / S11, S33 / S11, S34 / S11 within 1e-3 (their print).
 BOOST_AUTO_TEST_CASE(bohren_huffman_phase_matrix) {
   const nlohmann::json table = published()["phase_matrix_BH"];
-  const MieSeries s = lorenz_mie(complex(table["m_re"].get<double>(), table["m_im"].get<double>()),
-                                 table["x"].get<double>());
+  const MieSeries s =
+      lorenz_mie(complex(table["m_re"].get<double>(), table["m_im"].get<double>()), table["x"].get<double>());
   const double s11_forward = sphere_scattering_matrix(mie_amplitudes(s, {1.0})[0]).s11;
   const double tolerance = table["tolerance_abs"];
   int rows = 0;
@@ -142,7 +142,8 @@ BOOST_AUTO_TEST_CASE(bohren_huffman_phase_matrix) {
     const double theta = row[0].get<double>() * M_PI / 180.0;
     const SphereScatteringMatrix m = sphere_scattering_matrix(mie_amplitudes(s, {std::cos(theta)})[0]);
     BOOST_TEST_CONTEXT("theta " << row[0]) {
-      BOOST_TEST(std::abs(m.s11 / s11_forward - row[1].get<double>()) < tolerance * std::max(1.0, row[1].get<double>()));
+      BOOST_TEST(std::abs(m.s11 / s11_forward - row[1].get<double>()) <
+                 tolerance * std::max(1.0, row[1].get<double>()));
       BOOST_TEST(std::abs(m.degree_of_polarisation() - row[2].get<double>()) < tolerance);
       BOOST_TEST(std::abs(m.s33 / m.s11 - row[3].get<double>()) < tolerance);
       BOOST_TEST(std::abs(m.s34 / m.s11 - row[4].get<double>()) < tolerance);
@@ -205,7 +206,8 @@ BOOST_AUTO_TEST_CASE(rainbow_and_supernumeraries_of_a_large_drop) {
     for (int j = k - half; j <= k + half; ++j) sum += std::norm(amp[static_cast<size_t>(j)].s1);
     return sum;
   };
-  for (const auto& [low, high, laven] : {std::tuple{138.0, 140.0, 139.0}, {140.0, 142.0, 141.1}, {142.0, 143.3, 142.6}}) {
+  for (const auto& [low, high, laven] :
+       {std::tuple{138.0, 140.0, 139.0}, {140.0, 142.0, 141.1}, {142.0, 143.3, 142.6}}) {
     double best = -1.0, at = 0.0;
     for (int k = half; k + half < static_cast<int>(mu.size()); ++k) {
       const double theta = first + k * step;
@@ -213,7 +215,8 @@ BOOST_AUTO_TEST_CASE(rainbow_and_supernumeraries_of_a_large_drop) {
       const double a = average(k);
       if (a > best) best = a, at = theta;
     }
-    BOOST_TEST_MESSAGE("maximum of |S1|^2 in " << low << "-" << high << " deg at " << at << " deg (Laven: " << laven << ")");
+    BOOST_TEST_MESSAGE("maximum of |S1|^2 in " << low << "-" << high << " deg at " << at << " deg (Laven: " << laven
+                                               << ")");
     BOOST_TEST(std::abs(at - laven) < 0.2);
   }
 }
@@ -270,7 +273,8 @@ BOOST_AUTO_TEST_CASE(rainbow_follows_descartes_and_airy) {
     const double geometric = descartes_rainbow_deg(n, 1);
     const Bow small = brightest(lorenz_mie(complex(n, 0.0), 2000.0), geometric - 0.5, geometric + 1.2);
     const Bow large = brightest(lorenz_mie(complex(n, 0.0), 8000.0), geometric - 0.5, geometric + 0.6);
-    const Bow supernumerary = brightest(lorenz_mie(complex(n, 0.0), 2000.0), small.angle_deg + 0.5, small.angle_deg + 2.5);
+    const Bow supernumerary =
+        brightest(lorenz_mie(complex(n, 0.0), 2000.0), small.angle_deg + 0.5, small.angle_deg + 2.5);
     const double first = small.angle_deg - geometric;
     BOOST_TEST_MESSAGE(nm << " nm: Descartes " << geometric << " deg; brightest at x = 2000: " << small.angle_deg
                           << " (DoLP " << small.dolp << "), x = 8000: " << large.angle_deg << " (DoLP " << large.dolp

@@ -9,9 +9,9 @@
 #include <complex>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
-#include <stdexcept>
 
 #include "base/quadrature.hpp"
 #include "release_stage.hpp"
@@ -87,7 +87,7 @@ BOOST_AUTO_TEST_CASE(phase_matrix_is_normalised, *boost::unit_test::precondition
       BOOST_TEST(std::abs(first - o.asymmetry) < 1e-4);
       BOOST_TEST(o.single_scattering_albedo() <= 1.0);
       BOOST_TEST_MESSAGE(c.sizes.description() << ": g " << o.asymmetry << ", albedo " << o.single_scattering_albedo()
-                                                << ", " << o.radius_nodes << " nodes");
+                                               << ", " << o.radius_nodes << " nodes");
     }
   }
 }
@@ -123,9 +123,9 @@ BOOST_AUTO_TEST_CASE(quadrature_converges, *boost::unit_test::precondition(test:
         BOOST_TEST(change < limits[j], "P_11 at " << std::acos(mu[j]) * 180.0 / kPi << " deg");
         angles << ", P_11(" << std::round(std::acos(mu[j]) * 180.0 / kPi) << " deg) " << change;
       }
-      BOOST_TEST_MESSAGE(c.sizes.description() << " at " << c.wavelength_m * 1e9 << " nm, " << a.radius_nodes
-                                               << " nodes: halving the steps changes C_ext, C_sca, g by " << integrals
-                                               << angles.str());
+      BOOST_TEST_MESSAGE(c.sizes.description()
+                         << " at " << c.wavelength_m * 1e9 << " nm, " << a.radius_nodes
+                         << " nodes: halving the steps changes C_ext, C_sca, g by " << integrals << angles.str());
     }
   }
 }
@@ -149,15 +149,15 @@ BOOST_AUTO_TEST_CASE(opac_components_at_550nm) {
     const SizeDistribution shape =
         f[1] == "lognormal" ? SizeDistribution::lognormal(num(2) * 1e-6, num(3))
                             // n = A r^alpha exp(-B r^gamma), r in um: mode radius (alpha / (gamma B))^(1/gamma) um
-                            : SizeDistribution::modified_gamma(std::pow(num(2) / (num(4) * num(3)), 1.0 / num(4)) * 1e-6,
-                                                               num(2), num(4));
+                            : SizeDistribution::modified_gamma(
+                                  std::pow(num(2) / (num(4) * num(3)), 1.0 / num(4)) * 1e-6, num(2), num(4));
     const SizeDistribution sizes = shape.truncated(num(5) * 1e-6, num(6) * 1e-6);
     const SphereEnsembleOptics o = sphere_ensemble_optics(sizes, complex(num(7), num(8)), 550e-9, 1.0, {});
     // 1 particle per cm^3 = 1e6 m^-3; 1 / km = 1e-3 / m.
     const double ext_per_km = o.extinction_cross_section_m2 * 1e6 * 1e3;
-    BOOST_TEST_MESSAGE(f[0] << ": g " << o.asymmetry << " (OPAC " << f[11] << "), albedo " << o.single_scattering_albedo()
-                            << " (" << f[10] << "), extinction " << ext_per_km << " / km per particle / cm^3 (" << f[9]
-                            << ")");
+    BOOST_TEST_MESSAGE(f[0] << ": g " << o.asymmetry << " (OPAC " << f[11] << "), albedo "
+                            << o.single_scattering_albedo() << " (" << f[10] << "), extinction " << ext_per_km
+                            << " / km per particle / cm^3 (" << f[9] << ")");
     BOOST_TEST_CONTEXT(f[0]) {
       BOOST_TEST(std::abs(o.asymmetry - num(11)) < 0.005);
       BOOST_TEST(std::abs(o.single_scattering_albedo() - num(10)) < 0.005);

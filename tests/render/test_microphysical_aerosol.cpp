@@ -65,12 +65,13 @@ Largest compare(double sun, std::int64_t paths) {
         const Eigen::Index j = static_cast<Eigen::Index>(w);
         const double dolp = std::hypot(q[j], u[j]) / i[j], dolp_mc = std::hypot(v[1], v[2]) / v[0];
         std::printf("sun %g, %s, %g nm: I %.5g / %.5g +- %.2g (%+.2f %%), DoLP %.4f / %.4f (%+.4f)\n", sun,
-                    probes[k].label.c_str(), mc.wavelengths_nm[w], i[j], v[0], e[0], 100.0 * (i[j] / v[0] - 1.0),
-                    dolp, dolp_mc, dolp - dolp_mc);
+                    probes[k].label.c_str(), mc.wavelengths_nm[w], i[j], v[0], e[0], 100.0 * (i[j] / v[0] - 1.0), dolp,
+                    dolp_mc, dolp - dolp_mc);
         BOOST_TEST(std::abs(i[j] - v[0]) <= 0.02 * v[0] + 3.0 * e[0]);
         // The DoLP's standard error, from Q's and U's, propagated to first order.
         const double dolp_se = std::hypot(e[1], e[2]) / v[0] + dolp_mc * e[0] / v[0];
-        const bool quadrupole_limited = probes[k].label == "horizon across sun" || probes[k].label == "horizon away from sun";
+        const bool quadrupole_limited =
+            probes[k].label == "horizon across sun" || probes[k].label == "horizon away from sun";
         BOOST_TEST(std::abs(dolp - dolp_mc) <= (quadrupole_limited ? 0.08 : 0.02) + 3.0 * dolp_se,
                    probes[k].label << " " << mc.wavelengths_nm[w] << " nm: DoLP " << dolp << " vs " << dolp_mc);
         largest.intensity = std::max(largest.intensity, std::abs(i[j] / v[0] - 1.0));
@@ -90,13 +91,14 @@ boost::test_tools::assertion_result asked_for_by_the_benchmark(boost::unit_test:
 }
 }  // namespace
 
-BOOST_AUTO_TEST_CASE(renderer_matches_the_vector_reference, *boost::unit_test::precondition(test::not_in_sanitizer_stage)) {
+BOOST_AUTO_TEST_CASE(renderer_matches_the_vector_reference,
+                     *boost::unit_test::precondition(test::not_in_sanitizer_stage)) {
   compare(10.0, 10000);
 }
 
 // The benchmark's table: three suns, five times the paths.
-BOOST_AUTO_TEST_CASE(benchmark_table, *boost::unit_test::disabled() *
-                                          boost::unit_test::precondition(asked_for_by_the_benchmark)) {
+BOOST_AUTO_TEST_CASE(benchmark_table,
+                     *boost::unit_test::disabled() * boost::unit_test::precondition(asked_for_by_the_benchmark)) {
   for (double sun : {30.0, 10.0, 2.0}) {
     const Largest l = compare(sun, 100000);
     std::printf("| %g | %.2f %% | %.1f | %.4f | %.4f |\n", sun, 100.0 * l.intensity, l.intensity_sigmas, l.dolp,

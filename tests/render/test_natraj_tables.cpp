@@ -75,14 +75,16 @@ Scene plane_parallel_scene(double tau, double albedo, double mu0, bool at_top, c
 }
 
 struct Worst {
-  double i = 0.0, q = 0.0, u = 0.0;  // I: the largest excess over the limit's scale (relative, or absolute / 1e-4 * 0.5 %)
-  double i_relative = 0.0;           // the largest relative difference of I
+  double i = 0.0, q = 0.0,
+         u = 0.0;           // I: the largest excess over the limit's scale (relative, or absolute / 1e-4 * 0.5 %)
+  double i_relative = 0.0;  // the largest relative difference of I
   std::string where_i, where_q, where_u;
   int failures = 0, values = 0;
 };
 
 // Compares one optical thickness and albedo, UP or DN, at every geometry.
-Worst compare(const std::string& folder, const std::string& tau_text, int albedo, bool up, const TableSettings& tables) {
+Worst compare(const std::string& folder, const std::string& tau_text, int albedo, bool up,
+              const TableSettings& tables) {
   const char* kinds = "IQU";
   std::array<test::NatrajTable, 3> published;
   for (int c = 0; c < 3; ++c)
@@ -152,8 +154,8 @@ BOOST_AUTO_TEST_CASE(rayleigh_layer_of_optical_thickness_0_25,
   }
 }
 
-BOOST_AUTO_TEST_CASE(all_published_tables, *boost::unit_test::disabled() *
-                                               boost::unit_test::precondition(with_published_folder)) {
+BOOST_AUTO_TEST_CASE(all_published_tables,
+                     *boost::unit_test::disabled() * boost::unit_test::precondition(with_published_folder)) {
   const std::string folder = std::getenv("SKYSPEC_NATRAJ_DIR");
   for (const char* tau : {"0.02", "0.05", "0.1", "0.25", "0.5", "1"})
     for (int albedo = 0; albedo < 3; ++albedo)

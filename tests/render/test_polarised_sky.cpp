@@ -166,7 +166,8 @@ BOOST_AUTO_TEST_CASE(stokes_rows_agree_with_the_image_and_the_probe) {
 // against every pixel marched: the degree of polarisation of a whole panorama, suns at 30 and 5
 // degrees. Near the sun the frame turns quickly from one table entry to the next, so the largest
 // differences are there; the message gives the figures docs/polarisation.md quotes.
-BOOST_AUTO_TEST_CASE(sky_view_table_keeps_the_polarisation, *boost::unit_test::precondition(test::not_in_sanitizer_stage)) {
+BOOST_AUTO_TEST_CASE(sky_view_table_keeps_the_polarisation,
+                     *boost::unit_test::precondition(test::not_in_sanitizer_stage)) {
   for (double sun : {30.0, 5.0}) {
     const auto panorama = [sun](bool sky_view_table) {
       char toml[400];

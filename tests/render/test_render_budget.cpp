@@ -47,7 +47,8 @@ BOOST_AUTO_TEST_CASE(plan_of_a_scene) {
   display.exr_space = "ACEScg";  // the working-space EXR too
   display.png_bit_depth = 16;
   RenderPlan p = RenderPlan::for_scene(s, display, 5);
-  BOOST_TEST(p.outputs == (std::vector<std::string>{"spectral_exr", "png", "working_exr"}), boost::test_tools::per_element());
+  BOOST_TEST(p.outputs == (std::vector<std::string>{"spectral_exr", "png", "working_exr"}),
+             boost::test_tools::per_element());
   BOOST_TEST(p.wavelengths == 41);
   BOOST_TEST(p.threads == 1);
   BOOST_TEST(p.output_bytes() ==
@@ -79,12 +80,13 @@ BOOST_AUTO_TEST_CASE(plan_of_a_scene) {
 // row's own bound; a tile writes neither the PNG (render --pixel-bounds turns it off) nor the
 // polarisation EXR, so its plan counts neither.
 BOOST_AUTO_TEST_CASE(bytes_follow_the_outputs_list) {
-  const Scene s = scene_with("[camera]\nwidth = 64\nheight = 32\n[output]\npolarisation = true\npolarisation_png = true\n");
+  const Scene s =
+      scene_with("[camera]\nwidth = 64\nheight = 32\n[output]\npolarisation = true\npolarisation_png = true\n");
   const RenderPlan whole = RenderPlan::for_scene(s);
   BOOST_TEST(whole.outputs == (std::vector<std::string>{"spectral_exr", "png", "polarisation_exr", "polarisation_png"}),
              boost::test_tools::per_element());
-  BOOST_TEST(whole.output_bytes() == spectral_exr_bytes(64, 32, 41 * 4) + png_bytes(64, 32, 8) + rgb_exr_bytes(64, 32) +
-                                         png_bytes(64, 32, 8));
+  BOOST_TEST(whole.output_bytes() ==
+             spectral_exr_bytes(64, 32, 41 * 4) + png_bytes(64, 32, 8) + rgb_exr_bytes(64, 32) + png_bytes(64, 32, 8));
   Scene tile_scene = s;
   tile_scene.output.png = false;
   RenderPlan tile = RenderPlan::for_scene(tile_scene, DisplaySettings{}, 1, true);

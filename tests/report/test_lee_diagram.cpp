@@ -72,14 +72,15 @@ BOOST_AUTO_TEST_CASE(bows_and_dark_band_of_large_drops) {
       double sum = 0.0;
       int count = 0;
       for (int x = 0; x < d.width; ++x)
-        if (d.angles_deg[static_cast<size_t>(x)] >= from && d.angles_deg[static_cast<size_t>(x)] <= to) sum += value(x), ++count;
+        if (d.angles_deg[static_cast<size_t>(x)] >= from && d.angles_deg[static_cast<size_t>(x)] <= to)
+          sum += value(x), ++count;
       return sum / count;
     };
     const int p = brightest(135.0, 145.0), s = brightest(125.0, 132.0);
     const double p_angle = d.angles_deg[static_cast<size_t>(p)], s_angle = d.angles_deg[static_cast<size_t>(s)];
     BOOST_TEST_MESSAGE(d.wavelengths_nm[static_cast<size_t>(i)] << " nm: primary " << p_angle << " deg (Descartes "
-                                                                  << primary << "), secondary " << s_angle << " ("
-                                                                  << secondary << ")");
+                                                                << primary << "), secondary " << s_angle << " ("
+                                                                << secondary << ")");
     BOOST_TEST_CONTEXT(d.wavelengths_nm[static_cast<size_t>(i)] << " nm") {
       BOOST_TEST(p_angle - primary > 0.0);
       BOOST_TEST(p_angle - primary < 0.5);

@@ -146,8 +146,9 @@ BOOST_AUTO_TEST_CASE(keys_the_camera_does_not_read_are_refused) {
     l.apply_override("camera.panorama_convention", "blender", "--panorama-convention");
     (void)l.finish();
   });
-  BOOST_TEST(e == "--panorama-convention: camera.panorama_convention = \"blender\" is not allowed: only with camera.type = "
-                  "\"equirectangular\" (this camera is \"fisheye\" and does not read it)");
+  BOOST_TEST(e ==
+             "--panorama-convention: camera.panorama_convention = \"blender\" is not allowed: only with camera.type = "
+             "\"equirectangular\" (this camera is \"fisheye\" and does not read it)");
   for (const char* key : {"camera.fov_deg", "camera.look_at_m"}) {
     const std::string f = error_of([key] {
       SceneLoader l;

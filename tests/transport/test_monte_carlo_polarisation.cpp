@@ -11,8 +11,8 @@
 #include "atmosphere_fixtures.hpp"
 #include "monte_carlo_fixtures.hpp"
 #include "natraj_tables.hpp"
-#include "release_stage.hpp"
 #include "physics/scattering_matrix.hpp"
+#include "release_stage.hpp"
 #include "skyspec/camera.hpp"
 #include "skyspec/phase_function.hpp"
 #include "transport/monte_carlo.hpp"
@@ -97,8 +97,7 @@ BOOST_AUTO_TEST_CASE(plane_parallel_rayleigh_over_a_ground_matches_natraj_2009,
       const double s = std::sqrt(1.0 - mu * mu);
       // The light leaving the layer: upwards at the top, downwards at the bottom.
       const Vec3 k(s * std::cos(phi), s * std::sin(phi), up ? mu : -mu);
-      const MonteCarloStokes v =
-          mc.stokes_radiance(Vec3(0, 0, up ? 1.0 : 0.0), -k, Vec3(0, 0, 1), settings, ++stream);
+      const MonteCarloStokes v = mc.stokes_radiance(Vec3(0, 0, up ? 1.0 : 0.0), -k, Vec3(0, 0, 1), settings, ++stream);
       BOOST_TEST_MESSAGE((up ? "top" : "bottom") << ", mu0 " << mu0 << ", mu " << mu << ", phi "
                                                  << test::kNatrajAzimuthsDeg[static_cast<size_t>(c.azimuth)]);
       const size_t column = 2 + static_cast<size_t>(c.azimuth);
