@@ -1,6 +1,7 @@
 // `skyspec view`: the interactive viewer, a local web server over the library (src/viewer/).
 
 #include <chrono>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <string>
@@ -42,6 +43,11 @@ viewer::ViewerBase base_of(const ViewOptions& o) {
 
 int run(ViewOptions& o) {
   if (o.threads < 0) throw InputError("--threads", std::to_string(o.threads), "0 (all cores) or more");
+  // The folder is made by the first export; what stands in its way is refused now, not then.
+  std::error_code ec;
+  const auto kind = std::filesystem::symlink_status(o.out, ec).type();
+  if (kind != std::filesystem::file_type::not_found && kind != std::filesystem::file_type::directory)
+    throw InputError("--out", "\"" + o.out + "\"", "a folder for the exports (this is not one)");
   o.server.export_directory = o.out;
   viewer::ViewerServer server(base_of(o), o.server);
   const int port = server.bind();

@@ -94,11 +94,11 @@ bool scattering_tables_ready(const Scene& scene) {
 }
 
 void build_scattering_tables(const Scene& scene) {
-  // A renderer of one pixel without a sky-view table: its construction is the tables' build.
+  // A renderer of one pixel without a sky-view table: its construction is the tables' build (a
+  // polarised scene's are vector tables, so output.polarisation stays as asked).
   Scene s = scene;
   s.camera.width = s.camera.height = 1;
   s.render.sky_view_table = false;
-  s.output.polarisation = false;
   const SkyRenderer renderer(s);
 }
 
@@ -138,10 +138,10 @@ nlohmann::json spectrum_at(const ViewRequest& request, const Query& query) {
   Vec3 dir;
   if (!camera->direction(x + 0.5, y + 0.5, dir))
     throw InputError("x", std::to_string(x) + ", y = " + std::to_string(y), "a pixel the camera has a ray for");
-  // Both integrated along the ray: no sky-view table to build or read.
+  // Both integrated along the ray: no sky-view table to build or read. The scene's own tables (a
+  // polarised scene's vector tables: the ones scattering_tables_ready speaks of).
   Scene all = request.scene;
   all.render.sky_view_table = false;
-  all.output.polarisation = false;
   Scene single = all;
   single.render.scattering_orders = 1;
   const Spectrum radiance = SkyRenderer(all).radiance(dir);
@@ -180,7 +180,15 @@ nlohmann::json export_view(const ViewRequest& request, const std::filesystem::pa
     if (!taken && !std::filesystem::exists(std::filesystem::symlink_status(folder / (scene.output.name + ".toml"), ec)))
       break;
   }
-  refuse_if_over_budget(estimate_render(RenderPlan::for_scene(scene, request.display)), "export");
+  // The render budget's limits, without its --force: the viewer has none (the command line does).
+  const std::vector<std::string> problems = estimate_render(RenderPlan::for_scene(scene, request.display)).problems();
+  if (!problems.empty()) {
+    std::string message = "this export";
+    for (size_t i = 0; i < problems.size(); ++i) message += (i ? ", and " : " ") + problems[i];
+    throw InputError::refused("export", message +
+                                            " (make the frame smaller, or render the scene with `skyspec render "
+                                            "--force`)");
+  }
   const std::filesystem::path toml_path = folder / (scene.output.name + ".toml");
   Scene recorded = scene;
   recorded.render.threads = 0;  // the machine's choice, as a scene file's default

@@ -144,6 +144,28 @@ BOOST_AUTO_TEST_CASE(a_spectrum_is_the_radiance_along_the_pixels_ray) {
                         [](const InputError& e) { return e.setting() == "y"; });
 }
 
+BOOST_AUTO_TEST_CASE(the_background_build_makes_the_tables_of_the_scene_asked_for_polarised_or_not) {
+  // Small tables kept in memory only (render.cache_tables = false), of an aerosol load no other test
+  // uses: not at hand before the build, at hand after it, for the polarised scene (vector tables)
+  // and then for the same scene without polarisation (its own, scalar, tables).
+  SceneLoader l("default");
+  l.apply_toml(
+      "[camera]\nwidth = 8\nheight = 8\n[render]\nscattering_orders = 2\nms_altitude_samples = 8\n"
+      "ms_sun_samples = 24\nms_angular_degree = 4\ncache_tables = false\n[atmosphere.mie]\n"
+      "scattering_per_m = 1.7341e-05\n[output]\npolarisation = true\n",
+      "test");
+  Scene polarised = l.finish();
+  Scene scalar = polarised;
+  scalar.output.polarisation = false;
+  BOOST_TEST(!viewer::scattering_tables_ready(polarised));
+  BOOST_TEST(!viewer::scattering_tables_ready(scalar));
+  viewer::build_scattering_tables(polarised);
+  BOOST_TEST(viewer::scattering_tables_ready(polarised));
+  BOOST_TEST(!viewer::scattering_tables_ready(scalar));
+  viewer::build_scattering_tables(scalar);
+  BOOST_TEST(viewer::scattering_tables_ready(scalar));
+}
+
 BOOST_AUTO_TEST_CASE(an_export_never_replaces_a_file_and_its_toml_renders_the_same_files) {
   const auto base = small_base();
   test::ScratchFolder folder("viewer-export");

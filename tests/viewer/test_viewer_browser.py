@@ -52,9 +52,9 @@ def start_server(folder, *extra):
     return proc, url
 
 
-def get(url):
+def get(url, post=False):
     try:
-        with urllib.request.urlopen(url, timeout=TIMEOUT_S) as r:
+        with urllib.request.urlopen(url, data=b"" if post else None, timeout=TIMEOUT_S) as r:
             return r.status, r.read(), dict(r.headers)
     except urllib.error.HTTPError as e:
         return e.code, e.read(), dict(e.headers)
@@ -179,7 +179,7 @@ def page_tests(url, folder):
         driver.quit()
 
 
-def server_tests(url):
+def server_tests(url, folder):
     for query, key in [("sun.elevation_deg=abc", "sun.elevation_deg"), ("camera.width=4096&camera.height=4096", "camera.width"),
                        ("output.directory=%22/tmp%22", "output.directory"), ("view=Nope", "view"),
                        ("mode=x", "mode"), ("nonsense=1", "nonsense"), ("preset=venus", "preset")]:
@@ -211,6 +211,13 @@ def server_tests(url):
     check(status == 400 and json.loads(body)["setting"] == "preview", "preview=2: 400 naming preview")
     status, body, _ = get(url + "api/spectrum?x=-1&y=0")
     check(status == 400 and json.loads(body)["setting"] == "x", "a spectrum outside the image: 400 naming x")
+    exports = os.listdir(os.path.join(folder, "exports"))
+    # 9e8 pixels: about 160 GB of EXR and 60 GB of memory, beyond this kind of machine (24 GB).
+    status, body, _ = get(url + "api/export?camera.width=30000&camera.height=30000", post=True)
+    answer = json.loads(body)
+    check(status == 400 and answer["setting"] == "export" and "skyspec render --force" in answer["error"],
+          "an export beyond the render budget is refused: " + answer["error"])
+    check(os.listdir(os.path.join(folder, "exports")) == exports, "and writes nothing")
     status, body, _ = get(url + "no/such/page")
     check(status == 404, "an unknown page: 404")
     status, body, _ = get(url + "api/state")
@@ -225,10 +232,17 @@ def main():
         check(refused.returncode == 2 and "--host" in refused.stderr and "--allow-remote" in refused.stderr,
               "a non-loopback --host is refused without --allow-remote: " + refused.stderr.strip())
 
+        not_a_folder = os.path.join(folder, "file")
+        open(not_a_folder, "w").close()
+        refused = subprocess.run([SKYSPEC, "view", "--port", "0", "--out", not_a_folder], capture_output=True,
+                                 text=True, timeout=60)
+        check(refused.returncode == 2 and "--out" in refused.stderr, "--out naming a file is refused at once: "
+              + refused.stderr.strip())
+
         proc, url = start_server(folder)
         try:
             page_tests(url, folder)
-            server_tests(url)
+            server_tests(url, folder)
         finally:
             proc.send_signal(signal.SIGINT)
             try:
