@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Are this tree's renders byte-identical to another revision's? For refactors that must not change a
-# pixel. Builds REV's program in a scratch worktree (release, the CLI only), renders the same five
+# pixel. Builds REV's program in a scratch worktree (release, the CLI only), renders the same six
 # scenes with both programs (each with its own, empty table cache, so the tables are built by each),
 # and compares every EXR and PNG byte for byte; where the bytes differ, their pixels (every
 # channel, exactly: OpenImageIO's idiff -fail 0 -warn 0 -a), since a new scene key changes the
@@ -18,7 +18,7 @@ trap 'git worktree remove --force "$work/src" >/dev/null 2>&1 || true; rm -rf "$
 git worktree add --detach "$work/src" "$rev" >/dev/null
 cmake -S "$work/src" -B "$work/build" -DCMAKE_BUILD_TYPE=Release -DSKYSPEC_BUILD_TESTS=OFF -DSKYSPEC_BUILD_PYTHON=OFF >/dev/null
 cmake --build "$work/build" -j"$(nproc)" --target skyspec_cli >/dev/null
-renders() {  # renders PROGRAM DIR: the default, hazy, polarised, panorama and seed scenes
+renders() {  # renders PROGRAM DIR: the default, hazy, polarised, panorama, seed and OPAC (tabulated) scenes
   local s=$1 o=$2
   export SKYSPEC_CACHE_DIR=$o/cache
   "$s" render --quiet --width 128 --height 128 --out "$o/default"
@@ -27,6 +27,8 @@ renders() {  # renders PROGRAM DIR: the default, hazy, polarised, panorama and s
     --set output.polarisation_png=true --out "$o/polarised"
   "$s" render --quiet --camera equirectangular --width 256 --height 128 --sun-elevation 10 --sun-azimuth 90 --out "$o/panorama"
   "$s" render --quiet --preset seed --width 64 --height 64 --out "$o/seed"
+  "$s" render --quiet --width 48 --height 48 --set 'atmosphere.mie.model="opac"' --set output.polarisation=true \
+    --out "$o/opac"
 }
 renders "$work/build/skyspec" "$work/theirs"
 renders "$this" "$work/ours"

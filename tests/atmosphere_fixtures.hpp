@@ -1,6 +1,8 @@
 // Small atmospheres with known closed-form answers, shared by the physics tests.
 #pragma once
 
+#include <array>
+#include <utility>
 #include <vector>
 
 #include "skyspec/atmosphere.hpp"
@@ -8,6 +10,14 @@
 #include "transport/single_scattering.hpp"
 
 namespace skyspec::test {
+
+/// The outputs of InScatteringSource::source for an atmosphere of air and aerosol: {air's, aerosol's}
+/// (the array is a temporary: pass .data() within one expression, as pair_of does).
+struct SourcePair {
+  std::array<float*, 2> out;
+  operator float* const*() const { return out.data(); }
+};
+inline SourcePair pair_of(float* air, float* aerosol) { return SourcePair{{air, aerosol}}; }
 
 /// The seed tutorial's three wavelengths and its typed-in Rayleigh coefficients at them.
 inline const std::vector<double> kSeedNm = {440, 550, 680};
@@ -44,6 +54,9 @@ struct IntegratorChain {
         table(atm, resolution),
         columns(table),
         integrator(atm, columns, {view_segments}) {}
+  /// The same over an atmosphere built by the caller (e.g. with media of its own).
+  IntegratorChain(AtmosphereModel model, SunColumnTable::Resolution resolution, int view_segments)
+      : atm(std::move(model)), table(atm, resolution), columns(table), integrator(atm, columns, {view_segments}) {}
   AtmosphereModel atm;
   SunColumnTable table;
   TableSunColumns columns;

@@ -1,9 +1,9 @@
 // The atmosphere: a planet, a spherical shell of air, and the species in it.
 //
 // AtmosphereSpec is what a user describes (scale heights, pressure, CO2, aerosol load, ...);
-// AtmosphereModel is the same atmosphere evaluated on a wavelength grid: per-species volume
-// scattering and extinction coefficients at relative density 1 (altitude 0) plus the density
-// profile, which is all the integrator needs.
+// AtmosphereModel is the same atmosphere evaluated on a wavelength grid: its media (medium.hpp),
+// each with volume scattering and extinction coefficients at relative density 1, a density
+// profile and a phase function, which is all light transport needs.
 #pragma once
 
 #include <string>
@@ -13,6 +13,7 @@
 
 #include "skyspec/aerosol_components.hpp"
 #include "skyspec/density_profile.hpp"
+#include "skyspec/medium.hpp"
 #include "skyspec/phase_function.hpp"
 #include "skyspec/rayleigh.hpp"
 #include "skyspec/spectrum.hpp"
@@ -94,17 +95,12 @@ struct AtmosphereSpec {
   GroundSpec ground;
 };
 
-/// One scattering species on the grid.
-struct ScatteringSpecies {
-  DensityProfile profile;
-  SpectrumD scattering_per_m;  ///< at relative density 1
-  SpectrumD extinction_per_m;  ///< at relative density 1
-  bool enabled() const { return extinction_per_m.size() > 0 && extinction_per_m.maxCoeff() > 0.0; }
-};
-
+/// The atmosphere on a wavelength grid: its media (medium.hpp), the ground, and what the Rayleigh
+/// derivation report shows.
 class AtmosphereModel {
  public:
-  /// Throws InputError naming the scene key when the spec cannot be evaluated on the grid.
+  /// Builds every medium of the list (src/physics/media/) that the spec turns on. Throws
+  /// InputError naming the scene key when the spec cannot be evaluated on the grid.
   /// cache_on_disk: a microphysical aerosol's optics come from / go to the disk cache of tables
   /// (aerosol_components.hpp; a scene's render.cache_tables).
   AtmosphereModel(const AtmosphereSpec& spec, const WavelengthGrid& grid, bool cache_on_disk = false);
@@ -114,47 +110,40 @@ class AtmosphereModel {
   double planet_radius_m() const { return spec_.planet_radius_m; }
   double top_radius_m() const { return spec_.planet_radius_m + spec_.top_altitude_m; }
 
-  const ScatteringSpecies& rayleigh() const { return rayleigh_; }
-  /// gamma of the Rayleigh phase function per wavelength (phase_function.hpp): from the King
-  /// factor of the derivation, so that the depolarisation in the cross-section is also in the
-  /// angular distribution; 0 (no depolarisation) for typed-in coefficients, which have none.
-  const SpectrumD& rayleigh_phase_gamma() const { return rayleigh_gamma_; }
-  const ScatteringSpecies& mie() const { return mie_; }
-  /// Ozone: absorption only (scattering_per_m is zero); relative density 1 at the layer's peak.
-  const ScatteringSpecies& ozone() const { return ozone_; }
-  /// Number density of ozone at the layer's peak, m^-3 (0 without ozone).
-  double ozone_peak_number_density_per_m3() const { return ozone_peak_per_m3_; }
+  /// The media present, in the list's order (air first; "aerosol" and "ozone" when the scene has
+  /// them). Light transport sums over these and nothing else.
+  const std::vector<Medium>& media() const { return media_; }
+  /// The medium of that name, or null when the scene has none.
+  const Medium* medium(const std::string& name) const;
+  /// Adds a medium of the caller's own (after the list's): light transport and the Monte Carlo
+  /// then sum over it as over the others. Throws InputError naming "medium.<name>.<field>" when it
+  /// does not fit: an empty or taken name, spectra not of the grid's size, a coefficient negative
+  /// or not finite, extinction below scattering, a phase function missing its parameters or with
+  /// |g| >= 1, a scatterer whose density is not positive everywhere, more than kMaxMedia media.
+  /// Call it before building anything on the atmosphere (tables and integrators keep references).
+  void add_medium(Medium medium);
+
   /// Lambertian albedo of the ground on the grid.
   const SpectrumD& ground_albedo() const { return ground_albedo_; }
-  const AerosolPhase& mie_phase() const { return spec_.mie.phase; }
-  /// The aerosol asymmetry parameter per wavelength (constant unless the aerosol has tables).
-  const SpectrumD& mie_g() const { return mie_g_; }
-  bool mie_g_varies() const { return mie_g_.size() > 0 && mie_g_.maxCoeff() != mie_g_.minCoeff(); }
-  /// The aerosol's scattering matrix per wavelength when it comes from microphysics (model Opac),
-  /// else null (the analytic phase function mie_phase() with mie_g()).
-  const TabulatedScatteringMatrix* mie_matrix() const { return mie_matrix_.get(); }
-  const std::shared_ptr<const TabulatedScatteringMatrix>& shared_mie_matrix() const { return mie_matrix_; }
-  /// The aerosol's phase function at wavelength i: the tabulated one or the analytic model.
-  double mie_phase_at(int i, double mu) const;
 
-  /// Molecular number density at altitude 0, m^-3, and how it was obtained.
+  /// Molecular number density at altitude 0, m^-3, and how it was obtained (0 and why for typed-in
+  /// coefficients).
   double rayleigh_number_density_per_m3() const { return rayleigh_n0_per_m3_; }
   const std::string& rayleigh_number_density_origin() const { return rayleigh_n0_origin_; }
   /// The derivation (empty for the Fixed source).
   const std::vector<RayleighDerivationStep>& rayleigh_derivation() const { return derivation_; }
+  /// Number density of ozone at the layer's peak, m^-3 (0 without ozone).
+  double ozone_peak_number_density_per_m3() const { return ozone_peak_per_m3_; }
 
  private:
   AtmosphereSpec spec_;
   WavelengthGrid grid_;
-  ScatteringSpecies rayleigh_, mie_, ozone_;
-  double ozone_peak_per_m3_ = 0.0;
-  SpectrumD mie_g_;
-  std::shared_ptr<const TabulatedScatteringMatrix> mie_matrix_;
-  SpectrumD rayleigh_gamma_;
+  std::vector<Medium> media_;
   SpectrumD ground_albedo_;
   double rayleigh_n0_per_m3_ = 0.0;
   std::string rayleigh_n0_origin_;
   std::vector<RayleighDerivationStep> derivation_;
+  double ozone_peak_per_m3_ = 0.0;
 };
 
 /// Piecewise-linear interpolation of (x, y) samples at x0, constant beyond the ends.

@@ -17,6 +17,7 @@
 #include "skyspec/king_factor.hpp"
 #include "skyspec/lee_diagram.hpp"
 #include "skyspec/lorenz_mie.hpp"
+#include "skyspec/medium.hpp"
 #include "skyspec/monte_carlo_reference.hpp"
 #include "skyspec/phase_function.hpp"
 #include "skyspec/preparation_progress.hpp"

@@ -4,29 +4,12 @@
 #include <cmath>
 #include <sstream>
 
-#include "physics/ozone.hpp"
+#include "physics/media/media.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/phase_function.hpp"
-#include "skyspec/standard_atmosphere.hpp"
 #include "skyspec/units.hpp"
 
 namespace skyspec {
-
-namespace {
-// Ozone absorption cross-sections on the grid: the scene's own table if it has one, else the
-// built-in laboratory data (233 K, 230-1060 nm: Serdyuchenko et al. 2014 and Bogumil et al. 2003;
-// data/ozone/), averaged
-// over each grid sample's bin.
-SpectrumD ozone_cross_sections_m2(const OzoneSpec& o, const WavelengthGrid& grid) {
-  SpectrumD sigma(grid.size());
-  if (!o.cross_section_m2.empty()) {
-    for (int i = 0; i < grid.size(); ++i)
-      sigma[i] = interpolate_linear(o.cross_section_wavelengths_nm, o.cross_section_m2, grid.nm(i));
-    return sigma;
-  }
-  return ozone_cross_section_on_grid(grid, "spectrum");
-}
-}  // namespace
 
 std::string to_string(ProfileKind k) {
   switch (k) {
@@ -54,104 +37,20 @@ DensityProfile make_profile(ProfileKind kind, double scale_height_m, double top_
 
 AtmosphereModel::AtmosphereModel(const AtmosphereSpec& spec, const WavelengthGrid& grid, bool cache_on_disk)
     : spec_(spec), grid_(grid) {
-  const int n = grid.size();
-  const auto& r = spec.rayleigh;
+  const MediumContext context{spec_, grid_, cache_on_disk};
+  for (const MediumEntry& entry : medium_registry())
+    if (std::optional<Medium> m = entry.build(context)) add_medium(std::move(*m));
 
-  // --- Rayleigh ---------------------------------------------------------------------------
-  rayleigh_.profile = make_profile(r.profile, r.scale_height_m, spec.top_altitude_m);
-  rayleigh_.scattering_per_m.resize(n);
-  rayleigh_gamma_ = SpectrumD::Zero(n);  // typed-in coefficients carry no depolarisation
-  if (r.source == RayleighSpec::Source::Derived) {
-    // N(0): the standard atmosphere's sea-level state, or the ideal gas law at the given surface
-    // pressure and temperature.
-    if (r.profile == ProfileKind::UsStandard1976) {
-      rayleigh_n0_per_m3_ = us_standard_atmosphere_1976(0.0).number_density_per_m3;
-      rayleigh_n0_origin_ = "U.S. Standard Atmosphere 1976 at 0 m: N = P / (k T) = 101325 Pa / (k 288.15 K)";
-    } else {
-      rayleigh_n0_per_m3_ = r.surface_pressure_Pa / (constants::kBoltzmann_J_per_K * r.surface_temperature_K);
-      std::ostringstream s;
-      s << "ideal gas at the surface: N = P / (k T) = " << r.surface_pressure_Pa << " Pa / (k "
-        << r.surface_temperature_K << " K)";
-      rayleigh_n0_origin_ = s.str();
-    }
-    derivation_ = derive_rayleigh(grid.nanometres(), r.derivation);
-    for (int i = 0; i < n; ++i) {
-      const RayleighDerivationStep& step = derivation_[static_cast<size_t>(i)];
-      rayleigh_.scattering_per_m[i] = step.cross_section_m2 * rayleigh_n0_per_m3_;
-      rayleigh_gamma_[i] = rayleigh_gamma_from_depolarisation(depolarisation_ratio_from_king_factor(step.king_factor));
-    }
-  } else {
-    if (r.fixed_wavelengths_nm.size() != r.fixed_beta_per_m.size())
-      throw InputError("atmosphere.rayleigh.beta_per_m", std::to_string(r.fixed_beta_per_m.size()) + " values",
-                       "one value per entry of atmosphere.rayleigh.wavelengths_nm (" +
-                           std::to_string(r.fixed_wavelengths_nm.size()) + ")");
-    rayleigh_n0_origin_ = "not used: coefficients typed in (atmosphere.rayleigh.source = \"fixed\")";
-    for (int i = 0; i < n; ++i) {
-      int found = -1;
-      for (size_t k = 0; k < r.fixed_wavelengths_nm.size(); ++k)
-        if (std::abs(r.fixed_wavelengths_nm[k] - grid.nm(i)) < 1e-6) found = static_cast<int>(k);
-      if (found < 0) {
-        std::ostringstream v;
-        v << grid.nm(i) << " nm";
-        throw InputError("spectrum", v.str(),
-                         "only the wavelengths of atmosphere.rayleigh.wavelengths_nm when "
-                         "atmosphere.rayleigh.source = \"fixed\" (coefficients are typed in, not derived)");
-      }
-      rayleigh_.scattering_per_m[i] = r.fixed_beta_per_m[static_cast<size_t>(found)];
-    }
-  }
-  rayleigh_.extinction_per_m = rayleigh_.scattering_per_m;  // molecules do not absorb here
-
-  // --- Mie aerosols: Angstrom law ---------------------------------------------------------
-  const auto& m = spec.mie;
-  mie_.profile = make_profile(m.profile, m.scale_height_m, spec.top_altitude_m);
-  mie_.scattering_per_m.resize(n);
-  for (int i = 0; i < n; ++i)
-    mie_.scattering_per_m[i] =
-        m.enabled ? m.scattering_per_m * std::pow(grid.nm(i) / m.reference_wavelength_nm, -m.angstrom_exponent) : 0.0;
-  mie_.extinction_per_m = mie_.scattering_per_m * m.extinction_to_scattering;
-  mie_g_ = SpectrumD::Constant(n, m.phase.g);
-  if (m.enabled && !m.table_wavelengths_nm.empty()) {
-    const auto& x = m.table_wavelengths_nm;
-    auto q_w = [&](double l) {
-      return interpolate_linear(x, m.table_extinction_efficiency, l) *
-             interpolate_linear(x, m.table_single_scattering_albedo, l);
-    };
-    const double anchor = q_w(m.reference_wavelength_nm);
-    if (!(anchor > 0.0))
-      throw InputError("atmosphere.mie.reference_wavelength_nm", std::to_string(m.reference_wavelength_nm),
-                       "a wavelength where the aerosol tables' extinction efficiency x single-scattering albedo > 0");
-    for (int i = 0; i < n; ++i) {
-      const double w = interpolate_linear(x, m.table_single_scattering_albedo, grid.nm(i));
-      mie_.scattering_per_m[i] = m.scattering_per_m * q_w(grid.nm(i)) / anchor;
-      mie_.extinction_per_m[i] = mie_.scattering_per_m[i] / w;
-      mie_g_[i] = interpolate_linear(x, m.table_g, grid.nm(i));
-    }
-  }
-
-  if (m.enabled && m.model == MieSpec::Model::Opac) {
-    // Microphysics: Lorenz-Mie over each component's size distribution (aerosol_components.hpp).
-    AerosolMixtureOptics optics =
-        aerosol_mixture_optics(m.opac, grid, "atmosphere.mie.opac", cache_on_disk);  // its keys' prefix
-    mie_.scattering_per_m = optics.scattering_per_m;
-    mie_.extinction_per_m = optics.extinction_per_m;
-    mie_matrix_ = optics.matrix;
-    for (int i = 0; i < n; ++i) mie_g_[i] = mie_matrix_->asymmetry(i);
-  }
-
-  // --- Ozone: absorption cross-section x number density at the layer's peak -----------------
-  const auto& o = spec.ozone;
-  ozone_.profile = DensityProfile::tent(o.bottom_m, o.peak_m, o.top_m);
-  ozone_.scattering_per_m = SpectrumD::Zero(n);
-  ozone_.extinction_per_m = SpectrumD::Zero(n);
-  if (o.enabled && o.column_DU > 0.0) {
-    // Column = N_peak * (area under the tent) = N_peak (top - bottom) / 2.
-    ozone_peak_per_m3_ = o.column_DU * constants::kDobsonUnit_per_m2 / ozone_.profile.tent_area_m();
-    const SpectrumD sigma = ozone_cross_sections_m2(o, grid);
-    ozone_.extinction_per_m = sigma * ozone_peak_per_m3_;
-  }
+  // What the Rayleigh derivation report shows.
+  const AirNumberDensity n0 = air_number_density(spec.rayleigh);
+  rayleigh_n0_per_m3_ = n0.per_m3;
+  rayleigh_n0_origin_ = n0.origin;
+  if (spec.rayleigh.source == RayleighSpec::Source::Derived)
+    derivation_ = derive_rayleigh(grid.nanometres(), spec.rayleigh.derivation);
+  ozone_peak_per_m3_ = skyspec::ozone_peak_number_density_per_m3(spec.ozone);
 
   // --- Ground -----------------------------------------------------------------------------
+  const int n = grid.size();
   ground_albedo_.resize(n);
   const auto& g = spec.ground;
   for (int i = 0; i < n; ++i)
@@ -159,11 +58,94 @@ AtmosphereModel::AtmosphereModel(const AtmosphereSpec& spec, const WavelengthGri
         g.albedo_values.empty() ? g.albedo : interpolate_linear(g.albedo_wavelengths_nm, g.albedo_values, grid.nm(i));
 }
 
-double AtmosphereModel::mie_phase_at(int i, double mu) const {
-  if (mie_matrix_) return mie_matrix_->phase(i, mu);
-  AerosolPhase p = spec_.mie.phase;
-  p.g = mie_g_[i];
-  return p(mu);
+const Medium* AtmosphereModel::medium(const std::string& name) const {
+  for (const Medium& m : media_)
+    if (m.name == name) return &m;
+  return nullptr;
+}
+
+namespace {
+std::string format_value(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+// Every value finite and >= 0, one per wavelength.
+void check_spectrum(const std::string& key, const SpectrumD& v, int n) {
+  if (v.size() != n)
+    throw InputError(key, std::to_string(v.size()) + " values",
+                     "one value per wavelength of the grid (" + std::to_string(n) + ")");
+  for (int i = 0; i < n; ++i)
+    if (!std::isfinite(v[i]) || v[i] < 0.0)
+      throw InputError(key, format_value(v[i]), "finite values >= 0 (wavelength " + std::to_string(i) + ")");
+}
+}  // namespace
+
+void AtmosphereModel::add_medium(Medium m) {
+  const int n = grid_.size();
+  const std::string key = "medium." + (m.name.empty() ? std::string("?") : m.name);
+  if (m.name.empty()) throw InputError("medium.name", "\"\"", "a name of the medium");
+  if (medium(m.name)) throw InputError(key + ".name", m.name, "a name no other medium of the atmosphere has");
+  if (media_.size() >= static_cast<size_t>(kMaxMedia))
+    throw InputError(key, m.name, "at most " + std::to_string(kMaxMedia) + " media in one atmosphere (kMaxMedia)");
+  check_spectrum(key + ".scattering_per_m", m.scattering_per_m, n);
+  check_spectrum(key + ".extinction_per_m", m.extinction_per_m, n);
+  for (int i = 0; i < n; ++i)
+    if (m.extinction_per_m[i] < m.scattering_per_m[i] * (1.0 - 1e-12))
+      throw InputError(key + ".extinction_per_m", format_value(m.extinction_per_m[i]),
+                       "at least the scattering coefficient (" + format_value(m.scattering_per_m[i]) +
+                           " at wavelength " + std::to_string(i) + ")");
+  MediumPhase& p = m.phase;
+  switch (p.kind) {
+    case MediumPhase::Kind::None:
+      if (m.scattering_per_m.size() > 0 && m.scattering_per_m.maxCoeff() > 0.0)
+        throw InputError(key + ".phase", "none", "a phase function for a medium that scatters");
+      break;
+    case MediumPhase::Kind::Rayleigh:
+      check_spectrum(key + ".phase.rayleigh_gamma", p.rayleigh_gamma, n);
+      break;
+    case MediumPhase::Kind::Analytic:
+      if (p.g.size() != n)
+        throw InputError(key + ".phase.g", std::to_string(p.g.size()) + " values",
+                         "one asymmetry parameter per wavelength of the grid (" + std::to_string(n) + ")");
+      for (int i = 0; i < n; ++i)
+        if (!(std::abs(p.g[i]) < 1.0)) throw InputError(key + ".phase.g", format_value(p.g[i]), "-1 < g < 1");
+      break;
+    case MediumPhase::Kind::Tabulated:
+      if (!p.matrix || p.matrix->wavelengths() != n)
+        throw InputError(key + ".phase.matrix",
+                         p.matrix ? std::to_string(p.matrix->wavelengths()) + " wavelengths" : "none",
+                         "a scattering matrix with one row per wavelength of the grid (" + std::to_string(n) + ")");
+      if (p.g.size() != n) {  // the table's own asymmetry, for reports and the Monte Carlo
+        p.g.resize(n);
+        for (int i = 0; i < n; ++i) p.g[i] = p.matrix->asymmetry(i);
+      }
+      break;
+  }
+  // The integrator's log-mean rule needs a scatterer's density to be positive everywhere.
+  if (m.scatters() && !m.profile.positive_everywhere())
+    throw InputError(key + ".profile", m.profile.describe(),
+                     "a density profile that is positive everywhere for a medium that scatters (exponential, "
+                     "us1976, constant); a layer (tent) only for an absorber");
+  media_.push_back(std::move(m));
+}
+
+double MediumPhase::at(int i, double mu) const {
+  switch (kind) {
+    case Kind::None:
+      return 0.0;
+    case Kind::Rayleigh:
+      return rayleigh_phase(mu, rayleigh_gamma[i]);
+    case Kind::Analytic:
+      return analytic(i)(mu);
+    case Kind::Tabulated:
+      return matrix->phase(i, mu);
+  }
+  return 0.0;
+}
+
+bool MediumPhase::varies_with_wavelength() const {
+  return kind == Kind::Tabulated || (kind == Kind::Analytic && g.size() > 0 && g.maxCoeff() != g.minCoeff());
 }
 
 double interpolate_linear(const std::vector<double>& x, const std::vector<double>& y, double x0) {

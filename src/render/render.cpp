@@ -380,10 +380,13 @@ void SkyRenderer::render_window(int x0, int x1, int y0, int rows, float* spectra
     bool found[kChunk];
     double mu[kChunk];         // their cosines to the sun
     float* out[kChunk];        // where their radiances go
-    std::vector<float> parts;  // their sky-view parts, 3 n floats each
-    explicit Scratch(int k) : ws(k), radiance(k), disk(k), trans(k), parts(static_cast<size_t>(3 * kChunk * k)) {}
+    std::vector<float> parts;  // their sky-view parts, SkyViewTable::parts() x n floats each
+    Scratch(int k, int parts_per_direction)
+        : ws(k), radiance(k), disk(k), trans(k), parts(static_cast<size_t>(parts_per_direction * kChunk * k)) {}
   };
-  tbb::enumerable_thread_specific<Scratch> scratch([n] { return Scratch(n); });
+  const int parts_per_direction = m.sky_view ? m.sky_view->parts() : 0;
+  tbb::enumerable_thread_specific<Scratch> scratch(
+      [n, parts_per_direction] { return Scratch(n, parts_per_direction); });
   std::atomic<bool> non_finite{false};
   tbb::task_arena arena(m.threads);
   arena.execute([&] {

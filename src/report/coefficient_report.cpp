@@ -428,7 +428,16 @@ CoefficientReport make_coefficient_report(const CoefficientReportRequest& req) {
   r.co2_ppv = spec.rayleigh.derivation.co2_ppv;
   r.composition = bodhaine_air_composition(r.co2_ppv);
   r.derivation = derive_rayleigh(grid.nanometres(), spec.rayleigh.derivation);
-  r.profile_description = model.rayleigh().profile.describe();
+  const Medium& air = *model.medium("air");
+  // The aerosol as the report shows it: zero coefficients when the scene has none.
+  Medium aerosol;
+  if (const Medium* m = model.medium("aerosol")) {
+    aerosol = *m;
+  } else {
+    aerosol.profile = make_profile(spec.mie.profile, spec.mie.scale_height_m, spec.top_altitude_m);
+    aerosol.scattering_per_m = aerosol.extinction_per_m = SpectrumD::Zero(grid.size());
+  }
+  r.profile_description = air.profile.describe();
   r.top_altitude_m = spec.top_altitude_m;
   r.mie_enabled = spec.mie.enabled;
   r.mie_scattering_at_reference_per_m = spec.mie.scattering_per_m;
@@ -443,19 +452,22 @@ CoefficientReport make_coefficient_report(const CoefficientReportRequest& req) {
                                            spec.mie.opac.number_per_cm3[static_cast<size_t>(c)]);
     r.mie_opac_relative_humidity_percent = spec.mie.opac.relative_humidity_percent;
   }
-  r.mie_profile_description = model.mie().profile.describe();
+  r.mie_profile_description = aerosol.profile.describe();
 
   r.ozone_enabled = spec.ozone.enabled;
   std::optional<AtmosphereModel> ozone_model;  // on ozone.covered_nm
   std::vector<double> ozone_extinction_per_m(grid.size(), std::numeric_limits<double>::quiet_NaN());
   if (r.ozone_enabled && !ozone.covered_nm.empty()) {
     ozone_model.emplace(spec, WavelengthGrid::from_list(ozone.covered_nm));
+  }
+  const Medium* ozone_medium = ozone_model ? ozone_model->medium("ozone") : nullptr;
+  if (ozone_medium) {
     for (size_t k = 0; k < ozone.covered_index.size(); ++k)
-      ozone_extinction_per_m[ozone.covered_index[k]] = ozone_model->ozone().extinction_per_m[static_cast<int>(k)];
+      ozone_extinction_per_m[ozone.covered_index[k]] = ozone_medium->extinction_per_m[static_cast<int>(k)];
     r.ozone_column_DU = spec.ozone.column_DU;
     r.ozone_peak_number_density_per_m3 = ozone_model->ozone_peak_number_density_per_m3();
     r.ozone_cross_section_m2 = scaled(ozone_extinction_per_m, 1.0 / r.ozone_peak_number_density_per_m3);
-    r.ozone_profile_description = ozone_model->ozone().profile.describe();
+    r.ozone_profile_description = ozone_medium->profile.describe();
   } else if (r.ozone_enabled) {
     r.ozone_enabled = false;  // no requested wavelength has ozone data: reported in the notes
   }
@@ -468,17 +480,17 @@ CoefficientReport make_coefficient_report(const CoefficientReportRequest& req) {
                            format_number(spec.top_altitude_m) + " m");
     ReportLevel level;
     level.altitude_m = z;
-    const double rho_r = std::exp(model.rayleigh().profile.log_relative(z));
-    const double rho_m = std::exp(model.mie().profile.log_relative(z));
-    const double column_r_m = column_to_top_m(model.rayleigh().profile, R, Rt, R + z, 1.0, req.column_segments);
-    const double column_m_m = column_to_top_m(model.mie().profile, R, Rt, R + z, 1.0, req.column_segments);
-    level.rayleigh_scattering_per_m = scaled(model.rayleigh().scattering_per_m, rho_r);
-    level.rayleigh_optical_depth = scaled(model.rayleigh().extinction_per_m, column_r_m);
-    level.mie_scattering_per_m = scaled(model.mie().scattering_per_m, rho_m);
-    level.mie_extinction_per_m = scaled(model.mie().extinction_per_m, rho_m);
-    level.mie_optical_depth = scaled(model.mie().extinction_per_m, column_m_m);
+    const double rho_r = std::exp(air.profile.log_relative(z));
+    const double rho_m = std::exp(aerosol.profile.log_relative(z));
+    const double column_r_m = column_to_top_m(air.profile, R, Rt, R + z, 1.0, req.column_segments);
+    const double column_m_m = column_to_top_m(aerosol.profile, R, Rt, R + z, 1.0, req.column_segments);
+    level.rayleigh_scattering_per_m = scaled(air.scattering_per_m, rho_r);
+    level.rayleigh_optical_depth = scaled(air.extinction_per_m, column_r_m);
+    level.mie_scattering_per_m = scaled(aerosol.scattering_per_m, rho_m);
+    level.mie_extinction_per_m = scaled(aerosol.extinction_per_m, rho_m);
+    level.mie_optical_depth = scaled(aerosol.extinction_per_m, column_m_m);
     if (r.ozone_enabled) {
-      const DensityProfile& profile = ozone_model->ozone().profile;
+      const DensityProfile& profile = ozone_medium->profile;
       const double rho_o = profile.relative(z);
       const double column_o_m = column_to_top_m(profile, R, Rt, R + z, 1.0, req.column_segments);
       level.ozone_absorption_per_m = scaled(ozone_extinction_per_m, rho_o);

@@ -103,29 +103,36 @@ MonteCarloMedium MonteCarloMedium::from_atmosphere(const AtmosphereModel& atm, i
   m.geometry = Geometry::SphericalShell;
   m.planet_radius_m = atm.planet_radius_m();
   m.top_altitude_m = atm.spec().top_altitude_m;
-  auto component = [i](const ScatteringSpecies& species, MonteCarloComponent::Phase phase, double parameter) {
+  for (const Medium& medium : atm.media()) {
+    if (!medium.enabled()) continue;
     MonteCarloComponent c;
-    c.profile = species.profile;
-    c.scattering_per_m = species.scattering_per_m[i];
-    c.extinction_per_m = species.extinction_per_m[i];
-    c.phase = phase;
-    c.phase_parameter = parameter;
-    return c;
-  };
-  m.components.push_back(
-      component(atm.rayleigh(), MonteCarloComponent::Phase::Rayleigh, atm.rayleigh_phase_gamma()[i]));
-  if (atm.mie().enabled() && atm.mie_matrix()) {
-    MonteCarloComponent c = component(atm.mie(), MonteCarloComponent::Phase::Tabulated, atm.mie_g()[i]);
-    c.table = atm.shared_mie_matrix();
-    c.table_row = i;
+    c.profile = medium.profile;
+    c.scattering_per_m = medium.scattering_per_m[i];
+    c.extinction_per_m = medium.extinction_per_m[i];
+    const MediumPhase& p = medium.phase;
+    switch (p.kind) {
+      case MediumPhase::Kind::None:
+        c.phase = MonteCarloComponent::Phase::None;
+        break;
+      case MediumPhase::Kind::Rayleigh:
+        c.phase = MonteCarloComponent::Phase::Rayleigh;
+        c.phase_parameter = p.rayleigh_gamma[i];
+        break;
+      case MediumPhase::Kind::Analytic:
+        c.phase = p.analytic_model == AerosolPhase::Model::HenyeyGreenstein
+                      ? MonteCarloComponent::Phase::HenyeyGreenstein
+                      : MonteCarloComponent::Phase::CornetteShanks;
+        c.phase_parameter = p.g[i];
+        break;
+      case MediumPhase::Kind::Tabulated:
+        c.phase = MonteCarloComponent::Phase::Tabulated;
+        c.phase_parameter = p.g[i];
+        c.table = p.matrix;
+        c.table_row = i;
+        break;
+    }
     m.components.push_back(std::move(c));
-  } else if (atm.mie().enabled())
-    m.components.push_back(component(atm.mie(),
-                                     atm.mie_phase().model == AerosolPhase::Model::HenyeyGreenstein
-                                         ? MonteCarloComponent::Phase::HenyeyGreenstein
-                                         : MonteCarloComponent::Phase::CornetteShanks,
-                                     atm.mie_g()[i]));
-  if (atm.ozone().enabled()) m.components.push_back(component(atm.ozone(), MonteCarloComponent::Phase::None, 0.0));
+  }
   m.ground_albedo = atm.ground_albedo()[i];
   m.sun_irradiance = 1.0;
   return m;

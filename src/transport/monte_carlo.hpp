@@ -69,8 +69,9 @@ struct MonteCarloMedium {
   double ground_albedo = 0.0;   ///< Lambertian
   double sun_irradiance = 1.0;  ///< irradiance normal to the sun's direction at the top
 
-  /// Wavelength i of an atmosphere on its grid: Rayleigh (gamma from the King factor), the aerosol
-  /// (its phase model and g at that wavelength), ozone; per unit solar irradiance.
+  /// Wavelength i of an atmosphere on its grid: a component per medium that extinguishes light
+  /// (AtmosphereModel::media(), in its order), with its phase function at that wavelength; per
+  /// unit solar irradiance.
   static MonteCarloMedium from_atmosphere(const AtmosphereModel& atmosphere, int wavelength_index);
 };
 

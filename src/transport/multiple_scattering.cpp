@@ -55,19 +55,22 @@ std::shared_ptr<const PhaseMoments> PhaseMoments::of(const AtmosphereModel& atm,
   const int n = atm.grid().size();
   m->degree = degree;
   m->wavelengths = n;
-  m->rayleigh.assign(static_cast<size_t>(degree + 1) * n + SourceTable::kLookupSlack, 0.0f);
-  m->mie = m->rayleigh;
-  for (int i = 0; i < n; ++i) {
-    const double gamma = atm.rayleigh_phase_gamma()[i];
-    const std::vector<double> r = legendre_moments([gamma](double mu) { return rayleigh_phase(mu, gamma); }, degree);
-    const std::vector<double> a = legendre_moments([&atm, i](double mu) { return atm.mie_phase_at(i, mu); }, degree);
-    for (int l = 0; l <= degree; ++l) {
-      m->rayleigh[static_cast<size_t>(l) * n + i] = static_cast<float>(r[static_cast<size_t>(l)]);
-      m->mie[static_cast<size_t>(l) * n + i] = static_cast<float>(a[static_cast<size_t>(l)]);
-      // Zero to rounding beyond l = 2 (the quadrature is exact for a quadratic).
-      if (std::abs(r[static_cast<size_t>(l)]) > 1e-9 * std::abs(r[0]))
-        m->rayleigh_degree = std::max(m->rayleigh_degree, l);
+  for (const Medium& medium : atm.media()) {
+    if (!medium.scatters()) continue;
+    OfMedium of;
+    of.rayleigh = medium.phase.kind == MediumPhase::Kind::Rayleigh;
+    of.chi.assign(static_cast<size_t>(degree + 1) * n + SourceTable::kLookupSlack, 0.0f);
+    for (int i = 0; i < n; ++i) {
+      const std::vector<double> chi =
+          legendre_moments([&medium, i](double mu) { return medium.phase.at(i, mu); }, degree);
+      for (int l = 0; l <= degree; ++l) {
+        of.chi[static_cast<size_t>(l) * n + i] = static_cast<float>(chi[static_cast<size_t>(l)]);
+        // Zero to rounding beyond l = 2 for molecules (the quadrature is exact for a quadratic).
+        if (std::abs(chi[static_cast<size_t>(l)]) > 1e-9 * std::abs(chi[0]))
+          of.nonzero_degree = std::max(of.nonzero_degree, l);
+      }
     }
+    m->media.push_back(std::move(of));
   }
   return m;
 }
@@ -194,10 +197,66 @@ SourceTable::Blend SourceTable::blend(double r_m, double mu_s) const {
   return w;
 }
 
-void SourceTable::source_to_degree(int max_degree, double r_m, double mu, double mu_view, double nu, float* rayleigh,
-                                   float* mie) const {
+// source_to_degree's sums over the harmonics for each medium, per block of kLookupSlack wavelengths.
+struct SourceTable::HarmonicSum {
+  const Blend& w;
+  const float* basis;
+  int degree, n_l, media;
+  int media_degree[kMaxMedia];
+  const float* chi[kMaxMedia];
+  float* const* out;
+
+  // kMedia > 0: the number of media known at compile time; 0: `media` at run time.
+  template <int kMedia>
+  void run() const {
+    using Lanes = Eigen::Array<float, kLookupSlack, 1>;
+    using LanesMap = Eigen::Map<const Lanes, Eigen::Unaligned>;
+    const int count = kMedia > 0 ? kMedia : media;
+    const float *a = w.a, *b = w.b, *c = w.c, *d = w.d;
+    for (int i0 = 0; i0 < n_l; i0 += kLookupSlack) {
+      Lanes wa = Lanes::Constant(w.sa), wb = Lanes::Constant(w.sb), wc = Lanes::Constant(w.sc),
+            wd = Lanes::Constant(w.sd);
+      if (w.lower) {
+        const LanesMap f(w.lower + i0);
+        wa *= f;
+        wb *= f;
+      }
+      if (w.upper) {
+        const LanesMap f(w.upper + i0);
+        wc *= f;
+        wd *= f;
+      }
+      Lanes sums[kMedia > 0 ? kMedia : kMaxMedia];
+      for (int s = 0; s < count; ++s) sums[s] = Lanes::Zero();
+      for (int l = 0; l <= degree; ++l) {
+        Lanes pa = Lanes::Zero(), pb = Lanes::Zero(), pc = Lanes::Zero(), pd = Lanes::Zero();
+        for (int m = 0; m <= l; ++m) {
+          const int k = harmonic_index(l, m);
+          const size_t o = static_cast<size_t>(k) * n_l + i0;
+          const float y = basis[k];
+          pa += y * LanesMap(a + o);
+          pb += y * LanesMap(b + o);
+          pc += y * LanesMap(c + o);
+          pd += y * LanesMap(d + o);
+        }
+        const Lanes v = wa * pa + wb * pb + wc * pc + wd * pd;
+        const size_t o = static_cast<size_t>(l) * n_l + i0;
+        for (int s = 0; s < count; ++s)
+          if (l <= media_degree[s]) sums[s] += LanesMap(chi[s] + o) * v;
+      }
+      for (int s = 0; s < count; ++s) {
+        if (n_l - i0 >= kLookupSlack)
+          Eigen::Map<Lanes, Eigen::Unaligned>(out[s] + i0) = sums[s];
+        else
+          std::copy_n(sums[s].data(), std::min(n_l - i0, kLookupSlack), out[s] + i0);
+      }
+    }
+  }
+};
+
+void SourceTable::source_to_degree(int max_degree, double r_m, double mu, double mu_view, double nu,
+                                   float* const* out) const {
   const Blend w = blend(r_m, mu);
-  const float *a = w.a, *b = w.b, *c = w.c, *d = w.d;
   // The view direction's azimuth from the sun's vertical plane at this point.
   const double mu_s = std::clamp(mu, -1.0, 1.0);
   const double mv = std::clamp(mu_view, -1.0, 1.0);
@@ -208,56 +267,27 @@ void SourceTable::source_to_degree(int max_degree, double r_m, double mu, double
   symmetric_harmonics(degree, mv, cos_phi, basis_d);
   float basis[kMaxHarmonics];
   for (int k = 0; k < skyspec::harmonic_count(degree); ++k) basis[k] = static_cast<float>(basis_d[k]);
-  using Lanes = Eigen::Array<float, kLookupSlack, 1>;
-  using LanesMap = Eigen::Map<const Lanes, Eigen::Unaligned>;
 
   // J_s = sum_l chi_s,l sum_m Y_lm(view) a_lm, a_lm the blend of the four corners, per block of
   // wavelengths: the harmonics of each l are summed per corner first and blended once per l.
   // Blocks read past the last wavelength into the next harmonic or the spare floats; those lanes
   // are not written out.
-  const int rayleigh_degree = std::min(moments_->rayleigh_degree, degree);
-  for (int i0 = 0; i0 < n_l_; i0 += kLookupSlack) {
-    Lanes wa = Lanes::Constant(w.sa), wb = Lanes::Constant(w.sb), wc = Lanes::Constant(w.sc),
-          wd = Lanes::Constant(w.sd);
-    if (w.lower) {
-      const LanesMap f(w.lower + i0);
-      wa *= f;
-      wb *= f;
-    }
-    if (w.upper) {
-      const LanesMap f(w.upper + i0);
-      wc *= f;
-      wd *= f;
-    }
-    Lanes out_r = Lanes::Zero(), out_m = Lanes::Zero();
-    for (int l = 0; l <= degree; ++l) {
-      Lanes pa = Lanes::Zero(), pb = Lanes::Zero(), pc = Lanes::Zero(), pd = Lanes::Zero();
-      for (int m = 0; m <= l; ++m) {
-        const int k = harmonic_index(l, m);
-        const size_t o = static_cast<size_t>(k) * n_l_ + i0;
-        const float y = basis[k];
-        pa += y * LanesMap(a + o);
-        pb += y * LanesMap(b + o);
-        pc += y * LanesMap(c + o);
-        pd += y * LanesMap(d + o);
-      }
-      const Lanes v = wa * pa + wb * pb + wc * pc + wd * pd;
-      const size_t o = static_cast<size_t>(l) * n_l_ + i0;
-      out_m += LanesMap(&moments_->mie[o]) * v;
-      if (l <= rayleigh_degree) out_r += LanesMap(&moments_->rayleigh[o]) * v;
-    }
-    if (n_l_ - i0 >= kLookupSlack) {
-      Eigen::Map<Lanes, Eigen::Unaligned>(rayleigh + i0) = out_r;
-      Eigen::Map<Lanes, Eigen::Unaligned>(mie + i0) = out_m;
-    } else {
-      std::copy_n(out_r.data(), n_l_ - i0, rayleigh + i0);
-      std::copy_n(out_m.data(), n_l_ - i0, mie + i0);
-    }
+  const int media = std::min(static_cast<int>(moments_->media.size()), kMaxMedia);
+  HarmonicSum sum{w, basis, degree, n_l_, media, {}, {}, out};
+  for (int s = 0; s < media; ++s) {
+    sum.media_degree[s] = std::min(moments_->media[static_cast<size_t>(s)].nonzero_degree, degree);
+    sum.chi[s] = moments_->media[static_cast<size_t>(s)].chi.data();
   }
+  // Two media (air and aerosol, the common case) with a count the compiler knows, so that their
+  // sums stay in registers; any number otherwise.
+  if (media == 2)
+    sum.run<2>();
+  else
+    sum.run<0>();
   if (polarised_ && degree >= 2) {
-    // Polarisation's share of the Rayleigh intensity, -2 B k^T D_pol k (SingleScattering's
-    // polarised_sources derives it), B = 15 chi_2 / (8 pi) the phase function's mu^2 coefficient;
-    // k^T D_pol k is even in the azimuth, so its sign does not matter.
+    // Polarisation's share of the intensity that molecules scatter, -2 B k^T D_pol k
+    // (SingleScattering's polarised_sources derives it), B = 15 chi_2 / (8 pi) the phase
+    // function's mu^2 coefficient; k^T D_pol k is even in the azimuth, so its sign does not matter.
     thread_local std::vector<float> tensor;
     tensor.resize(3 * static_cast<size_t>(n_l_));
     for (int j = 0; j < 3; ++j)
@@ -267,10 +297,14 @@ void SourceTable::source_to_degree(int max_degree, double r_m, double mu, double
     const double ky2 = std::max(0.0, sin_view * sin_view - kx * kx);
     const float cxx = static_cast<float>(kx * kx - kz * kz), cyy = static_cast<float>(ky2 - kz * kz),
                 cxz = static_cast<float>(2.0 * kx * kz);
-    const float* chi2 = &moments_->rayleigh[2 * static_cast<size_t>(n_l_)];
-    for (int i = 0; i < n_l_; ++i) {
-      const float mu2_coefficient = static_cast<float>(15.0 / (8.0 * kPi)) * chi2[i];
-      rayleigh[i] -= 2.0f * mu2_coefficient * (cxx * tensor[i] + cyy * tensor[n_l_ + i] + cxz * tensor[2 * n_l_ + i]);
+    for (int s = 0; s < media; ++s) {
+      if (!moments_->media[static_cast<size_t>(s)].rayleigh) continue;
+      const float* chi2 = &moments_->media[static_cast<size_t>(s)].chi[2 * static_cast<size_t>(n_l_)];
+      float* j = out[s];
+      for (int i = 0; i < n_l_; ++i) {
+        const float mu2_coefficient = static_cast<float>(15.0 / (8.0 * kPi)) * chi2[i];
+        j[i] -= 2.0f * mu2_coefficient * (cxx * tensor[i] + cyy * tensor[n_l_ + i] + cxz * tensor[2 * n_l_ + i]);
+      }
     }
   }
 }
@@ -481,8 +515,8 @@ void integrate_order(const SingleScattering& integrator, const ScatteringSources
 class SourceToDegree final : public InScatteringSource {
  public:
   SourceToDegree(const SourceTable& table, int degree) : table_(table), degree_(degree) {}
-  void source(double r_m, double mu_sun, double mu_view, double nu, float* rayleigh, float* mie) const override {
-    table_.source_to_degree(degree_, r_m, mu_sun, mu_view, nu, rayleigh, mie);
+  void source(double r_m, double mu_sun, double mu_view, double nu, float* const* out) const override {
+    table_.source_to_degree(degree_, r_m, mu_sun, mu_view, nu, out);
   }
   void ground_irradiance(double mu_sun, float* out) const override { table_.ground_irradiance(mu_sun, out); }
   bool rayleigh_moments(double r_m, double mu_sun, float* out) const override {

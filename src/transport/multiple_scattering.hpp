@@ -58,15 +58,21 @@ struct DirectionQuadrature {
   int rays() const { return (sky_zenith_nodes + ground_zenith_nodes) * azimuth_nodes; }
 };
 
-/// The Legendre moments chi_l (l <= degree) of the Rayleigh and aerosol phase functions per
-/// wavelength (spherical_harmonics.hpp), as the source tables weight the harmonics.
+/// The Legendre moments chi_l (l <= degree) of each scattering medium's phase function per
+/// wavelength (spherical_harmonics.hpp), as the source tables weight the harmonics; in the order
+/// of SingleScattering's scatterers (the media that scatter, in AtmosphereModel::media()'s order).
 struct PhaseMoments {
   int degree = 0, wavelengths = 0;
-  /// The highest l at which Rayleigh's moments are not zero: 2 (its phase function is a quadratic
-  /// in the scattering cosine), or the degree if that is lower.
-  int rayleigh_degree = 0;
-  /// [l][wavelength], followed by kLookupSlack zeros (SourceTable::source reads whole blocks).
-  std::vector<float> rayleigh, mie;
+  struct OfMedium {
+    /// Molecules: the polarisation tensor adds its share to J (SourceTable::source_to_degree).
+    bool rayleigh = false;
+    /// The highest l at which the moments are not zero: 2 for molecules (their phase function is
+    /// a quadratic in the scattering cosine), or the degree if that is lower.
+    int nonzero_degree = 0;
+    /// [l][wavelength], followed by kLookupSlack zeros (SourceTable::source reads whole blocks).
+    std::vector<float> chi;
+  };
+  std::vector<OfMedium> media;
   static std::shared_ptr<const PhaseMoments> of(const AtmosphereModel& atm, int degree);
 };
 
@@ -82,13 +88,12 @@ class SourceTable : public InScatteringSource {
   SourceTable(double planet_radius_m, double top_radius_m, int n_altitude, int n_sun,
               std::shared_ptr<const PhaseMoments> moments, int degree = -1, bool polarised = false);
   /// Needs prepare() after the last change to the table.
-  void source(double r_m, double mu_sun, double mu_view, double nu, float* rayleigh, float* mie) const override {
-    source_to_degree(degree_, r_m, mu_sun, mu_view, nu, rayleigh, mie);
+  void source(double r_m, double mu_sun, double mu_view, double nu, float* const* out) const override {
+    source_to_degree(degree_, r_m, mu_sun, mu_view, nu, out);
   }
   /// source() from the harmonics up to max_degree only (all of them if it is the table's degree or
   /// more): the field smoothed to that degree.
-  void source_to_degree(int max_degree, double r_m, double mu_sun, double mu_view, double nu, float* rayleigh,
-                        float* mie) const;
+  void source_to_degree(int max_degree, double r_m, double mu_sun, double mu_view, double nu, float* const* out) const;
   void ground_irradiance(double mu_sun, float* out) const override;
   /// The field's quadrupole and (polarised tables) its polarisation tensor at (r, mu_s), blended as
   /// source() blends (InScatteringSource::rayleigh_moments). False if the degree is below 2.
@@ -145,6 +150,7 @@ class SourceTable : public InScatteringSource {
 
  private:
   struct Blend;
+  struct HarmonicSum;
   /// The four entries around (r, mu_s) and their weights (per wavelength in steep rows).
   Blend blend(double r_m, double mu_s) const;
   /// One row of n wavelengths blended as `w` says from `data` (laid out by `at`), from `offset` on.
@@ -189,8 +195,8 @@ class ScatteringOrders : public InScatteringSource {
  public:
   /// The integrator provides the atmosphere, the sun columns and the single-scattering term.
   ScatteringOrders(const SingleScattering& integrator, const MultipleScatteringSettings& settings);
-  void source(double r_m, double mu_sun, double mu_view, double nu, float* rayleigh, float* mie) const override {
-    sum_->source(r_m, mu_sun, mu_view, nu, rayleigh, mie);
+  void source(double r_m, double mu_sun, double mu_view, double nu, float* const* out) const override {
+    sum_->source(r_m, mu_sun, mu_view, nu, out);
   }
   void ground_irradiance(double mu_sun, float* out) const override { sum_->ground_irradiance(mu_sun, out); }
   bool rayleigh_moments(double r_m, double mu_sun, float* out) const override {

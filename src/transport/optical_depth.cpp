@@ -111,11 +111,12 @@ double column_to_top_m(const DensityProfile& profile, double planet_radius_m, do
 }
 
 Columns columns_to_top_m(const AtmosphereModel& atm, double r_m, double mu, int segments) {
-  // All species on the same nodes: their altitudes are computed once.
-  const DensityProfile* profiles[kSpeciesCount] = {&atm.rayleigh().profile, &atm.mie().profile, &atm.ozone().profile};
+  // All media on the same nodes: their altitudes are computed once.
+  const DensityProfile* profiles[kMaxMedia];
+  const int count = static_cast<int>(atm.media().size());
+  for (int i = 0; i < count; ++i) profiles[i] = &atm.media()[static_cast<size_t>(i)].profile;
   Columns c{};
-  columns_to_top(profiles, atm.ozone().enabled() ? 3 : 2, atm.planet_radius_m(), atm.top_radius_m(), r_m, mu, segments,
-                 c.data());
+  columns_to_top(profiles, count, atm.planet_radius_m(), atm.top_radius_m(), r_m, mu, segments, c.data());
   return c;
 }
 
@@ -133,6 +134,7 @@ double mu_of(double r, double x_mu, double R, double Rt, double H) {
 
 SunColumnTable::SunColumnTable(const AtmosphereModel& atm, Resolution res, MuBand band)
     : atm_(&atm),
+      media_(static_cast<int>(atm.media().size())),
       R_(atm.planet_radius_m()),
       Rt_(atm.top_radius_m()),
       H_(std::sqrt((Rt_ - R_) * (Rt_ + R_))),
@@ -221,7 +223,7 @@ inline Columns SunColumnTable::interpolate(const Place& p) const {
   const Columns& c10 = data_[static_cast<size_t>(ir + 1) * res_.n_mu + im];
   const Columns& c11 = data_[static_cast<size_t>(ir + 1) * res_.n_mu + im + 1];
   Columns out{};
-  for (int s = 0; s < kSpeciesCount; ++s)
+  for (int s = 0; s < media_; ++s)
     out[s] = (1 - ar) * ((1 - am) * c00[s] + am * c01[s]) + ar * ((1 - am) * c10[s] + am * c11[s]);
   return out;
 }

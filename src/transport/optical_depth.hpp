@@ -17,9 +17,9 @@
 
 namespace skyspec {
 
-/// Species indices used in column arrays. Ozone absorbs only.
-enum SpeciesIndex { kRayleigh = 0, kMie = 1, kOzone = 2, kSpeciesCount = 3 };
-using Columns = std::array<double, kSpeciesCount>;
+/// Columns of relative density, one per medium of AtmosphereModel::media() (in its order); the
+/// entries past the atmosphere's media are zero.
+using Columns = std::array<double, kMaxMedia>;
 
 /// Distance from radius r along zenith cosine mu to the sphere of radius top_r (r <= top_r).
 /// Inline and written with selects, so that loops over many points vectorise.
@@ -38,7 +38,7 @@ inline double distance_to_top_m(double r_m, double mu, double top_r_m) {
 double column_to_top_m(const DensityProfile& profile, double planet_radius_m, double top_radius_m, double r_m,
                        double mu, int segments);
 
-/// Columns for all species from (r, mu) to the top: the table's reference computation.
+/// Columns for all media from (r, mu) to the top: the table's reference computation.
 Columns columns_to_top_m(const AtmosphereModel& atm, double r_m, double mu, int segments);
 
 /// Precomputed columns to the top of the atmosphere over (r, mu), parameterised as in Bruneton &
@@ -95,6 +95,7 @@ class SunColumnTable {
   Columns interpolate(const Place& p) const;
   Columns direct(double r, double x_mu) const;
   const AtmosphereModel* atm_;
+  int media_;  // columns per entry: the atmosphere's media
   double R_, Rt_, H_;
   Resolution res_;
   std::vector<Columns> data_;     // [i_r * n_mu + i_mu]

@@ -17,10 +17,31 @@ void write_array(std::ostream& out, const char* name, const Array& a) {
   out << '\n';
 }
 
-void write_species(std::ostream& out, const char* name, const ScatteringSpecies& s) {
-  out << name << ".profile " << s.profile.describe() << '\n';
-  write_array(out, (std::string(name) + ".scattering_per_m").c_str(), s.scattering_per_m);
-  write_array(out, (std::string(name) + ".extinction_per_m").c_str(), s.extinction_per_m);
+// A medium as the tables see it: its profile, coefficients and phase function per wavelength.
+void write_medium(std::ostream& out, const Medium& m) {
+  const std::string& name = m.name;
+  out << name << ".profile " << m.profile.describe() << '\n';
+  write_array(out, (name + ".scattering_per_m").c_str(), m.scattering_per_m);
+  write_array(out, (name + ".extinction_per_m").c_str(), m.extinction_per_m);
+  const MediumPhase& p = m.phase;
+  switch (p.kind) {
+    case MediumPhase::Kind::None:
+      break;
+    case MediumPhase::Kind::Rayleigh:
+      write_array(out, (name + ".phase.rayleigh_gamma").c_str(), p.rayleigh_gamma);
+      break;
+    case MediumPhase::Kind::Analytic:
+      out << name << ".phase " << to_string(p.analytic_model) << '\n';
+      write_array(out, (name + ".phase.g").c_str(), p.g);
+      break;
+    case MediumPhase::Kind::Tabulated:
+      write_array(out, (name + ".matrix.mu").c_str(), p.matrix->mu());
+      for (int i = 0; i < p.matrix->wavelengths(); ++i) {
+        write_array(out, (name + ".matrix.a1").c_str(), p.matrix->a1()[static_cast<size_t>(i)]);
+        write_array(out, (name + ".matrix.b1").c_str(), p.matrix->b1()[static_cast<size_t>(i)]);
+      }
+      break;
+  }
 }
 
 }  // namespace
@@ -38,18 +59,7 @@ ScatteringTablesKey scattering_tables_key(const AtmosphereModel& atm, const SunC
   out << "format " << kScatteringTablesFormat << '\n';
   out << "planet_radius_m " << atm.planet_radius_m() << "\ntop_radius_m " << atm.top_radius_m() << '\n';
   write_array(out, "wavelengths_nm", atm.grid().nanometres());
-  write_species(out, "rayleigh", atm.rayleigh());
-  write_species(out, "mie", atm.mie());
-  write_species(out, "ozone", atm.ozone());
-  out << "mie.phase " << to_string(atm.mie_phase().model) << '\n';
-  write_array(out, "mie.g", atm.mie_g());
-  if (const TabulatedScatteringMatrix* m = atm.mie_matrix()) {  // absent otherwise (keys stay as they were)
-    write_array(out, "mie.matrix.mu", m->mu());
-    for (int i = 0; i < m->wavelengths(); ++i) {
-      write_array(out, "mie.matrix.a1", m->a1()[static_cast<size_t>(i)]);
-      write_array(out, "mie.matrix.b1", m->b1()[static_cast<size_t>(i)]);
-    }
-  }
+  for (const Medium& m : atm.media()) write_medium(out, m);
   write_array(out, "ground.albedo", atm.ground_albedo());
   out << "sun_table " << sun_table.n_r << ' ' << sun_table.n_mu << ' ' << sun_table.segments << '\n';
   out << "orders " << ms.orders << "\naltitude_samples " << ms.altitude_samples << "\nsun_samples " << ms.sun_samples

@@ -22,7 +22,7 @@ namespace skyspec {
 
 /// Version of the tables' method and file layout (not of the program): bump it when the
 /// integrator, its quadrature or the cache file's layout changes.
-inline constexpr int kScatteringTablesFormat = 6;
+inline constexpr int kScatteringTablesFormat = 7;
 
 /// Significant digits of every number in the key. Builds that differ only in the last bits of a
 /// derived coefficient (another compiler, optimisation level or instruction set: a few parts in

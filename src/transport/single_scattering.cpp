@@ -15,30 +15,23 @@
 
 namespace skyspec {
 
-ScatteringWorkspace::ScatteringWorkspace(int n)
-    : view_tau(n),
-      view_trans(n),
-      source(n),
-      ground_sun(n),
-      ground_sky(n),
-      sum_rayleigh(n),
-      sum_mie(n),
-      coarse_rayleigh(n),
-      coarse_mie(n),
-      sum_ms_rayleigh(n),
-      sum_ms_mie(n),
-      coarse_ms_rayleigh(n),
-      coarse_ms_mie(n),
-      sum_ms_q(n),
-      coarse_ms_q(n),
-      sum_ms_u(n),
-      coarse_ms_u(n),
-      sum_ms_mq(n),
-      coarse_ms_mq(n),
-      sum_ms_mu(n),
-      coarse_ms_mu(n),
-      phase(n),
-      parts(n) {}
+ScatteringWorkspace::ScatteringWorkspace(int n) : view_tau(n), view_trans(n), source(n), ground_sun(n), ground_sky(n) {
+  for (Sums& s : sums)
+    for (Spectrum* v : {&s.single[0], &s.single[1], &s.higher[0], &s.higher[1], &s.q[0], &s.q[1], &s.u[0], &s.u[1]})
+      v->setZero(n);
+  for (Spectrum& p : phase) p.setZero(n);
+}
+
+void RadianceParts::resize(int n, int scatterers) {
+  scattered.resize(static_cast<size_t>(scatterers));
+  for (Spectrum& s : scattered) s.setZero(n);
+  phase_free.setZero(n);
+}
+
+void RadianceParts::set_zero() {
+  for (Spectrum& s : scattered) s.setZero();
+  phase_free.setZero();
+}
 
 Vec3 polarisation_frame(const Vec3& view, const Vec3& sun) {
   const Vec3 k = -view;
@@ -53,28 +46,45 @@ SingleScattering::SingleScattering(const AtmosphereModel& atm, const SunColumns&
     : atm_(atm),
       sun_(sun_columns),
       settings_(s),
-      sca_rayleigh_(atm.rayleigh().scattering_per_m.cast<float>()),
-      sca_mie_(atm.mie().scattering_per_m.cast<float>()),
-      albedo_over_pi_((atm.ground_albedo() / kPi).cast<float>()) {
-  // The Rayleigh phase function per wavelength as A + B mu^2 (phase_function.hpp, Chandrasekhar).
-  const SpectrumD& gamma = atm.rayleigh_phase_gamma();
-  const SpectrumD scale = 3.0 / (16.0 * kPi * (1.0 + 2.0 * gamma));
-  rayleigh_phase_a_ = (scale * (1.0 + 3.0 * gamma)).cast<float>();
-  rayleigh_phase_b_ = (scale * (1.0 - gamma)).cast<float>();
-  {
-    std::vector<double> mu, w;
-    gauss_legendre(512, -1.0, 1.0, mu, w);
-    mie_spin2_moment_.resize(gamma.size());
-    for (Eigen::Index i = 0; i < gamma.size(); ++i) {
-      double sum = 0.0;
-      for (size_t k = 0; k < mu.size(); ++k)
-        sum += w[k] * atm.mie_phase_at(static_cast<int>(i), mu[k]) * (1.0 + mu[k]) * (1.0 + mu[k]) / 4.0;
-      mie_spin2_moment_[i] = static_cast<float>(2.0 * kPi * sum);
+      media_(static_cast<int>(atm.media().size())),
+      albedo_over_pi_((atm.ground_albedo() / kPi).cast<float>()),
+      n_(atm.grid().size()) {
+  std::vector<double> mu, w;
+  gauss_legendre(512, -1.0, 1.0, mu, w);
+  for (int j = 0; j < media_; ++j) {
+    const Medium& medium = atm.media()[static_cast<size_t>(j)];
+    ext_[j] = medium.extinction_per_m.cast<float>();
+    layer_[j] = !medium.profile.positive_everywhere();
+    if (!medium.scatters()) continue;
+    Scatterer sc;
+    sc.medium = j;
+    sc.sca = medium.scattering_per_m.cast<float>();
+    sc.phase = &medium.phase;
+    if (sc.rayleigh()) {
+      // The phase function per wavelength as A + B mu^2 (phase_function.hpp, Chandrasekhar).
+      const SpectrumD& gamma = medium.phase.rayleigh_gamma;
+      const SpectrumD scale = 3.0 / (16.0 * kPi * (1.0 + 2.0 * gamma));
+      sc.phase_a = (scale * (1.0 + 3.0 * gamma)).cast<float>();
+      sc.phase_b = (scale * (1.0 - gamma)).cast<float>();
+    } else {
+      sc.spin2_moment.resize(n_);
+      for (int i = 0; i < n_; ++i) {
+        double sum = 0.0;
+        for (size_t k = 0; k < mu.size(); ++k)
+          sum += w[k] * medium.phase.at(i, mu[k]) * (1.0 + mu[k]) * (1.0 + mu[k]) / 4.0;
+        sc.spin2_moment[i] = static_cast<float>(2.0 * kPi * sum);
+      }
     }
+    scatterers_.push_back(std::move(sc));
   }
-  ext_[kRayleigh] = atm.rayleigh().extinction_per_m.cast<float>();
-  ext_[kMie] = atm.mie().extinction_per_m.cast<float>();
-  ext_[kOzone] = atm.ozone().extinction_per_m.cast<float>();
+}
+
+void SingleScattering::optical_depth(const double* columns, Spectrum& tau) const {
+  if (media_ >= 2)
+    tau = ext_[0] * static_cast<float>(columns[0]) + ext_[1] * static_cast<float>(columns[1]);
+  else
+    tau = ext_[0] * static_cast<float>(columns[0]);
+  for (int j = 2; j < media_; ++j) tau += ext_[j] * static_cast<float>(columns[j]);
 }
 
 namespace {
@@ -93,15 +103,15 @@ constexpr Eigen::Index kWavelengthsForWavelengthLoops = 8;  // one AVX vector of
 
 }  // namespace
 
-// What the segments of a piece share at every wavelength: lengths, densities and their log
-// ratios, for the fine rule (nodes k, k + 1) and the coarse one (nodes 2j, 2j + 2). In a named
-// namespace: SingleScattering::PieceScratch (a member type) holds one.
+// What the segments of a piece share at every wavelength: lengths, and each scattering medium's
+// densities and their log ratios, for the fine rule (nodes k, k + 1) and the coarse one (nodes 2j,
+// 2j + 2). In a named namespace: SingleScattering::PieceScratch (a member type) holds one.
 namespace detail {
 struct PieceSegments {
   int segments = 0;
-  Eigen::ArrayXf dt, rho[2], log_ratio[2];  // fine: [k]; rho: [node]
-  Eigen::ArrayXf dt2, log_ratio2[2];        // coarse: [j]
-  Eigen::ArrayXf terms_r, terms_m;          // scratch
+  Eigen::ArrayXf dt, rho[kMaxMedia], log_ratio[kMaxMedia];  // fine: [k]; rho: [node]; per scatterer
+  Eigen::ArrayXf dt2, log_ratio2[kMaxMedia];                // coarse: [j]
+  Eigen::ArrayXf terms;                                     // scratch
 };
 }  // namespace detail
 
@@ -111,46 +121,77 @@ using detail::PieceSegments;
 inline float log_mean_term(float x, float f_a, float f_b) { return log_mean_branchless(f_a, f_b, x, 1e-2f); }
 
 // out[j] = dt[j] logmean over nodes a = j s, b = (j + 1) s (s = stride: 1 for the fine rule, 2 for
-// the coarse one) of both species' integrands, for one wavelength. A separate function with
-// plain pointers so that GCC vectorises it.
+// the coarse one) of one medium's integrand, for one wavelength. A separate function with plain
+// pointers so that GCC vectorises it.
 void log_mean_terms(int count, int stride, const float* __restrict tau, const float* __restrict trans,
-                    const float* __restrict rho_r, const float* __restrict rho_m, const float* __restrict x_r,
-                    const float* __restrict x_m, const float* __restrict dt, float* __restrict out_r,
-                    float* __restrict out_m) {
+                    const float* __restrict rho, const float* __restrict x, const float* __restrict dt,
+                    float* __restrict out) {
+  if (stride == 1) {
+    for (int j = 0; j < count; ++j)
+      out[j] = dt[j] * log_mean_term(x[j] - (tau[j] - tau[j + 1]), rho[j] * trans[j], rho[j + 1] * trans[j + 1]);
+    return;
+  }
+  for (int j = 0; j < count; ++j) {
+    const int a = j * stride, b = a + stride;
+    out[j] = dt[j] * log_mean_term(x[j] - (tau[a] - tau[b]), rho[a] * trans[a], rho[b] * trans[b]);
+  }
+}
+
+// The same for two media at once (a and b): the optical depths and transmittances are read once.
+void log_mean_terms_2(int count, int stride, const float* __restrict tau, const float* __restrict trans,
+                      const float* __restrict rho_a, const float* __restrict rho_b, const float* __restrict x_a,
+                      const float* __restrict x_b, const float* __restrict dt, float* __restrict out_a,
+                      float* __restrict out_b) {
   if (stride == 1) {
     for (int j = 0; j < count; ++j) {
       const float dtau = tau[j] - tau[j + 1];
-      out_r[j] = dt[j] * log_mean_term(x_r[j] - dtau, rho_r[j] * trans[j], rho_r[j + 1] * trans[j + 1]);
-      out_m[j] = dt[j] * log_mean_term(x_m[j] - dtau, rho_m[j] * trans[j], rho_m[j + 1] * trans[j + 1]);
+      out_a[j] = dt[j] * log_mean_term(x_a[j] - dtau, rho_a[j] * trans[j], rho_a[j + 1] * trans[j + 1]);
+      out_b[j] = dt[j] * log_mean_term(x_b[j] - dtau, rho_b[j] * trans[j], rho_b[j + 1] * trans[j + 1]);
     }
     return;
   }
   for (int j = 0; j < count; ++j) {
     const int a = j * stride, b = a + stride;
     const float dtau = tau[a] - tau[b];
-    out_r[j] = dt[j] * log_mean_term(x_r[j] - dtau, rho_r[a] * trans[a], rho_r[b] * trans[b]);
-    out_m[j] = dt[j] * log_mean_term(x_m[j] - dtau, rho_m[a] * trans[a], rho_m[b] * trans[b]);
+    out_a[j] = dt[j] * log_mean_term(x_a[j] - dtau, rho_a[a] * trans[a], rho_a[b] * trans[b]);
+    out_b[j] = dt[j] * log_mean_term(x_b[j] - dtau, rho_b[a] * trans[a], rho_b[b] * trans[b]);
   }
 }
 
-// Adds the fine and coarse log-mean sums over the piece's segments of both species, per
+// Adds the fine and coarse log-mean sums over the piece's segments of scatterer sp, per
 // wavelength. tau and trans: [node, wavelength], loops over nodes.
-void accumulate_piece(const NodeArray& tau, const NodeArray& trans, PieceSegments& g, Spectrum& fine_r,
-                      Spectrum& fine_m, Spectrum& coarse_r, Spectrum& coarse_m) {
+void accumulate_piece(const NodeArray& tau, const NodeArray& trans, PieceSegments& g, int sp, Spectrum& fine,
+                      Spectrum& coarse) {
   const int segs = g.segments, pairs = segs / 2;
-  g.terms_r.resize(segs);
-  g.terms_m.resize(segs);
+  g.terms.resize(segs);
   for (Eigen::Index l = 0; l < tau.cols(); ++l) {
     const float* ta = tau.col(l).data();
     const float* ea = trans.col(l).data();
-    log_mean_terms(segs, 1, ta, ea, g.rho[0].data(), g.rho[1].data(), g.log_ratio[0].data(), g.log_ratio[1].data(),
-                   g.dt.data(), g.terms_r.data(), g.terms_m.data());
-    fine_r[l] += g.terms_r.head(segs).sum();
-    fine_m[l] += g.terms_m.head(segs).sum();
-    log_mean_terms(pairs, 2, ta, ea, g.rho[0].data(), g.rho[1].data(), g.log_ratio2[0].data(), g.log_ratio2[1].data(),
-                   g.dt2.data(), g.terms_r.data(), g.terms_m.data());
-    coarse_r[l] += g.terms_r.head(pairs).sum();
-    coarse_m[l] += g.terms_m.head(pairs).sum();
+    log_mean_terms(segs, 1, ta, ea, g.rho[sp].data(), g.log_ratio[sp].data(), g.dt.data(), g.terms.data());
+    fine[l] += g.terms.head(segs).sum();
+    log_mean_terms(pairs, 2, ta, ea, g.rho[sp].data(), g.log_ratio2[sp].data(), g.dt2.data(), g.terms.data());
+    coarse[l] += g.terms.head(pairs).sum();
+  }
+}
+
+// accumulate_piece for scatterers sa and sb together (single scattering: both see the same tau).
+void accumulate_piece_2(const NodeArray& tau, const NodeArray& trans, PieceSegments& g, int sa, int sb,
+                        Spectrum* sums_a, Spectrum* sums_b) {
+  const int segs = g.segments, pairs = segs / 2;
+  g.terms.resize(2 * segs);
+  float* ta_terms = g.terms.data();
+  float* tb_terms = g.terms.data() + segs;
+  for (Eigen::Index l = 0; l < tau.cols(); ++l) {
+    const float* ta = tau.col(l).data();
+    const float* ea = trans.col(l).data();
+    log_mean_terms_2(segs, 1, ta, ea, g.rho[sa].data(), g.rho[sb].data(), g.log_ratio[sa].data(),
+                     g.log_ratio[sb].data(), g.dt.data(), ta_terms, tb_terms);
+    sums_a[0][l] += g.terms.head(segs).sum();
+    sums_b[0][l] += g.terms.segment(segs, segs).sum();
+    log_mean_terms_2(pairs, 2, ta, ea, g.rho[sa].data(), g.rho[sb].data(), g.log_ratio2[sa].data(),
+                     g.log_ratio2[sb].data(), g.dt2.data(), ta_terms, tb_terms);
+    sums_a[1][l] += g.terms.head(pairs).sum();
+    sums_b[1][l] += g.terms.segment(segs, pairs).sum();
   }
 }
 
@@ -158,50 +199,49 @@ void accumulate_piece(const NodeArray& tau, const NodeArray& trans, PieceSegment
 // segment, every loop over wavelengths: the better order when there are many wavelengths and
 // few nodes (the scattering-order tables' rays have 24 segments).
 void segment_over_wavelengths(Eigen::Index n, const float* __restrict ta, const float* __restrict ea,
-                              const float* __restrict tb, const float* __restrict eb, float x_r, float r_a, float r_b,
-                              float x_m, float m_a, float m_b, float dt, float* __restrict out_r,
-                              float* __restrict out_m) {
-  for (Eigen::Index l = 0; l < n; ++l) {
-    const float dtau = ta[l] - tb[l];
-    out_r[l] += dt * log_mean_term(x_r - dtau, r_a * ea[l], r_b * eb[l]);
-    out_m[l] += dt * log_mean_term(x_m - dtau, m_a * ea[l], m_b * eb[l]);
-  }
-}
-// One species' half of segment_over_wavelengths (a higher-order pass weights one species).
-void segment_one_species(Eigen::Index n, const float* __restrict ta, const float* __restrict ea,
-                         const float* __restrict tb, const float* __restrict eb, float x, float rho_a, float rho_b,
-                         float dt, float* __restrict out) {
+                              const float* __restrict tb, const float* __restrict eb, float x, float rho_a, float rho_b,
+                              float dt, float* __restrict out) {
   for (Eigen::Index l = 0; l < n; ++l) out[l] += dt * log_mean_term(x - (ta[l] - tb[l]), rho_a * ea[l], rho_b * eb[l]);
 }
-// The fine and coarse sums of species sp only, [wavelength, node] arrays.
-void accumulate_species_by_wavelength(const NodeArray& tau, const NodeArray& trans, const PieceSegments& g, int sp,
-                                      Spectrum& fine, Spectrum& coarse) {
+// Two media at once.
+void segment_over_wavelengths_2(Eigen::Index n, const float* __restrict ta, const float* __restrict ea,
+                                const float* __restrict tb, const float* __restrict eb, float x_a, float a_a, float a_b,
+                                float x_b, float b_a, float b_b, float dt, float* __restrict out_a,
+                                float* __restrict out_b) {
+  for (Eigen::Index l = 0; l < n; ++l) {
+    const float dtau = ta[l] - tb[l];
+    out_a[l] += dt * log_mean_term(x_a - dtau, a_a * ea[l], a_b * eb[l]);
+    out_b[l] += dt * log_mean_term(x_b - dtau, b_a * ea[l], b_b * eb[l]);
+  }
+}
+void accumulate_piece_by_wavelength_2(const NodeArray& tau, const NodeArray& trans, const PieceSegments& g, int sa,
+                                      int sb, Spectrum* sums_a, Spectrum* sums_b) {
   const Eigen::Index n = tau.rows();
-  const float* rho = g.rho[sp].data();
+  const float* ra = g.rho[sa].data();
+  const float* rb = g.rho[sb].data();
   for (int k = 0; k < g.segments; ++k)
-    segment_one_species(n, tau.col(k).data(), trans.col(k).data(), tau.col(k + 1).data(), trans.col(k + 1).data(),
-                        g.log_ratio[sp][k], rho[k], rho[k + 1], g.dt[k], fine.data());
+    segment_over_wavelengths_2(n, tau.col(k).data(), trans.col(k).data(), tau.col(k + 1).data(),
+                               trans.col(k + 1).data(), g.log_ratio[sa][k], ra[k], ra[k + 1], g.log_ratio[sb][k], rb[k],
+                               rb[k + 1], g.dt[k], sums_a[0].data(), sums_b[0].data());
   for (int j = 0; j < g.segments / 2; ++j) {
     const int a = 2 * j, b = 2 * j + 2;
-    segment_one_species(n, tau.col(a).data(), trans.col(a).data(), tau.col(b).data(), trans.col(b).data(),
-                        g.log_ratio2[sp][j], rho[a], rho[b], g.dt2[j], coarse.data());
+    segment_over_wavelengths_2(n, tau.col(a).data(), trans.col(a).data(), tau.col(b).data(), trans.col(b).data(),
+                               g.log_ratio2[sa][j], ra[a], ra[b], g.log_ratio2[sb][j], rb[a], rb[b], g.dt2[j],
+                               sums_a[1].data(), sums_b[1].data());
   }
 }
 
-void accumulate_piece_by_wavelength(const NodeArray& tau, const NodeArray& trans, const PieceSegments& g,
-                                    Spectrum& fine_r, Spectrum& fine_m, Spectrum& coarse_r, Spectrum& coarse_m) {
+void accumulate_piece_by_wavelength(const NodeArray& tau, const NodeArray& trans, const PieceSegments& g, int sp,
+                                    Spectrum& fine, Spectrum& coarse) {
   const Eigen::Index n = tau.rows();
-  const float* rr = g.rho[0].data();
-  const float* rm = g.rho[1].data();
+  const float* rho = g.rho[sp].data();
   for (int k = 0; k < g.segments; ++k)
     segment_over_wavelengths(n, tau.col(k).data(), trans.col(k).data(), tau.col(k + 1).data(), trans.col(k + 1).data(),
-                             g.log_ratio[0][k], rr[k], rr[k + 1], g.log_ratio[1][k], rm[k], rm[k + 1], g.dt[k],
-                             fine_r.data(), fine_m.data());
+                             g.log_ratio[sp][k], rho[k], rho[k + 1], g.dt[k], fine.data());
   for (int j = 0; j < g.segments / 2; ++j) {
     const int a = 2 * j, b = 2 * j + 2;
     segment_over_wavelengths(n, tau.col(a).data(), trans.col(a).data(), tau.col(b).data(), trans.col(b).data(),
-                             g.log_ratio2[0][j], rr[a], rr[b], g.log_ratio2[1][j], rm[a], rm[b], g.dt2[j],
-                             coarse_r.data(), coarse_m.data());
+                             g.log_ratio2[sp][j], rho[a], rho[b], g.dt2[j], coarse.data());
   }
 }
 
@@ -220,8 +260,8 @@ void SingleScattering::transmittance_to_space(const Vec3& o, const Vec3& d, Spec
   const Vec3 start = o + std::max(0.0, top.t_near_m) * d;
   const double r = std::min(start.norm(), Rt);
   const Columns c = columns_to_top_m(atm_, r, start.dot(d) / start.norm(), 256);
-  Spectrum tau = ext_[kRayleigh] * static_cast<float>(c[kRayleigh]) + ext_[kMie] * static_cast<float>(c[kMie]) +
-                 ext_[kOzone] * static_cast<float>(c[kOzone]);
+  Spectrum tau;
+  optical_depth(c.data(), tau);
   out = (-tau).exp();
 }
 
@@ -232,48 +272,52 @@ void SingleScattering::radiance(const Vec3& o, const Vec3& d, const Vec3& s, con
 }
 
 namespace {
-// L = E_sun [p_R rayleigh + p_M mie + phase_free] for one direction's parts (n values each), with
-// the aerosol's phase per wavelength where pm_spectral is given.
-// The Rayleigh phase per wavelength is pr_a + pr_b mu^2 (the constructor's A and B).
-void combine_parts(Eigen::Index n, const float* rayleigh, const float* mie, const float* phase_free,
-                   const Spectrum& pr_a, const Spectrum& pr_b, float mu2, float pm, const Spectrum* pm_spectral,
-                   const Spectrum& sun_irradiance, float* out) {
+// L = E_sun [sum_s p_s scattered_s + phase_free] for one direction's parts (n values each): parts[s]
+// the scatterers', phases[s] their phase functions per wavelength.
+void combine_parts(Eigen::Index n, int scatterers, const float* const* parts, const Spectrum* phases,
+                   const float* phase_free, const Spectrum& sun_irradiance, float* out) {
   using In = Eigen::Map<const Spectrum>;
   Eigen::Map<Spectrum> o(out, n);
-  if (pm_spectral)
-    o = (In(rayleigh, n) * (pr_a + pr_b * mu2) + In(mie, n) * *pm_spectral + In(phase_free, n)) * sun_irradiance;
-  else
-    o = (In(rayleigh, n) * (pr_a + pr_b * mu2) + In(mie, n) * pm + In(phase_free, n)) * sun_irradiance;
-}
-
-// The aerosol's phase function differs per wavelength: tabulated (microphysics), or an analytic
-// model whose asymmetry differs per wavelength.
-bool mie_phase_is_spectral(const AtmosphereModel& atm) { return atm.mie_matrix() || atm.mie_g_varies(); }
-
-void spectral_mie_phase(const AtmosphereModel& atm, double mu, Spectrum& phase) {
-  if (const TabulatedScatteringMatrix* table = atm.mie_matrix()) {
-    const TabulatedScatteringMatrix::Position at = table->locate(mu);
-    for (int i = 0; i < phase.size(); ++i) phase[i] = static_cast<float>(table->phase(i, at));
+  if (scatterers == 1) {
+    o = (In(parts[0], n) * phases[0] + In(phase_free, n)) * sun_irradiance;
     return;
   }
-  AerosolPhase p = atm.mie_phase();
-  for (int i = 0; i < phase.size(); ++i) {
-    p.g = atm.mie_g()[i];
-    phase[i] = static_cast<float>(p(mu));
+  if (scatterers == 2) {  // air and aerosol: one expression
+    o = (In(parts[0], n) * phases[0] + In(parts[1], n) * phases[1] + In(phase_free, n)) * sun_irradiance;
+    return;
   }
+  o = In(parts[0], n) * phases[0] + In(parts[1], n) * phases[1];
+  for (int s = 2; s < scatterers; ++s) o += In(parts[s], n) * phases[s];
+  o = (o + In(phase_free, n)) * sun_irradiance;
 }
 }  // namespace
 
+void SingleScattering::phase_of(int s, double mu, Spectrum& p) const {
+  const Scatterer& sc = scatterers_[static_cast<size_t>(s)];
+  const MediumPhase& ph = *sc.phase;
+  if (sc.rayleigh()) {
+    p = sc.phase_a + sc.phase_b * static_cast<float>(mu * mu);
+  } else if (ph.kind == MediumPhase::Kind::Tabulated) {
+    const TabulatedScatteringMatrix::Position at = ph.matrix->locate(mu);
+    for (int i = 0; i < n_; ++i) p[i] = static_cast<float>(ph.matrix->phase(i, at));
+  } else if (ph.varies_with_wavelength()) {
+    for (int i = 0; i < n_; ++i) p[i] = static_cast<float>(ph.analytic(i)(mu));
+  } else {
+    p.setConstant(static_cast<float>(ph.analytic(0)(mu)));
+  }
+}
+
+void SingleScattering::phases_at(double mu, ScatteringWorkspace& ws) const {
+  for (int s = 0; s < scatterer_count(); ++s) phase_of(s, mu, ws.phase[s]);
+}
+
 void SingleScattering::combine(const RadianceParts& parts, double mu, const Spectrum& sun_irradiance,
                                ScatteringWorkspace& ws, Spectrum& out) const {
-  const Eigen::Index n = parts.rayleigh.size();
-  out.resize(n);
-  const bool varies = mie_phase_is_spectral(atm_);
-  if (varies) spectral_mie_phase(atm_, mu, ws.phase);
-  const float phase_m = varies ? 0.0f : static_cast<float>(atm_.mie_phase()(mu));
-  combine_parts(n, parts.rayleigh.data(), parts.mie.data(), parts.phase_free.data(), rayleigh_phase_a_,
-                rayleigh_phase_b_, static_cast<float>(mu * mu), phase_m, varies ? &ws.phase : nullptr, sun_irradiance,
-                out.data());
+  out.resize(n_);
+  phases_at(mu, ws);
+  const float* p[kMaxMedia];
+  for (int s = 0; s < scatterer_count(); ++s) p[s] = parts.scattered[static_cast<size_t>(s)].data();
+  combine_parts(n_, scatterer_count(), p, ws.phase, parts.phase_free.data(), sun_irradiance, out.data());
 }
 
 void SingleScattering::stokes(const RadianceParts& parts, const Vec3& view, const Vec3& sun, const Vec3& e1,
@@ -287,16 +331,23 @@ void SingleScattering::stokes(const RadianceParts& parts, const Vec3& view, cons
   const Vec3 e1p = polarisation_frame(view, sun), e2p = k.cross(e1p);
   const double c = e1.dot(e1p), s = e1.dot(e2p);
   const float c2 = static_cast<float>(c * c - s * s), s2 = static_cast<float>(2.0 * c * s);
-  // Order 1 in the parts' frame, which contains the scattering plane: Q = E rayleigh b1(mu), U = 0.
-  Spectrum q_plane = -(rayleigh_phase_b_ * static_cast<float>(1.0 - mu * mu)) * parts.rayleigh * sun_irradiance;
-  // An aerosol from microphysics polarises its order-1 light too: Q = E mie b1_M(mu).
-  if (const TabulatedScatteringMatrix* table = atm_.mie_matrix()) {
-    const TabulatedScatteringMatrix::Position at = table->locate(mu);
-    for (Eigen::Index i = 0; i < q_plane.size(); ++i)
-      q_plane[i] += static_cast<float>(table->b1(static_cast<int>(i), at)) * parts.mie[i] * sun_irradiance[i];
+  // Order 1 in the parts' frame, which contains the scattering plane: Q = E scattered_s b1_s(mu),
+  // U = 0; molecules' b1 = -B (1 - mu^2), a table's its own, an analytic phase function none.
+  Spectrum q_plane = Spectrum::Zero(n_);
+  for (size_t j = 0; j < scatterers_.size(); ++j) {
+    const Scatterer& sc = scatterers_[j];
+    const Spectrum& part = parts.scattered[j];
+    if (sc.rayleigh()) {
+      q_plane += -(sc.phase_b * static_cast<float>(1.0 - mu * mu)) * part * sun_irradiance;
+    } else if (sc.phase->kind == MediumPhase::Kind::Tabulated) {
+      const TabulatedScatteringMatrix& table = *sc.phase->matrix;
+      const TabulatedScatteringMatrix::Position at = table.locate(mu);
+      for (Eigen::Index i = 0; i < n_; ++i)
+        q_plane[i] += static_cast<float>(table.b1(static_cast<int>(i), at)) * part[i] * sun_irradiance[i];
+    }
   }
-  Spectrum u_plane = Spectrum::Zero(q_plane.size());
-  if (parts.polarised_q.size() == q_plane.size()) {
+  Spectrum u_plane = Spectrum::Zero(n_);
+  if (parts.polarised_q.size() == n_) {
     q_plane += parts.polarised_q * sun_irradiance;
     u_plane += parts.polarised_u * sun_irradiance;
   }
@@ -306,25 +357,40 @@ void SingleScattering::stokes(const RadianceParts& parts, const Vec3& view, cons
 
 void SingleScattering::combine_many(int count, const float* packed, const double* mu, const bool* use,
                                     const Spectrum& sun_irradiance, float* const* out, ScatteringWorkspace& ws) const {
-  const Eigen::Index n = sca_rayleigh_.size();
-  const bool varies = mie_phase_is_spectral(atm_);
-  const AerosolPhase mie = atm_.mie_phase();
-  const bool hg = mie.model == AerosolPhase::Model::HenyeyGreenstein;
+  const int n = n_, parts = scatterer_count() + 1;
+  // Analytic phase functions that are the same at every wavelength are evaluated for a chunk of
+  // directions in one loop that vectorises; the others per direction (phases_at).
   constexpr int kChunk = 64;
-  double pm[kChunk];
+  bool constant[kMaxMedia] = {};
+  for (int s = 0; s < scatterer_count(); ++s) {
+    const MediumPhase& ph = *scatterers_[static_cast<size_t>(s)].phase;
+    constant[s] = ph.kind == MediumPhase::Kind::Analytic && !ph.varies_with_wavelength();
+  }
+  double pm[kMaxMedia][kChunk];
   for (int first = 0; first < count; first += kChunk) {
     const int m = std::min(kChunk, count - first);
     const double* u = mu + first;
-    if (hg)
-      for (int k = 0; k < m; ++k) pm[k] = henyey_greenstein_phase(u[k], mie.g);
-    else
-      for (int k = 0; k < m; ++k) pm[k] = cornette_shanks_phase(u[k], mie.g);
+    for (int s = 0; s < scatterer_count(); ++s) {
+      if (!constant[s]) continue;
+      const AerosolPhase phase = scatterers_[static_cast<size_t>(s)].phase->analytic(0);
+      if (phase.model == AerosolPhase::Model::HenyeyGreenstein)
+        for (int k = 0; k < m; ++k) pm[s][k] = henyey_greenstein_phase(u[k], phase.g);
+      else
+        for (int k = 0; k < m; ++k) pm[s][k] = cornette_shanks_phase(u[k], phase.g);
+    }
     for (int k = 0; k < m; ++k) {
       if (!use[first + k]) continue;
-      if (varies) spectral_mie_phase(atm_, u[k], ws.phase);
-      const float* p = packed + static_cast<size_t>(first + k) * 3 * static_cast<size_t>(n);
-      combine_parts(n, p, p + n, p + 2 * n, rayleigh_phase_a_, rayleigh_phase_b_, static_cast<float>(u[k] * u[k]),
-                    static_cast<float>(pm[k]), varies ? &ws.phase : nullptr, sun_irradiance, out[first + k]);
+      for (int s = 0; s < scatterer_count(); ++s) {
+        if (constant[s])
+          ws.phase[s].setConstant(static_cast<float>(pm[s][k]));
+        else
+          phase_of(s, u[k], ws.phase[s]);
+      }
+      const float* p = packed + static_cast<size_t>(first + k) * parts * static_cast<size_t>(n);
+      const float* part[kMaxMedia];
+      for (int s = 0; s < scatterer_count(); ++s) part[s] = p + static_cast<size_t>(s) * n;
+      combine_parts(n, scatterer_count(), part, ws.phase, p + static_cast<size_t>(scatterer_count()) * n,
+                    sun_irradiance, out[first + k]);
     }
   }
 }
@@ -334,10 +400,9 @@ void SingleScattering::combine_many(int count, const float* packed, const double
 struct SingleScattering::Node {
   double t;
   double r;
-  double log_rho[2];  // Rayleigh, Mie
-  double rho[2];      // exp(log_rho), once per node
-  double rho_ozone;
-  double col[kSpeciesCount];
+  double log_rho[kMaxMedia];  // per medium (a layer's is not used)
+  double rho[kMaxMedia];      // exp(log_rho), once per node; a layer's directly
+  double col[kMaxMedia];
 };
 
 // A stretch of the ray between cuts, lit by the sun or in the planet's shadow, and its nodes:
@@ -432,30 +497,32 @@ bool SingleScattering::trace(const Vec3& o, const Vec3& d, const Vec3& s, const 
 // the log-mean rule for the positive profiles, the trapezoid rule for ozone.
 void SingleScattering::place_nodes(const Vec3& o, const Vec3& d, const ScatteringSources& sources, Ray& ray) const {
   const double R = atm_.planet_radius_m();
-  const DensityProfile& prof_r = atm_.rayleigh().profile;
-  const DensityProfile& prof_m = atm_.mie().profile;
-  const DensityProfile& prof_o = atm_.ozone().profile;
-  const bool ozone = atm_.ozone().enabled();
+  const std::vector<Medium>& media = atm_.media();
   const bool higher = sources.higher != nullptr;
   auto make_node = [&](double t) {
     Node n;
     n.t = t;
     n.r = (o + t * d).norm();
     const double alt = n.r - R;
-    n.log_rho[0] = prof_r.log_relative(alt);
-    n.log_rho[1] = prof_m.log_relative(alt);
-    n.rho[0] = std::exp(n.log_rho[0]);
-    n.rho[1] = std::exp(n.log_rho[1]);
-    n.rho_ozone = ozone ? prof_o.relative(alt) : 0.0;
+    for (int j = 0; j < media_; ++j) {
+      const DensityProfile& profile = media[static_cast<size_t>(j)].profile;
+      if (layer_[j]) {
+        n.rho[j] = profile.relative(alt);
+      } else {
+        n.log_rho[j] = profile.log_relative(alt);
+        n.rho[j] = std::exp(n.log_rho[j]);
+      }
+    }
     return n;
   };
   auto append = [&](double t) {
     Node next = make_node(t);
     const Node& prev = ray.nodes.back();
     const double dt = next.t - prev.t;
-    for (int k = 0; k < 2; ++k)
-      next.col[k] = prev.col[k] + dt * log_mean(prev.rho[k], next.rho[k], prev.log_rho[k] - next.log_rho[k]);
-    next.col[kOzone] = prev.col[kOzone] + 0.5 * dt * (prev.rho_ozone + next.rho_ozone);
+    for (int j = 0; j < media_; ++j)
+      next.col[j] = layer_[j]
+                        ? prev.col[j] + 0.5 * dt * (prev.rho[j] + next.rho[j])
+                        : prev.col[j] + dt * log_mean(prev.rho[j], next.rho[j], prev.log_rho[j] - next.log_rho[j]);
     ray.nodes.push_back(next);
   };
 
@@ -464,7 +531,7 @@ void SingleScattering::place_nodes(const Vec3& o, const Vec3& d, const Scatterin
     if (ray.pieces[i].lit || higher) total_len += ray.pieces[i].t1 - ray.pieces[i].t0;
   ray.nodes.clear();
   Node first = make_node(ray.t_begin);
-  first.col[kRayleigh] = first.col[kMie] = first.col[kOzone] = 0.0;
+  std::fill(first.col, first.col + kMaxMedia, 0.0);
   ray.nodes.push_back(first);
   for (int i = 0; i < ray.n_pieces; ++i) {
     Piece& pc = ray.pieces[i];
@@ -487,9 +554,9 @@ void SingleScattering::place_nodes(const Vec3& o, const Vec3& d, const Scatterin
   }
 }
 
-// Where a piece's nodes lie: uniform in s(t) = (t - t0) / (t1 - t0) + c_R(t) / c_R(t1) + c_M(t) / c_M(t1),
-// the share of the piece's length plus the shares of its Rayleigh and aerosol columns (c_s(t), the
-// column of species s from t0 to t, for each species that scatters). A ray that runs low through
+// Where a piece's nodes lie: uniform in s(t) = (t - t0) / (t1 - t0) + sum_s c_s(t) / c_s(t1), the
+// share of the piece's length plus the shares of its scattering media's columns (c_s(t), the
+// column of medium s from t0 to t). A ray that runs low through
 // dense air gets short segments there, where its integrand is large and its optical depth grows
 // fastest, and at least a third of the nodes stay spread over its length. The columns come from a
 // pilot of kPilotsPerSegment x segments + 1 points uniform in t, and s is inverted linearly between
@@ -498,26 +565,27 @@ void SingleScattering::place_nodes(const Vec3& o, const Vec3& d, const Scatterin
 void SingleScattering::piece_node_positions(const Vec3& o, const Vec3& d, double t0, double t1, int segments,
                                             double* t) const {
   const double R = atm_.planet_radius_m();
-  const DensityProfile* profiles[2] = {&atm_.rayleigh().profile, &atm_.mie().profile};
-  const bool weighted[2] = {atm_.rayleigh().enabled(), atm_.mie().enabled()};
+  const int count = scatterer_count();
   const int pilots = kPilotsPerSegment * segments;
   const double dt = (t1 - t0) / pilots;
-  thread_local std::vector<double> rho[2], share;
-  for (auto* v : {&rho[0], &rho[1], &share}) v->assign(static_cast<size_t>(pilots) + 1, 0.0);
+  thread_local std::vector<double> rho[kMaxMedia], share;
+  for (int sp = 0; sp < count; ++sp) rho[sp].assign(static_cast<size_t>(pilots) + 1, 0.0);
+  share.assign(static_cast<size_t>(pilots) + 1, 0.0);
   for (int k = 0; k <= pilots; ++k) {
     const double alt = (o + (t0 + dt * k) * d).norm() - R;
-    for (int sp = 0; sp < 2; ++sp)
-      if (weighted[sp]) rho[sp][static_cast<size_t>(k)] = std::exp(profiles[sp]->log_relative(alt));
+    for (int sp = 0; sp < count; ++sp)
+      rho[sp][static_cast<size_t>(k)] =
+          std::exp(atm_.media()[static_cast<size_t>(medium_of_scatterer(sp))].profile.log_relative(alt));
   }
-  // The columns by the trapezoid rule (they only place the nodes), then each species' share.
-  double total[2] = {0.0, 0.0};
-  for (int sp = 0; sp < 2; ++sp)
+  // The columns by the trapezoid rule (they only place the nodes), then each medium's share.
+  double total[kMaxMedia] = {};
+  for (int sp = 0; sp < count; ++sp)
     for (int k = 1; k <= pilots; ++k)
       total[sp] += 0.5 * (rho[sp][static_cast<size_t>(k) - 1] + rho[sp][static_cast<size_t>(k)]);
-  double running[2] = {0.0, 0.0};
+  double running[kMaxMedia] = {};
   for (int k = 1; k <= pilots; ++k) {
     double v = static_cast<double>(k) / pilots;
-    for (int sp = 0; sp < 2; ++sp) {
+    for (int sp = 0; sp < count; ++sp) {
       if (!(total[sp] > 0.0)) continue;
       running[sp] += 0.5 * (rho[sp][static_cast<size_t>(k) - 1] + rho[sp][static_cast<size_t>(k)]);
       v += running[sp] / total[sp];
@@ -543,21 +611,23 @@ namespace {
 
 // A piece's segment lengths, densities and log density ratios, for the fine rule (nodes k, k + 1)
 // and the coarse one (nodes 2j, 2j + 2).
+// medium[sp]: scatterer sp's index among the media (the nodes' densities are per medium).
 template <typename NodeT>
-void fill_piece_segments(const NodeT* nodes, int segs, PieceSegments& g) {
+void fill_piece_segments(const NodeT* nodes, int segs, int scatterers, const int* medium, PieceSegments& g) {
   const int m = segs + 1;
   g.segments = segs;
   g.dt.resize(segs);
   g.dt2.resize(segs / 2);
-  for (int sp = 0; sp < 2; ++sp) {
+  for (int sp = 0; sp < scatterers; ++sp) {
+    const int j = medium[sp];
     g.rho[sp].resize(m);
     g.log_ratio[sp].resize(segs);
     g.log_ratio2[sp].resize(segs / 2);
-    for (int k = 0; k < m; ++k) g.rho[sp][k] = static_cast<float>(nodes[k].rho[sp]);
+    for (int k = 0; k < m; ++k) g.rho[sp][k] = static_cast<float>(nodes[k].rho[j]);
     for (int k = 0; k < segs; ++k)
-      g.log_ratio[sp][k] = static_cast<float>(nodes[k].log_rho[sp] - nodes[k + 1].log_rho[sp]);
-    for (int j = 0; j < segs / 2; ++j)
-      g.log_ratio2[sp][j] = static_cast<float>(nodes[2 * j].log_rho[sp] - nodes[2 * j + 2].log_rho[sp]);
+      g.log_ratio[sp][k] = static_cast<float>(nodes[k].log_rho[j] - nodes[k + 1].log_rho[j]);
+    for (int i = 0; i < segs / 2; ++i)
+      g.log_ratio2[sp][i] = static_cast<float>(nodes[2 * i].log_rho[j] - nodes[2 * i + 2].log_rho[j]);
   }
   for (int k = 0; k < segs; ++k) g.dt[k] = static_cast<float>(nodes[k + 1].t - nodes[k].t);
   for (int j = 0; j < segs / 2; ++j) g.dt2[j] = static_cast<float>(nodes[2 * j + 2].t - nodes[2 * j].t);
@@ -565,48 +635,52 @@ void fill_piece_segments(const NodeT* nodes, int segs, PieceSegments& g) {
 
 }  // namespace
 
-// Per thread, reused from ray to ray: [node, species] columns, [node, wavelength] arrays (or
+// Per thread, reused from ray to ray: [node, medium] columns, [node, wavelength] arrays (or
 // [wavelength, node] with many wavelengths: by_node false, see accumulate_piece).
 struct SingleScattering::PieceScratch {
   bool by_node = true;
-  bool ozone = false;
   PieceSegments seg;
+  int medium_of[kMaxMedia] = {};  // scatterer -> medium (fill_piece_segments)
   Eigen::ArrayXXf columns, view_columns;
   NodeArray tau, trans, source, view_tau, view_trans;
   std::vector<double> node_r, node_mu_sun;  // the sun columns' arguments at a piece's nodes
   std::vector<Columns> sun;
-  Eigen::ArrayXXf source_t, source_mie_t;    // [wavelength, node], as the source tables write them
-  Eigen::ArrayXXf source_q_t, source_u_t;    // J_R + P_Q, J_R + P_U (polarised_sources)
-  Eigen::ArrayXXf source_mq_t, source_mu_t;  // J_M + P_M,Q, J_M + P_M,U
-  std::vector<float> moments;                // InScatteringSource::rayleigh_moments at one node
-  Spectrum q, u, pq, pu;                     // polarised_sources' sums at one node
-  Spectrum unused[4];                        // the other species' sums of a higher-order pass
+  // Per scatterer, [wavelength, node], as the source tables write them: J_s, and J_s + P_Q,s and
+  // J_s + P_U,s (polarised_sources).
+  Eigen::ArrayXXf source_t[kMaxMedia], source_q_t[kMaxMedia], source_u_t[kMaxMedia];
+  std::vector<float> moments;  // InScatteringSource::rayleigh_moments at one node
+  Spectrum q, u, pq, pu;       // polarised_sources' sums at one node
 };
 
-// tau = sum_s beta_ext,s(l) columns[k, s] (the optical depth), as [node k, wavelength l] or [l, k].
+// tau = sum_j beta_ext,j(l) columns[k, j] (the optical depth), as [node k, wavelength l] or [l, k].
 void SingleScattering::optical_depths(const Eigen::ArrayXXf& columns, PieceScratch& sc, NodeArray& tau) const {
-  const Eigen::Index m = columns.rows(), n = sca_rayleigh_.size();
+  const Eigen::Index m = columns.rows(), n = n_;
   if (sc.by_node) {
     tau.resize(m, n);
     for (Eigen::Index l = 0; l < n; ++l) {
-      tau.col(l) = columns.col(kRayleigh) * ext_[kRayleigh][l] + columns.col(kMie) * ext_[kMie][l];
-      if (sc.ozone) tau.col(l) += columns.col(kOzone) * ext_[kOzone][l];
+      if (media_ >= 2)
+        tau.col(l) = columns.col(0) * ext_[0][l] + columns.col(1) * ext_[1][l];
+      else
+        tau.col(l) = columns.col(0) * ext_[0][l];
+      for (int j = 2; j < media_; ++j) tau.col(l) += columns.col(j) * ext_[j][l];
     }
     return;
   }
   tau.resize(n, m);
   for (Eigen::Index k = 0; k < m; ++k) {
-    tau.col(k) = ext_[kRayleigh] * columns(k, kRayleigh) + ext_[kMie] * columns(k, kMie);
-    if (sc.ozone) tau.col(k) += ext_[kOzone] * columns(k, kOzone);
+    if (media_ >= 2)
+      tau.col(k) = ext_[0] * columns(k, 0) + ext_[1] * columns(k, 1);
+    else
+      tau.col(k) = ext_[0] * columns(k, 0);
+    for (int j = 2; j < media_; ++j) tau.col(k) += ext_[j] * columns(k, j);
   }
 }
 
-// Single scattering on one lit piece: the integrand of species s is rho_s exp(-tau_view - tau_sun);
-// its fine and coarse log-mean sums are added to `sums` (fine R, fine M, coarse R, coarse M).
+// Single scattering on one lit piece: the integrand of medium s is rho_s exp(-tau_view - tau_sun);
+// its fine and coarse log-mean sums are added to ws.sums[s].single.
 void SingleScattering::single_scattering_piece(const Node* nodes, int m, double os, double ds, PieceScratch& sc,
-                                               Spectrum* sums[4]) const {
-  const int species = sc.ozone ? 3 : 2;
-  sc.columns.resize(m, species);
+                                               ScatteringWorkspace& ws) const {
+  sc.columns.resize(m, media_);
   sc.node_r.resize(static_cast<size_t>(m));
   sc.node_mu_sun.resize(static_cast<size_t>(m));
   sc.sun.resize(static_cast<size_t>(m));
@@ -616,18 +690,26 @@ void SingleScattering::single_scattering_piece(const Node* nodes, int m, double 
   }
   sun_.at_many(m, sc.node_r.data(), sc.node_mu_sun.data(), sc.sun.data());
   for (int k = 0; k < m; ++k)
-    for (int sp = 0; sp < species; ++sp)
-      sc.columns(k, sp) = static_cast<float>(nodes[k].col[sp] + sc.sun[static_cast<size_t>(k)][sp]);
+    for (int j = 0; j < media_; ++j)
+      sc.columns(k, j) = static_cast<float>(nodes[k].col[j] + sc.sun[static_cast<size_t>(k)][static_cast<size_t>(j)]);
   optical_depths(sc.columns, sc, sc.tau);
   sc.trans = (-sc.tau).exp();
-  accumulate(sc, sums);
+  // Two media at a time: their integrands share the optical depth and transmittance.
+  int s = 0;
+  for (; s + 1 < scatterer_count(); s += 2) {
+    if (sc.by_node)
+      accumulate_piece_2(sc.tau, sc.trans, sc.seg, s, s + 1, ws.sums[s].single, ws.sums[s + 1].single);
+    else
+      accumulate_piece_by_wavelength_2(sc.tau, sc.trans, sc.seg, s, s + 1, ws.sums[s].single, ws.sums[s + 1].single);
+  }
+  if (s < scatterer_count()) accumulate(sc, s, ws.sums[s].single);
 }
 
-// Higher orders on one piece: the integrand of species s is beta_sca,s rho_s exp(-tau_view) J_s,
-// J_s the higher-order source of that species in the ray's direction. It is integrated by the same
+// Higher orders on one piece: the integrand of medium s is beta_sca,s rho_s exp(-tau_view) J_s,
+// J_s the higher-order source of that medium in the ray's direction. It is integrated by the same
 // log-mean rule as single scattering, with tau' = tau_view - ln J_s in the place of the optical
 // depth and T' = exp(-tau_view) J_s in the place of the transmittance (ln of the integrand is
-// ln rho_s - tau' + const), once per species. J is floored at a tiny positive value so that its
+// ln rho_s - tau' + const), once per medium. J is floored at a tiny positive value so that its
 // logarithm is finite where the tables hold no light.
 // The view ray and the Stokes frame of its polarised parts (polarisation_frame).
 struct SingleScattering::RayFrame {
@@ -635,8 +717,8 @@ struct SingleScattering::RayFrame {
 };
 
 // The higher orders' polarised sources at a piece's nodes (RadianceParts::polarised_q):
-// source_q_t, source_u_t become J_R + P_Q, J_R + P_U for the air and source_mq_t, source_mu_t
-// J_M + P_M,Q, J_M + P_M,U for the aerosol. For Rayleigh's matrix with the King factor's
+// source_q_t[s], source_u_t[s] become J_s + P_Q,s, J_s + P_U,s for each scattering medium s. For
+// Rayleigh's matrix (molecules) with the King factor's
 // depolarisation, light arriving with coherency matrices C(w) is scattered towards k as
 //
 //   I = 2 B tr(P D P) + (A - B) tr D,   Q = 2 B (e1^T D e1 - e2^T D e2),   U = 4 B e1^T D e2,
@@ -646,17 +728,17 @@ struct SingleScattering::RayFrame {
 // (tr T 1 - T) / 2 with T the field's second moments, whose traceless part is sum_m a_2m K_m
 // (spherical_harmonics.hpp); the scalar source J_R already holds its intensity, and the polarised
 // part D_pol (traceless) adds -2 B k^T D_pol k to it (SourceTable::source adds that for polarised
-// tables, so that the intensity is the vector one in every render). The aerosol's unit matrix acts
+// tables, so that the intensity is the vector one in every render). A particle's unit matrix acts
 // on the polarisation's degree-2 E-mode, rebuilt from D_pol (below). At each node the tables' local
 // frame (z up, x towards the sun's azimuth, y = z x x) is rebuilt and e1, e2 are expressed in it.
 // J + P is not negative for a real field (scattered light is at most fully polarised), which lets
-// the log-mean rule integrate it; P is the difference of two such integrals. (The aerosol's source,
-// from a truncated field, is not bound to that: where J_M + P_M would go below zero the rule's
+// the log-mean rule integrate it; P is the difference of two such integrals. (A particle's source,
+// from a truncated field, is not bound to that: where J_s + P_s would go below zero the rule's
 // floor of 1e-30 clips it, an error the comparison with the reference includes.) False if
 // `higher` does not resolve the quadrupole.
 bool SingleScattering::polarised_sources(const Node* nodes, int m, const RayFrame& f, const InScatteringSource& higher,
                                          PieceScratch& sc) const {
-  const Eigen::Index n = sca_rayleigh_.size();
+  const Eigen::Index n = n_;
   const auto& K = quadrupole_tensors();
   // D_pol's components xx, yy, xz as tensors (zz = -xx - yy).
   static const std::array<Eigen::Matrix3d, 3> E = [] {
@@ -667,10 +749,10 @@ bool SingleScattering::polarised_sources(const Node* nodes, int m, const RayFram
     return e;
   }();
   sc.moments.resize(6 * static_cast<size_t>(n));
-  sc.source_q_t.resize(n, m);
-  sc.source_u_t.resize(n, m);
-  sc.source_mq_t.resize(n, m);
-  sc.source_mu_t.resize(n, m);
+  for (int s = 0; s < scatterer_count(); ++s) {
+    sc.source_q_t[s].resize(n, m);
+    sc.source_u_t[s].resize(n, m);
+  }
   for (int k = 0; k < m; ++k) {
     const Vec3 p = f.o + nodes[k].t * f.d;
     const Vec3 z = p / p.norm();
@@ -701,68 +783,61 @@ bool SingleScattering::polarised_sources(const Node* nodes, int m, const RayFram
       pu += static_cast<float>(2.0 * e.dot(ej * g)) * d;
     }
     constexpr float kEmode = static_cast<float>(5.0 / (8.0 * kPi));
-    sc.source_mq_t.col(k) = sc.source_mie_t.col(k) + kEmode * mie_spin2_moment_ * pq;
-    sc.source_mu_t.col(k) = sc.source_mie_t.col(k) + kEmode * mie_spin2_moment_ * pu;
-    sc.source_q_t.col(k) = sc.source_t.col(k) + 2.0f * rayleigh_phase_b_ * (q + pq);
-    sc.source_u_t.col(k) = sc.source_t.col(k) + 2.0f * rayleigh_phase_b_ * (u + pu);
+    for (int s = 0; s < scatterer_count(); ++s) {
+      const Scatterer& medium = scatterers_[static_cast<size_t>(s)];
+      if (medium.rayleigh()) {
+        sc.source_q_t[s].col(k) = sc.source_t[s].col(k) + 2.0f * medium.phase_b * (q + pq);
+        sc.source_u_t[s].col(k) = sc.source_t[s].col(k) + 2.0f * medium.phase_b * (u + pu);
+      } else {
+        sc.source_q_t[s].col(k) = sc.source_t[s].col(k) + kEmode * medium.spin2_moment * pq;
+        sc.source_u_t[s].col(k) = sc.source_t[s].col(k) + kEmode * medium.spin2_moment * pu;
+      }
+    }
   }
   return true;
 }
 
 bool SingleScattering::higher_orders_piece(const Node* nodes, int m, double os, double ds, double od,
                                            const InScatteringSource& higher, const RayFrame* polarisation,
-                                           PieceScratch& sc, ScatteringWorkspace& ws, Spectrum* sums[4]) const {
-  const int species = sc.ozone ? 3 : 2;
-  const Eigen::Index n = sca_rayleigh_.size();
-  sc.view_columns.resize(m, species);
-  sc.source_t.resize(n, m);
-  sc.source_mie_t.resize(n, m);
+                                           PieceScratch& sc, ScatteringWorkspace& ws) const {
+  const Eigen::Index n = n_;
+  const int count = scatterer_count();
+  sc.view_columns.resize(m, media_);
+  float* out[kMaxMedia];
+  for (int s = 0; s < count; ++s) sc.source_t[s].resize(n, m);
   for (int k = 0; k < m; ++k) {
-    for (int sp = 0; sp < species; ++sp) sc.view_columns(k, sp) = static_cast<float>(nodes[k].col[sp]);
+    for (int j = 0; j < media_; ++j) sc.view_columns(k, j) = static_cast<float>(nodes[k].col[j]);
     const double r = nodes[k].r;
-    higher.source(r, (os + nodes[k].t * ds) / r, (od + nodes[k].t) / r, ds, sc.source_t.col(k).data(),
-                  sc.source_mie_t.col(k).data());
+    for (int s = 0; s < count; ++s) out[s] = sc.source_t[s].col(k).data();
+    higher.source(r, (os + nodes[k].t * ds) / r, (od + nodes[k].t) / r, ds, out);
   }
   optical_depths(sc.view_columns, sc, sc.view_tau);
   sc.view_trans = (-sc.view_tau).exp();
-  // Rayleigh's sums with J_R, the aerosol's with J_M; then, for polarisation, Rayleigh's with
-  // J_R + P_Q and J_R + P_U, the aerosol's with J_M + P_M,Q and J_M + P_M,U. [wavelength, node] arrays: one species per
-  // pass; [node, wavelength] (few wavelengths): each pass computes both and one is kept.
+  // Each medium's sums with J_s; then, for polarisation, with J_s + P_Q,s and J_s + P_U,s.
   const bool polarised = polarisation && polarised_sources(nodes, m, *polarisation, higher, sc);
-  Spectrum* rayleigh_sums[4] = {sums[0], &sc.unused[0], sums[2], &sc.unused[1]};
-  Spectrum* mie_sums[4] = {&sc.unused[2], sums[1], &sc.unused[3], sums[3]};
-  Spectrum* q_sums[4] = {&ws.sum_ms_q, &sc.unused[0], &ws.coarse_ms_q, &sc.unused[1]};
-  Spectrum* u_sums[4] = {&ws.sum_ms_u, &sc.unused[0], &ws.coarse_ms_u, &sc.unused[1]};
-  Spectrum* mq_sums[4] = {&sc.unused[2], &ws.sum_ms_mq, &sc.unused[3], &ws.coarse_ms_mq};
-  Spectrum* mu_sums[4] = {&sc.unused[2], &ws.sum_ms_mu, &sc.unused[3], &ws.coarse_ms_mu};
-  const Eigen::ArrayXXf* pass_sources[6] = {&sc.source_t,   &sc.source_mie_t, &sc.source_q_t,
-                                            &sc.source_u_t, &sc.source_mq_t,  &sc.source_mu_t};
-  Spectrum** pass_sums[6] = {rayleigh_sums, mie_sums, q_sums, u_sums, mq_sums, mu_sums};
-  for (int pass = 0; pass < (polarised ? 6 : 2); ++pass) {
-    const Eigen::ArrayXXf& source_t = *pass_sources[pass];
-    constexpr int kSpeciesOfPass[6] = {0, 1, 0, 0, 1, 1};  // whose density weights it: Rayleigh 0, aerosol 1
-    const int sp = kSpeciesOfPass[pass];
-    if (sc.by_node)
-      sc.source = source_t.transpose().max(1e-30f);
-    else
-      sc.source = source_t.max(1e-30f);
-    sc.trans = sc.view_trans * sc.source;
-    sc.tau = sc.view_tau - sc.source.log();
-    if (!sc.by_node) {
-      accumulate_species_by_wavelength(sc.tau, sc.trans, sc.seg, sp, *pass_sums[pass][sp], *pass_sums[pass][2 + sp]);
-      continue;
+  for (int s = 0; s < count; ++s) {
+    ScatteringWorkspace::Sums& sums = ws.sums[s];
+    const Eigen::ArrayXXf* pass_sources[3] = {&sc.source_t[s], &sc.source_q_t[s], &sc.source_u_t[s]};
+    Spectrum* pass_sums[3] = {sums.higher, sums.q, sums.u};
+    for (int pass = 0; pass < (polarised ? 3 : 1); ++pass) {
+      const Eigen::ArrayXXf& source_t = *pass_sources[pass];
+      if (sc.by_node)
+        sc.source = source_t.transpose().max(1e-30f);
+      else
+        sc.source = source_t.max(1e-30f);
+      sc.trans = sc.view_trans * sc.source;
+      sc.tau = sc.view_tau - sc.source.log();
+      accumulate(sc, s, pass_sums[pass]);
     }
-    for (auto& u : sc.unused) u.setZero(n);
-    accumulate(sc, pass_sums[pass]);
   }
   return polarised;
 }
 
-void SingleScattering::accumulate(PieceScratch& sc, Spectrum* sums[4]) const {
+void SingleScattering::accumulate(PieceScratch& sc, int s, Spectrum* sums) const {
   if (sc.by_node)
-    accumulate_piece(sc.tau, sc.trans, sc.seg, *sums[0], *sums[1], *sums[2], *sums[3]);
+    accumulate_piece(sc.tau, sc.trans, sc.seg, s, sums[0], sums[1]);
   else
-    accumulate_piece_by_wavelength(sc.tau, sc.trans, sc.seg, *sums[0], *sums[1], *sums[2], *sums[3]);
+    accumulate_piece_by_wavelength(sc.tau, sc.trans, sc.seg, s, sums[0], sums[1]);
 }
 
 // The ground at the ray's end: Lambertian reflection of the direct sun (order 1) and of the sky
@@ -776,8 +851,7 @@ void SingleScattering::ground_reflection(const Node& ground, double mu_sun, cons
   if (sources.single && mu_sun > 0.0) {
     Spectrum& tau_sun = ws.ground_sun;
     const Columns sun = sun_.at(R, mu_sun);
-    tau_sun = ext_[kRayleigh] * static_cast<float>(sun[kRayleigh]) + ext_[kMie] * static_cast<float>(sun[kMie]) +
-              ext_[kOzone] * static_cast<float>(sun[kOzone]);
+    optical_depth(sun.data(), tau_sun);
     ws.source = (-tau_sun).exp() * static_cast<float>(mu_sun);
   }
   if (sources.higher) {
@@ -788,10 +862,7 @@ void SingleScattering::ground_reflection(const Node& ground, double mu_sun, cons
 }
 
 // The optical depth of the view ray from the camera to a node.
-void SingleScattering::view_optical_depth(const Node& node, Spectrum& tau) const {
-  tau = ext_[kRayleigh] * static_cast<float>(node.col[kRayleigh]) + ext_[kMie] * static_cast<float>(node.col[kMie]);
-  if (atm_.ozone().enabled()) tau += ext_[kOzone] * static_cast<float>(node.col[kOzone]);
-}
+void SingleScattering::view_optical_depth(const Node& node, Spectrum& tau) const { optical_depth(node.col, tau); }
 
 // The radiance parts of one traced ray: the log-mean sums over its pieces (single scattering on
 // the lit ones, higher orders on all), Richardson-extrapolated, then the transmittance and the
@@ -799,59 +870,59 @@ void SingleScattering::view_optical_depth(const Node& node, Spectrum& tau) const
 void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, const Vec3& s,
                                  const ScatteringSources& sources, ScatteringWorkspace& ws,
                                  RadianceParts& parts) const {
-  parts.rayleigh.setZero();
-  parts.mie.setZero();
-  parts.phase_free.setZero();
+  parts.resize(n_, scatterer_count());
+  const int count = scatterer_count();
   const bool higher = sources.higher != nullptr;
   const double os = o.dot(s), ds = d.dot(s), od = o.dot(d);
-  for (Spectrum* sum :
-       {&ws.sum_rayleigh, &ws.sum_mie, &ws.coarse_rayleigh, &ws.coarse_mie, &ws.sum_ms_rayleigh, &ws.sum_ms_mie,
-        &ws.coarse_ms_rayleigh, &ws.coarse_ms_mie, &ws.sum_ms_q, &ws.coarse_ms_q, &ws.sum_ms_u, &ws.coarse_ms_u,
-        &ws.sum_ms_mq, &ws.coarse_ms_mq, &ws.sum_ms_mu, &ws.coarse_ms_mu})
-    sum->setZero();
+  for (int j = 0; j < count; ++j)
+    for (Spectrum* sum : {&ws.sums[j].single[0], &ws.sums[j].single[1], &ws.sums[j].higher[0], &ws.sums[j].higher[1],
+                          &ws.sums[j].q[0], &ws.sums[j].q[1], &ws.sums[j].u[0], &ws.sums[j].u[1]})
+      sum->setZero();
   RayFrame frame;
   bool polarised = false;  // whether the higher orders' sources had a quadrupole (all pieces or none)
   if (sources.polarisation) {
     frame = RayFrame{o, d, s, polarisation_frame(d, s), Vec3()};
     frame.e2 = (-d).cross(frame.e1);
   }
-  Spectrum* single_sums[4] = {&ws.sum_rayleigh, &ws.sum_mie, &ws.coarse_rayleigh, &ws.coarse_mie};
-  Spectrum* higher_sums[4] = {&ws.sum_ms_rayleigh, &ws.sum_ms_mie, &ws.coarse_ms_rayleigh, &ws.coarse_ms_mie};
 
   thread_local PieceScratch sc;
-  sc.ozone = atm_.ozone().enabled();
-  sc.by_node = sca_rayleigh_.size() < kWavelengthsForWavelengthLoops;
+  sc.by_node = n_ < kWavelengthsForWavelengthLoops;
+  for (int j = 0; j < count; ++j) sc.medium_of[j] = medium_of_scatterer(j);
   for (int i = 0; i < ray.n_pieces; ++i) {
     const Piece& pc = ray.pieces[i];
     const bool single_here = sources.single && pc.lit;
     if (!single_here && !higher) continue;  // nothing to collect: its nodes only carried the columns
     const Node* nodes = ray.nodes.data() + pc.first_node;
-    fill_piece_segments(nodes, pc.segments, sc.seg);
-    if (single_here) single_scattering_piece(nodes, pc.segments + 1, os, ds, sc, single_sums);
+    fill_piece_segments(nodes, pc.segments, count, sc.medium_of, sc.seg);
+    if (single_here) single_scattering_piece(nodes, pc.segments + 1, os, ds, sc, ws);
     if (higher)
       polarised |= higher_orders_piece(nodes, pc.segments + 1, os, ds, od, *sources.higher,
-                                       sources.polarisation ? &frame : nullptr, sc, ws, higher_sums);
+                                       sources.polarisation ? &frame : nullptr, sc, ws);
   }
 
-  if (sources.single) {
-    parts.rayleigh = sca_rayleigh_ * richardson(ws.sum_rayleigh, ws.coarse_rayleigh);
-    parts.mie = sca_mie_ * richardson(ws.sum_mie, ws.coarse_mie);
-  }
-  if (higher)
-    parts.phase_free = sca_rayleigh_ * richardson(ws.sum_ms_rayleigh, ws.coarse_ms_rayleigh) +
-                       sca_mie_ * richardson(ws.sum_ms_mie, ws.coarse_ms_mie);
+  // beta_sca,s times each medium's integrals, summed over the media where their phase functions
+  // are already inside (the higher orders).
+  const auto sum_over_media = [&](auto&& term, Spectrum& out) {
+    if (count >= 2)
+      out = scatterers_[0].sca * term(0) + scatterers_[1].sca * term(1);
+    else
+      out = scatterers_[0].sca * term(0);
+    for (int j = 2; j < count; ++j) out += scatterers_[static_cast<size_t>(j)].sca * term(j);
+  };
+  const auto ms = [&](int j) { return richardson(ws.sums[j].higher[0], ws.sums[j].higher[1]); };
+  if (sources.single)
+    for (int j = 0; j < count; ++j)
+      parts.scattered[static_cast<size_t>(j)] =
+          scatterers_[static_cast<size_t>(j)].sca * richardson(ws.sums[j].single[0], ws.sums[j].single[1]);
+  if (higher && count > 0) sum_over_media(ms, parts.phase_free);
   if (sources.polarisation) {
     // Zero where nothing was polarised (no higher orders, or tables without a quadrupole).
-    const Spectrum ms_rayleigh = richardson(ws.sum_ms_rayleigh, ws.coarse_ms_rayleigh);
-    const Spectrum ms_mie = richardson(ws.sum_ms_mie, ws.coarse_ms_mie);
-    if (polarised) {
-      parts.polarised_q = sca_rayleigh_ * (richardson(ws.sum_ms_q, ws.coarse_ms_q) - ms_rayleigh) +
-                          sca_mie_ * (richardson(ws.sum_ms_mq, ws.coarse_ms_mq) - ms_mie);
-      parts.polarised_u = sca_rayleigh_ * (richardson(ws.sum_ms_u, ws.coarse_ms_u) - ms_rayleigh) +
-                          sca_mie_ * (richardson(ws.sum_ms_mu, ws.coarse_ms_mu) - ms_mie);
+    if (polarised && count > 0) {
+      sum_over_media([&](int j) { return richardson(ws.sums[j].q[0], ws.sums[j].q[1]) - ms(j); }, parts.polarised_q);
+      sum_over_media([&](int j) { return richardson(ws.sums[j].u[0], ws.sums[j].u[1]) - ms(j); }, parts.polarised_u);
     } else {
-      parts.polarised_q.setZero(ms_rayleigh.size());
-      parts.polarised_u.setZero(ms_rayleigh.size());
+      parts.polarised_q.setZero(n_);
+      parts.polarised_u.setZero(n_);
     }
   }
 
@@ -866,12 +937,10 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
 
 void SingleScattering::radiance_parts(const Vec3& o, const Vec3& d, const Vec3& s, const ScatteringSources& sources,
                                       ScatteringWorkspace& ws, RadianceParts& parts) const {
-  parts.rayleigh.setZero();
-  parts.mie.setZero();
-  parts.phase_free.setZero();
+  parts.resize(n_, scatterer_count());
   if (sources.polarisation) {
-    parts.polarised_q.setZero(sca_rayleigh_.size());
-    parts.polarised_u.setZero(sca_rayleigh_.size());
+    parts.polarised_q.setZero(n_);
+    parts.polarised_u.setZero(n_);
   }
   if (sources.transmittance) sources.transmittance->setOnes();
   if (o.norm() < atm_.planet_radius_m()) {  // inside the planet
@@ -896,9 +965,7 @@ void SingleScattering::radiance_parts_same_zenith(const Vec3& o, const Vec3* dir
   for (int i = 0; i < count; ++i) {
     const Vec3& d = dirs[i];
     if (!trace(o, d, s, sources, own)) {
-      parts[i].rayleigh.setZero();
-      parts[i].mie.setZero();
-      parts[i].phase_free.setZero();
+      parts[i].resize(n_, scatterer_count());
       continue;
     }
     bool lit_throughout = !own.hits_ground;

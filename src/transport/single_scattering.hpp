@@ -6,10 +6,10 @@
 //             + E_sun int exp(-tau_view(0,t)) sum_s beta_sca,s rho_s(t) J_s(r(t), mu_s(t), d) dt  (orders >= 2)
 //             + exp(-tau_view(0,T)) a / pi [E_sun T_sun(g) max(0, mu_s(g)) + E_sun G(mu_s(g))]  (ground at g)
 //
-// tau = sum_s beta_ext,s C_s over Rayleigh, Mie and ozone. J_s is species s's in-scattering source
-// of the higher orders towards the view direction d per unit solar irradiance, G the ground
-// irradiance they give (see multiple_scattering.hpp). All wavelengths are carried together as one
-// vector.
+// with s over the scattering media and tau = sum_j beta_ext,j C_j over all media (AtmosphereModel::
+// media(): air, aerosol, ozone, ...). J_s is medium s's in-scattering source of the higher orders
+// towards the view direction d per unit solar irradiance, G the ground irradiance they give (see
+// multiple_scattering.hpp). All wavelengths are carried together as one vector.
 //
 // Quadrature: the ray is cut at the shadow boundaries (closed form) and at its lowest point, and
 // each piece into segments. For the single-scattering term, ln of the integrand rho_s exp(-tau)
@@ -17,14 +17,18 @@
 // the optical depth linear (the log-mean rule); it is second order, and pairs of segments give a
 // coarse estimate of the same integral so that Richardson extrapolation, (4 fine - coarse) / 3,
 // removes the leading error term at the cost of one extra log-mean per pair. The higher-order
-// term uses the same log-mean rule with J_s folded into the exponent, per species.
+// term uses the same log-mean rule with J_s folded into the exponent, per medium. Columns of media
+// whose density is a layer (zero outside it, such as ozone's) use the trapezoid rule; a scattering
+// medium's density is positive everywhere (medium.hpp).
 // View-ray columns are accumulated along the way; columns towards the sun come from the
 // SunColumnTable.
 #pragma once
 
 #include <limits>
+#include <vector>
 
 #include "skyspec/geometry.hpp"
+#include "skyspec/medium.hpp"
 #include "skyspec/spectrum.hpp"
 #include "transport/optical_depth.hpp"
 
@@ -38,30 +42,32 @@ struct IntegratorSettings {
 /// infinity the angle between view and sun is the same at every point, so the phase functions
 /// factor out of the single-scattering integrals, and the radiance is
 ///
-///   L(lambda) = E_sun(lambda) [p_R(mu) rayleigh(lambda) + p_M(mu, lambda) mie(lambda) + phase_free(lambda)]
+///   L(lambda) = E_sun(lambda) [sum_s p_s(mu, lambda) scattered_s(lambda) + phase_free(lambda)]
 ///
-/// with mu the cosine of the scattering angle. `rayleigh` and `mie` are beta_sca,s times the
-/// order-1 integral of species s; `phase_free` holds the higher orders (their phase functions are
-/// inside the tables' sources) and the ground (per unit solar irradiance). All three are smooth functions of the view
-/// direction, which is what makes them worth tabulating (sky_view_table.hpp); the phase functions, peaked near the sun,
-/// are evaluated exactly afterwards.
+/// with mu the cosine of the scattering angle and s over the scattering media
+/// (SingleScattering::scatterer_count(), in AtmosphereModel::media()'s order). scattered_s is
+/// beta_sca,s times the order-1 integral of medium s; `phase_free` holds the higher orders (their
+/// phase functions are inside the tables' sources) and the ground (per unit solar irradiance). All
+/// are smooth functions of the view direction, which is what makes them worth tabulating
+/// (sky_view_table.hpp); the phase functions, peaked near the sun, are evaluated exactly afterwards.
 ///
 /// With ScatteringSources::polarisation, polarised_q and polarised_u hold the linear polarisation
 /// of the higher orders' light, per unit solar irradiance: the Stokes Q and U of
 /// E_sun int exp(-tau_view) sum_s beta_sca,s rho_s P_s(r(t), mu_s(t), d) dt, with P_s the polarised
-/// source of species s at each point: for the air, Rayleigh's scattering matrix acting on the
-/// light arriving there, which it sees only through D = the integral of the light's coherency
-/// matrix over all directions (P_Q = 2 B (e1^T D e1 - e2^T D e2), P_U = 4 B e1^T D e2, B the phase
-/// function's mu^2 coefficient); for the aerosol, its unit matrix acting on the polarisation's
-/// quadrupole (polarised_sources has the equations; the tables give D's parts,
+/// source of medium s at each point: for molecules (MediumPhase::Kind::Rayleigh), Rayleigh's
+/// scattering matrix acting on the light arriving there, which it sees only through D = the
+/// integral of the light's coherency matrix over all directions (P_Q = 2 B (e1^T D e1 - e2^T D e2),
+/// P_U = 4 B e1^T D e2, B the phase function's mu^2 coefficient); for particles, their unit matrix
+/// acting on the polarisation's quadrupole (polarised_sources has the equations; the tables give D's parts,
 /// InScatteringSource::rayleigh_moments). The frame is the ray's polarisation_frame(): it stays
 /// the same along the ray, so the sources of all its points add up. Empty otherwise.
 struct RadianceParts {
-  explicit RadianceParts(int n_wavelengths = 0)
-      : rayleigh(Spectrum::Zero(n_wavelengths)),
-        mie(Spectrum::Zero(n_wavelengths)),
-        phase_free(Spectrum::Zero(n_wavelengths)) {}
-  Spectrum rayleigh, mie, phase_free;
+  explicit RadianceParts(int n_wavelengths = 0, int scatterers = 0) { resize(n_wavelengths, scatterers); }
+  /// Sizes the parts (zeros); keeps them (no allocation) when they have these sizes already.
+  void resize(int n_wavelengths, int scatterers);
+  void set_zero();
+  std::vector<Spectrum> scattered;  ///< per scattering medium
+  Spectrum phase_free;
   Spectrum polarised_q, polarised_u;
 };
 
@@ -75,11 +81,13 @@ Vec3 polarisation_frame(const Vec3& view, const Vec3& sun);
 struct ScatteringWorkspace {
   explicit ScatteringWorkspace(int n_wavelengths);
   Spectrum view_tau, view_trans, source, ground_sun, ground_sky;  // the ground's light
-  Spectrum sum_rayleigh, sum_mie, coarse_rayleigh, coarse_mie;    // fine and coarse (paired) rules
-  Spectrum sum_ms_rayleigh, sum_ms_mie, coarse_ms_rayleigh, coarse_ms_mie;
-  Spectrum sum_ms_q, coarse_ms_q, sum_ms_u, coarse_ms_u;      // of J_R + P_Q and J_R + P_U (polarisation)
-  Spectrum sum_ms_mq, coarse_ms_mq, sum_ms_mu, coarse_ms_mu;  // of J_M + P_M,Q and J_M + P_M,U
-  Spectrum phase;                                             // per-wavelength aerosol phase (spectral asymmetry)
+  /// The fine and coarse (paired) log-mean sums of one scattering medium: of order 1, of the
+  /// higher orders' J_s, and (polarisation) of J_s + P_Q,s and J_s + P_U,s.
+  struct Sums {
+    Spectrum single[2], higher[2], q[2], u[2];
+  };
+  Sums sums[kMaxMedia];
+  Spectrum phase[kMaxMedia];  // each scattering medium's phase function per wavelength at one mu
   RadianceParts parts;
 };
 
@@ -107,7 +115,7 @@ class TableSunColumns : public SunColumns {
 };
 
 /// The in-scattering source of the higher orders: J_s(r, mu_s, view) = integral over the sphere of
-/// p_s(view . w) L(r, mu_s, w) dw for species s (Rayleigh, aerosol), radiance per unit scattering
+/// p_s(view . w) L(r, mu_s, w) dw for each scattering medium s, radiance per unit scattering
 /// coefficient and per unit solar irradiance (sr^-1), at altitude r, sun zenith cosine mu_s, for a
 /// view direction with zenith cosine mu_view at cosine nu to the sun; and the irradiance G(mu_s)
 /// it puts on the ground (per unit solar irradiance). Implemented by the scattering-order tables.
@@ -117,9 +125,10 @@ class TableSunColumns : public SunColumns {
 class InScatteringSource {
  public:
   virtual ~InScatteringSource() = default;
-  virtual void source(double r_m, double mu_sun, double mu_view, double nu, float* rayleigh, float* mie) const = 0;
+  /// J_s for each scattering medium s: out[s] (n floats each), in SingleScattering's order of them.
+  virtual void source(double r_m, double mu_sun, double mu_view, double nu, float* const* out) const = 0;
   virtual void ground_irradiance(double mu_sun, float* out) const = 0;
-  /// What Rayleigh's scattering matrix reads of the radiance field that the source scatters, at
+  /// What a scattering matrix reads of the radiance field that the source scatters, at
   /// (r, mu_s), per unit solar irradiance, in the local frame (z up, x towards the sun's azimuth):
   /// out[j n + i] for n wavelengths, rows j = 0, 1, 2 the field's quadrupole a_2m (m = j; its real
   /// spherical-harmonic coefficients, spherical_harmonics.hpp), rows 3, 4, 5 the xx, yy and xz
@@ -174,23 +183,23 @@ class SingleScattering {
   void radiance_parts_same_zenith(const Vec3& origin_m, const Vec3* dirs, int count, const Vec3& sun_dir,
                                   const ScatteringSources& sources, ScatteringWorkspace& ws,
                                   RadianceParts* parts) const;
-  /// L = E_sun [p_R(mu) rayleigh + p_M(mu) mie + phase_free] for mu = cos(scattering angle).
+  /// L = E_sun [sum_s p_s(mu) scattered_s + phase_free] for mu = cos(scattering angle).
   void combine(const RadianceParts& parts, double mu, const Spectrum& sun_irradiance, ScatteringWorkspace& ws,
                Spectrum& out) const;
   /// The polarisation of combine()'s light: the Stokes vector [I, Q, U] (V = 0) of the light
   /// arriving along k = -view, in the frame (e1, k x e1) (e1 unit, perpendicular to view). I is
-  /// combine()'s radiance. Q and U are order 1's Rayleigh light polarised by Rayleigh's scattering
-  /// matrix, E rayleigh b1(mu) in the scattering plane's frame (b1 = -B (1 - mu^2) with B the phase
-  /// function's mu^2 coefficient; physics/scattering_matrix.hpp), plus, if the parts hold them, the
-  /// higher orders' polarised_q and polarised_u, all turned from polarisation_frame() into
-  /// (e1, k x e1). The aerosol is non-polarising (as in the Monte Carlo reference) and the ground
-  /// depolarises.
+  /// combine()'s radiance. Q and U are order 1's light polarised by each medium's scattering
+  /// matrix, E scattered_s b1_s(mu) in the scattering plane's frame (molecules: b1 = -B (1 - mu^2)
+  /// with B the phase function's mu^2 coefficient, physics/scattering_matrix.hpp; a tabulated
+  /// matrix: its b1; an analytic phase function does not polarise), plus, if the parts hold them,
+  /// the higher orders' polarised_q and polarised_u, all turned from polarisation_frame() into
+  /// (e1, k x e1). The ground depolarises.
   void stokes(const RadianceParts& parts, const Vec3& view, const Vec3& sun, const Vec3& e1,
               const Spectrum& sun_irradiance, ScatteringWorkspace& ws, Spectrum& I, Spectrum& Q, Spectrum& U) const;
   /// combine() for `count` directions whose parts are packed as SkyViewTable::lookup_many gives
-  /// them (3 n floats each: Rayleigh, Mie, phase-free; n wavelengths): direction k, at cosine
-  /// mu[k] to the sun, goes to out[k] (n floats) where use[k]. The phase functions of all of them
-  /// are evaluated in one loop that vectorises. The same values as combine().
+  /// them ((scatterer_count() + 1) n floats each: each medium's, then phase-free; n wavelengths): direction k, at
+  /// cosine mu[k] to the sun, goes to out[k] (n floats) where use[k]. The phase functions of all of them are evaluated
+  /// in one loop that vectorises. The same values as combine().
   void combine_many(int count, const float* packed, const double* mu, const bool* use, const Spectrum& sun_irradiance,
                     float* const* out, ScatteringWorkspace& ws) const;
 
@@ -199,6 +208,10 @@ class SingleScattering {
   void transmittance_to_space(const Vec3& origin_m, const Vec3& dir, Spectrum& out) const;
 
   const AtmosphereModel& atmosphere() const { return atm_; }
+  /// The scattering media (RadianceParts::scattered, InScatteringSource::source): how many, and
+  /// each one's index in AtmosphereModel::media().
+  int scatterer_count() const { return static_cast<int>(scatterers_.size()); }
+  int medium_of_scatterer(int s) const { return scatterers_[static_cast<size_t>(s)].medium; }
   const SunColumns& sun_columns() const { return sun_; }
   const IntegratorSettings& settings() const { return settings_; }
 
@@ -206,13 +219,28 @@ class SingleScattering {
   const AtmosphereModel& atm_;
   const SunColumns& sun_;
   IntegratorSettings settings_;
-  Spectrum ext_[kSpeciesCount];
-  Spectrum sca_rayleigh_, sca_mie_, albedo_over_pi_;
-  Spectrum rayleigh_phase_a_, rayleigh_phase_b_;  ///< the Rayleigh phase per wavelength: A + B mu^2
-  /// The aerosol phase function's degree-2 moment for spin-2 fields, 2 pi int p(mu) (1 + mu)^2 / 4 dmu
-  /// (the generalized spherical function P^2_22): what a unit scattering matrix keeps of the
-  /// quadrupole of the light's polarisation (polarised_sources).
-  Spectrum mie_spin2_moment_;
+  int media_ = 0;               ///< AtmosphereModel::media().size()
+  Spectrum ext_[kMaxMedia];     ///< each medium's extinction at relative density 1
+  bool layer_[kMaxMedia] = {};  ///< its density is a layer (trapezoid rule for its columns)
+  Spectrum albedo_over_pi_;
+  int n_ = 0;  ///< wavelengths
+  /// A scattering medium as the integrator uses it.
+  struct Scatterer {
+    int medium = 0;  ///< index in AtmosphereModel::media()
+    Spectrum sca;    ///< beta_sca at relative density 1
+    const MediumPhase* phase = nullptr;
+    /// Molecules: the phase function per wavelength as A + B mu^2.
+    Spectrum phase_a, phase_b;
+    /// Particles: the phase function's degree-2 moment for spin-2 fields, 2 pi int p(mu) (1 + mu)^2 / 4 dmu
+    /// (the generalized spherical function P^2_22): what a unit scattering matrix keeps of the
+    /// quadrupole of the light's polarisation (polarised_sources).
+    Spectrum spin2_moment;
+    bool rayleigh() const { return phase->kind == MediumPhase::Kind::Rayleigh; }
+  };
+  std::vector<Scatterer> scatterers_;
+  /// Each scatterer's phase function at mu into ws.phase[s]; one scatterer's into p.
+  void phases_at(double mu, ScatteringWorkspace& ws) const;
+  void phase_of(int s, double mu, Spectrum& p) const;
 
   // The quadrature along one ray (single_scattering.cpp): where the ray runs in the atmosphere,
   // its pieces (lit or in shadow), the nodes on them, and the integration over the nodes.
@@ -229,15 +257,17 @@ class SingleScattering {
   struct PieceScratch;
   void optical_depths(const Eigen::ArrayXXf& columns, PieceScratch& sc, Eigen::ArrayXXf& tau) const;
   void single_scattering_piece(const Node* nodes, int m, double os, double ds, PieceScratch& sc,
-                               Spectrum* sums[4]) const;
+                               ScatteringWorkspace& ws) const;
   struct RayFrame;
   /// True if it integrated the polarised sources too.
   bool higher_orders_piece(const Node* nodes, int m, double os, double ds, double od, const InScatteringSource& higher,
-                           const RayFrame* polarisation, PieceScratch& sc, ScatteringWorkspace& ws,
-                           Spectrum* sums[4]) const;
+                           const RayFrame* polarisation, PieceScratch& sc, ScatteringWorkspace& ws) const;
   bool polarised_sources(const Node* nodes, int m, const RayFrame& frame, const InScatteringSource& higher,
                          PieceScratch& sc) const;
-  void accumulate(PieceScratch& sc, Spectrum* sums[4]) const;
+  /// Adds scatterer s's fine and coarse sums over the piece (sc.tau, sc.trans) to sums[0], sums[1].
+  void accumulate(PieceScratch& sc, int s, Spectrum* sums) const;
+  /// sum_j beta_ext,j columns[j] over the media.
+  void optical_depth(const double* columns, Spectrum& tau) const;
   void ground_reflection(const Node& ground, double mu_sun, const ScatteringSources& sources, ScatteringWorkspace& ws,
                          RadianceParts& parts) const;
   void view_optical_depth(const Node& node, Spectrum& tau) const;

@@ -19,19 +19,19 @@ namespace {
 // Rays are never cast exactly along the horizon, where a ray grazes the ground and which side of
 // it the ray falls on is decided by rounding: the row at the horizon is cast this far from it.
 constexpr double kHorizonOffsetRad = 1e-6;
-constexpr int kParts = 3;
 
 // Mixes the entries around a look-up: rows (n_rows of them, from rows_at, a row of `azimuths`
 // entries apart) weighted by row_w, then the two columns (the entries of columns c0 and c0 + 1
-// are contiguous, as are the three parts of an entry: one loop over 2 x 3 x n floats per row
+// are contiguous, as are the parts of an entry: one loop over 2 x parts x n floats per row
 // accumulates both columns' parts) by w0 and w1. kN > 0: the wavelength count known at compile
 // time, so that the loops unroll; 0: n at run time.
-// kP parts per entry: the radiance's three, or the polarised two (Q, U: signed, not clamped).
-template <int kN, int kP = kParts>
+// n_parts per entry: the radiance's (one per scattering medium and the phase-free part; clamped
+// at 0), or the polarised two (Q, U: signed, not clamped).
+template <int kN>
 void mix_entries(const float* rows_at, int azimuths, const double* row_w, int n_rows, float w0, float w1, int n_run,
-                 float* const parts[kP]) {
+                 int n_parts, bool clamp, float* const* parts) {
   const int n = kN > 0 ? kN : n_run;
-  const size_t entry = static_cast<size_t>(kP) * static_cast<size_t>(n);
+  const size_t entry = static_cast<size_t>(n_parts) * static_cast<size_t>(n);
   const size_t stride = static_cast<size_t>(azimuths) * entry;
   // On the stack for up to 42 wavelengths (2 x 3 x 42 floats), per thread beyond.
   constexpr size_t kStackFloats = 256;
@@ -58,10 +58,10 @@ void mix_entries(const float* rows_at, int azimuths, const double* row_w, int n_
   }
   // A cubic may undershoot where a part falls steeply to 0 (the planet's shadow); light is not
   // negative (Q and U may be).
-  for (int p = 0; p < kP; ++p) {
+  for (int p = 0; p < n_parts; ++p) {
     const float* a = acc + static_cast<size_t>(p) * n;
     const float* b = a + entry;
-    if (kP == kParts)
+    if (clamp)
       for (int l = 0; l < n; ++l) parts[p][l] = std::max(0.0f, w0 * a[l] + w1 * b[l]);
     else
       for (int l = 0; l < n; ++l) parts[p][l] = w0 * a[l] + w1 * b[l];
@@ -193,7 +193,8 @@ SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringS
     }
   }
 
-  const size_t stride = static_cast<size_t>(res_.azimuths) * kParts * static_cast<size_t>(n_);
+  parts_ = integrator.scatterer_count() + 1;
+  const size_t stride = static_cast<size_t>(res_.azimuths) * parts_ * static_cast<size_t>(n_);
   sky_.assign(static_cast<size_t>(res_.sky_rows) * stride, 0.0f);
   if (res_.ground_side) ground_.assign(static_cast<size_t>(res_.ground_rows) * stride, 0.0f);
   polarised_ = sources.polarisation;
@@ -211,13 +212,13 @@ SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringS
     ScatteringWorkspace ws;
     std::vector<Vec3> dirs;
     std::vector<RadianceParts> parts;
-    RowScratch(int wavelengths, int azimuths)
+    RowScratch(int wavelengths, int azimuths, int scatterers)
         : ws(wavelengths),
           dirs(static_cast<size_t>(azimuths)),
-          parts(static_cast<size_t>(azimuths), RadianceParts(wavelengths)) {}
+          parts(static_cast<size_t>(azimuths), RadianceParts(wavelengths, scatterers)) {}
   };
-  const int n = n_, m = res_.azimuths;
-  tbb::enumerable_thread_specific<RowScratch> scratch([n, m] { return RowScratch(n, m); });
+  const int n = n_, m = res_.azimuths, scatterers = parts_ - 1;
+  tbb::enumerable_thread_specific<RowScratch> scratch([n, m, scatterers] { return RowScratch(n, m, scatterers); });
   const int total_rows = res_.sky_rows + (res_.ground_side ? res_.ground_rows : 0);
   tbb::task_arena arena(std::max(1, threads));
   arena.execute([&] {
@@ -233,10 +234,11 @@ SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringS
         for (int column = 0; column < m; ++column) {
           const RadianceParts& p = sc.parts[static_cast<size_t>(column)];
           float* entry = (sky_side ? sky_ : ground_).data() + row * stride +
-                         static_cast<size_t>(column) * kParts * static_cast<size_t>(n);
-          std::copy(p.rayleigh.data(), p.rayleigh.data() + n, entry);
-          std::copy(p.mie.data(), p.mie.data() + n, entry + n);
-          std::copy(p.phase_free.data(), p.phase_free.data() + n, entry + 2 * n);
+                         static_cast<size_t>(column) * parts_ * static_cast<size_t>(n);
+          for (int s = 0; s < scatterers; ++s)
+            std::copy(p.scattered[static_cast<size_t>(s)].data(), p.scattered[static_cast<size_t>(s)].data() + n,
+                      entry + static_cast<size_t>(s) * n);
+          std::copy(p.phase_free.data(), p.phase_free.data() + n, entry + static_cast<size_t>(scatterers) * n);
           if (polarised_) {  // Q and U of the higher orders in the ray's polarisation_frame
             float* q = (sky_side ? polarised_sky_ : polarised_ground_).data() + row * polarised_stride +
                        static_cast<size_t>(column) * kPolarisedParts * static_cast<size_t>(n);
@@ -274,23 +276,26 @@ bool SkyViewTable::lookup(const Vec3& dir, RadianceParts& out) const {
   double theta, phi;
   angles_of(dir, theta, phi);
   theta = refined_zenith(dir, theta);
-  const int n = n_;
-  out.rayleigh.resize(n);  // no-ops when the caller's parts have the grid's size already
-  out.mie.resize(n);
-  out.phase_free.resize(n);
-  return interpolate(theta, phi, out.rayleigh.data(), out.mie.data(), out.phase_free.data());
+  Weights w;
+  if (!weights(theta, phi, w)) return false;
+  mix(w, out);
+  return true;
 }
 
 void SkyViewTable::lookup_many(int count, const Vec3* dirs, float* out, bool* found) const {
   constexpr int kChunk = 64;
   double theta[kChunk], phi[kChunk];
-  const size_t entry = static_cast<size_t>(kParts) * static_cast<size_t>(n_);
+  const size_t entry = static_cast<size_t>(parts_) * static_cast<size_t>(n_);
+  float* parts[kMaxMedia + 1];
   for (int first = 0; first < count; first += kChunk) {
     const int m = std::min(kChunk, count - first);
     for (int k = 0; k < m; ++k) angles_of(dirs[first + k], theta[k], phi[k]);  // vectorised
     for (int k = 0; k < m; ++k) {
       float* o = out + static_cast<size_t>(first + k) * entry;
-      found[first + k] = interpolate(refined_zenith(dirs[first + k], theta[k]), phi[k], o, o + n_, o + 2 * n_);
+      for (int p = 0; p < parts_; ++p) parts[p] = o + static_cast<size_t>(p) * n_;
+      Weights w;
+      found[first + k] = weights(refined_zenith(dirs[first + k], theta[k]), phi[k], w);
+      if (found[first + k]) mix(w, parts);
     }
   }
 }
@@ -349,23 +354,27 @@ bool SkyViewTable::weights(double theta, double phi, Weights& w) const {
   return true;
 }
 
-bool SkyViewTable::interpolate(double theta, double phi, float* rayleigh, float* mie, float* phase_free) const {
-  Weights w;
-  if (!weights(theta, phi, w)) return false;
-  mix(w, rayleigh, mie, phase_free);
-  return true;
-}
-
-void SkyViewTable::mix(const Weights& w, float* rayleigh, float* mie, float* phase_free) const {
+void SkyViewTable::mix(const Weights& w, float* const* parts) const {
   const int m = res_.azimuths;
   const float* rows_at = (w.sky_side ? sky_ : ground_).data() +
-                         static_cast<size_t>(w.first_row) * static_cast<size_t>(m) * kParts * static_cast<size_t>(n_) +
-                         static_cast<size_t>(w.c0) * kParts * static_cast<size_t>(n_);
-  float* const parts[kParts] = {rayleigh, mie, phase_free};
+                         static_cast<size_t>(w.first_row) * static_cast<size_t>(m) * parts_ * static_cast<size_t>(n_) +
+                         static_cast<size_t>(w.c0) * parts_ * static_cast<size_t>(n_);
   if (n_ == 3)  // the RGB-fast path's three wavelengths: loops of known length, unrolled
-    mix_entries<3>(rows_at, m, w.row_w, w.n_rows, w.w0, w.w1, n_, parts);
+    mix_entries<3>(rows_at, m, w.row_w, w.n_rows, w.w0, w.w1, n_, parts_, true, parts);
   else
-    mix_entries<0>(rows_at, m, w.row_w, w.n_rows, w.w0, w.w1, n_, parts);
+    mix_entries<0>(rows_at, m, w.row_w, w.n_rows, w.w0, w.w1, n_, parts_, true, parts);
+}
+
+void SkyViewTable::mix(const Weights& w, RadianceParts& out) const {
+  out.scattered.resize(static_cast<size_t>(parts_ - 1));
+  float* parts[kMaxMedia + 1];
+  for (int s = 0; s + 1 < parts_; ++s) {
+    out.scattered[static_cast<size_t>(s)].resize(n_);  // no-ops when the caller's parts have these sizes already
+    parts[s] = out.scattered[static_cast<size_t>(s)].data();
+  }
+  out.phase_free.resize(n_);
+  parts[parts_ - 1] = out.phase_free.data();
+  mix(w, parts);
 }
 
 bool SkyViewTable::lookup_polarised(const Vec3& dir, RadianceParts& out) const {
@@ -374,21 +383,18 @@ bool SkyViewTable::lookup_polarised(const Vec3& dir, RadianceParts& out) const {
   angles_of(dir, theta, phi);
   theta = refined_zenith(dir, theta);
   const int n = n_;
-  out.rayleigh.resize(n);
-  out.mie.resize(n);
-  out.phase_free.resize(n);
   out.polarised_q.resize(n);
   out.polarised_u.resize(n);
   Weights w;
   if (!weights(theta, phi, w)) return false;
-  mix(w, out.rayleigh.data(), out.mie.data(), out.phase_free.data());
+  mix(w, out);
   const int m = res_.azimuths;
   const float* rows_at =
       (w.sky_side ? polarised_sky_ : polarised_ground_).data() +
       static_cast<size_t>(w.first_row) * static_cast<size_t>(m) * kPolarisedParts * static_cast<size_t>(n) +
       static_cast<size_t>(w.c0) * kPolarisedParts * static_cast<size_t>(n);
   float* const parts[kPolarisedParts] = {out.polarised_q.data(), out.polarised_u.data()};
-  mix_entries<0, kPolarisedParts>(rows_at, m, w.row_w, w.n_rows, w.w0, w.w1, n, parts);
+  mix_entries<0>(rows_at, m, w.row_w, w.n_rows, w.w0, w.w1, n, kPolarisedParts, false, parts);
   // The table holds the side towards +across; the mirror image's frame has e2 reversed, so U changes sign.
   if (dir.dot(across_) < 0.0) out.polarised_u = -out.polarised_u;
   return true;

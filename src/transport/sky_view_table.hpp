@@ -48,8 +48,9 @@ class SkyViewTable {
   /// False (and `out` untouched) for a direction below the horizon when that side was not built.
   bool lookup(const Vec3& dir, RadianceParts& out) const;
   /// lookup() for count unit directions at once, their angles computed together (a loop that
-  /// vectorises): direction k's parts go to out + 3 n k (Rayleigh, Mie, phase-free, n floats
-  /// each, n the wavelengths), found[k] is lookup()'s answer. The same values as lookup().
+  /// vectorises): direction k's parts go to out + parts() n k (each scattering medium's, then the
+  /// phase-free part, n floats each, n the wavelengths), found[k] is lookup()'s answer. The same
+  /// values as lookup().
   void lookup_many(int count, const Vec3* dirs, float* out, bool* found) const;
   /// lookup() and, for a table built with ScatteringSources::polarisation, the higher orders'
   /// polarised_q and polarised_u too (in the direction's polarisation_frame; the table holds the
@@ -57,6 +58,8 @@ class SkyViewTable {
   /// a table without polarisation.
   bool lookup_polarised(const Vec3& dir, RadianceParts& out) const;
   bool polarised() const { return polarised_; }
+  /// Parts per direction: one per scattering medium and the phase-free part.
+  int parts() const { return parts_; }
   /// The zenith angle of the horizon seen from the table's point (> pi/2 above the ground).
   double horizon_zenith_rad() const { return horizon_zenith_rad_; }
 
@@ -79,7 +82,6 @@ class SkyViewTable {
   // table's interpolation at (theta, phi) (false where it has no side for theta).
   void angles_of(const Vec3& dir, double& theta, double& phi) const;
   double refined_zenith(const Vec3& dir, double theta) const;
-  bool interpolate(double theta, double phi, float* rayleigh, float* mie, float* phase_free) const;
   // The rows and columns around (theta, phi) and their weights (interpolate's; false where the
   // table has no side for theta).
   struct Weights {
@@ -89,17 +91,19 @@ class SkyViewTable {
     float w0 = 0, w1 = 0;
   };
   bool weights(double theta, double phi, Weights& w) const;
-  // The radiance's three parts at those weights.
-  void mix(const Weights& w, float* rayleigh, float* mie, float* phase_free) const;
+  // The radiance's parts at those weights, into parts[0 .. parts() - 1] or into out.
+  void mix(const Weights& w, float* const* parts) const;
+  void mix(const Weights& w, RadianceParts& out) const;
 
   SkyViewResolution res_;
   int n_ = 0;                      // wavelengths
+  int parts_ = 0;                  // per direction: one per scattering medium, and the phase-free part
   Vec3 up_, toward_sun_, across_;  // local frame: zenith, sun's azimuth, perpendicular
   double horizon_zenith_rad_ = 0.0;
   double r_m_ = 0.0, R_m_ = 0.0, rho_m_ = 0.0;  // camera and planet radii, distance to the horizon
   std::vector<double> sky_theta_, ground_theta_, sky_key_, ground_key_;  // per row: zenith angle, key
   std::vector<double> sky_inv_den_, ground_inv_den_;  // per row pair: its rows' Lagrange denominators (4 each)
-  // [side][row][column][part][lambda], part = rayleigh, mie, phase_free.
+  // [side][row][column][part][lambda], part = each scattering medium's, then phase_free.
   std::vector<float> sky_, ground_;
   // With polarisation: [side][row][column][Q, U][lambda].
   bool polarised_ = false;

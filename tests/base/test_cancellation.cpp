@@ -40,7 +40,7 @@ BOOST_AUTO_TEST_CASE(a_request_is_seen_by_the_next_check) {
 BOOST_AUTO_TEST_CASE(the_scattering_tables_stop_when_cancelled) {
   ClearAfter clear;
   const AtmosphereSpec spec =
-      test::simple_atmosphere(ProfileKind::Exponential, 60e3, test::kSeedNm, test::kSeedBetaRayleigh, 21e-6, 0.3);
+      test::simple_atmosphere(ProfileKind::Exponential, 60e3, test::kSeedNm, test::kSeedBetaRayleigh, 21e-6);
   const test::IntegratorChain chain(spec, test::kSeedNm, {32, 64, 64}, 16);
   MultipleScatteringSettings ms;
   ms.orders = 3;
@@ -55,7 +55,7 @@ BOOST_AUTO_TEST_CASE(the_scattering_tables_stop_when_cancelled) {
 // orders otherwise (what it costs is measured, so only its shape is tested).
 BOOST_AUTO_TEST_CASE(the_build_estimate_scales_with_the_orders) {
   const AtmosphereSpec spec =
-      test::simple_atmosphere(ProfileKind::Exponential, 60e3, test::kSeedNm, test::kSeedBetaRayleigh, 21e-6, 0.3);
+      test::simple_atmosphere(ProfileKind::Exponential, 60e3, test::kSeedNm, test::kSeedBetaRayleigh, 21e-6);
   const test::IntegratorChain chain(spec, test::kSeedNm, {32, 64, 64}, 16);
   MultipleScatteringSettings ms;
   ms.orders = 1;

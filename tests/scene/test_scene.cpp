@@ -291,7 +291,7 @@ BOOST_AUTO_TEST_CASE(every_preset_is_valid) {
     BOOST_TEST_CONTEXT("preset " << name) {
       const Scene s = SceneLoader(name).finish();
       const AtmosphereModel atm(s.atmosphere, make_wavelength_grid(s));
-      BOOST_TEST(atm.rayleigh().scattering_per_m.minCoeff() > 0.0);
+      BOOST_TEST(atm.medium("air")->scattering_per_m.minCoeff() > 0.0);
       BOOST_TEST(atm.top_radius_m() > atm.planet_radius_m());
     }
   }
@@ -301,8 +301,8 @@ BOOST_AUTO_TEST_CASE(every_preset_is_valid) {
   BOOST_TEST(m.rayleigh_derivation().front().king_factor > 1.1);
   BOOST_TEST(m.rayleigh_number_density_per_m3() < 1e24);
   const int blue = 2, red = m.grid().size() - 3;  // 400 and 760 nm on the default grid
-  BOOST_TEST(m.mie().scattering_per_m[blue] / m.mie().extinction_per_m[blue] <
-             m.mie().scattering_per_m[red] / m.mie().extinction_per_m[red]);
+  BOOST_TEST(m.medium("aerosol")->scattering_per_m[blue] / m.medium("aerosol")->extinction_per_m[blue] <
+             m.medium("aerosol")->scattering_per_m[red] / m.medium("aerosol")->extinction_per_m[red]);
 }
 
 // Quality levels: "default" is the default scene's sample counts (the two files must agree), the

@@ -66,8 +66,8 @@ BOOST_AUTO_TEST_CASE(table_matches_direct_integration) {
     const Columns direct = columns_to_top_m(atm, r, mu, 2048);
     const Columns tab = table.lookup(r, mu);
     // Compare what matters: the transmittance at the most extinguished wavelength.
-    const double tau_direct = 13.5e-6 * direct[kRayleigh] + 23.1e-6 * direct[kMie];
-    const double tau_table = 13.5e-6 * tab[kRayleigh] + 23.1e-6 * tab[kMie];
+    const double tau_direct = 13.5e-6 * direct[0] + 23.1e-6 * direct[1];
+    const double tau_table = 13.5e-6 * tab[0] + 23.1e-6 * tab[1];
     worst_transmittance_error =
         std::max(worst_transmittance_error, std::abs(std::exp(-tau_direct) - std::exp(-tau_table)));
   }

@@ -33,9 +33,11 @@ BOOST_AUTO_TEST_CASE(vertical_ozone_optical_depth_is_sigma_times_column) {
   const WavelengthGrid grid = make_wavelength_grid(s);
   const AtmosphereModel atm(s.atmosphere, grid);
   const Columns c = columns_to_top_m(atm, atm.planet_radius_m(), 1.0, 512);
+  BOOST_TEST(atm.media().size() == 3u);  // air, aerosol, ozone: ozone's column is the third
+  BOOST_TEST(atm.media()[2].name == "ozone");
   const SpectrumD expected = ozone_vertical_optical_depth_on_grid(grid, 300.0);
   for (int i = 0; i < grid.size(); ++i)
-    BOOST_TEST(atm.ozone().extinction_per_m[i] * c[kOzone] == expected[i], boost::test_tools::tolerance(1e-6));
+    BOOST_TEST(atm.medium("ozone")->extinction_per_m[i] * c[2] == expected[i], boost::test_tools::tolerance(1e-6));
   // Chappuis band: about 0.04 at 600 nm for 300 DU.
   const int i600 = grid.index_of(600);
   BOOST_TEST(expected[i600] > 0.03);

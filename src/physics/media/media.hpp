@@ -1,0 +1,53 @@
+// The list of media an atmosphere may hold, and how each is built from the scene's AtmosphereSpec.
+//
+// Adding a medium: write its builder in a file of its own in this folder (air.cpp is the
+// example), declare it below and add one entry to medium_registry() (media.cpp). Its scene keys go
+// in the key registry (src/scene/key_registry.cpp) and its settings in AtmosphereSpec. Nothing in
+// transport, render or the Monte Carlo changes: they iterate AtmosphereModel::media().
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "skyspec/atmosphere.hpp"
+#include "skyspec/medium.hpp"
+
+namespace skyspec {
+
+/// What a builder reads.
+struct MediumContext {
+  const AtmosphereSpec& spec;
+  const WavelengthGrid& grid;
+  /// A medium whose optics are slow to compute (Lorenz-Mie) may take them from, and put them in,
+  /// the disk cache of tables (render.cache_tables).
+  bool cache_on_disk = false;
+};
+
+/// Builds the medium on the grid, or nothing when the scene turns it off. Throws InputError naming
+/// the scene key when the spec cannot be evaluated.
+using MediumBuilder = std::optional<Medium> (*)(const MediumContext&);
+
+struct MediumEntry {
+  const char* name;
+  MediumBuilder build;
+};
+
+/// Every medium, in the order AtmosphereModel::media() holds them (and light transport sums them).
+const std::vector<MediumEntry>& medium_registry();
+
+// The builders, one file each.
+std::optional<Medium> build_air(const MediumContext& c);      // air.cpp: Rayleigh from n(lambda) and N
+std::optional<Medium> build_aerosol(const MediumContext& c);  // aerosol.cpp: Angstrom law or OPAC by Lorenz-Mie
+std::optional<Medium> build_ozone(const MediumContext& c);    // ozone.cpp: absorption by the ozone layer
+
+/// Air's number density at altitude 0 and how it was obtained (air.cpp; for the derivation report).
+struct AirNumberDensity {
+  double per_m3 = 0.0;
+  std::string origin;
+};
+AirNumberDensity air_number_density(const RayleighSpec& r);
+/// Ozone's number density at the layer's peak, m^-3 (ozone.cpp; 0 without ozone).
+double ozone_peak_number_density_per_m3(const OzoneSpec& o);
+
+}  // namespace skyspec

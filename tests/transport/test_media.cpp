@@ -1,0 +1,196 @@
+// The atmosphere's media are a list that light transport iterates: an aerosol split into two media
+// of half its density each gives the same light (single scattering, the scattering-order tables,
+// polarisation), a medium of the caller's own (a smoke layer with its own profile and phase
+// function) is seen alike by the integrator and by the Monte Carlo, and a medium that does not fit
+// is refused by name.
+
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+#include <cstdio>
+
+#include "atmosphere_fixtures.hpp"
+#include "skyspec/camera.hpp"
+#include "skyspec/error.hpp"
+#include "transport/monte_carlo.hpp"
+#include "transport/multiple_scattering.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_media)
+
+using namespace skyspec;
+
+namespace {
+const std::vector<double> kNm = {440, 550, 680};
+
+AtmosphereSpec earth(double aerosol_scattering_per_m) {
+  AtmosphereSpec spec;
+  spec.ground.albedo = 0.2;
+  spec.mie.scattering_per_m = aerosol_scattering_per_m;
+  return spec;
+}
+
+// A smoke layer of the test's own: exponential with a 3 km scale height, absorbing a fifth of what
+// it extinguishes, Cornette-Shanks with g = 0.6.
+Medium smoke(int n) {
+  Medium m;
+  m.name = "smoke";
+  m.profile = DensityProfile::exponential(3000.0);
+  m.scattering_per_m = SpectrumD::Constant(n, 8e-6);
+  m.extinction_per_m = SpectrumD::Constant(n, 10e-6);
+  m.phase.kind = MediumPhase::Kind::Analytic;
+  m.phase.analytic_model = AerosolPhase::Model::CornetteShanks;
+  m.phase.g = SpectrumD::Constant(n, 0.6);
+  return m;
+}
+
+MultipleScatteringSettings small_polarised_tables() {
+  MultipleScatteringSettings ms;
+  ms.orders = 4;
+  ms.altitude_samples = 12;
+  ms.sun_samples = 24;
+  ms.angular_degree = 4;
+  ms.polarisation = true;
+  return ms;
+}
+
+double relative(double a, double b) { return std::abs(a - b) / std::max(std::abs(b), 1e-30); }
+}  // namespace
+
+// Half the aerosol in each of two media is the same aerosol: the radiance and its polarisation
+// agree to the quadrature's placement of nodes (which follows each scattering medium's column, so
+// the split moves them) and the tables' rounding.
+BOOST_AUTO_TEST_CASE(an_aerosol_split_in_two_media_gives_the_same_light) {
+  const WavelengthGrid grid = WavelengthGrid::from_list(kNm);
+  AtmosphereModel split(earth(21e-6 / 2), grid);
+  Medium second = *split.medium("aerosol");
+  second.name = "aerosol-2";
+  split.add_medium(second);
+  BOOST_TEST(split.media().size() == 4u);
+  const test::IntegratorChain whole_chain(AtmosphereModel(earth(21e-6), grid), {128, 256, 64}, 64);
+  const test::IntegratorChain split_chain(std::move(split), {128, 256, 64}, 64);
+  BOOST_TEST(split_chain.integrator.scatterer_count() == 3);
+  const ScatteringOrders whole_orders(whole_chain.integrator, small_polarised_tables());
+  const ScatteringOrders split_orders(split_chain.integrator, small_polarised_tables());
+  const int n = grid.size();
+  ScatteringWorkspace ws(n);
+  RadianceParts whole_parts, split_parts;
+  Spectrum wi(n), wq(n), wu(n), si(n), sq(n), su(n);
+  double worst_single = 0.0, worst_i = 0.0, worst_dolp = 0.0;
+  const Vec3 origin(0, 0, whole_chain.atm.planet_radius_m() + 2.0);
+  for (double sun_elevation : {40.0, 4.0}) {
+    const Vec3 sun = direction_from_angles(0.0, sun_elevation);
+    for (auto [az, el] : {std::pair{0.0, 90.0}, {30.0, 20.0}, {0.0, 5.0}, {180.0, 10.0}, {90.0, 45.0}, {60.0, -10.0}}) {
+      const Vec3 dir = direction_from_angles(az, el);
+      ScatteringSources single;
+      whole_chain.integrator.radiance(origin, dir, sun, Spectrum::Ones(n), single, ws, wi);
+      split_chain.integrator.radiance(origin, dir, sun, Spectrum::Ones(n), single, ws, si);
+      for (int i = 0; i < n; ++i) worst_single = std::max(worst_single, relative(si[i], wi[i]));
+      ScatteringSources all{true, &whole_orders};
+      all.polarisation = true;
+      whole_chain.integrator.radiance_parts(origin, dir, sun, all, ws, whole_parts);
+      all.higher = &split_orders;
+      split_chain.integrator.radiance_parts(origin, dir, sun, all, ws, split_parts);
+      BOOST_TEST(split_parts.scattered.size() == 3u);
+      const Vec3 e1 = polarisation_frame(dir, sun);
+      whole_chain.integrator.stokes(whole_parts, dir, sun, e1, Spectrum::Ones(n), ws, wi, wq, wu);
+      split_chain.integrator.stokes(split_parts, dir, sun, e1, Spectrum::Ones(n), ws, si, sq, su);
+      for (int i = 0; i < n; ++i) {
+        worst_i = std::max(worst_i, relative(si[i], wi[i]));
+        worst_dolp = std::max(worst_dolp, static_cast<double>(std::abs(std::hypot(sq[i], su[i]) / si[i] -
+                                                                       std::hypot(wq[i], wu[i]) / wi[i])));
+      }
+    }
+  }
+  std::printf("aerosol split in two: single scattering %.2g, all orders %.2g (relative), DoLP %.2g\n", worst_single,
+              worst_i, worst_dolp);
+  BOOST_TEST(worst_single < 2e-4);
+  BOOST_TEST(worst_i < 1e-3);
+  BOOST_TEST(worst_dolp < 2e-4);
+}
+
+// A medium of the caller's own, with its own profile and phase function: the deterministic
+// integrator's single scattering and the Monte Carlo's (a component per medium) agree.
+BOOST_AUTO_TEST_CASE(a_medium_of_ones_own_is_seen_by_the_integrator_and_the_monte_carlo) {
+  const WavelengthGrid grid = WavelengthGrid::from_list(kNm);
+  const int n = grid.size();
+  AtmosphereModel model(earth(21e-6), grid);
+  model.add_medium(smoke(n));
+  const test::IntegratorChain chain(std::move(model), {256, 512, 64}, 128);
+  ScatteringWorkspace ws(n);
+  Spectrum det(n), without(n);
+  const test::IntegratorChain plain(AtmosphereModel(earth(21e-6), grid), {256, 512, 64}, 128);
+  MonteCarloSettings settings;
+  settings.paths = 20000;
+  settings.seed = 11;
+  settings.max_orders = 1;
+  const Vec3 origin(0, 0, chain.atm.planet_radius_m() + 1.0);
+  const Vec3 sun = direction_from_angles(0.0, 20.0);
+  std::uint64_t stream = 0;
+  int telling = 0;
+  for (auto [az, el] : {std::pair{0.0, 90.0}, {0.0, 30.0}, {180.0, 5.0}}) {
+    const Vec3 dir = direction_from_angles(az, el);
+    chain.integrator.radiance(origin, dir, sun, Spectrum::Ones(n), ws, det);
+    plain.integrator.radiance(origin, dir, sun, Spectrum::Ones(n), ws, without);
+    for (int i = 0; i < n; ++i) {
+      const MonteCarloMedium medium = MonteCarloMedium::from_atmosphere(chain.atm, i);
+      BOOST_TEST(medium.components.size() == 4u);  // air, aerosol, ozone, smoke
+      const MonteCarloValue mc = MonteCarloIntegrator(medium, sun).radiance(origin, dir, settings, ++stream);
+      const double allowed = 4.0 * mc.standard_error + 2e-3 * det[i];
+      std::printf("  view %g/%g, %g nm: mc %.6g +- %.2g, integrator %.6g (%+.2f sigma)\n", az, el,
+                  kNm[static_cast<size_t>(i)], mc.mean, mc.standard_error, static_cast<double>(det[i]),
+                  (mc.mean - det[i]) / mc.standard_error);
+      BOOST_TEST(std::abs(mc.mean - det[i]) <= allowed);
+      // Where the smoke changes the light by far more than the Monte Carlo's uncertainty, the
+      // agreement says that both see it (it adds light towards the sun, takes it away from the
+      // horizon opposite).
+      telling += std::abs(det[i] - without[i]) > 10.0 * mc.standard_error;
+    }
+  }
+  BOOST_TEST(telling >= 5);
+}
+
+// A medium that does not fit the atmosphere is refused, naming the field.
+BOOST_AUTO_TEST_CASE(a_medium_that_does_not_fit_is_refused_by_name) {
+  const WavelengthGrid grid = WavelengthGrid::from_list(kNm);
+  const int n = grid.size();
+  AtmosphereModel model(earth(21e-6), grid);
+  const auto refused = [&](Medium m, const std::string& setting) {
+    try {
+      model.add_medium(std::move(m));
+    } catch (const InputError& e) {
+      BOOST_TEST_MESSAGE(e.what());
+      return e.setting() == setting;
+    }
+    return false;
+  };
+  Medium taken = smoke(n);
+  taken.name = "aerosol";
+  BOOST_TEST(refused(taken, "medium.aerosol.name"));
+  Medium short_spectrum = smoke(n);
+  short_spectrum.scattering_per_m = SpectrumD::Constant(n - 1, 1e-6);
+  BOOST_TEST(refused(short_spectrum, "medium.smoke.scattering_per_m"));
+  Medium negative = smoke(n);
+  negative.extinction_per_m[1] = -1.0;
+  BOOST_TEST(refused(negative, "medium.smoke.extinction_per_m"));
+  Medium gains = smoke(n);
+  gains.extinction_per_m = gains.scattering_per_m * 0.5;  // scatters more than it extinguishes
+  BOOST_TEST(refused(gains, "medium.smoke.extinction_per_m"));
+  Medium bad_g = smoke(n);
+  bad_g.phase.g[2] = 1.0;
+  BOOST_TEST(refused(bad_g, "medium.smoke.phase.g"));
+  Medium layer = smoke(n);
+  layer.profile = DensityProfile::tent(1000, 2000, 3000);  // zero outside: the log-mean rule cannot
+  BOOST_TEST(refused(layer, "medium.smoke.profile"));
+  Medium no_matrix = smoke(n);
+  no_matrix.phase.kind = MediumPhase::Kind::Tabulated;
+  BOOST_TEST(refused(no_matrix, "medium.smoke.phase.matrix"));
+  BOOST_TEST(model.media().size() == 3u);  // nothing was added
+  for (int k = 0; model.media().size() < static_cast<size_t>(kMaxMedia); ++k) {
+    Medium more = smoke(n);
+    more.name = "smoke-" + std::to_string(k);
+    model.add_medium(more);
+  }
+  BOOST_TEST(refused(smoke(n), "medium.smoke"));
+}
+
+BOOST_AUTO_TEST_SUITE_END()
