@@ -7,6 +7,7 @@
 #include "skyspec/lee_diagram.hpp"
 #include "skyspec/scene.hpp"
 #include "skyspec/timelapse.hpp"
+#include "viewer/view_requests.hpp"
 
 namespace skyspec::cli {
 
@@ -32,6 +33,10 @@ const std::vector<std::pair<std::string, std::string>>& cli_spellings() {
       {kDeltaEMaxSetting, "--delta-e-max"},
       {kForceSetting, "--force"},
       {kSceneFileSetting, "--scene"},
+      {viewer::viewer_setting::kHost, "--host"},
+      {viewer::viewer_setting::kPort, "--port"},
+      {viewer::viewer_setting::kAllowRemote, "--allow-remote"},
+      {viewer::viewer_setting::kExportFolder, "--out"},
       {lee_setting::kRadiusMin, "--radius-min-um"},
       {lee_setting::kRadiusMax, "--radius-max-um"},
       {lee_setting::kAngleMin, "--angle-min"},

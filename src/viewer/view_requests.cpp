@@ -163,7 +163,7 @@ nlohmann::json spectrum_at(const ViewRequest& request, const Query& query) {
 }
 
 nlohmann::json export_view(const ViewRequest& request, const std::filesystem::path& folder) {
-  ensure_writable_directory(folder, "--out");
+  ensure_writable_directory(folder, viewer_setting::kExportFolder);
   Scene scene = request.scene;
   scene.output.directory = folder.string();
   scene.output.exr = scene.output.png = true;
@@ -186,8 +186,8 @@ nlohmann::json export_view(const ViewRequest& request, const std::filesystem::pa
     std::string message = "this export";
     for (size_t i = 0; i < problems.size(); ++i) message += (i ? ", and " : " ") + problems[i];
     throw InputError::refused("export", message +
-                                            " (make the frame smaller, or render the scene with `skyspec render "
-                                            "--force`)");
+                                            " (make the frame smaller, or render the exported scene with skyspec "
+                                            "render, which can be told to go beyond the budget)");
   }
   const std::filesystem::path toml_path = folder / (scene.output.name + ".toml");
   Scene recorded = scene;

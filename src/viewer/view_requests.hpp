@@ -33,6 +33,15 @@
 
 namespace skyspec::viewer {
 
+/// The server's settings, as errors name them (a front end respells them: the CLI's --host,
+/// --port, --allow-remote, --out; src/cli/setting_spellings.cpp).
+namespace viewer_setting {
+inline constexpr const char* kHost = "viewer.host";
+inline constexpr const char* kPort = "viewer.port";
+inline constexpr const char* kAllowRemote = "viewer.allow_remote";
+inline constexpr const char* kExportFolder = "viewer.export_folder";
+}  // namespace viewer_setting
+
 /// (name, value) pairs in the order the page sent them.
 using Query = std::vector<std::pair<std::string, std::string>>;
 

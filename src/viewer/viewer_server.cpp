@@ -36,10 +36,11 @@ Query query_of(const httplib::Request& req) {
 }  // namespace
 
 void check_host(const std::string& host, bool allow_remote) {
-  if (host.empty()) throw InputError("--host", "\"\"", "an address to listen on, e.g. 127.0.0.1");
+  if (host.empty()) throw InputError(viewer_setting::kHost, "\"\"", "an address to listen on, e.g. 127.0.0.1");
   if (!allow_remote && !is_loopback(host))
-    throw InputError("--host", "\"" + host + "\"",
-                     "a loopback address (127.0.0.1, ::1 or localhost); add --allow-remote to serve other machines");
+    throw InputError(viewer_setting::kHost, "\"" + host + "\"",
+                     std::string("a loopback address (127.0.0.1, ::1 or localhost); add ") +
+                         viewer_setting::kAllowRemote + " to serve other machines");
 }
 
 struct ViewerServer::Impl {
@@ -179,7 +180,8 @@ struct ViewerServer::Impl {
 ViewerServer::ViewerServer(ViewerBase base, ServerOptions options) : impl_(std::make_unique<Impl>()) {
   check_host(options.host, options.allow_remote);
   if (options.port < 0 || options.port > 65535)
-    throw InputError("--port", std::to_string(options.port), "a port from 1 to 65535, or 0 for any free port");
+    throw InputError(viewer_setting::kPort, std::to_string(options.port),
+                     "a port from 1 to 65535, or 0 for any free port");
   impl_->base = std::move(base);
   impl_->options = std::move(options);
   impl_->state_json = viewer_state(impl_->base).dump();  // the base scene and display checked now

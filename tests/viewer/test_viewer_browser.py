@@ -215,7 +215,7 @@ def server_tests(url, folder):
     # 9e8 pixels: about 160 GB of EXR and 60 GB of memory, beyond this kind of machine (24 GB).
     status, body, _ = get(url + "api/export?camera.width=30000&camera.height=30000", post=True)
     answer = json.loads(body)
-    check(status == 400 and answer["setting"] == "export" and "skyspec render --force" in answer["error"],
+    check(status == 400 and answer["setting"] == "export" and "beyond the budget" in answer["error"],
           "an export beyond the render budget is refused: " + answer["error"])
     check(os.listdir(os.path.join(folder, "exports")) == exports, "and writes nothing")
     status, body, _ = get(url + "no/such/page")
