@@ -80,6 +80,17 @@ struct OzoneSpec {
   std::vector<double> cross_section_wavelengths_nm, cross_section_m2;
 };
 
+/// Fog: droplets of liquid water near the ground, with OPAC's fog size distribution (a modified
+/// gamma distribution, mode radius 8.06 um; Hess, Koepke & Schult 1998) and water's refractive
+/// index at 10 degC (IAPWS R9-97), by Lorenz-Mie theory; off by default.
+struct FogSpec {
+  bool enabled = false;
+  /// Meteorological optical range (WMO): the distance over which light at 550 nm falls to 5 %,
+  /// so beta_ext(550 nm) = ln 20 / V at the ground. Fog by definition: V < 1 km.
+  double visibility_m = 500.0;
+  double scale_height_m = 100.0;  ///< density exp(-z / H) above the ground
+};
+
 /// The planet's surface: Lambertian, with a constant or a spectral albedo.
 struct GroundSpec {
   double albedo = 0.0;                                       ///< used when albedo_values is empty
@@ -92,6 +103,7 @@ struct AtmosphereSpec {
   RayleighSpec rayleigh;
   MieSpec mie;
   OzoneSpec ozone;
+  FogSpec fog;
   GroundSpec ground;
 };
 

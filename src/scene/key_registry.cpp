@@ -203,6 +203,19 @@ const std::vector<KeyDef>& registry() {
                            [](Scene& s) -> double& { return s.atmosphere.ozone.peak_m; }));
     r.push_back(number_key("atmosphere.ozone.top_m", "m", {0.0, 1e7}, "top of the ozone layer",
                            [](Scene& s) -> double& { return s.atmosphere.ozone.top_m; }));
+    // fog
+    r.push_back(
+        bool_key("atmosphere.fog.enabled",
+                 "fog: water droplets near the ground (OPAC's fog, Lorenz-Mie: corona, fogbow, glory) on or off",
+                 [](Scene& s) -> bool& { return s.atmosphere.fog.enabled; }));
+    r.push_back(
+        number_key("atmosphere.fog.visibility_m", "m", {1.0, 1e5},
+                   "fog: visibility at the ground (meteorological optical range, 550 nm: extinction ln 20 / V); "
+                   "fog is below 1000 m",
+                   [](Scene& s) -> double& { return s.atmosphere.fog.visibility_m; }));
+    r.push_back(number_key("atmosphere.fog.scale_height_m", "m", {1.0, 1e5},
+                           "fog: its density falls as exp(-z / H) above the ground",
+                           [](Scene& s) -> double& { return s.atmosphere.fog.scale_height_m; }));
     // ground
     r.push_back(number_key("ground.albedo", "", {0.0, 1.0},
                            "Lambertian albedo of the ground (0: black); unless a preset, file or flag sets a ground "

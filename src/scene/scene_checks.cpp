@@ -86,6 +86,8 @@ std::vector<SpectralLimit> spectral_limits(const Scene& s) {
     limits.push_back({opac.min_nm, opac.max_nm,
                       "OPAC's refractive indices of the aerosol components (atmosphere.mie.model = \"opac\")"});
   }
+  if (s.atmosphere.fog.enabled)
+    limits.push_back({200.0, 1100.0, "water's refractive index (IAPWS R9-97; atmosphere.fog.enabled = true)"});
   const OzoneSpec& o3 = s.atmosphere.ozone;
   if (o3.enabled && o3.cross_section_m2.empty()) {
     const TabulatedSpectrum& table = ozone_cross_section_table();

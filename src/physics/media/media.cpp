@@ -7,6 +7,7 @@ const std::vector<MediumEntry>& medium_registry() {
       {"air", build_air},
       {"aerosol", build_aerosol},
       {"ozone", build_ozone},
+      {"fog", build_fog},
   };
   return media;
 }

@@ -40,6 +40,7 @@ const std::vector<MediumEntry>& medium_registry();
 std::optional<Medium> build_air(const MediumContext& c);      // air.cpp: Rayleigh from n(lambda) and N
 std::optional<Medium> build_aerosol(const MediumContext& c);  // aerosol.cpp: Angstrom law or OPAC by Lorenz-Mie
 std::optional<Medium> build_ozone(const MediumContext& c);    // ozone.cpp: absorption by the ozone layer
+std::optional<Medium> build_fog(const MediumContext& c);      // fog.cpp: water droplets by Lorenz-Mie
 
 /// Air's number density at altitude 0 and how it was obtained (air.cpp; for the derivation report).
 struct AirNumberDensity {
@@ -47,6 +48,9 @@ struct AirNumberDensity {
   std::string origin;
 };
 AirNumberDensity air_number_density(const RayleighSpec& r);
+/// One fog droplet's extinction cross-section at 550 nm, m^2 (fog.cpp: what the visibility is
+/// measured at).
+double fog_extinction_cross_section_550nm_m2();
 /// Ozone's number density at the layer's peak, m^-3 (ozone.cpp; 0 without ozone).
 double ozone_peak_number_density_per_m3(const OzoneSpec& o);
 

@@ -1,0 +1,30 @@
+// Particle optics from Lorenz-Mie theory are slow to compute (seconds to a minute per atmosphere)
+// and depend only on their inputs: they are kept in memory per key, and, when asked, in the disk
+// cache of tables (base/disk_cache.hpp), as files "aerosol-<hash>.bin" that a loaded render reads
+// bit for bit as computed. Used by the OPAC aerosol (aerosol_components.cpp) and by media of
+// water drops (media/fog.cpp).
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "skyspec/aerosol_components.hpp"
+
+namespace skyspec {
+
+/// Optics as computed: volume coefficients per wavelength and the scattering matrix's rows at
+/// aerosol_scattering_cosines() before TabulatedScatteringMatrix normalises them.
+struct RawParticleOptics {
+  std::vector<double> sca, ext;
+  std::vector<std::vector<double>> a1, b1, a3, b2;
+};
+
+/// The optics of `key` (text naming everything they depend on, the format included): from memory,
+/// else from the disk cache when use_disk_cache (a file read back is untrusted: its size, key,
+/// checksum and values are checked), else compute() (then written to the cache). `wavelengths`:
+/// the grid's size, which a cached file must have.
+AerosolMixtureOptics cached_particle_optics(const std::string& key, int wavelengths, bool use_disk_cache,
+                                            const std::function<RawParticleOptics()>& compute);
+
+}  // namespace skyspec
