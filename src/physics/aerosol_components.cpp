@@ -3,20 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
-#include <cstdint>
-#include <cstdio>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
-#include <iterator>
-#include <map>
-#include <mutex>
 #include <sstream>
-#include <system_error>
 
-#include "base/atomic_file.hpp"
 #include "base/csv_table.hpp"
-#include "base/disk_cache.hpp"
 #include "base/embedded_data.hpp"
 #include "base/preparation_progress.hpp"
 #include "physics/particle_optics_cache.hpp"
