@@ -10,7 +10,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 SKYSPEC_PACKAGES=(
   build-essential cmake pkg-config
   libeigen3-dev libopenexr-dev libimath-dev libopencolorio-dev libtbb-dev libpng-dev
-  libtomlplusplus-dev libcli11-dev libboost-test-dev libhowardhinnant-date-dev liblcms2-dev libssl-dev libnetcdf-dev libcpp-httplib-dev
+  libtomlplusplus-dev libcli11-dev libboost-test-dev libhowardhinnant-date-dev liblcms2-dev libssl-dev libnetcdf-dev libcpp-httplib-dev libgdal-dev
   openexr openimageio-tools opencolorio-tools time
   nlohmann-json3-dev
   pybind11-dev python3-dev python3-numpy python3-matplotlib python3-openimageio

@@ -31,6 +31,7 @@
 #include "skyspec/sphere_ensemble.hpp"
 #include "skyspec/standard_atmosphere.hpp"
 #include "skyspec/tabulated_scattering.hpp"
+#include "skyspec/terrain.hpp"
 #include "skyspec/timelapse.hpp"
 #include "skyspec/units.hpp"
 #include "skyspec/vec3.hpp"

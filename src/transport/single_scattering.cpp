@@ -415,10 +415,15 @@ struct SingleScattering::Piece {
 
 struct SingleScattering::Ray {
   double t_begin = 0.0, t_end = 0.0;
-  bool hits_ground = false;  // ends on the ground (the last node is the ground point)
-  Piece pieces[8];
+  bool hits_ground = false;   // ends on the ground (the last node is the ground point)
+  bool hits_terrain = false;  // ... and that ground is the terrain's surface
+  std::vector<Piece> pieces;  // pieces[0 .. n_pieces): kept from ray to ray (no allocation)
   int n_pieces = 0;
   std::vector<Node> nodes;
+  void add_piece(double t0, double t1, bool lit) {
+    if (static_cast<size_t>(n_pieces) == pieces.size()) pieces.emplace_back();
+    pieces[static_cast<size_t>(n_pieces++)] = Piece{t0, t1, lit};
+  }
 };
 
 // Where the ray o + t d runs in the atmosphere (up to the ground if it hits it, or up to a surface
@@ -442,6 +447,21 @@ bool SingleScattering::trace(const Vec3& o, const Vec3& d, const Vec3& s, const 
     t_end = sources.max_distance_m;
     hits_ground = false;
   }
+  ray.hits_terrain = false;
+  // The terrain: the ray ends where it meets the surface; it shadows the stretch found here.
+  bool terrain_stretch = false;
+  if (sources.terrain) {
+    Interval stretch;
+    terrain_stretch = sources.terrain->affected_stretch(o, d, t_begin, t_end, s, stretch);
+    if (terrain_stretch) {
+      const double t_hit = sources.terrain->intersect(o, d, stretch.t0_m, stretch.t1_m);
+      if (t_hit < t_end) {
+        t_end = t_hit;
+        hits_ground = true;
+        ray.hits_terrain = true;
+      }
+    }
+  }
   if (hits_ground && t_end == 0.0 && t_begin == 0.0) {
     // A camera on the ground (height 0) looking below the horizontal: the ground at the camera,
     // with no air in front of it. No pieces; the one node is the ground point (place_nodes,
@@ -458,37 +478,58 @@ bool SingleScattering::trace(const Vec3& o, const Vec3& d, const Vec3& s, const 
   // Shadowed pieces carry only higher-order light; without it they matter only for the view
   // columns. Without higher orders, a ray entirely in shadow sees nothing (its ground point is
   // dark too).
-  const IntervalSet lit = lit_intervals(o, d, t_begin, t_end, s, R);
-  if (!sources.higher && lit.count == 0 && !sources.transmittance) return false;
+  const IntervalSet planet_lit = lit_intervals(o, d, t_begin, t_end, s, R);
+  thread_local std::vector<Interval> lit;
+  lit.clear();
+  for (int i = 0; i < planet_lit.count; ++i) lit.push_back(planet_lit.parts[i]);
+  if (terrain_stretch && !lit.empty()) sunlit_past_terrain(o, d, s, *sources.terrain, lit);
+  if (!sources.higher && lit.empty() && !sources.transmittance) return false;
   const double t_low = -o.dot(d);
-  double cuts[6];
-  bool cut_lit[6];
-  int n = 0;
-  double t = t_begin;
-  for (int i = 0; i < lit.count; ++i) {
-    if (lit.parts[i].t0_m > t) {
-      cuts[n] = lit.parts[i].t0_m;
-      cut_lit[n++] = false;  // [t, t0] dark
-    }
-    cuts[n] = lit.parts[i].t1_m;
-    cut_lit[n++] = true;
-    t = lit.parts[i].t1_m;
-  }
-  if (t < t_end) {
-    cuts[n] = t_end;
-    cut_lit[n++] = false;
-  }
   double a = t_begin;
-  for (int i = 0; i < n; ++i) {
-    const double b = cuts[i];
+  auto add = [&](double b, bool is_lit) {  // [a, b], cut at the ray's lowest point
     if (t_low > a && t_low < b) {
-      ray.pieces[ray.n_pieces++] = {a, t_low, cut_lit[i]};
+      ray.add_piece(a, t_low, is_lit);
       a = t_low;
     }
-    ray.pieces[ray.n_pieces++] = {a, b, cut_lit[i]};
+    ray.add_piece(a, b, is_lit);
     a = b;
+  };
+  for (const Interval& part : lit) {
+    if (part.t0_m > a) add(part.t0_m, false);  // [a, t0] dark
+    add(part.t1_m, true);
   }
+  if (a < t_end) add(t_end, false);
   return true;
+}
+
+// The lit parts of a ray (the planet's, in order) less the terrain's shadows: where the ray can
+// meet the terrain's shadow (Terrain::affected_stretch), its sunlit parts.
+void SingleScattering::sunlit_past_terrain(const Vec3& o, const Vec3& d, const Vec3& s, const Terrain& terrain,
+                                           std::vector<Interval>& lit) {
+  thread_local std::vector<Interval> out;
+  out.clear();
+  for (const Interval& part : lit) {
+    Interval stretch;
+    if (!terrain.affected_stretch(o, d, part.t0_m, part.t1_m, s, stretch)) {
+      out.push_back(part);
+      continue;
+    }
+    if (stretch.t0_m > part.t0_m) out.push_back({part.t0_m, stretch.t0_m});
+    const size_t first = out.size();
+    terrain.sunlit_parts(o, d, stretch.t0_m, stretch.t1_m, s, out);
+    // Join a part that continues the one before it.
+    if (first > 0 && out.size() > first && out[first].t0_m <= out[first - 1].t1_m) {
+      out[first - 1].t1_m = out[first].t1_m;
+      out.erase(out.begin() + static_cast<std::ptrdiff_t>(first));
+    }
+    if (part.t1_m > stretch.t1_m) {
+      if (!out.empty() && out.back().t1_m >= stretch.t1_m)
+        out.back().t1_m = part.t1_m;
+      else
+        out.push_back({stretch.t1_m, part.t1_m});
+    }
+  }
+  lit.swap(out);
 }
 
 // The nodes: on pieces where light is collected, view_segments in all, shared in proportion to
@@ -861,6 +902,37 @@ void SingleScattering::ground_reflection(const Node& ground, double mu_sun, cons
   parts.phase_free += ws.view_trans * albedo_over_pi_ * ws.source;
 }
 
+// The terrain at the ray's end: the same Lambertian reflection, with the surface's normal n. The
+// sun lights it where it faces the sun and neither the terrain nor the planet hides it (the sun's
+// columns at the point's own altitude); the sky's irradiance is the tables' G for the sun's angle
+// there (G is for a horizontal surface at height 0: an approximation at altitude) times the share
+// of the sky a surface tilted to n sees, (1 + n.up) / 2, the view factor for an isotropic sky.
+void SingleScattering::terrain_reflection(const Node& ground, const Vec3& p, const Vec3& s,
+                                          const ScatteringSources& sources, ScatteringWorkspace& ws,
+                                          RadianceParts& parts) const {
+  const Terrain& terrain = *sources.terrain;
+  view_optical_depth(ground, ws.view_tau);
+  ws.view_trans = (-ws.view_tau).exp();
+  ws.source.setZero();
+  const Vec3 up = p / p.norm(), n = terrain.normal_under(p);
+  const double mu_sun = s.dot(up), incidence = s.dot(n);
+  if (sources.single && incidence > 0.0) {
+    const Vec3 start = p + 1e-3 * n;  // off the surface, which must not shadow its own point
+    if (sphere_entry_distance(start, s, atm_.planet_radius_m()) == std::numeric_limits<double>::infinity() &&
+        !terrain.shadowed(start, s)) {
+      Spectrum& tau_sun = ws.ground_sun;
+      const Columns sun = sun_.at(ground.r, mu_sun);
+      optical_depth(sun.data(), tau_sun);
+      ws.source = (-tau_sun).exp() * static_cast<float>(incidence);
+    }
+  }
+  if (sources.higher) {
+    sources.higher->ground_irradiance(mu_sun, ws.ground_sky.data());
+    ws.source += ws.ground_sky * static_cast<float>(0.5 * (1.0 + n.dot(up)));
+  }
+  parts.phase_free += ws.view_trans * albedo_over_pi_ * ws.source;
+}
+
 // The optical depth of the view ray from the camera to a node.
 void SingleScattering::view_optical_depth(const Node& node, Spectrum& tau) const { optical_depth(node.col, tau); }
 
@@ -931,8 +1003,12 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
     view_optical_depth(last, ws.view_tau);
     *sources.transmittance = (-ws.view_tau).exp();
   }
-  if (ray.hits_ground && albedo_over_pi_.maxCoeff() > 0.0f)  // the last node is the ground point
-    ground_reflection(last, (os + last.t * ds) / last.r, sources, ws, parts);
+  if (ray.hits_ground && albedo_over_pi_.maxCoeff() > 0.0f) {  // the last node is the ground point
+    if (ray.hits_terrain)
+      terrain_reflection(last, o + last.t * d, s, sources, ws, parts);
+    else
+      ground_reflection(last, (os + last.t * ds) / last.r, sources, ws, parts);
+  }
 }
 
 void SingleScattering::radiance_parts(const Vec3& o, const Vec3& d, const Vec3& s, const ScatteringSources& sources,
@@ -956,7 +1032,7 @@ void SingleScattering::radiance_parts(const Vec3& o, const Vec3& d, const Vec3& 
 void SingleScattering::radiance_parts_same_zenith(const Vec3& o, const Vec3* dirs, int count, const Vec3& s,
                                                   const ScatteringSources& sources, ScatteringWorkspace& ws,
                                                   RadianceParts* parts) const {
-  if (sources.transmittance || sources.polarisation || o.norm() < atm_.planet_radius_m()) {
+  if (sources.transmittance || sources.polarisation || sources.terrain || o.norm() < atm_.planet_radius_m()) {
     for (int i = 0; i < count; ++i) radiance_parts(o, dirs[i], s, sources, ws, parts[i]);
     return;
   }

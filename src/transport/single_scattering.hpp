@@ -30,6 +30,7 @@
 #include "skyspec/geometry.hpp"
 #include "skyspec/medium.hpp"
 #include "skyspec/spectrum.hpp"
+#include "skyspec/terrain.hpp"
 #include "transport/optical_depth.hpp"
 
 namespace skyspec {
@@ -152,6 +153,14 @@ struct ScatteringSources {
   /// Also integrate the higher orders' polarisation (RadianceParts::polarised_q and polarised_u),
   /// where `higher` resolves the field's quadrupole (InScatteringSource::rayleigh_moments).
   bool polarisation = false;
+  /// Terrain (terrain.hpp) that hides what lies behind it and shadows the air: the ray ends where
+  /// it meets the surface, whose Lambertian reflection (albedo a) of the sun, where the terrain
+  /// does not hide it, and of the sky is added as the ground's is; single scattering is collected
+  /// only where the sun is visible past the terrain (Terrain::sunlit_parts: exact to its sampling).
+  /// The higher orders' sources are the tables' (computed without terrain): light scattered more
+  /// than once is not shadowed (docs/terrain.md gives the error). The sky's irradiance on a
+  /// surface of normal n is the tables' G times the sky's share it sees, (1 + n.up) / 2.
+  const Terrain* terrain = nullptr;
 };
 
 class SingleScattering {
@@ -248,6 +257,8 @@ class SingleScattering {
   struct Piece;
   struct Ray;
   bool trace(const Vec3& o, const Vec3& d, const Vec3& s, const ScatteringSources& sources, Ray& ray) const;
+  static void sunlit_past_terrain(const Vec3& o, const Vec3& d, const Vec3& s, const Terrain& terrain,
+                                  std::vector<Interval>& lit);
   void place_nodes(const Vec3& o, const Vec3& d, const ScatteringSources& sources, Ray& ray) const;
   void piece_node_positions(const Vec3& o, const Vec3& d, double t0, double t1, int segments, double* t) const;
   static constexpr int kPilotsPerSegment = 2;  ///< density samples per segment that place the nodes
@@ -270,6 +281,9 @@ class SingleScattering {
   void optical_depth(const double* columns, Spectrum& tau) const;
   void ground_reflection(const Node& ground, double mu_sun, const ScatteringSources& sources, ScatteringWorkspace& ws,
                          RadianceParts& parts) const;
+  /// The same at a point of the terrain (the ray's end p, direction d), with its normal and shadow.
+  void terrain_reflection(const Node& ground, const Vec3& p, const Vec3& s, const ScatteringSources& sources,
+                          ScatteringWorkspace& ws, RadianceParts& parts) const;
   void view_optical_depth(const Node& node, Spectrum& tau) const;
 };
 
