@@ -16,6 +16,7 @@
 #include "skyspec/atmosphere.hpp"
 #include "skyspec/camera_spec.hpp"
 #include "skyspec/geometry.hpp"
+#include "skyspec/terrain.hpp"
 
 namespace skyspec {
 
@@ -49,6 +50,20 @@ struct LocationSpec {
 /// albedo ("typically 0.1-0.4 for bare or vegetated ground", pvlib.irradiance.get_ground_diffuse);
 /// fresh grass is about 0.26 in its SURFACE_ALBEDOS table. Set ground.albedo = 0 for a black ground.
 inline constexpr double kPanoramaGroundAlbedo = 0.25;
+
+/// Terrain (terrain.hpp, docs/terrain.md): mountains that hide what lies behind them, shadow the
+/// air and reflect light. Its albedo is the ground's (atmosphere.ground).
+struct TerrainSpec {
+  enum class Model { None, Ridge, File };
+  Model model = Model::None;
+  RidgeSpec ridge;  ///< model = ridge: the synthetic ridge
+  /// model = file: an elevation raster GDAL opens (GeoTIFF and the others), georeferenced, heights
+  /// in metres above sea level; read over the square of half-size extent_m around the reference
+  /// point (location.latitude_deg / longitude_deg).
+  std::string file;
+  double extent_m = 30000.0;
+  double spacing_m = 100.0;  ///< the spacing of the map grid the heights are sampled on
+};
 
 struct SpectrumSpec {
   double min_nm = 380.0, max_nm = 780.0, step_nm = 10.0;
@@ -105,6 +120,7 @@ struct Scene {
   AtmosphereSpec atmosphere;
   SunSpec sun;
   LocationSpec location;
+  TerrainSpec terrain;
   CameraSpec camera;
   SpectrumSpec spectrum;
   RenderSpec render;

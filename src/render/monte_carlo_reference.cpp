@@ -80,6 +80,10 @@ ReferenceResult monte_carlo_reference(const Scene& scene, const std::vector<Refe
     throw InputError("paths", std::to_string(settings.paths), "2 to 1e12 paths per estimate");
   if (settings.max_orders < 0)
     throw InputError("orders", std::to_string(settings.max_orders), "0 (all orders) or a positive number of orders");
+  if (scene.terrain.model != TerrainSpec::Model::None)
+    throw InputError("terrain.model",
+                     "\"" + std::string(scene.terrain.model == TerrainSpec::Model::Ridge ? "ridge" : "file") + "\"",
+                     "\"none\": the Monte Carlo reference's paths do not see terrain (docs/terrain.md)");
   const auto start = std::chrono::steady_clock::now();
   const WavelengthGrid grid = make_wavelength_grid(scene);
   const AtmosphereModel atmosphere(scene.atmosphere, grid, scene.render.cache_tables);

@@ -19,6 +19,7 @@
 #include "base/cancellation.hpp"
 #include "physics/sun_disk.hpp"
 #include "render/scene_tables.hpp"
+#include "render/scene_terrain.hpp"
 #include "render/sun_irradiance.hpp"
 #include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
@@ -60,7 +61,8 @@ struct SkyRenderer::Impl {
   TableSunColumns sun_columns;
   SingleScattering integrator;
   std::shared_ptr<const ScatteringOrders> orders;  // null for single scattering
-  ScatteringSources sources;
+  std::shared_ptr<const Terrain> terrain;          // null without terrain
+  ScatteringSources sources;                       // with the terrain: what marched rays see
   std::unique_ptr<Camera> camera;
   std::unique_ptr<SkyViewTable> sky_view;  // null: every pixel is marched
   double sky_view_seconds = 0.0;           // its build time
@@ -98,15 +100,25 @@ struct SkyRenderer::Impl {
         any = true;
       }
     if (!any) return;
+    if (terrain && std::isfinite(terrain->intersect(camera->origin_m(), dir, 0.0, 2.0 * atmosphere.top_radius_m())))
+      return;  // behind a mountain
     integrator.transmittance_to_space(camera->origin_m(), dir, trans);
     Eigen::Map<Spectrum>(radiance, grid.size()) += disk * (1.0f / (n * n)) * trans * sun_irradiance;
+  }
+
+  // Whether the sky-view table (built without terrain) serves direction dir: not where the ray
+  // can meet the terrain or its shadow (Terrain::affected_stretch).
+  bool table_serves(const Vec3& dir) const {
+    Interval stretch;
+    return !terrain ||
+           !terrain->affected_stretch(camera->origin_m(), dir, 0.0, 2.0 * atmosphere.top_radius_m(), sun_dir, stretch);
   }
 
   // The sky's radiance along dir (unit) without the sun's disk: interpolated from the sky-view
   // table where there is one for that direction, marched otherwise (render_rows does the same
   // for chunks of pixels).
   void sky_radiance(const Vec3& dir, ScatteringWorkspace& ws, Spectrum& out) const {
-    if (sky_view && sky_view->lookup(dir, ws.parts))
+    if (sky_view && table_serves(dir) && sky_view->lookup(dir, ws.parts))
       integrator.combine(ws.parts, dir.dot(sun_dir), sun_irradiance, ws, out);
     else
       integrator.radiance(camera->origin_m(), dir, sun_dir, sun_irradiance, sources, ws, out);
@@ -144,6 +156,7 @@ struct SkyRenderer::Impl {
         sun_columns(table),
         integrator(atmosphere, sun_columns, IntegratorSettings{s.render.view_segments}),
         orders(s.render.scattering_orders >= 2 ? build_orders(s, integrator) : nullptr),
+        terrain(scene_terrain(s)),
         sources{true, orders.get()},
         camera(make_camera(s)),
         sun_dir(skyspec::sun_direction(s)),
@@ -151,6 +164,7 @@ struct SkyRenderer::Impl {
         sun_radius_rad(skyspec::sun_angular_radius_rad(s.sun.distance_au)),
         rgb_fast(s.render.path == RenderSpec::Path::RgbFast),
         threads(thread_count(s)) {
+    sources.terrain = terrain.get();
     if (s.render.sky_view_table && SkyViewTable::applicable(atmosphere, camera->origin_m())) {
       const int rows = s.render.sky_view_zenith_samples;
       const bool below = image_sees_below_horizon();
@@ -158,6 +172,7 @@ struct SkyRenderer::Impl {
       try {
         ScatteringSources table_sources = sources;
         table_sources.polarisation = s.output.polarisation;  // then it holds Q and U too
+        table_sources.terrain = nullptr;  // directions the terrain touches are marched (table_serves)
         sky_view = std::make_unique<SkyViewTable>(
             integrator, table_sources, camera->origin_m(), sun_dir,
             SkyViewResolution{rows, std::max(2, rows / 2), s.render.sky_view_azimuth_samples, below}, threads);
@@ -337,7 +352,7 @@ void SkyRenderer::render_window_stokes(int x0, int x1, int y0, int rows, float* 
           std::fill(px, px + stride, 0.0f);
         } else {
           const Vec3 e1 = stokes_frame_axis_of_pixel(x + 0.5, y + 0.5, dir);
-          if (!(m.sky_view && m.sky_view->lookup_polarised(dir, sc.parts)))
+          if (!(m.sky_view && m.table_serves(dir) && m.sky_view->lookup_polarised(dir, sc.parts)))
             m.integrator.radiance_parts(m.camera->origin_m(), dir, m.sun_dir, sources, sc.ws, sc.parts);
           m.integrator.stokes(sc.parts, dir, m.sun_dir, e1, m.sun_irradiance, sc.ws, sc.i, sc.q, sc.u);
           std::copy(sc.i.data(), sc.i.data() + n, px);
@@ -405,6 +420,8 @@ void SkyRenderer::render_window(int x0, int x1, int y0, int rows, float* spectra
         }
         if (m.sky_view) {
           m.sky_view->lookup_many(count, sc.dirs, sc.parts.data(), sc.found);
+          if (m.terrain)
+            for (int k = 0; k < count; ++k) sc.found[k] = sc.found[k] && m.table_serves(sc.dirs[k]);
           for (int k = 0; k < count; ++k) {
             sc.mu[k] = sc.dirs[k].dot(m.sun_dir);
             sc.out[k] = spectral + static_cast<size_t>(sc.pixel[k]) * n;

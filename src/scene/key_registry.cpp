@@ -289,6 +289,58 @@ const std::vector<KeyDef>& registry() {
     r.push_back(number_key("location.longitude_deg", "degrees", {-180.0, 180.0},
                            "longitude of the reference point, east positive",
                            [](Scene& s) -> double& { return s.location.longitude_deg; }));
+    // terrain
+    r.push_back(choice_key(
+        "terrain.model", {"none", "ridge", "file"},
+        "none: the planet's sphere is the ground; ridge: a synthetic mountain ridge (terrain.ridge.*); file: "
+        "heights from an elevation raster (terrain.file), around location.latitude_deg / longitude_deg",
+        [](Scene& s, const std::string& v) {
+          s.terrain.model = v == "ridge"  ? TerrainSpec::Model::Ridge
+                            : v == "file" ? TerrainSpec::Model::File
+                                          : TerrainSpec::Model::None;
+        },
+        [](const Scene& s) {
+          return std::string(s.terrain.model == TerrainSpec::Model::Ridge  ? "ridge"
+                             : s.terrain.model == TerrainSpec::Model::File ? "file"
+                                                                           : "none");
+        }));
+    {
+      KeyDef k = text_key(
+          "terrain.file",
+          "model = file: a georeferenced elevation raster GDAL reads (GeoTIFF, ...), heights in metres "
+          "above sea level; a relative path is taken from the current folder",
+          [](Scene& s) -> std::string& { return s.terrain.file; }, false);
+      const auto written = k.get;
+      k.get = [written](const Scene& s) { return s.terrain.file.empty() ? std::string() : written(s); };  // unset
+      r.push_back(k);
+    }
+    r.push_back(number_key("terrain.extent_m", "m", {100.0, 1e6},
+                           "model = file: half the side of the square read around the reference point",
+                           [](Scene& s) -> double& { return s.terrain.extent_m; }));
+    r.push_back(number_key("terrain.spacing_m", "m", {1.0, 1e5},
+                           "spacing of the grid the terrain's heights are sampled on (bilinear between samples)",
+                           [](Scene& s) -> double& { return s.terrain.spacing_m; }));
+    r.push_back(number_key("terrain.ridge.height_m", "m", {0.0, 9000.0}, "ridge: height of its crest",
+                           [](Scene& s) -> double& { return s.terrain.ridge.height_m; }));
+    r.push_back(number_key("terrain.ridge.distance_m", "m", {0.0, 2e6},
+                           "ridge: distance from the reference point to the crest",
+                           [](Scene& s) -> double& { return s.terrain.ridge.distance_m; }));
+    r.push_back(number_key("terrain.ridge.azimuth_deg", "degrees", {0.0, 360.0},
+                           "ridge: direction from the reference point to the crest, clockwise from north (the crest "
+                           "runs across it)",
+                           [](Scene& s) -> double& { return s.terrain.ridge.azimuth_deg; }));
+    r.push_back(number_key("terrain.ridge.half_width_m", "m", {1.0, 1e6},
+                           "ridge: half the width of its foot (cross-section h cos^2(pi x / 2w))",
+                           [](Scene& s) -> double& { return s.terrain.ridge.half_width_m; }));
+    r.push_back(number_key("terrain.ridge.length_m", "m", {1.0, 2e6},
+                           "ridge: length of the crest (more than twice the half width)",
+                           [](Scene& s) -> double& { return s.terrain.ridge.length_m; }));
+    r.push_back(number_key("terrain.ridge.notch_spacing_m", "m", {0.0, 1e6},
+                           "ridge: distance between notches in the crest that let light shafts through (0: none)",
+                           [](Scene& s) -> double& { return s.terrain.ridge.notch_spacing_m; }));
+    r.push_back(number_key("terrain.ridge.notch_depth", "", {0.0, 1.0},
+                           "ridge: depth of the notches as a share of the crest's height",
+                           [](Scene& s) -> double& { return s.terrain.ridge.notch_depth; }));
     // camera
     r.push_back(choice_key(
         "camera.type", names_of(camera_types()), "projection",

@@ -32,6 +32,21 @@
 
 namespace skyspec {
 
+void check_terrain(const Scene& s) {
+  const TerrainSpec& t = s.terrain;
+  if (t.model == TerrainSpec::Model::File && t.file.empty())
+    throw InputError("terrain.file", "(not set)", "the path of an elevation raster (terrain.model = \"file\")");
+  if (t.model != TerrainSpec::Model::Ridge) return;
+  const RidgeSpec& r = t.ridge;
+  if (!(r.length_m > 2.0 * r.half_width_m))
+    throw InputError("terrain.ridge.length_m", format_number(r.length_m),
+                     "more than twice terrain.ridge.half_width_m (" + format_number(2.0 * r.half_width_m) + " m)");
+  const double under = ridge_height_at(r, s.camera.position_m.x(), s.camera.position_m.y());
+  if (s.camera.position_m.z() <= under)
+    throw InputError("camera.position_m", format_number(s.camera.position_m.z()) + " m high",
+                     "a position above the terrain (the ridge is " + format_number(under) + " m high there)");
+}
+
 // The Blender and OpenEXR lat-long conventions map the whole image to the whole sphere.
 void check_panorama(const CameraSpec& c) {
   if (c.panorama_convention == PanoramaConvention::Skyspec) return;

@@ -274,6 +274,7 @@ Scene SceneLoader::finish(SceneUse use) const {
     s.sun.azimuth_deg = sp.azimuth_deg;
     s.sun.distance_au = sp.earth_sun_distance_au;
   }
+  check_terrain(s);
   const auto& oz = s.atmosphere.ozone;
   if (oz.enabled && !(oz.bottom_m < oz.peak_m && oz.peak_m < oz.top_m))
     throw InputError("atmosphere.ozone.peak_m", format_number(oz.peak_m),

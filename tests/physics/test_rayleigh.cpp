@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "check_helpers.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/king_factor.hpp"
 #include "skyspec/rayleigh.hpp"

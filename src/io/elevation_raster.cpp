@@ -1,0 +1,170 @@
+#include "io/elevation_raster.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <vector>
+
+#include <cpl_conv.h>
+#include <cpl_error.h>
+#include <gdal_priv.h>
+#include <ogr_spatialref.h>
+
+#include "base/text_format.hpp"
+#include "skyspec/error.hpp"
+#include "skyspec/units.hpp"
+
+namespace skyspec {
+
+namespace {
+constexpr double kLowest_m = -500.0, kHighest_m = 9000.0;  // the Dead Sea's shore, Everest
+constexpr double kMaxWindowPixels = 2.0e8;
+
+// GDAL's own messages are kept for ours, not printed.
+struct QuietGdal {
+  QuietGdal() {
+    CPLPushErrorHandler(CPLQuietErrorHandler);
+    CPLErrorReset();
+  }
+  ~QuietGdal() { CPLPopErrorHandler(); }
+  QuietGdal(const QuietGdal&) = delete;
+  QuietGdal& operator=(const QuietGdal&) = delete;
+  static std::string last() {
+    const char* m = CPLGetLastErrorMsg();
+    return m && *m ? std::string(" (GDAL: ") + m + ")" : std::string();
+  }
+};
+}  // namespace
+
+void map_to_latitude_longitude(double east_m, double north_m, const ElevationSampling& s, double& latitude_deg,
+                               double& longitude_deg) {
+  const double lat = degrees_to_radians(s.latitude_deg), lon = degrees_to_radians(s.longitude_deg);
+  // The map point's direction in the reference point's east-north-up frame, then in the planet's
+  // frame (x towards latitude 0 longitude 0, z towards the north pole).
+  const double len = std::sqrt(east_m * east_m + north_m * north_m + s.planet_radius_m * s.planet_radius_m);
+  const double e = east_m / len, n = north_m / len, u = s.planet_radius_m / len;
+  const double x = -std::sin(lon) * e - std::sin(lat) * std::cos(lon) * n + std::cos(lat) * std::cos(lon) * u;
+  const double y = std::cos(lon) * e - std::sin(lat) * std::sin(lon) * n + std::cos(lat) * std::sin(lon) * u;
+  const double z = std::cos(lat) * n + std::sin(lat) * u;
+  latitude_deg = radians_to_degrees(std::asin(std::clamp(z, -1.0, 1.0)));
+  longitude_deg = radians_to_degrees(std::atan2(y, x));
+}
+
+HeightGrid read_elevation_raster(const std::string& path, const ElevationSampling& s, const std::string& setting) {
+  auto refuse = [&](const std::string& what) { throw InputError(setting, path, what); };
+  if (!(s.spacing_m > 0.0) || !(s.extent_m >= s.spacing_m))
+    throw InputError("terrain.extent_m", format_number(s.extent_m),
+                     "at least terrain.spacing_m (" + format_number(s.spacing_m) + " m)");
+  GDALAllRegister();
+  const QuietGdal quiet;
+  std::unique_ptr<GDALDataset> ds(
+      GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+  if (!ds) refuse("an elevation raster GDAL can open (GeoTIFF or another raster format)" + QuietGdal::last());
+  if (ds->GetRasterCount() < 1) refuse("a raster with at least one band (heights)");
+  double gt[6];
+  const OGRSpatialReference* srs = ds->GetSpatialRef();
+  if (ds->GetGeoTransform(gt) != CE_None || !srs)
+    refuse("a georeferenced raster (a geotransform and a coordinate reference system); this one has " +
+           std::string(srs ? "no geotransform" : "no coordinate reference system"));
+  double inv[6];
+  if (!GDALInvGeoTransform(gt, inv)) refuse("a geotransform that can be inverted");
+  GDALRasterBand* band = ds->GetRasterBand(1);
+  const std::string unit = band->GetUnitType() ? band->GetUnitType() : "";
+  double to_m = 1.0;
+  if (unit == "ft" || unit == "foot" || unit == "feet" || unit == "US survey foot")
+    to_m = unit == "US survey foot" ? 1200.0 / 3937.0 : 0.3048;
+  else if (!(unit.empty() || unit == "m" || unit == "metre" || unit == "meter" || unit == "metres" || unit == "meters"))
+    refuse("heights in metres or feet (band 1's unit is \"" + unit + "\")");
+  int has_scale = 0, has_offset = 0, has_nodata = 0;
+  double scale = band->GetScale(&has_scale), offset = band->GetOffset(&has_offset);
+  if (!has_scale) scale = 1.0;
+  if (!has_offset) offset = 0.0;
+  const double nodata = band->GetNoDataValue(&has_nodata);
+
+  // The map grid, centred on the reference point.
+  HeightGrid g;
+  const int half = static_cast<int>(std::ceil(s.extent_m / s.spacing_m - 1e-9));
+  g.columns = g.rows = 2 * half + 1;
+  g.spacing_m = s.spacing_m;
+  g.east0_m = g.north0_m = -half * s.spacing_m;
+  const size_t count = static_cast<size_t>(g.columns) * static_cast<size_t>(g.rows);
+  if (static_cast<double>(count) > 1e8)
+    throw InputError(
+        "terrain.spacing_m", format_number(s.spacing_m),
+        "a spacing that gives at most 1e8 samples over terrain.extent_m = " + format_number(s.extent_m) + " m");
+  // Each sample's latitude and longitude, into the raster's coordinates, into its pixels.
+  std::vector<double> px(count), py(count);
+  for (int r = 0; r < g.rows; ++r)
+    for (int c = 0; c < g.columns; ++c) {
+      const size_t i = static_cast<size_t>(r) * g.columns + c;
+      map_to_latitude_longitude(g.east_m(c), g.north_m(r), s, py[i], px[i]);  // lat into y, lon into x
+    }
+  OGRSpatialReference geographic;
+  geographic.SetWellKnownGeogCS("WGS84");
+  geographic.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);  // longitude, latitude
+  OGRSpatialReference target(*srs);
+  target.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  std::unique_ptr<OGRCoordinateTransformation> to_raster(OGRCreateCoordinateTransformation(&geographic, &target));
+  if (!to_raster)
+    refuse("a coordinate reference system PROJ can transform latitude and longitude into" + QuietGdal::last());
+  if (!to_raster->Transform(static_cast<int>(count), px.data(), py.data()))
+    refuse("a raster whose coordinates hold the square of half-size terrain.extent_m around the location" +
+           QuietGdal::last());
+  const int width = ds->GetRasterXSize(), height = ds->GetRasterYSize();
+  double lo_x = std::numeric_limits<double>::infinity(), hi_x = -lo_x, lo_y = lo_x, hi_y = -lo_x;
+  for (size_t i = 0; i < count; ++i) {
+    const double x = px[i], y = py[i];
+    // Pixel centres are at half-integer pixel coordinates (GDAL's corner convention).
+    px[i] = inv[0] + inv[1] * x + inv[2] * y - 0.5;
+    py[i] = inv[3] + inv[4] * x + inv[5] * y - 0.5;
+    if (!(px[i] >= -0.5 && py[i] >= -0.5 && px[i] <= width - 0.5 && py[i] <= height - 0.5)) {
+      double lat = 0.0, lon = 0.0;
+      map_to_latitude_longitude(g.east_m(static_cast<int>(i % g.columns)), g.north_m(static_cast<int>(i / g.columns)),
+                                s, lat, lon);
+      refuse("a raster that covers the square of half-size terrain.extent_m = " + format_number(s.extent_m) +
+             " m around the location; latitude " + format_number(lat) + ", longitude " + format_number(lon) +
+             " lies outside it");
+    }
+    lo_x = std::min(lo_x, px[i]);
+    hi_x = std::max(hi_x, px[i]);
+    lo_y = std::min(lo_y, py[i]);
+    hi_y = std::max(hi_y, py[i]);
+  }
+  // Read the window that holds every sample's four neighbours.
+  const int x0 = std::clamp(static_cast<int>(std::floor(lo_x)), 0, width - 1);
+  const int y0 = std::clamp(static_cast<int>(std::floor(lo_y)), 0, height - 1);
+  const int x1 = std::clamp(static_cast<int>(std::floor(hi_x)) + 1, 0, width - 1);
+  const int y1 = std::clamp(static_cast<int>(std::floor(hi_y)) + 1, 0, height - 1);
+  const int ww = x1 - x0 + 1, wh = y1 - y0 + 1;
+  if (static_cast<double>(ww) * wh > kMaxWindowPixels)
+    refuse("a raster window of at most 2e8 pixels over terrain.extent_m (this needs " + std::to_string(ww) + " x " +
+           std::to_string(wh) + "; make terrain.extent_m smaller)");
+  std::vector<double> window(static_cast<size_t>(ww) * static_cast<size_t>(wh));
+  if (band->RasterIO(GF_Read, x0, y0, ww, wh, window.data(), ww, wh, GDT_Float64, 0, 0, nullptr) != CE_None)
+    refuse("a raster GDAL can read" + QuietGdal::last());
+  auto at = [&](int x, int y) {
+    x = std::clamp(x, 0, width - 1) - x0;
+    y = std::clamp(y, 0, height - 1) - y0;
+    return window[static_cast<size_t>(y) * ww + x];
+  };
+  g.height_m.resize(count);
+  for (size_t i = 0; i < count; ++i) {
+    const int ix = static_cast<int>(std::floor(px[i])), iy = static_cast<int>(std::floor(py[i]));
+    const double fx = px[i] - ix, fy = py[i] - iy;
+    const double v[4] = {at(ix, iy), at(ix + 1, iy), at(ix, iy + 1), at(ix + 1, iy + 1)};
+    for (double value : v)
+      if ((has_nodata && value == nodata) || !std::isfinite(value))
+        refuse("heights everywhere in the square of half-size terrain.extent_m (a cell near pixel " +
+               std::to_string(ix) + ", " + std::to_string(iy) + " has no data)");
+    const double raw = (1.0 - fy) * ((1.0 - fx) * v[0] + fx * v[1]) + fy * ((1.0 - fx) * v[2] + fx * v[3]);
+    const double h = (raw * scale + offset) * to_m;
+    if (!(h >= kLowest_m && h <= kHighest_m))
+      refuse("heights between " + format_number(kLowest_m) + " and " + format_number(kHighest_m) + " m (near pixel " +
+             std::to_string(ix) + ", " + std::to_string(iy) + " it is " + format_number(h) + " m)");
+    g.height_m[i] = static_cast<float>(std::max(0.0, h));
+  }
+  return g;
+}
+
+}  // namespace skyspec
