@@ -88,8 +88,8 @@ class SkyRenderer {
   /// [row][x], transmittance and inscatter [row][x][lambda].
   void aerial_rows(int y0, int rows, const float* distance_m, float* transmittance, float* inscatter) const;
 
-  /// Transmittance from the camera along dir to space, per grid wavelength (0 where the ground is
-  /// in the way).
+  /// Transmittance from the camera along dir to space, per grid wavelength (0 where the ground or
+  /// the scene's terrain is in the way).
   Spectrum transmittance(const Vec3& dir) const;
   /// The sun: spectral irradiance at the top of the atmosphere (W m^-2 nm^-1, or the flat
   /// spectrum's units), direction (world space, unit) and angular radius.

@@ -9,6 +9,7 @@
 #include <cstring>
 
 #include "base/text_format.hpp"
+#include "render/scene_terrain.hpp"
 #include "render/sun_irradiance.hpp"
 #include "skyspec/atmosphere.hpp"
 #include "skyspec/camera.hpp"
@@ -80,15 +81,12 @@ ReferenceResult monte_carlo_reference(const Scene& scene, const std::vector<Refe
     throw InputError("paths", std::to_string(settings.paths), "2 to 1e12 paths per estimate");
   if (settings.max_orders < 0)
     throw InputError("orders", std::to_string(settings.max_orders), "0 (all orders) or a positive number of orders");
-  if (scene.terrain.model != TerrainSpec::Model::None)
-    throw InputError("terrain.model",
-                     "\"" + std::string(scene.terrain.model == TerrainSpec::Model::Ridge ? "ridge" : "file") + "\"",
-                     "\"none\": the Monte Carlo reference's paths do not see terrain (docs/terrain.md)");
   const auto start = std::chrono::steady_clock::now();
   const WavelengthGrid grid = make_wavelength_grid(scene);
   const AtmosphereModel atmosphere(scene.atmosphere, grid, scene.render.cache_tables);
   const Spectrum sun_irradiance = scene_sun_irradiance(scene, grid);
   const Vec3 sun = sun_direction(scene);
+  const std::shared_ptr<const Terrain> terrain = scene_terrain(scene);  // checks the camera is above it
   // Scene coordinates (east, north, height) to world space: the planet's centre at (0, 0, -R).
   const Vec3& p = scene.camera.position_m;
   const Vec3 origin(p.x(), p.y(), atmosphere.planet_radius_m() + p.z());
@@ -124,7 +122,9 @@ ReferenceResult monte_carlo_reference(const Scene& scene, const std::vector<Refe
     out.diffuse_horizontal_standard_error = out.diffuse_horizontal;
   }
   for (int i = 0; i < n; ++i) {
-    const MonteCarloIntegrator integrator(MonteCarloMedium::from_atmosphere(atmosphere, i), sun);
+    MonteCarloMedium medium = MonteCarloMedium::from_atmosphere(atmosphere, i);
+    medium.terrain = terrain;
+    const MonteCarloIntegrator integrator(std::move(medium), sun);
     const double e = sun_irradiance[i];
     for (size_t k = 0; k < probes.size(); ++k) {
       const Vec3 dir = direction_from_angles(probes[k].azimuth_deg, probes[k].elevation_deg);

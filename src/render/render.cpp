@@ -218,8 +218,13 @@ double SkyRenderer::sky_view_table_seconds() const { return impl_->sky_view_seco
 double SkyRenderer::build_seconds() const { return impl_->build_seconds; }
 
 Spectrum SkyRenderer::transmittance(const Vec3& dir) const {
-  Spectrum t(impl_->grid.size());
-  impl_->integrator.transmittance_to_space(impl_->camera->origin_m(), dir.normalized(), t);
+  const auto& m = *impl_;
+  Spectrum t(m.grid.size());
+  const Vec3 d = dir.normalized();
+  if (m.terrain && std::isfinite(m.terrain->intersect(m.camera->origin_m(), d, 0.0, 2.0 * m.atmosphere.top_radius_m())))
+    t.setZero();  // the terrain is in the way
+  else
+    m.integrator.transmittance_to_space(m.camera->origin_m(), d, t);
   return t;
 }
 

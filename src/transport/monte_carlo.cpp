@@ -167,7 +167,27 @@ Vec3 MonteCarloIntegrator::up(const Vec3& p) const {
   return medium_.geometry == MonteCarloMedium::Geometry::PlaneParallel ? Vec3(0, 0, 1) : p.normalized();
 }
 
-double MonteCarloIntegrator::distance_to_boundary(const Vec3& p, const Vec3& d, bool& ground) const {
+double MonteCarloIntegrator::distance_to_boundary(const Vec3& p, const Vec3& d, bool& ground, bool* on_terrain) const {
+  const double t = distance_to_shell_boundary(p, d, ground);
+  if (on_terrain) *on_terrain = false;
+  if (!medium_.terrain) return t;
+  const double hit = medium_.terrain->intersect(p, d, 0.0, t);
+  if (!(hit < t)) return t;
+  ground = true;
+  if (on_terrain) *on_terrain = true;
+  return hit;
+}
+
+Vec3 MonteCarloIntegrator::ground_normal(const Vec3& g) const {
+  return medium_.terrain ? medium_.terrain->normal_under(g) : up(g);
+}
+
+Vec3 MonteCarloIntegrator::snap_to_surface(const Vec3& g, bool on_terrain) const {
+  if (!on_terrain) return snap_to_ground(g);
+  return g + 1e-3 * medium_.terrain->normal_under(g);  // off the surface, which hides nothing from it
+}
+
+double MonteCarloIntegrator::distance_to_shell_boundary(const Vec3& p, const Vec3& d, bool& ground) const {
   ground = false;
   if (medium_.geometry == MonteCarloMedium::Geometry::PlaneParallel) {
     if (d.z() > 0.0) return std::max(0.0, (medium_.top_altitude_m - p.z()) / d.z());
@@ -209,7 +229,7 @@ double MonteCarloIntegrator::scattering_at(double z, double* per_component) cons
 double MonteCarloIntegrator::transmittance_to_sun(const Vec3& p, Rng& rng) const {
   bool ground = false;
   const double t_max = distance_to_boundary(p, sun_, ground);
-  if (ground || !std::isfinite(t_max)) return 0.0;  // in the planet's shadow (or a horizontal slab ray)
+  if (ground || !std::isfinite(t_max)) return 0.0;  // in the planet's (or the terrain's) shadow
   double T = 1.0, t = 0.0;
   if (majorant_ <= 0.0) return 1.0;
   while (true) {
@@ -370,8 +390,8 @@ Eigen::Matrix<double, N, 1> MonteCarloIntegrator::path(Vec3 p, Vec3 d, const Vec
     return stokes_rotation(e1.dot(e1_plane), e1.dot(n));
   };
   for (int order = 1; order <= kMaxEvents; ++order) {
-    bool ground = false;
-    const double t_max = distance_to_boundary(p, d, ground);
+    bool ground = false, on_terrain = false;
+    const double t_max = distance_to_boundary(p, d, ground, &on_terrain);
     const double rate =
         std::isfinite(t_max) ? std::max(majorant_, kPointsPerSegment / std::max(t_max, 1e-300)) : majorant_;
     double T = 1.0, t = 0.0;
@@ -422,12 +442,12 @@ Eigen::Matrix<double, N, 1> MonteCarloIntegrator::path(Vec3 p, Vec3 d, const Vec
     }
     if (ground) {
       const Vec3 g = p + t_max * d;
-      const Vec3 n = up(g);
+      const Vec3 n = on_terrain ? ground_normal(g) : up(g);
       const double cos_sun = n.dot(sun_);
       if (cos_sun > 0.0 && medium_.ground_albedo > 0.0) {
         // Lambertian: unpolarised whatever the light it reflects.
-        const double k =
-            w * T * medium_.ground_albedo / kPi * E * cos_sun * transmittance_to_sun(snap_to_ground(g), rng);
+        const double k = w * T * medium_.ground_albedo / kPi * E * cos_sun *
+                         transmittance_to_sun(snap_to_surface(g, on_terrain), rng);
         if constexpr (kStokes)
           L += k * M.col(0);
         else
@@ -450,17 +470,19 @@ Eigen::Matrix<double, N, 1> MonteCarloIntegrator::path(Vec3 p, Vec3 d, const Vec
       }
       d = d_real;
     } else if (ground) {
-      p = snap_to_ground(p + t_max * d);
+      const Vec3 g = p + t_max * d;
+      const Vec3 n = on_terrain ? ground_normal(g) : up(g);
+      p = snap_to_surface(g, on_terrain);
       w *= medium_.ground_albedo;
-      // Cosine-distributed: mu = sqrt(xi) (Malley's method).
+      // Cosine-distributed about the surface's normal: mu = sqrt(xi) (Malley's method).
       double mu = 0.0;
       do mu = std::sqrt(rng.uniform());
       while (mu <= 1e-9);
-      d = rotate_about(up(p), mu, 2.0 * kPi * rng.uniform());
+      d = rotate_about(n, mu, 2.0 * kPi * rng.uniform());
       if constexpr (kStokes) {
         // The reflected light is unpolarised: only I of the arriving light matters.
         M.rightCols<3>().setZero();
-        e1 = frame_axis(-d, up(p));
+        e1 = frame_axis(-d, n);
       }
     } else {
       return L;  // into space: the sun is a point, never hit

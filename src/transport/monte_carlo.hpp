@@ -19,7 +19,9 @@
 //   scattering       a species is chosen in proportion to its sigma_s and the new direction is
 //                    sampled exactly from its phase function (Rayleigh with depolarisation and
 //                    Cornette-Shanks by rejection, Henyey-Greenstein by inversion);
-//   the ground       Lambertian: weight x albedo, a cosine-distributed new direction;
+//   the ground       Lambertian: weight x albedo, a cosine-distributed new direction (about the
+//                    terrain's normal where a terrain is given, which also ends segments and hides
+//                    the sun);
 //   termination      leaving the medium, the order limit, or Russian roulette on small weights.
 //
 // Each path's contribution is an unbiased estimate of the radiance (per unit solar irradiance
@@ -42,6 +44,7 @@
 #include "skyspec/density_profile.hpp"
 #include "skyspec/geometry.hpp"
 #include "skyspec/tabulated_scattering.hpp"
+#include "skyspec/terrain.hpp"
 
 namespace skyspec {
 
@@ -66,7 +69,11 @@ struct MonteCarloMedium {
   double planet_radius_m = 6360e3;
   double top_altitude_m = 60e3;  ///< the medium ends here
   std::vector<MonteCarloComponent> components;
-  double ground_albedo = 0.0;   ///< Lambertian
+  double ground_albedo = 0.0;  ///< Lambertian
+  /// Terrain on the shell's ground (terrain.hpp), Lambertian with ground_albedo: it ends the
+  /// segments that meet it, shadows the points it hides the sun from, and reflects paths about
+  /// its own normal. Null: none.
+  std::shared_ptr<const Terrain> terrain;
   double sun_irradiance = 1.0;  ///< irradiance normal to the sun's direction at the top
 
   /// Wavelength i of an atmosphere on its grid: a component per medium that extinguishes light
@@ -134,7 +141,12 @@ class MonteCarloIntegrator {
   Vec3 up(const Vec3& p) const;
   Vec3 snap_to_ground(Vec3 p) const;
   /// Distance along d to where the ray leaves the medium, and whether it ends on the ground.
-  double distance_to_boundary(const Vec3& p, const Vec3& d, bool& ground) const;
+  /// on_terrain: the ground met is the terrain's surface (then snap_to_ground lifts the point off
+  /// it along its normal rather than onto the sphere).
+  double distance_to_boundary(const Vec3& p, const Vec3& d, bool& ground, bool* on_terrain = nullptr) const;
+  double distance_to_shell_boundary(const Vec3& p, const Vec3& d, bool& ground) const;
+  Vec3 ground_normal(const Vec3& g) const;
+  Vec3 snap_to_surface(const Vec3& g, bool on_terrain) const;
   double extinction_at(double altitude_m) const;
   double scattering_at(double altitude_m, double* per_component) const;
   double transmittance_to_sun(const Vec3& p, Rng& rng) const;

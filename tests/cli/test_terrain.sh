@@ -1,0 +1,58 @@
+#!/usr/bin/env bash
+# Terrain from the command line (terrain.*): a synthetic ridge that hides the sun and shadows the
+# air, an elevation raster read through GDAL (an ESRI ASCII grid with its .prj, written here), and
+# bad input refused naming the key or the file. Usage: test_terrain.sh SKYSPEC
+set -u
+skyspec=$1
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
+export SKYSPEC_CACHE_DIR="$work/cache"
+# Looking west at a ridge 20 km away with the sun low behind it.
+view=(--set camera.type=perspective --width 32 --height 18 --set camera.position_m=[0,0,200]
+  --set camera.look_at_m=[-1000,0,230] --set camera.fov_deg=40 --set sun.elevation_deg=3 --set sun.azimuth_deg=270
+  --wavelengths 450,550,650 --set render.scattering_orders=1 -q)
+ridge=(--set terrain.model=ridge --set terrain.ridge.notch_spacing_m=6000)
+
+"$skyspec" render "${view[@]}" "${ridge[@]}" --out "$work/ridge" 2>"$work/stderr" && ok \
+  || bad "ridge render failed: $(cat "$work/stderr")"
+exrheader "$work/ridge/sky.exr" | grep -q 'model = "ridge"' && ok || bad "the EXR's scene lacks the terrain"
+"$skyspec" render "${view[@]}" --out "$work/open" 2>"$work/stderr" && ok || bad "render failed: $(cat "$work/stderr")"
+# The ridge hides the sun (its disk and the glow around it): the image is darker than the open sky's.
+sum() { oiiotool "$1" --ch 0 --printstats 2>/dev/null | awk '/Stats Avg/ {print $3}'; }
+a=$(sum "$work/ridge/sky.exr") b=$(sum "$work/open/sky.exr")
+awk -v a="$a" -v b="$b" 'BEGIN { exit !(a > 0 && a < 0.8 * b) }' && ok || bad "mean radiance $a with the ridge, $b without"
+
+# An elevation raster: a 700 m high block 2.5 km west of the location on a 300 m plain (lat/long
+# grid, 0.002 degree cells), as an ESRI ASCII grid GDAL reads, with its coordinate system.
+{
+  printf 'ncols 100\nnrows 100\nxllcorner 7.15\nyllcorner 46.15\ncellsize 0.002\nNODATA_value -9999\n'
+  for r in $(seq 0 99); do
+    row=""
+    for c in $(seq 0 99); do
+      if [ "$c" -ge 30 ] && [ "$c" -lt 34 ]; then row+="700 "; else row+="300 "; fi
+    done
+    echo "$row"
+  done
+} >"$work/dem.asc"
+echo 'GEOGCS["WGS 84",DATUM["WGS_1984",SPHEROID["WGS 84",6378137,298.257223563]],PRIMEM["Greenwich",0],UNIT["degree",0.0174532925199433]]' \
+  >"$work/dem.prj"
+dem=(--set terrain.model=file --set "terrain.file=\"$work/dem.asc\"" --set terrain.extent_m=6000
+  --set location.latitude_deg=46.25 --set location.longitude_deg=7.25 --set camera.position_m=[0,0,400])
+"$skyspec" render "${view[@]}" "${dem[@]}" --out "$work/dem" 2>"$work/stderr" && ok \
+  || bad "DEM render failed: $(cat "$work/stderr")"
+c=$(sum "$work/dem/sky.exr")
+awk -v a="$c" -v b="$b" 'BEGIN { exit !(a > 0 && a < 0.8 * b) }' && ok || bad "mean radiance $c behind the DEM's block, $b without"
+
+run_expecting_error "camera in the ridge" 2 "camera.position_m" "$work/x" \
+  "$skyspec" render "${view[@]}" "${ridge[@]}" --set camera.position_m=[-20000,0,100] --out "$work/x"
+run_expecting_error "camera under the DEM" 2 "a position above the terrain" "$work/x" \
+  "$skyspec" render "${view[@]}" "${dem[@]}" --set camera.position_m=[0,0,100] --out "$work/x"
+run_expecting_error "no file" 2 "terrain.file" "$work/x" \
+  "$skyspec" render "${view[@]}" --set terrain.model=file --out "$work/x"
+run_expecting_error "missing file" 2 "$work/none.tif" "$work/x" \
+  "$skyspec" render "${view[@]}" --set terrain.model=file --set "terrain.file=\"$work/none.tif\"" --out "$work/x"
+rm "$work/dem.prj"
+run_expecting_error "no coordinate system" 2 "georeferenced" "$work/x" \
+  "$skyspec" render "${view[@]}" "${dem[@]}" --out "$work/x"
+run_expecting_error "model" 2 'terrain.model = "alps" is not allowed' "$work/x" \
+  "$skyspec" render "${view[@]}" --set terrain.model=alps --out "$work/x"
+finish terrain

@@ -1,0 +1,92 @@
+// The renderer with terrain against the Monte Carlo reference, whose paths see the same terrain
+// (issue 38, item 4): a ridge 1500 m high 20 km west of a camera 300 m up. Single scattering
+// (with the ground's reflection of the direct sun) is exact in the renderer up to its quadrature,
+// so it must agree within 2 % + 3 standard errors in shadowed and lit air and on the terrain; the
+// higher orders are not shadowed by the terrain (single_scattering.hpp), and what that costs is
+// measured here and stated in docs/terrain.md.
+
+#include <boost/test/unit_test.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+
+#include "scene_fixtures.hpp"
+#include "skyspec/camera.hpp"
+#include "skyspec/monte_carlo_reference.hpp"
+#include "skyspec/render.hpp"
+
+BOOST_AUTO_TEST_SUITE(test_terrain_reference)
+
+using namespace skyspec;
+
+namespace {
+struct Outcome {
+  double worst_excess = 0.0;  // the largest |renderer - reference| - 3 se, relative to the reference
+};
+
+// allowed[k]: probe k's allowance (relative to the reference, beyond 3 standard errors); negative:
+// measured and reported only.
+Outcome compare(double sun_azimuth, double sun_elevation, int orders, const std::vector<ReferenceProbe>& probes,
+                const std::vector<double>& allowed) {
+  char toml[512];
+  std::snprintf(toml, sizeof toml,
+                "[sun]\nelevation_deg = %g\nazimuth_deg = %g\n[spectrum]\nwavelengths_nm = [450, 650]\n"
+                "[terrain]\nmodel = \"ridge\"\n[ground]\nalbedo = 0.3\n"
+                "[camera]\nposition_m = [0, 0, 300]\nwidth = 1\nheight = 1\n"
+                "[render]\ncache_tables = false\nscattering_orders = %d\n",
+                sun_elevation, sun_azimuth, orders);
+  const Scene scene = test::scene_with(toml, "default");
+  ReferenceSettings settings;
+  settings.paths = orders == 1 ? 20000 : 40000;
+  settings.seed = 38;
+  settings.max_orders = orders == 1 ? 1 : 0;
+  const ReferenceResult mc = monte_carlo_reference(scene, probes, settings);
+  const SkyRenderer renderer(scene);
+  Outcome out;
+  for (size_t k = 0; k < probes.size(); ++k) {
+    const Spectrum det = renderer.radiance(direction_from_angles(probes[k].azimuth_deg, probes[k].elevation_deg));
+    for (size_t i = 0; i < mc.wavelengths_nm.size(); ++i) {
+      const double ref = mc.radiance[k][i], se = mc.radiance_standard_error[k][i];
+      const double value = det[static_cast<Eigen::Index>(i)];
+      BOOST_TEST_MESSAGE("orders " << orders << ", sun " << sun_azimuth << "/" << sun_elevation << ", "
+                                   << probes[k].label << ", " << mc.wavelengths_nm[i] << " nm: renderer " << value
+                                   << ", reference " << ref << " +- " << se << " (" << 100.0 * (value / ref - 1.0)
+                                   << " %)");
+      if (ref > 0.0) out.worst_excess = std::max(out.worst_excess, (std::abs(value - ref) - 3.0 * se) / ref);
+      if (allowed[k] >= 0.0)
+        BOOST_TEST(std::abs(value - ref) <= allowed[k] * ref + 3.0 * se,
+                   probes[k].label << " " << mc.wavelengths_nm[i] << " nm: " << value << " vs " << ref << " +- " << se);
+    }
+  }
+  return out;
+}
+
+// The sun low behind the ridge: the air near the camera in its shadow, the far air lit, the
+// ridge's face dark but for the sky.
+const std::vector<ReferenceProbe> kBehind = {{"shadowed air, north", 0.0, 2.0},
+                                             {"air above the shadow", 0.0, 20.0},
+                                             {"the ridge's dark face", 270.0, 3.0},
+                                             {"over the crest", 270.0, 4.5},
+                                             {"east, away from the sun", 90.0, 5.0}};
+// The sun in the east lighting the ridge's face.
+const std::vector<ReferenceProbe> kFacing = {{"the sunlit face", 270.0, 1.5}, {"north", 0.0, 5.0}};
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(single_scattering_agrees_with_the_reference) {
+  compare(270.0, 3.0, 1, kBehind, {0.02, 0.02, 0.02, 0.02, 0.02});
+  compare(90.0, 15.0, 1, kFacing, {0.02, 0.02});
+}
+
+// All orders: the renderer's higher orders see no terrain, and the sky lights a tilted face as
+// an isotropic sky would. In the air that costs at most 3.5 % here (enforced at 5 %); on the
+// terrain's faces far more (reported, not enforced): docs/terrain.md has the figures (and this
+// test's messages: --log_level=message).
+BOOST_AUTO_TEST_CASE(all_orders_error_of_unshadowed_higher_orders) {
+  const Outcome behind = compare(270.0, 3.0, 6, kBehind, {0.05, 0.05, -1.0, 0.05, 0.05});
+  const Outcome facing = compare(90.0, 15.0, 6, kFacing, {-1.0, 0.05});
+  BOOST_TEST_MESSAGE("worst excess over 3 se: sun behind the ridge "
+                     << 100.0 * behind.worst_excess << " %, sun facing it " << 100.0 * facing.worst_excess << " %");
+}
+
+BOOST_AUTO_TEST_SUITE_END()
