@@ -337,6 +337,47 @@ bool SourceTable::rayleigh_moments(double r_m, double mu, float* out) const {
   return true;
 }
 
+bool SourceTable::irradiance_on(double r_m, double mu, const Vec3& normal, float* out) const {
+  // The clamped cosine's weights 2 pi int_0^1 mu P_l(mu) dmu (pi, 2 pi / 3, pi / 4, 0, -pi / 24, ...;
+  // zero for odd l > 1), by Gauss-Legendre quadrature, once.
+  static const std::vector<double> weight = [] {
+    std::vector<double> x, wx;
+    gauss_legendre(64, 0.0, 1.0, x, wx);
+    std::vector<double> c(kMaxHarmonicDegree + 1, 0.0);
+    for (size_t k = 0; k < x.size(); ++k) {
+      double p0 = 1.0, p1 = x[k];
+      c[0] += wx[k] * x[k] * p0;
+      if (kMaxHarmonicDegree >= 1) c[1] += wx[k] * x[k] * p1;
+      for (int l = 2; l <= kMaxHarmonicDegree; ++l) {
+        const double p2 = ((2 * l - 1) * x[k] * p1 - (l - 1) * p0) / l;
+        c[static_cast<size_t>(l)] += wx[k] * x[k] * p2;
+        p0 = p1;
+        p1 = p2;
+      }
+    }
+    for (double& v : c) v *= 2.0 * kPi;
+    return c;
+  }();
+  const Blend w = blend(r_m, mu);
+  const double mu_n = std::clamp(normal.z(), -1.0, 1.0), sin_n = std::sqrt(std::max(0.0, 1.0 - mu_n * mu_n));
+  const double cos_phi = sin_n > 1e-12 ? std::clamp(normal.x() / sin_n, -1.0, 1.0) : 1.0;
+  double y[skyspec::harmonic_count(kMaxHarmonicDegree)];
+  symmetric_harmonics(degree_, mu_n, cos_phi, y);
+  thread_local std::vector<float> block;
+  block.resize(static_cast<size_t>(n_l_));
+  std::fill(out, out + n_l_, 0.0f);
+  for (int l = 0; l <= degree_; ++l) {
+    if (std::abs(weight[static_cast<size_t>(l)]) < 1e-12) continue;  // odd l > 1
+    for (int m = 0; m <= l; ++m) {
+      const int k = harmonic_index(l, m);
+      mix(w, &SourceTable::index, j_, static_cast<size_t>(k) * n_l_, block.data());
+      const float f = static_cast<float>(weight[static_cast<size_t>(l)] * y[k]);
+      for (int i = 0; i < n_l_; ++i) out[i] += f * block[static_cast<size_t>(i)];
+    }
+  }
+  return true;
+}
+
 void SourceTable::ground_irradiance(double mu, float* out) const {
   const double fm = std::clamp(u_from_mu(mu), 0.0, 1.0) * (n_mu_ - 1);
   const int im = std::min(static_cast<int>(fm), n_mu_ - 2);

@@ -98,6 +98,9 @@ class SourceTable : public InScatteringSource {
   /// The field's quadrupole and (polarised tables) its polarisation tensor at (r, mu_s), blended as
   /// source() blends (InScatteringSource::rayleigh_moments). False if the degree is below 2.
   bool rayleigh_moments(double r_m, double mu_sun, float* out) const override;
+  /// The field's irradiance on a tilted surface (InScatteringSource::irradiance_on), blended as
+  /// source() blends.
+  bool irradiance_on(double r_m, double mu_sun, const Vec3& normal_local, float* out) const override;
   /// Makes the table ready for source() once it is filled: notes which pairs of neighbouring sun
   /// angles are steep (see source()) and keeps the logarithms of their mean radiance. add,
   /// add_geometric_tail and read undo it (source() then throws); after writing through j_at it
@@ -201,6 +204,9 @@ class ScatteringOrders : public InScatteringSource {
   void ground_irradiance(double mu_sun, float* out) const override { sum_->ground_irradiance(mu_sun, out); }
   bool rayleigh_moments(double r_m, double mu_sun, float* out) const override {
     return sum_->rayleigh_moments(r_m, mu_sun, out);
+  }
+  bool irradiance_on(double r_m, double mu_sun, const Vec3& normal_local, float* out) const override {
+    return sum_->irradiance_on(r_m, mu_sun, normal_local, out);
   }
 
   int highest_order() const { return settings_.orders; }

@@ -904,9 +904,10 @@ void SingleScattering::ground_reflection(const Node& ground, double mu_sun, cons
 
 // The terrain at the ray's end: the same Lambertian reflection, with the surface's normal n. The
 // sun lights it where it faces the sun and neither the terrain nor the planet hides it (the sun's
-// columns at the point's own altitude); the sky's irradiance is the tables' G for the sun's angle
-// there (G is for a horizontal surface at height 0: an approximation at altitude) times the share
-// of the sky a surface tilted to n sees, (1 + n.up) / 2, the view factor for an isotropic sky.
+// columns at the point's own altitude); the higher orders' light is their field at the point's
+// altitude and sun angle integrated about n (irradiance_on), or, from a source without an angular
+// field, G (for a horizontal surface at height 0) times the view factor of an isotropic sky,
+// (1 + n.up) / 2.
 void SingleScattering::terrain_reflection(const Node& ground, const Vec3& p, const Vec3& s,
                                           const ScatteringSources& sources, ScatteringWorkspace& ws,
                                           RadianceParts& parts) const {
@@ -927,8 +928,16 @@ void SingleScattering::terrain_reflection(const Node& ground, const Vec3& p, con
     }
   }
   if (sources.higher) {
-    sources.higher->ground_irradiance(mu_sun, ws.ground_sky.data());
-    ws.source += ws.ground_sky * static_cast<float>(0.5 * (1.0 + n.dot(up)));
+    // The normal in the tables' local frame (z up, x towards the sun's azimuth).
+    Vec3 x = s - mu_sun * up;
+    if (x.norm() < 1e-9) x = up.cross(std::abs(up.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0));  // sun at the zenith
+    x.normalize();
+    const Vec3 local(n.dot(x), n.dot(up.cross(x)), n.dot(up));
+    if (!sources.higher->irradiance_on(ground.r, mu_sun, local, ws.ground_sky.data())) {
+      sources.higher->ground_irradiance(mu_sun, ws.ground_sky.data());
+      ws.ground_sky *= static_cast<float>(0.5 * (1.0 + n.dot(up)));
+    }
+    ws.source += ws.ground_sky;
   }
   parts.phase_free += ws.view_trans * albedo_over_pi_ * ws.source;
 }

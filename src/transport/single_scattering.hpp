@@ -139,6 +139,15 @@ class InScatteringSource {
   /// taken as unpolarised. False (out untouched) if the source does not resolve the quadrupole.
   /// RadianceParts::polarised_q says how the integrator uses them.
   virtual bool rayleigh_moments(double /*r_m*/, double /*mu_sun*/, float* /*out*/) const { return false; }
+  /// The irradiance the field puts on a surface at (r, mu_s) whose unit normal is normal_local in
+  /// the same local frame (z up, x towards the sun's azimuth), per unit solar irradiance: the
+  /// integral of L(w) max(0, n . w) over the sphere, from the field's harmonics
+  /// (E(n) = sum_l 2 pi int_0^1 mu P_l(mu) dmu sum_m a_lm Y_lm(n), the clamped cosine's
+  /// Legendre expansion and the addition theorem). False (out untouched) if the source has no
+  /// angular field.
+  virtual bool irradiance_on(double /*r_m*/, double /*mu_sun*/, const Vec3& /*normal_local*/, float* /*out*/) const {
+    return false;
+  }
 };
 
 /// What a radiance evaluation includes.
@@ -158,8 +167,9 @@ struct ScatteringSources {
   /// does not hide it, and of the sky is added as the ground's is; single scattering is collected
   /// only where the sun is visible past the terrain (Terrain::sunlit_parts: exact to its sampling).
   /// The higher orders' sources are the tables' (computed without terrain): light scattered more
-  /// than once is not shadowed (docs/terrain.md gives the error). The sky's irradiance on a
-  /// surface of normal n is the tables' G times the sky's share it sees, (1 + n.up) / 2.
+  /// than once is not shadowed (docs/terrain.md gives the error). Their irradiance on a surface of
+  /// normal n is the tables' field integrated about n (InScatteringSource::irradiance_on), or G
+  /// times the sky's share it sees, (1 + n.up) / 2, from a source without an angular field.
   const Terrain* terrain = nullptr;
 };
 

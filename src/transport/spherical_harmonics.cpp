@@ -12,7 +12,7 @@
 namespace skyspec {
 
 namespace {
-constexpr int kMaxDegree = 16;
+constexpr int kMaxDegree = kMaxHarmonicDegree;
 // Per (l, m) at harmonic_index(l, m), computed once: K_lm (x sqrt 2 for m > 0), and the
 // coefficients of the recurrence in l, P_l^m = alpha_lm x P_{l-1}^m - beta_lm P_{l-2}^m with
 // alpha_lm = (2l - 1) / (l - m), beta_lm = (l + m - 1) / (l - m) (l > m + 1; for l = m + 1,

@@ -30,7 +30,10 @@ constexpr int harmonic_count(int degree) { return (degree + 1) * (degree + 2) / 
 /// Index of (l, m): l (l + 1) / 2 + m.
 constexpr int harmonic_index(int l, int m) { return l * (l + 1) / 2 + m; }
 
-/// Y_lm(mu, phi) for all 0 <= m <= l <= degree (at most 16), at harmonic_index(l, m); cos_phi is cos(phi).
+/// The highest degree symmetric_harmonics evaluates.
+constexpr int kMaxHarmonicDegree = 16;
+/// Y_lm(mu, phi) for all 0 <= m <= l <= degree (at most kMaxHarmonicDegree), at harmonic_index(l, m); cos_phi is
+/// cos(phi).
 void symmetric_harmonics(int degree, double mu, double cos_phi, double* out);
 
 /// chi_l = 2 pi integral_{-1}^{1} p(mu) P_l(mu) dmu for l = 0..degree, by Gauss-Legendre quadrature

@@ -78,13 +78,38 @@ BOOST_AUTO_TEST_CASE(single_scattering_agrees_with_the_reference) {
   compare(90.0, 15.0, 1, kFacing, {0.02, 0.02});
 }
 
-// All orders: the renderer's higher orders see no terrain, and the sky lights a tilted face as
-// an isotropic sky would. In the air that costs at most 3.5 % here (enforced at 5 %); on the
-// terrain's faces far more (reported, not enforced): docs/terrain.md has the figures (and this
-// test's messages: --log_level=message).
+// A ridge a centimetre high is the sphere's ground: looking down at it, the terrain's sky light (the
+// tables' field integrated over the upper hemisphere by its harmonics, irradiance_on) is the
+// ground's G (the tables' own quadrature of the same field) to the truncation of the clamped
+// cosine at the tables' degree.
+BOOST_AUTO_TEST_CASE(flat_terrain_sees_the_grounds_sky_light) {
+  const char* toml =
+      "[sun]\nelevation_deg = 20\n[spectrum]\nwavelengths_nm = [450, 650]\n[ground]\nalbedo = 0.3\n"
+      "[camera]\nposition_m = [0, 0, 300]\nwidth = 1\nheight = 1\n[render]\nscattering_orders = 6\n";
+  const Scene open = test::scene_with(toml, "default");
+  Scene flat = open;
+  flat.terrain.model = TerrainSpec::Model::Ridge;
+  flat.terrain.ridge.height_m = 0.01;  // a centimetre above the sphere: the rays end on the terrain
+  flat.terrain.ridge.distance_m = 1000.0;
+  flat.terrain.ridge.length_m = 20000.0;
+  const SkyRenderer a(open), b(flat);
+  for (double az : {0.0, 90.0, 180.0}) {
+    const Vec3 d = direction_from_angles(az, -30.0);  // the ground 600 m away, inside the flat ridge's grid
+    const Spectrum la = a.radiance(d), lb = b.radiance(d);
+    for (int i = 0; i < 2; ++i) {
+      BOOST_TEST_MESSAGE("azimuth " << az << ": " << lb[i] << " on the terrain, " << la[i] << " on the ground");
+      BOOST_TEST(lb[i] == la[i], boost::test_tools::tolerance(0.002f));
+    }
+  }
+}
+
+// All orders: the renderer's higher orders see no terrain, and a face's diffuse light is the
+// sphere's field. In the air that costs at most 3.5 % here (enforced at 5 %), on the sunlit face
+// 2.2 % (enforced at 4 %); the face in the ridge's shadow is far too bright (reported, not
+// enforced): docs/terrain.md has the figures (and this test's messages: --log_level=message).
 BOOST_AUTO_TEST_CASE(all_orders_error_of_unshadowed_higher_orders) {
   const Outcome behind = compare(270.0, 3.0, 6, kBehind, {0.05, 0.05, -1.0, 0.05, 0.05});
-  const Outcome facing = compare(90.0, 15.0, 6, kFacing, {-1.0, 0.05});
+  const Outcome facing = compare(90.0, 15.0, 6, kFacing, {0.04, 0.05});
   BOOST_TEST_MESSAGE("worst excess over 3 se: sun behind the ridge "
                      << 100.0 * behind.worst_excess << " %, sun facing it " << 100.0 * facing.worst_excess << " %");
 }
