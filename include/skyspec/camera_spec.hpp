@@ -7,6 +7,7 @@
 // factory entry in render/camera_factory.cpp (docs/architecture.md, "The files you touch").
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,9 @@ struct CameraSpec {
   Type type = Type::Fisheye;
   int width = 512, height = 512;
   Vec3 position_m = Vec3(0, 0, 1);  ///< east, north, height above sea level at the reference point
+  /// When set, the camera stands this high above the ground under it (the terrain's surface or
+  /// the sphere) and position_m's height is computed from it (SceneLoader::finish).
+  std::optional<double> above_ground_m;
   Vec3 look_at_m = Vec3(0, 1000, 1);
   double fov_deg = 60.0;             ///< perspective: vertical field of view
   double min_elevation_deg = -90.0;  ///< equirectangular: elevation of the bottom edge (0: upper hemisphere)

@@ -9,7 +9,7 @@
 #include <cstring>
 
 #include "base/text_format.hpp"
-#include "render/scene_terrain.hpp"
+#include "scene/scene_terrain.hpp"
 #include "render/sun_irradiance.hpp"
 #include "skyspec/atmosphere.hpp"
 #include "skyspec/camera.hpp"

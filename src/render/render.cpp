@@ -19,7 +19,7 @@
 #include "base/cancellation.hpp"
 #include "physics/sun_disk.hpp"
 #include "render/scene_tables.hpp"
-#include "render/scene_terrain.hpp"
+#include "scene/scene_terrain.hpp"
 #include "render/sun_irradiance.hpp"
 #include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"

@@ -352,6 +352,25 @@ const std::vector<KeyDef>& registry() {
                             [](Scene& s) -> int& { return s.camera.height; }));
     r.push_back(vec3_key("camera.position_m", "m", kMaxLength, "camera position [east, north, height above sea level]",
                          [](Scene& s) -> Vec3& { return s.camera.position_m; }));
+    {
+      KeyDef k;
+      k.key = "camera.above_ground_m";
+      k.unit = "m";
+      const Range range{0.0, kMaxLength, true};
+      const std::string allowed = range.describe("m");
+      k.doc = "(" + allowed +
+              ") when set, the camera stands this high above the ground under it (the terrain's surface or the "
+              "sphere), replacing camera.position_m's height";
+      k.set = [k, allowed, range](Scene& s, const toml::node& n, const std::string& origin) {
+        const double v = get_number(k, n, origin, allowed);
+        if (!range.contains(v)) throw InputError(k.key, node_text(n), allowed, origin);
+        s.camera.above_ground_m = v;
+      };
+      k.get = [](const Scene& s) {
+        return s.camera.above_ground_m ? exact_number(*s.camera.above_ground_m) : std::string();
+      };
+      r.push_back(k);
+    }
     using Type = CameraSpec::Type;
     r.push_back(only_for(Type::Perspective, vec3_key("camera.look_at_m", "m", kMaxLength, "point the camera looks at",
                                                      [](Scene& s) -> Vec3& { return s.camera.look_at_m; })));

@@ -42,7 +42,7 @@ void check_terrain(const Scene& s) {
     throw InputError("terrain.ridge.length_m", format_number(r.length_m),
                      "more than twice terrain.ridge.half_width_m (" + format_number(2.0 * r.half_width_m) + " m)");
   const double under = ridge_height_at(r, s.camera.position_m.x(), s.camera.position_m.y());
-  if (s.camera.position_m.z() <= under)
+  if (!s.camera.above_ground_m && s.camera.position_m.z() <= under)  // (above_ground_m places it above)
     throw InputError("camera.position_m", format_number(s.camera.position_m.z()) + " m high",
                      "a position above the terrain (the ridge is " + format_number(under) + " m high there)");
 }

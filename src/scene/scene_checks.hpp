@@ -12,7 +12,7 @@ namespace skyspec {
 /// The Blender and OpenEXR lat-long conventions map the whole image to the whole sphere.
 void check_panorama(const CameraSpec& c);
 /// The terrain keys together: a file for model = file, a ridge longer than its foot is wide, a
-/// camera not inside the ridge (a file's terrain is checked when it is read, render/scene_terrain).
+/// camera not inside the ridge (a file's terrain is checked when it is read, scene/scene_terrain).
 void check_terrain(const Scene& s);
 /// An equirectangular camera that sees below the horizon (it gets kPanoramaGroundAlbedo).
 bool sees_below_horizon_as_panorama(const CameraSpec& c);

@@ -2,6 +2,7 @@
 // checked by the key registry; finish() checks the relations between keys.
 #include "scene/key_registry.hpp"
 #include "scene/scene_checks.hpp"
+#include "scene/scene_terrain.hpp"
 #include "skyspec/scene.hpp"
 
 #include <algorithm>
@@ -245,6 +246,10 @@ void SceneLoader::apply_override(const std::string& key, const std::string& toml
 Scene SceneLoader::finish(SceneUse use) const {
   Scene s = scene_;
   const double R = s.atmosphere.planet_radius_m;
+  check_terrain(s);                                        // before the terrain is read for the camera's height
+  if (s.camera.above_ground_m && use == SceneUse::Render)  // the height from the ground under the camera
+    s.camera.position_m.z() =
+        camera_height_above_ground(s, s.camera.position_m.x(), s.camera.position_m.y(), *s.camera.above_ground_m);
   // Camera: not inside the planet.
   const Vec3 world = Vec3(s.camera.position_m.x(), s.camera.position_m.y(), R + s.camera.position_m.z());
   if (world.norm() < R)
@@ -274,7 +279,6 @@ Scene SceneLoader::finish(SceneUse use) const {
     s.sun.azimuth_deg = sp.azimuth_deg;
     s.sun.distance_au = sp.earth_sun_distance_au;
   }
-  check_terrain(s);
   const auto& oz = s.atmosphere.ozone;
   if (oz.enabled && !(oz.bottom_m < oz.peak_m && oz.peak_m < oz.top_m))
     throw InputError("atmosphere.ozone.peak_m", format_number(oz.peak_m),

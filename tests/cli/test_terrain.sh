@@ -42,6 +42,14 @@ dem=(--set terrain.model=file --set "terrain.file=\"$work/dem.asc\"" --set terra
 c=$(sum "$work/dem/sky.exr")
 awk -v a="$c" -v b="$b" 'BEGIN { exit !(a > 0 && a < 0.8 * b) }' && ok || bad "mean radiance $c behind the DEM's block, $b without"
 
+# A camera standing 2 m above the crest: its height is computed along its own vertical (the crest,
+# 20 km from the reference point, stands 1500 m above the sphere, whose curvature there is 31.4 m).
+"$skyspec" render "${view[@]}" "${ridge[@]}" --set camera.position_m=[-20000,0,5] --set camera.above_ground_m=2 \
+  --set camera.look_at_m=[-30000,0,1400] --out "$work/peak" 2>"$work/stderr" && ok \
+  || bad "render on the crest failed: $(cat "$work/stderr")"
+height=$(exrheader "$work/peak/sky.exr" | sed -n 's/.*position_m = \[-20000, 0, \([0-9.]*\)\].*/\1/p')
+awk -v z="$height" 'BEGIN { exit !(z > 1470.3 && z < 1470.5) }' && ok || bad "camera height on the crest: '$height'"
+
 run_expecting_error "camera in the ridge" 2 "camera.position_m" "$work/x" \
   "$skyspec" render "${view[@]}" "${ridge[@]}" --set camera.position_m=[-20000,0,100] --out "$work/x"
 run_expecting_error "camera under the DEM" 2 "a position above the terrain" "$work/x" \

@@ -13,4 +13,10 @@ namespace skyspec {
 /// camera.position_m for a camera at or below the terrain's surface.
 std::shared_ptr<const Terrain> scene_terrain(const Scene& s);
 
+/// The camera height (camera.position_m's third value, metres above sea level at the reference
+/// point) that puts the camera at (east, north) above_ground_m above the scene's ground along its
+/// own vertical: the terrain's surface as scene_terrain() samples it (only the grid's samples
+/// around the camera are read), or the sphere. For camera.above_ground_m (SceneLoader::finish).
+double camera_height_above_ground(const Scene& s, double east_m, double north_m, double above_ground_m);
+
 }  // namespace skyspec

@@ -1,0 +1,63 @@
+#include "scene/scene_terrain.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "base/text_format.hpp"
+#include "io/elevation_raster.hpp"
+#include "skyspec/error.hpp"
+
+namespace skyspec {
+
+namespace {
+// The grid of the scene's terrain; for a raster, only the samples within extent_m of the
+// reference point (the grid is centred there with the same spacing, so its samples are the full
+// grid's).
+HeightGrid terrain_grid(const Scene& s, double extent_m) {
+  const TerrainSpec& spec = s.terrain;
+  if (spec.model == TerrainSpec::Model::Ridge) return ridge_heights(spec.ridge, spec.spacing_m);
+  ElevationSampling sampling;
+  sampling.latitude_deg = s.location.latitude_deg;
+  sampling.longitude_deg = s.location.longitude_deg;
+  sampling.extent_m = extent_m;
+  sampling.spacing_m = spec.spacing_m;
+  sampling.planet_radius_m = s.atmosphere.planet_radius_m;
+  return read_elevation_raster(spec.file, sampling);
+}
+}  // namespace
+
+double camera_height_above_ground(const Scene& s, double east_m, double north_m, double above_ground_m) {
+  const double R = s.atmosphere.planet_radius_m;
+  std::unique_ptr<Terrain> terrain;
+  if (s.terrain.model != TerrainSpec::Model::None) {
+    const double reach = std::max(std::abs(east_m), std::abs(north_m)) + 2.0 * s.terrain.spacing_m;
+    terrain = std::make_unique<Terrain>(terrain_grid(s, std::min(s.terrain.extent_m, reach)), R);
+  }
+  // The height z with |P| - R - h(P) = above for P = (east, north, R + z): a fixed point, reached
+  // in a few steps (h changes little over the metres z moves).
+  double z = above_ground_m;
+  for (int i = 0; i < 8; ++i) {
+    const Vec3 p(east_m, north_m, R + z);
+    const double clearance = terrain ? terrain->clearance(p) : p.norm() - R;
+    z += above_ground_m - clearance;
+  }
+  return z;
+}
+
+std::shared_ptr<const Terrain> scene_terrain(const Scene& s) {
+  const TerrainSpec& spec = s.terrain;
+  const double R = s.atmosphere.planet_radius_m;
+  if (spec.model == TerrainSpec::Model::None) return nullptr;
+  HeightGrid grid = terrain_grid(s, spec.extent_m);
+  auto terrain = std::make_shared<const Terrain>(std::move(grid), R);
+  const Vec3& c = s.camera.position_m;
+  const Vec3 camera(c.x(), c.y(), R + c.z());
+  const double under = terrain->height_under(camera);
+  if (!(terrain->clearance(camera) > 0.0))
+    throw InputError("camera.position_m",
+                     "[" + format_number(c.x()) + ", " + format_number(c.y()) + ", " + format_number(c.z()) + "]",
+                     "a position above the terrain (its surface is " + format_number(under) + " m high there)");
+  return terrain;
+}
+
+}  // namespace skyspec
