@@ -9,8 +9,8 @@
 #include <cstring>
 
 #include "base/text_format.hpp"
-#include "scene/scene_terrain.hpp"
 #include "render/sun_irradiance.hpp"
+#include "scene/scene_terrain.hpp"
 #include "skyspec/atmosphere.hpp"
 #include "skyspec/camera.hpp"
 #include "skyspec/error.hpp"

@@ -19,8 +19,8 @@
 #include "base/cancellation.hpp"
 #include "physics/sun_disk.hpp"
 #include "render/scene_tables.hpp"
-#include "scene/scene_terrain.hpp"
 #include "render/sun_irradiance.hpp"
+#include "scene/scene_terrain.hpp"
 #include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/units.hpp"
@@ -114,11 +114,40 @@ struct SkyRenderer::Impl {
            !terrain->affected_stretch(camera->origin_m(), dir, 0.0, 2.0 * atmosphere.top_radius_m(), sun_dir, stretch);
   }
 
+  // The parts of a direction the terrain's shadow touches but the terrain does not hide: the
+  // sky-view table's (built without terrain), less the light of order 1 the shadows take away,
+  // which is the integrator's order 1 without the terrain less the same with it (the same
+  // quadrature wherever no shadow falls on the ray, so the difference is exactly that of the
+  // shadowed pieces and of a shadowed ground). The higher orders are the table's either way (the
+  // terrain does not shadow them: single_scattering.hpp). False where the ray meets the terrain
+  // or the table does not hold the direction: then it is marched.
+  bool table_less_shadows(const Vec3& dir, ScatteringWorkspace& ws, RadianceParts& parts) const {
+    const Vec3& o = camera->origin_m();
+    Interval stretch;
+    if (!sky_view || !terrain->affected_stretch(o, dir, 0.0, 2.0 * atmosphere.top_radius_m(), sun_dir, stretch))
+      return false;
+    const double ground = sphere_entry_distance(o, dir, atmosphere.planet_radius_m());
+    if (std::isfinite(terrain->intersect(o, dir, stretch.t0_m, std::min(stretch.t1_m, ground)))) return false;
+    if (!sky_view->lookup(dir, parts)) return false;
+    thread_local RadianceParts open, shaded;
+    ScatteringSources single;  // order 1: the sun's light scattered once, and off the ground
+    integrator.radiance_parts(o, dir, sun_dir, single, ws, open);
+    single.terrain = terrain.get();
+    integrator.radiance_parts(o, dir, sun_dir, single, ws, shaded);
+    for (size_t j = 0; j < parts.scattered.size(); ++j)
+      parts.scattered[j] = (parts.scattered[j] - (open.scattered[j] - shaded.scattered[j])).max(0.0f);
+    parts.phase_free = (parts.phase_free - (open.phase_free - shaded.phase_free)).max(0.0f);
+    return true;
+  }
+
   // The sky's radiance along dir (unit) without the sun's disk: interpolated from the sky-view
-  // table where there is one for that direction, marched otherwise (render_rows does the same
-  // for chunks of pixels).
+  // table where there is one for that direction (less the terrain's shadows, table_less_shadows),
+  // marched otherwise (render_rows does the same for chunks of pixels).
   void sky_radiance(const Vec3& dir, ScatteringWorkspace& ws, Spectrum& out) const {
-    if (sky_view && table_serves(dir) && sky_view->lookup(dir, ws.parts))
+    const bool touched = terrain && !table_serves(dir);
+    if (sky_view && !touched && sky_view->lookup(dir, ws.parts))
+      integrator.combine(ws.parts, dir.dot(sun_dir), sun_irradiance, ws, out);
+    else if (touched && table_less_shadows(dir, ws, ws.parts))
       integrator.combine(ws.parts, dir.dot(sun_dir), sun_irradiance, ws, out);
     else
       integrator.radiance(camera->origin_m(), dir, sun_dir, sun_irradiance, sources, ws, out);
@@ -398,9 +427,10 @@ void SkyRenderer::render_window(int x0, int x1, int y0, int rows, float* spectra
     Vec3 dirs[kChunk];
     int pixel[kChunk];  // the chunk's pixels that have a direction
     bool found[kChunk];
-    double mu[kChunk];         // their cosines to the sun
-    float* out[kChunk];        // where their radiances go
-    std::vector<float> parts;  // their sky-view parts, SkyViewTable::parts() x n floats each
+    bool touched[kChunk] = {};  // the terrain's shadow touches it (table_less_shadows)
+    double mu[kChunk];          // their cosines to the sun
+    float* out[kChunk];         // where their radiances go
+    std::vector<float> parts;   // their sky-view parts, SkyViewTable::parts() x n floats each
     Scratch(int k, int parts_per_direction)
         : ws(k), radiance(k), disk(k), trans(k), parts(static_cast<size_t>(parts_per_direction * kChunk * k)) {}
   };
@@ -425,8 +455,10 @@ void SkyRenderer::render_window(int x0, int x1, int y0, int rows, float* spectra
         }
         if (m.sky_view) {
           m.sky_view->lookup_many(count, sc.dirs, sc.parts.data(), sc.found);
-          if (m.terrain)
-            for (int k = 0; k < count; ++k) sc.found[k] = sc.found[k] && m.table_serves(sc.dirs[k]);
+          for (int k = 0; k < count; ++k) {
+            sc.touched[k] = m.terrain && sc.found[k] && !m.table_serves(sc.dirs[k]);
+            sc.found[k] = sc.found[k] && !sc.touched[k];  // those are done one by one below
+          }
           for (int k = 0; k < count; ++k) {
             sc.mu[k] = sc.dirs[k].dot(m.sun_dir);
             sc.out[k] = spectral + static_cast<size_t>(sc.pixel[k]) * n;
@@ -438,8 +470,11 @@ void SkyRenderer::render_window(int x0, int x1, int y0, int rows, float* spectra
           const int idx = sc.pixel[k];
           float* px = spectral + static_cast<size_t>(idx) * n;
           if (!(m.sky_view && sc.found[k])) {
-            m.integrator.radiance(m.camera->origin_m(), dir, m.sun_dir, m.sun_irradiance, m.sources, sc.ws,
-                                  sc.radiance);
+            if (m.sky_view && sc.touched[k] && m.table_less_shadows(dir, sc.ws, sc.ws.parts))
+              m.integrator.combine(sc.ws.parts, dir.dot(m.sun_dir), m.sun_irradiance, sc.ws, sc.radiance);
+            else
+              m.integrator.radiance(m.camera->origin_m(), dir, m.sun_dir, m.sun_irradiance, m.sources, sc.ws,
+                                    sc.radiance);
             std::copy(sc.radiance.data(), sc.radiance.data() + n, px);
           }
           if (m.scene.sun.disk) m.add_sun_disk(x0 + idx % w, y0 + idx / w, dir, px, sc.disk, sc.trans);

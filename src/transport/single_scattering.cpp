@@ -883,13 +883,16 @@ void SingleScattering::accumulate(PieceScratch& sc, int s, Spectrum* sums) const
 
 // The ground at the ray's end: Lambertian reflection of the direct sun (order 1) and of the sky
 // (higher orders), seen through the whole view ray; added to the phase-free part.
-void SingleScattering::ground_reflection(const Node& ground, double mu_sun, const ScatteringSources& sources,
-                                         ScatteringWorkspace& ws, RadianceParts& parts) const {
+void SingleScattering::ground_reflection(const Node& ground, const Vec3& ground_point, const Vec3& s, double mu_sun,
+                                         const ScatteringSources& sources, ScatteringWorkspace& ws,
+                                         RadianceParts& parts) const {
   const double R = atm_.planet_radius_m();
   view_optical_depth(ground, ws.view_tau);
   ws.view_trans = (-ws.view_tau).exp();
   ws.source.setZero();
-  if (sources.single && mu_sun > 0.0) {
+  // The terrain may hide the sun from this point of the sphere's ground (a plain in a ridge's shadow).
+  const bool hidden = sources.terrain && sources.terrain->shadowed(ground_point + 1e-3 * ground_point.normalized(), s);
+  if (sources.single && mu_sun > 0.0 && !hidden) {
     Spectrum& tau_sun = ws.ground_sun;
     const Columns sun = sun_.at(R, mu_sun);
     optical_depth(sun.data(), tau_sun);
@@ -1016,7 +1019,7 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
     if (ray.hits_terrain)
       terrain_reflection(last, o + last.t * d, s, sources, ws, parts);
     else
-      ground_reflection(last, (os + last.t * ds) / last.r, sources, ws, parts);
+      ground_reflection(last, o + last.t * d, s, (os + last.t * ds) / last.r, sources, ws, parts);
   }
 }
 

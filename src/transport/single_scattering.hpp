@@ -289,8 +289,8 @@ class SingleScattering {
   void accumulate(PieceScratch& sc, int s, Spectrum* sums) const;
   /// sum_j beta_ext,j columns[j] over the media.
   void optical_depth(const double* columns, Spectrum& tau) const;
-  void ground_reflection(const Node& ground, double mu_sun, const ScatteringSources& sources, ScatteringWorkspace& ws,
-                         RadianceParts& parts) const;
+  void ground_reflection(const Node& ground, const Vec3& ground_point, const Vec3& s, double mu_sun,
+                         const ScatteringSources& sources, ScatteringWorkspace& ws, RadianceParts& parts) const;
   /// The same at a point of the terrain (the ray's end p, direction d), with its normal and shadow.
   void terrain_reflection(const Node& ground, const Vec3& p, const Vec3& s, const ScatteringSources& sources,
                           ScatteringWorkspace& ws, RadianceParts& parts) const;

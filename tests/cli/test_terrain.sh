@@ -50,6 +50,19 @@ awk -v a="$c" -v b="$b" 'BEGIN { exit !(a > 0 && a < 0.8 * b) }' && ok || bad "m
 height=$(exrheader "$work/peak/sky.exr" | sed -n 's/.*position_m = \[-20000, 0, \([0-9.]*\)\].*/\1/p')
 awk -v z="$height" 'BEGIN { exit !(z > 1470.3 && z < 1470.5) }' && ok || bad "camera height on the crest: '$height'"
 
+# The Monte Carlo reference sees the terrain: single scattering looking at the ridge's face from
+# the air in its shadow is exactly 0 (no path point sees the sun), and positive without the ridge.
+mc=(reference --position 0,0,300 --sun-elevation 3 --sun-azimuth 270 --wavelengths 450,650 --probe face=270,3
+  --paths 200 --orders 1 --format csv -q)
+"$skyspec" "${mc[@]}" "${ridge[@]}" --out "$work/mc-ridge.csv" 2>"$work/stderr" && ok \
+  || bad "reference with terrain failed: $(cat "$work/stderr")"
+"$skyspec" "${mc[@]}" --out "$work/mc-open.csv" && ok || bad "reference without terrain failed"
+col=5  # monte_carlo (probe, azimuth_deg, elevation_deg, wavelength_nm, monte_carlo, standard_error)
+ridge_mc=$(awk -F, -v c="$col" 'NR > 1 { s += $c } END { print s }' "$work/mc-ridge.csv")
+open_mc=$(awk -F, -v c="$col" 'NR > 1 { s += $c } END { print s }' "$work/mc-open.csv")
+awk -v a="$ridge_mc" -v b="$open_mc" 'BEGIN { exit !(a == 0 && b > 0) }' && ok \
+  || bad "Monte Carlo single scattering towards the ridge: $ridge_mc (open: $open_mc; column $col of $(head -1 "$work/mc-ridge.csv"))"
+
 run_expecting_error "camera in the ridge" 2 "camera.position_m" "$work/x" \
   "$skyspec" render "${view[@]}" "${ridge[@]}" --set camera.position_m=[-20000,0,100] --out "$work/x"
 run_expecting_error "camera under the DEM" 2 "a position above the terrain" "$work/x" \
