@@ -31,9 +31,10 @@
 // spacing comes from a Lipschitz bound: if the ray towards the sun from p clears the quadtree's
 // blocks by c metres, or runs d metres deep inside the terrain, every point within
 // c / (1 + L) (or d / (1 + L)) of p has the same visibility, L the surface's largest slope (times
-// the projection's scale). The steps are at most kMaxSunStep cells and at least a quarter of a
-// cell; each change of visibility between two probes is bisected to 1e-3 m. A shadow (or a gap
-// of light) shorter than a quarter of a cell along the view ray can be missed.
+// the projection's scale; within a cell's highest corner c is the least of four sampled heights
+// above the cell's surface, halved: an estimate, not a bound). The steps are at most kMaxSunStep cells and at least a
+// quarter of a cell; each change of visibility between two probes is bisected to 1e-3 m. A shadow (or a gap of light)
+// shorter than a quarter of a cell along the view ray can be missed.
 #pragma once
 
 #include <vector>
