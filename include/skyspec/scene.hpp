@@ -65,6 +65,12 @@ struct TerrainSpec {
   double spacing_m = 100.0;  ///< the spacing of the map grid the heights are sampled on
 };
 
+/// Every terrain model by its name in scene files: none, ridge, file (scene/scene_terrain.cpp
+/// builds each).
+const std::vector<NamedValue<TerrainSpec::Model>>& terrain_models();
+/// "none", "ridge" or "file".
+const char* terrain_model_name(TerrainSpec::Model model);
+
 struct SpectrumSpec {
   double min_nm = 380.0, max_nm = 780.0, step_nm = 10.0;
   int count = 0;                       ///< when > 0: this many samples evenly over [min_nm, max_nm] (replaces step_nm)

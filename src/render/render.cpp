@@ -100,18 +100,25 @@ struct SkyRenderer::Impl {
         any = true;
       }
     if (!any) return;
-    if (terrain && std::isfinite(terrain->intersect(camera->origin_m(), dir, 0.0, 2.0 * atmosphere.top_radius_m())))
-      return;  // behind a mountain
+    if (terrain_hides(dir)) return;  // behind a mountain
     integrator.transmittance_to_space(camera->origin_m(), dir, trans);
     Eigen::Map<Spectrum>(radiance, grid.size()) += disk * (1.0f / (n * n)) * trans * sun_irradiance;
   }
 
-  // Whether the sky-view table (built without terrain) serves direction dir: not where the ray
-  // can meet the terrain or its shadow (Terrain::affected_stretch).
+  // Whether the terrain is in front of the camera along dir.
+  bool terrain_hides(const Vec3& dir) const {
+    return terrain && std::isfinite(terrain->intersect(camera->origin_m(), dir, 0.0, 2.0 * atmosphere.top_radius_m()));
+  }
+
+  // Whether the terrain or its shadow touches the ray along dir, and where (Terrain::
+  // affected_stretch); elsewhere the sky-view table (built without terrain) serves it.
+  bool terrain_touches(const Vec3& dir, Interval& stretch) const {
+    return terrain &&
+           terrain->affected_stretch(camera->origin_m(), dir, 0.0, 2.0 * atmosphere.top_radius_m(), sun_dir, stretch);
+  }
   bool table_serves(const Vec3& dir) const {
     Interval stretch;
-    return !terrain ||
-           !terrain->affected_stretch(camera->origin_m(), dir, 0.0, 2.0 * atmosphere.top_radius_m(), sun_dir, stretch);
+    return !terrain_touches(dir, stretch);
   }
 
   // The parts of a direction the terrain's shadow touches but the terrain does not hide: the
@@ -120,12 +127,10 @@ struct SkyRenderer::Impl {
   // quadrature wherever no shadow falls on the ray, so the difference is exactly that of the
   // shadowed pieces and of a shadowed ground). The higher orders are the table's either way (the
   // terrain does not shadow them: single_scattering.hpp). False where the ray meets the terrain
-  // or the table does not hold the direction: then it is marched.
-  bool table_less_shadows(const Vec3& dir, ScatteringWorkspace& ws, RadianceParts& parts) const {
+  // or the table does not hold the direction: then it is marched. `stretch`: terrain_touches()'s.
+  bool table_less_shadows(const Vec3& dir, const Interval& stretch, ScatteringWorkspace& ws,
+                          RadianceParts& parts) const {
     const Vec3& o = camera->origin_m();
-    Interval stretch;
-    if (!sky_view || !terrain->affected_stretch(o, dir, 0.0, 2.0 * atmosphere.top_radius_m(), sun_dir, stretch))
-      return false;
     const double ground = sphere_entry_distance(o, dir, atmosphere.planet_radius_m());
     if (std::isfinite(terrain->intersect(o, dir, stretch.t0_m, std::min(stretch.t1_m, ground)))) return false;
     if (!sky_view->lookup(dir, parts)) return false;
@@ -144,10 +149,11 @@ struct SkyRenderer::Impl {
   // table where there is one for that direction (less the terrain's shadows, table_less_shadows),
   // marched otherwise (render_rows does the same for chunks of pixels).
   void sky_radiance(const Vec3& dir, ScatteringWorkspace& ws, Spectrum& out) const {
-    const bool touched = terrain && !table_serves(dir);
+    Interval stretch;
+    const bool touched = terrain_touches(dir, stretch);
     if (sky_view && !touched && sky_view->lookup(dir, ws.parts))
       integrator.combine(ws.parts, dir.dot(sun_dir), sun_irradiance, ws, out);
-    else if (touched && table_less_shadows(dir, ws, ws.parts))
+    else if (sky_view && touched && table_less_shadows(dir, stretch, ws, ws.parts))
       integrator.combine(ws.parts, dir.dot(sun_dir), sun_irradiance, ws, out);
     else
       integrator.radiance(camera->origin_m(), dir, sun_dir, sun_irradiance, sources, ws, out);
@@ -201,7 +207,7 @@ struct SkyRenderer::Impl {
       try {
         ScatteringSources table_sources = sources;
         table_sources.polarisation = s.output.polarisation;  // then it holds Q and U too
-        table_sources.terrain = nullptr;  // directions the terrain touches are marched (table_serves)
+        table_sources.terrain = nullptr;  // directions the terrain touches: table_less_shadows or marched
         sky_view = std::make_unique<SkyViewTable>(
             integrator, table_sources, camera->origin_m(), sun_dir,
             SkyViewResolution{rows, std::max(2, rows / 2), s.render.sky_view_azimuth_samples, below}, threads);
@@ -250,8 +256,8 @@ Spectrum SkyRenderer::transmittance(const Vec3& dir) const {
   const auto& m = *impl_;
   Spectrum t(m.grid.size());
   const Vec3 d = dir.normalized();
-  if (m.terrain && std::isfinite(m.terrain->intersect(m.camera->origin_m(), d, 0.0, 2.0 * m.atmosphere.top_radius_m())))
-    t.setZero();  // the terrain is in the way
+  if (m.terrain_hides(d))
+    t.setZero();
   else
     m.integrator.transmittance_to_space(m.camera->origin_m(), d, t);
   return t;
@@ -427,7 +433,8 @@ void SkyRenderer::render_window(int x0, int x1, int y0, int rows, float* spectra
     Vec3 dirs[kChunk];
     int pixel[kChunk];  // the chunk's pixels that have a direction
     bool found[kChunk];
-    bool touched[kChunk] = {};  // the terrain's shadow touches it (table_less_shadows)
+    bool touched[kChunk] = {};  // the terrain or its shadow touches it (terrain_touches) ...
+    Interval stretch[kChunk];   // ... there
     double mu[kChunk];          // their cosines to the sun
     float* out[kChunk];         // where their radiances go
     std::vector<float> parts;   // their sky-view parts, SkyViewTable::parts() x n floats each
@@ -456,7 +463,7 @@ void SkyRenderer::render_window(int x0, int x1, int y0, int rows, float* spectra
         if (m.sky_view) {
           m.sky_view->lookup_many(count, sc.dirs, sc.parts.data(), sc.found);
           for (int k = 0; k < count; ++k) {
-            sc.touched[k] = m.terrain && sc.found[k] && !m.table_serves(sc.dirs[k]);
+            sc.touched[k] = sc.found[k] && m.terrain_touches(sc.dirs[k], sc.stretch[k]);
             sc.found[k] = sc.found[k] && !sc.touched[k];  // those are done one by one below
           }
           for (int k = 0; k < count; ++k) {
@@ -470,7 +477,7 @@ void SkyRenderer::render_window(int x0, int x1, int y0, int rows, float* spectra
           const int idx = sc.pixel[k];
           float* px = spectral + static_cast<size_t>(idx) * n;
           if (!(m.sky_view && sc.found[k])) {
-            if (m.sky_view && sc.touched[k] && m.table_less_shadows(dir, sc.ws, sc.ws.parts))
+            if (m.sky_view && sc.touched[k] && m.table_less_shadows(dir, sc.stretch[k], sc.ws, sc.ws.parts))
               m.integrator.combine(sc.ws.parts, dir.dot(m.sun_dir), m.sun_irradiance, sc.ws, sc.radiance);
             else
               m.integrator.radiance(m.camera->origin_m(), dir, m.sun_dir, m.sun_irradiance, m.sources, sc.ws,

@@ -1,9 +1,11 @@
-// The name tables of camera_spec.hpp: the one place a camera type or a panorama convention is named.
+// The name tables of camera_spec.hpp: the one place a camera type or a panorama convention is named
+// (and the name look-ups of the other tables, such as scene.hpp's terrain_models()).
 #include "skyspec/camera_spec.hpp"
 
 #include <string>
 
 #include "skyspec/error.hpp"
+#include "skyspec/scene.hpp"
 
 namespace skyspec {
 
@@ -36,6 +38,7 @@ const char* name_in(const std::vector<NamedValue<Enum>>& table, Enum value) {
 
 const char* camera_type_name(CameraSpec::Type type) { return name_in(camera_types(), type); }
 const char* panorama_convention_name(PanoramaConvention c) { return name_in(panorama_conventions(), c); }
+const char* terrain_model_name(TerrainSpec::Model model) { return name_in(terrain_models(), model); }
 
 template <typename Enum>
 Enum value_named(const std::vector<NamedValue<Enum>>& table, const std::string& name, const std::string& setting) {
@@ -48,6 +51,8 @@ Enum value_named(const std::vector<NamedValue<Enum>>& table, const std::string& 
 template CameraSpec::Type value_named(const std::vector<NamedValue<CameraSpec::Type>>&, const std::string&,
                                       const std::string&);
 template PanoramaConvention value_named(const std::vector<NamedValue<PanoramaConvention>>&, const std::string&,
+                                        const std::string&);
+template TerrainSpec::Model value_named(const std::vector<NamedValue<TerrainSpec::Model>>&, const std::string&,
                                         const std::string&);
 
 }  // namespace skyspec

@@ -291,19 +291,11 @@ const std::vector<KeyDef>& registry() {
                            [](Scene& s) -> double& { return s.location.longitude_deg; }));
     // terrain
     r.push_back(choice_key(
-        "terrain.model", {"none", "ridge", "file"},
+        "terrain.model", names_of(terrain_models()),
         "none: the planet's sphere is the ground; ridge: a synthetic mountain ridge (terrain.ridge.*); file: "
         "heights from an elevation raster (terrain.file), around location.latitude_deg / longitude_deg",
-        [](Scene& s, const std::string& v) {
-          s.terrain.model = v == "ridge"  ? TerrainSpec::Model::Ridge
-                            : v == "file" ? TerrainSpec::Model::File
-                                          : TerrainSpec::Model::None;
-        },
-        [](const Scene& s) {
-          return std::string(s.terrain.model == TerrainSpec::Model::Ridge  ? "ridge"
-                             : s.terrain.model == TerrainSpec::Model::File ? "file"
-                                                                           : "none");
-        }));
+        [](Scene& s, const std::string& v) { s.terrain.model = value_named(terrain_models(), v, "terrain.model"); },
+        [](const Scene& s) { return std::string(terrain_model_name(s.terrain.model)); }));
     {
       KeyDef k = text_key(
           "terrain.file",
@@ -352,25 +344,10 @@ const std::vector<KeyDef>& registry() {
                             [](Scene& s) -> int& { return s.camera.height; }));
     r.push_back(vec3_key("camera.position_m", "m", kMaxLength, "camera position [east, north, height above sea level]",
                          [](Scene& s) -> Vec3& { return s.camera.position_m; }));
-    {
-      KeyDef k;
-      k.key = "camera.above_ground_m";
-      k.unit = "m";
-      const Range range{0.0, kMaxLength, true};
-      const std::string allowed = range.describe("m");
-      k.doc = "(" + allowed +
-              ") when set, the camera stands this high above the ground under it (the terrain's surface or the "
-              "sphere), replacing camera.position_m's height";
-      k.set = [k, allowed, range](Scene& s, const toml::node& n, const std::string& origin) {
-        const double v = get_number(k, n, origin, allowed);
-        if (!range.contains(v)) throw InputError(k.key, node_text(n), allowed, origin);
-        s.camera.above_ground_m = v;
-      };
-      k.get = [](const Scene& s) {
-        return s.camera.above_ground_m ? exact_number(*s.camera.above_ground_m) : std::string();
-      };
-      r.push_back(k);
-    }
+    r.push_back(optional_number_key("camera.above_ground_m", "m", {0.0, kMaxLength, true},
+                                    "when set, the camera stands this high above the ground under it (the terrain's "
+                                    "surface or the sphere), replacing camera.position_m's height",
+                                    [](Scene& s) -> std::optional<double>& { return s.camera.above_ground_m; }));
     using Type = CameraSpec::Type;
     r.push_back(only_for(Type::Perspective, vec3_key("camera.look_at_m", "m", kMaxLength, "point the camera looks at",
                                                      [](Scene& s) -> Vec3& { return s.camera.look_at_m; })));

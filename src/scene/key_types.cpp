@@ -119,6 +119,25 @@ KeyDef number_key(std::string key, std::string unit, Range range, std::string he
   return k;
 }
 
+KeyDef optional_number_key(std::string key, std::string unit, Range range, std::string help,
+                           std::function<std::optional<double>&(Scene&)> ref) {
+  KeyDef k;
+  k.key = std::move(key);
+  k.unit = unit;
+  const std::string allowed = range.describe(unit);
+  k.doc = "(" + allowed + ") " + help;
+  k.set = [k, allowed, range, ref](Scene& s, const toml::node& n, const std::string& origin) {
+    const double v = get_number(k, n, origin, allowed);
+    if (!range.contains(v)) throw InputError(k.key, node_text(n), allowed, origin);
+    ref(s) = v;
+  };
+  k.get = [ref](const Scene& s) {
+    const std::optional<double>& v = ref(const_cast<Scene&>(s));
+    return v ? exact_number(*v) : std::string();
+  };
+  return k;
+}
+
 KeyDef integer_key(std::string key, long lo, long hi, std::string help, std::function<int&(Scene&)> ref) {
   KeyDef k;
   k.key = std::move(key);

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -37,6 +38,9 @@ struct Range {
 double get_number(const KeyDef& k, const toml::node& n, const std::string& origin, const std::string& allowed);
 KeyDef number_key(std::string key, std::string unit, Range range, std::string help, std::function<double&(Scene&)> ref,
                   double scale = 1.0);
+/// A number that may be absent (then the scene writes no value for it).
+KeyDef optional_number_key(std::string key, std::string unit, Range range, std::string help,
+                           std::function<std::optional<double>&(Scene&)> ref);
 KeyDef integer_key(std::string key, long lo, long hi, std::string help, std::function<int&(Scene&)> ref);
 KeyDef bool_key(std::string key, std::string help, std::function<bool&(Scene&)> ref);
 KeyDef choice_key(std::string key, std::vector<std::string> choices, std::string help,

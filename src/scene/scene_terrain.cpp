@@ -9,6 +9,15 @@
 
 namespace skyspec {
 
+const std::vector<NamedValue<TerrainSpec::Model>>& terrain_models() {
+  static const std::vector<NamedValue<TerrainSpec::Model>> table = {
+      {TerrainSpec::Model::None, "none"},
+      {TerrainSpec::Model::Ridge, "ridge"},
+      {TerrainSpec::Model::File, "file"},
+  };
+  return table;
+}
+
 namespace {
 // The grid of the scene's terrain; for a raster, only the samples within extent_m of the
 // reference point (the grid is centred there with the same spacing, so its samples are the full

@@ -347,7 +347,7 @@ bool SourceTable::irradiance_on(double r_m, double mu, const Vec3& normal, float
     for (size_t k = 0; k < x.size(); ++k) {
       double p0 = 1.0, p1 = x[k];
       c[0] += wx[k] * x[k] * p0;
-      if (kMaxHarmonicDegree >= 1) c[1] += wx[k] * x[k] * p1;
+      c[1] += wx[k] * x[k] * p1;
       for (int l = 2; l <= kMaxHarmonicDegree; ++l) {
         const double p2 = ((2 * l - 1) * x[k] * p1 - (l - 1) * p0) / l;
         c[static_cast<size_t>(l)] += wx[k] * x[k] * p2;

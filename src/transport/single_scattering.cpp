@@ -33,6 +33,16 @@ void RadianceParts::set_zero() {
   phase_free.setZero();
 }
 
+namespace {
+// The x axis of the scattering-order tables' local frame at a point whose zenith is z (unit): towards
+// the sun's azimuth (any horizontal direction when the sun is at the zenith); y = z x x.
+Vec3 tables_frame_x(const Vec3& z, const Vec3& sun) {
+  Vec3 x = sun - sun.dot(z) * z;
+  if (x.norm() < 1e-9) x = z.cross(std::abs(z.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0));
+  return x.normalized();
+}
+}  // namespace
+
 Vec3 polarisation_frame(const Vec3& view, const Vec3& sun) {
   const Vec3 k = -view;
   Vec3 e1 = sun - sun.dot(k) * k;
@@ -798,10 +808,7 @@ bool SingleScattering::polarised_sources(const Node* nodes, int m, const RayFram
     const Vec3 p = f.o + nodes[k].t * f.d;
     const Vec3 z = p / p.norm();
     if (!higher.rayleigh_moments(nodes[k].r, f.s.dot(z), sc.moments.data())) return false;
-    Vec3 x = f.s - f.s.dot(z) * z;
-    if (x.norm() < 1e-9) x = z.cross(std::abs(z.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0));  // sun at the zenith
-    x.normalize();
-    const Vec3 y = z.cross(x);
+    const Vec3 x = tables_frame_x(z, f.s), y = z.cross(x);
     const Vec3 e(f.e1.dot(x), f.e1.dot(y), f.e1.dot(z)), g(f.e2.dot(x), f.e2.dot(y), f.e2.dot(z));
     // The quadrupole's share, D's part -T / 2 with T = sum a_2m K_m (q, u), and the polarisation
     // tensor's, which the aerosol's unit matrix sees too (pq, pu): the field's degree-2 E-mode,
@@ -891,8 +898,8 @@ void SingleScattering::ground_reflection(const Node& ground, const Vec3& ground_
   ws.view_trans = (-ws.view_tau).exp();
   ws.source.setZero();
   // The terrain may hide the sun from this point of the sphere's ground (a plain in a ridge's shadow).
-  const bool hidden = sources.terrain && sources.terrain->shadowed(ground_point + 1e-3 * ground_point.normalized(), s);
-  if (sources.single && mu_sun > 0.0 && !hidden) {
+  if (sources.single && mu_sun > 0.0 &&
+      !(sources.terrain && sources.terrain->shadowed(ground_point + 1e-3 * ground_point.normalized(), s))) {
     Spectrum& tau_sun = ws.ground_sun;
     const Columns sun = sun_.at(R, mu_sun);
     optical_depth(sun.data(), tau_sun);
@@ -932,9 +939,7 @@ void SingleScattering::terrain_reflection(const Node& ground, const Vec3& p, con
   }
   if (sources.higher) {
     // The normal in the tables' local frame (z up, x towards the sun's azimuth).
-    Vec3 x = s - mu_sun * up;
-    if (x.norm() < 1e-9) x = up.cross(std::abs(up.x()) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0));  // sun at the zenith
-    x.normalize();
+    const Vec3 x = tables_frame_x(up, s);
     const Vec3 local(n.dot(x), n.dot(up.cross(x)), n.dot(up));
     if (!sources.higher->irradiance_on(ground.r, mu_sun, local, ws.ground_sky.data())) {
       sources.higher->ground_irradiance(mu_sun, ws.ground_sky.data());

@@ -177,12 +177,11 @@ bool Terrain::leaf(int cx, int cy, double t0, double t1, RayQuery& q) const {
     return q.altitude(t) - cell_height(cx, cy, fx, fy);
   };
   constexpr int kSamples = 4;
-  double prev_t = t0, prev_f = above(t0);
-  if (prev_f <= 0.0) {
+  double prev_t = t0, least = above(t0);
+  if (least <= 0.0) {
     q.t_hit = t0;
     return true;
   }
-  double least = prev_f;
   for (int k = 1; k <= kSamples; ++k) {
     const double t = t0 + (t1 - t0) * k / kSamples, f = above(t);
     if (f <= 0.0) {
@@ -196,7 +195,6 @@ bool Terrain::leaf(int cx, int cy, double t0, double t1, RayQuery& q) const {
     }
     least = std::min(least, f);
     prev_t = t;
-    prev_f = f;
   }
   // The sampled margin, halved for what may dip between samples.
   q.clearance = std::min(q.clearance, 0.5 * least);
