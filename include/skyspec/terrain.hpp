@@ -85,6 +85,14 @@ class Terrain {
   double intersect(const Vec3& o, const Vec3& d, double t0, double t1) const;
   /// Whether the surface hides a sun in direction s (unit) from p.
   bool shadowed(const Vec3& p, const Vec3& s) const;
+  /// The skyline above a ray o + t d that meets the surface at t_hit: the ray is tilted upwards
+  /// (towards the local zenith at o, in the vertical plane of d), the tilt doubled from a
+  /// milliradian until the ray clears the surface and then bisected kSkylineSteps times (to 1/64 of
+  /// itself); the returned point is where the steepest tilt that still meets the surface meets it
+  /// (o + t_hit d if none does). Assumes that a ray tilted less meets the surface too (one skyline
+  /// above the hit).
+  Vec3 skyline_above(const Vec3& o, const Vec3& d, double t_hit) const;
+  static constexpr int kSkylineSteps = 6;
   /// Appends to out the parts of [t0, t1] on the ray o + t d from which a sun in direction s is
   /// not hidden by the surface (the planet's own shadow is not considered), in order.
   void sunlit_parts(const Vec3& o, const Vec3& d, double t0, double t1, const Vec3& s,

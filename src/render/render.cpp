@@ -125,9 +125,12 @@ struct SkyRenderer::Impl {
   // sky-view table's (built without terrain), less the light of order 1 the shadows take away,
   // which is the integrator's order 1 without the terrain less the same with it (the same
   // quadrature wherever no shadow falls on the ray, so the difference is exactly that of the
-  // shadowed pieces and of a shadowed ground). The higher orders are the table's either way (the
-  // terrain does not shadow them: single_scattering.hpp). False where the ray meets the terrain
-  // or the table does not hold the direction: then it is marched. `stretch`: terrain_touches()'s.
+  // shadowed pieces and of a shadowed ground). The higher orders are the table's where the ray
+  // ends in the sky, or on the ground without the terrain's shadow on it (single_scattering.hpp).
+  // False where the ray meets the terrain, where it ends on the ground past the terrain's shadow
+  // with higher orders (the sky the terrain hides from its points: SkylineCut in
+  // single_scattering.cpp), or where the table does not hold the direction: then it is marched.
+  // `stretch`: terrain_touches()'s.
   bool table_less_shadows(const Vec3& dir, const Interval& stretch, ScatteringWorkspace& ws,
                           RadianceParts& parts) const {
     const Vec3& o = camera->origin_m();
@@ -139,6 +142,12 @@ struct SkyRenderer::Impl {
     integrator.radiance_parts(o, dir, sun_dir, single, ws, open);
     single.terrain = terrain.get();
     integrator.radiance_parts(o, dir, sun_dir, single, ws, shaded);
+    if (sources.higher && std::isfinite(ground)) {
+      bool shadowed = (open.phase_free != shaded.phase_free).any();
+      for (size_t j = 0; j < parts.scattered.size() && !shadowed; ++j)
+        shadowed = (open.scattered[j] != shaded.scattered[j]).any();
+      if (shadowed) return false;
+    }
     for (size_t j = 0; j < parts.scattered.size(); ++j)
       parts.scattered[j] = (parts.scattered[j] - (open.scattered[j] - shaded.scattered[j])).max(0.0f);
     parts.phase_free = (parts.phase_free - (open.phase_free - shaded.phase_free)).max(0.0f);

@@ -60,9 +60,10 @@ std::shared_ptr<const PhaseMoments> PhaseMoments::of(const AtmosphereModel& atm,
     OfMedium of;
     of.rayleigh = medium.phase.kind == MediumPhase::Kind::Rayleigh;
     of.chi.assign(static_cast<size_t>(degree + 1) * n + SourceTable::kLookupSlack, 0.0f);
+    m->phases_.push_back(medium.phase);
     for (int i = 0; i < n; ++i) {
-      const std::vector<double> chi =
-          legendre_moments([&medium, i](double mu) { return medium.phase.at(i, mu); }, degree);
+      const auto phase = [&medium, i](double mu) { return medium.phase.at(i, mu); };
+      const std::vector<double> chi = legendre_moments(phase, degree);
       for (int l = 0; l <= degree; ++l) {
         of.chi[static_cast<size_t>(l) * n + i] = static_cast<float>(chi[static_cast<size_t>(l)]);
         // Zero to rounding beyond l = 2 for molecules (the quadrature is exact for a quadratic).
@@ -73,6 +74,28 @@ std::shared_ptr<const PhaseMoments> PhaseMoments::of(const AtmosphereModel& atm,
     m->media.push_back(std::move(of));
   }
   return m;
+}
+
+const std::vector<float>& PhaseMoments::skyline_chi(int s) const {
+  std::call_once(skyline_once_, [this] {
+    const int n = wavelengths;
+    const size_t per_skyline = static_cast<size_t>(degree + 1) * static_cast<size_t>(n);
+    skyline_chi_.resize(phases_.size());
+    for (size_t k = 0; k < phases_.size(); ++k) {
+      std::vector<float>& out = skyline_chi_[k];
+      out.assign(static_cast<size_t>(kSkylines) * per_skyline + SourceTable::kLookupSlack, 0.0f);
+      for (int i = 0; i < n; ++i) {
+        const MediumPhase& phase = phases_[k];
+        const std::vector<double> hidden = skyline_legendre_moments([&phase, i](double mu) { return phase.at(i, mu); },
+                                                                    degree, kSkylines, kSkylineStep_rad);
+        for (int j = 0; j < kSkylines; ++j)
+          for (int l = 0; l <= degree; ++l)
+            out[static_cast<size_t>(j) * per_skyline + static_cast<size_t>(l) * static_cast<size_t>(n) +
+                static_cast<size_t>(i)] = static_cast<float>(hidden[static_cast<size_t>(j * (degree + 1) + l)]);
+      }
+    }
+  });
+  return skyline_chi_.at(static_cast<size_t>(s));
 }
 
 SourceTable::SourceTable(double planet_radius_m, double top_radius_m, int n_altitude, int n_sun,
@@ -256,13 +279,104 @@ struct SourceTable::HarmonicSum {
 
 void SourceTable::source_to_degree(int max_degree, double r_m, double mu, double mu_view, double nu,
                                    float* const* out) const {
+  const int degree = std::clamp(max_degree, 0, degree_);
+  const int media = std::min(static_cast<int>(moments_->media.size()), kMaxMedia);
+  const float* chi[kMaxMedia];
+  int media_degree[kMaxMedia];
+  for (int s = 0; s < media; ++s) {
+    media_degree[s] = std::min(moments_->media[static_cast<size_t>(s)].nonzero_degree, degree);
+    chi[s] = moments_->media[static_cast<size_t>(s)].chi.data();
+  }
+  harmonic_source(degree, r_m, mu, mu_view, nu, media, chi, media_degree, out);
+}
+
+// The table's light from below the skyline has the moments chi_l(gamma) of the nearest tabulated
+// skyline (within half a degree); molecules' reach every degree (their phase function cut at a
+// skyline is no longer a quadratic). One pass sums the whole source and that part (as twice the
+// media) where the media fit twice into kMaxMedia.
+bool SourceTable::source_above_skyline(double r_m, double mu, double mu_view, double nu, double skyline_rad,
+                                       float* const* out, float* const* hidden, float* const* hidden_share,
+                                       float* const* hidden_multiple) const {
+  const int media = std::min(static_cast<int>(moments_->media.size()), kMaxMedia);
+  const int d = moments_->degree;
+  const int j = static_cast<int>(
+      std::lround(std::clamp(skyline_rad / PhaseMoments::kSkylineStep_rad, 0.0, PhaseMoments::kSkylines - 1.0)));
+  const size_t per_degree = static_cast<size_t>(n_l_), per_skyline = static_cast<size_t>(d + 1) * per_degree;
+  const float* chi[kMaxMedia];
+  int media_degree[kMaxMedia];
+  float* sums[kMaxMedia];
+  const bool one_pass = 2 * media <= kMaxMedia;
+  for (int s = 0; s < media; ++s) {
+    const PhaseMoments::OfMedium& m = moments_->media[static_cast<size_t>(s)];
+    const float* below = moments_->skyline_chi(s).data() + static_cast<size_t>(j) * per_skyline;
+    std::copy_n(below, per_degree, hidden_share[s]);
+    chi[s] = m.chi.data();
+    media_degree[s] = std::min(m.nonzero_degree, degree_);
+    sums[s] = out[s];
+    const int h = one_pass ? media + s : s;
+    chi[h] = below;
+    media_degree[h] = std::min(d, degree_);
+    if (one_pass) sums[h] = hidden[s];
+  }
+  if (one_pass) {
+    harmonic_source(degree_, r_m, mu, mu_view, nu, 2 * media, chi, media_degree, sums);
+  } else {
+    harmonic_source(degree_, r_m, mu, mu_view, nu, media, chi, media_degree, hidden, false);  // chi[s]: below
+    for (int s = 0; s < media; ++s) {
+      chi[s] = moments_->media[static_cast<size_t>(s)].chi.data();
+      media_degree[s] = std::min(moments_->media[static_cast<size_t>(s)].nonzero_degree, degree_);
+    }
+    harmonic_source(degree_, r_m, mu, mu_view, nu, media, chi, media_degree, out);
+  }
+  for (int s = 0; s < media; ++s) {
+    for (size_t i = 0; i < per_degree; ++i) out[s][i] -= hidden[s][i];
+    std::copy_n(hidden[s], per_degree, hidden_multiple[s]);
+  }
+  return true;
+}
+
+void SourceTable::source_below_skyline(double r_m, double mu, double mu_view, double nu, double skyline_rad,
+                                       float* const* hidden) const {
+  const int media = std::min(static_cast<int>(moments_->media.size()), kMaxMedia);
+  const int d = moments_->degree;
+  const int j = static_cast<int>(
+      std::lround(std::clamp(skyline_rad / PhaseMoments::kSkylineStep_rad, 0.0, PhaseMoments::kSkylines - 1.0)));
+  const size_t per_skyline = static_cast<size_t>(d + 1) * static_cast<size_t>(n_l_);
+  const float* chi[kMaxMedia];
+  int media_degree[kMaxMedia];
+  for (int s = 0; s < media; ++s) {
+    chi[s] = moments_->skyline_chi(s).data() + static_cast<size_t>(j) * per_skyline;
+    media_degree[s] = std::min(d, degree_);
+  }
+  harmonic_source(degree_, r_m, mu, mu_view, nu, media, chi, media_degree, hidden, false);
+}
+
+bool ScatteringOrders::source_above_skyline(double r_m, double mu_sun, double mu_view, double nu, double skyline_rad,
+                                            float* const* out, float* const* hidden, float* const* hidden_share,
+                                            float* const* hidden_multiple) const {
+  sum_->source_above_skyline(r_m, mu_sun, mu_view, nu, skyline_rad, out, hidden, hidden_share, hidden_multiple);
+  if (orders_.empty()) return true;
+  thread_local std::vector<float> once;
+  const int n = sum_->wavelength_count();
+  const int count = sum_->media_count();
+  once.resize(static_cast<size_t>(count) * static_cast<size_t>(n) + SourceTable::kLookupSlack);
+  float* ptr[kMaxMedia];
+  for (int s = 0; s < count; ++s) ptr[s] = once.data() + static_cast<size_t>(s) * static_cast<size_t>(n);
+  orders_.front()->source_below_skyline(r_m, mu_sun, mu_view, nu, skyline_rad, ptr);
+  for (int s = 0; s < count; ++s)
+    for (int i = 0; i < n; ++i) hidden_multiple[s][i] = std::max(0.0f, hidden[s][i] - ptr[s][i]);
+  return true;
+}
+
+void SourceTable::harmonic_source(int degree, double r_m, double mu, double mu_view, double nu, int media,
+                                  const float* const* chi, const int* media_degree, float* const* out,
+                                  bool polarised_share) const {
   const Blend w = blend(r_m, mu);
   // The view direction's azimuth from the sun's vertical plane at this point.
   const double mu_s = std::clamp(mu, -1.0, 1.0);
   const double mv = std::clamp(mu_view, -1.0, 1.0);
   const double sin_product = std::sqrt(std::max(0.0, (1.0 - mv * mv) * (1.0 - mu_s * mu_s)));
   const double cos_phi = sin_product > 1e-12 ? (nu - mv * mu_s) / sin_product : 1.0;
-  const int degree = std::clamp(max_degree, 0, degree_);
   double basis_d[kMaxHarmonics];
   symmetric_harmonics(degree, mv, cos_phi, basis_d);
   float basis[kMaxHarmonics];
@@ -272,19 +386,20 @@ void SourceTable::source_to_degree(int max_degree, double r_m, double mu, double
   // wavelengths: the harmonics of each l are summed per corner first and blended once per l.
   // Blocks read past the last wavelength into the next harmonic or the spare floats; those lanes
   // are not written out.
-  const int media = std::min(static_cast<int>(moments_->media.size()), kMaxMedia);
   HarmonicSum sum{w, basis, degree, n_l_, media, {}, {}, out};
   for (int s = 0; s < media; ++s) {
-    sum.media_degree[s] = std::min(moments_->media[static_cast<size_t>(s)].nonzero_degree, degree);
-    sum.chi[s] = moments_->media[static_cast<size_t>(s)].chi.data();
+    sum.media_degree[s] = media_degree[s];
+    sum.chi[s] = chi[s];
   }
   // Two media (air and aerosol, the common case) with a count the compiler knows, so that their
   // sums stay in registers; any number otherwise.
   if (media == 2)
     sum.run<2>();
+  else if (media == 4)  // two media and their light below a skyline (source_above_skyline)
+    sum.run<4>();
   else
     sum.run<0>();
-  if (polarised_ && degree >= 2) {
+  if (polarised_ && degree >= 2 && polarised_share) {
     // Polarisation's share of the intensity that molecules scatter, -2 B k^T D_pol k
     // (SingleScattering's polarised_sources derives it), B = 15 chi_2 / (8 pi) the phase
     // function's mu^2 coefficient; k^T D_pol k is even in the azimuth, so its sign does not matter.
@@ -297,7 +412,8 @@ void SourceTable::source_to_degree(int max_degree, double r_m, double mu, double
     const double ky2 = std::max(0.0, sin_view * sin_view - kx * kx);
     const float cxx = static_cast<float>(kx * kx - kz * kz), cyy = static_cast<float>(ky2 - kz * kz),
                 cxz = static_cast<float>(2.0 * kx * kz);
-    for (int s = 0; s < media; ++s) {
+    // The media's own sums only (source_above_skyline passes its part below the skyline after them).
+    for (int s = 0; s < std::min(media, static_cast<int>(moments_->media.size())); ++s) {
       if (!moments_->media[static_cast<size_t>(s)].rayleigh) continue;
       const float* chi2 = &moments_->media[static_cast<size_t>(s)].chi[2 * static_cast<size_t>(n_l_)];
       float* j = out[s];

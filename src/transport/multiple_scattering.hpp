@@ -27,6 +27,7 @@
 #include <cstdint>
 #include <iosfwd>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -72,8 +73,21 @@ struct PhaseMoments {
     /// [l][wavelength], followed by kLookupSlack zeros (SourceTable::source reads whole blocks).
     std::vector<float> chi;
   };
+  /// Skylines 0, 1, ..., 90 degrees above the view direction (SourceTable::source_above_skyline
+  /// takes the nearest).
+  static constexpr int kSkylines = 91;
+  static constexpr double kSkylineStep_rad = 3.14159265358979323846 / 180.0;
+  /// The moments of medium s's phase function over what a straight skyline hides
+  /// (skyline_legendre_moments), [skyline][l][wavelength] followed by kLookupSlack zeros; computed
+  /// on first use (only terrain asks for them), from the phase functions kept for that.
+  const std::vector<float>& skyline_chi(int s) const;
   std::vector<OfMedium> media;
   static std::shared_ptr<const PhaseMoments> of(const AtmosphereModel& atm, int degree);
+
+ private:
+  std::vector<MediumPhase> phases_;  // the media's phase functions, for skyline_chi
+  mutable std::once_flag skyline_once_;
+  mutable std::vector<std::vector<float>> skyline_chi_;
 };
 
 /// One scattering order (or a sum of orders): the harmonics of its radiance field over (r, mu_s)
@@ -94,6 +108,12 @@ class SourceTable : public InScatteringSource {
   /// source() from the harmonics up to max_degree only (all of them if it is the table's degree or
   /// more): the field smoothed to that degree.
   void source_to_degree(int max_degree, double r_m, double mu_sun, double mu_view, double nu, float* const* out) const;
+  bool source_above_skyline(double r_m, double mu_sun, double mu_view, double nu, double skyline_rad, float* const* out,
+                            float* const* hidden, float* const* hidden_share,
+                            float* const* hidden_multiple) const override;
+  /// Only hidden[s] of source_above_skyline.
+  void source_below_skyline(double r_m, double mu_sun, double mu_view, double nu, double skyline_rad,
+                            float* const* hidden) const;
   void ground_irradiance(double mu_sun, float* out) const override;
   /// The field's quadrupole and (polarised tables) its polarisation tensor at (r, mu_s), blended as
   /// source() blends (InScatteringSource::rayleigh_moments). False if the degree is below 2.
@@ -121,6 +141,8 @@ class SourceTable : public InScatteringSource {
   /// Column i's sun zenith cosine, from -1 (i = 0) to 1 (the last).
   double mu_sun(int i_sun) const;
   int altitude_count() const { return n_h_; }
+  int wavelength_count() const { return n_l_; }
+  int media_count() const { return std::min(static_cast<int>(moments_->media.size()), kMaxMedia); }
   int sun_count() const { return n_mu_; }
   int harmonic_count() const { return n_c_; }
   int degree() const { return degree_; }
@@ -154,6 +176,12 @@ class SourceTable : public InScatteringSource {
  private:
   struct Blend;
   struct HarmonicSum;
+  /// out[s] = sum_l chi[s]_l sum_m a_lm Y_lm(view) to `degree` with the moments chi[s] up to
+  /// media_degree[s], s < count (source_to_degree, source_above_skyline), and for the molecules
+  /// among the first media their polarised share (unless polarised_share is false: parts of a
+  /// source below a skyline).
+  void harmonic_source(int degree, double r_m, double mu, double mu_view, double nu, int count, const float* const* chi,
+                       const int* media_degree, float* const* out, bool polarised_share = true) const;
   /// The four entries around (r, mu_s) and their weights (per wavelength in steep rows).
   Blend blend(double r_m, double mu_s) const;
   /// One row of n wavelengths blended as `w` says from `data` (laid out by `at`), from `offset` on.
@@ -208,6 +236,10 @@ class ScatteringOrders : public InScatteringSource {
   bool irradiance_on(double r_m, double mu_sun, const Vec3& normal_local, float* out) const override {
     return sum_->irradiance_on(r_m, mu_sun, normal_local, out);
   }
+  /// hidden_multiple: the sum's part less order 2's (whose field is the light scattered once).
+  bool source_above_skyline(double r_m, double mu_sun, double mu_view, double nu, double skyline_rad, float* const* out,
+                            float* const* hidden, float* const* hidden_share,
+                            float* const* hidden_multiple) const override;
 
   int highest_order() const { return settings_.orders; }
   /// The degree of order k's table: angular_degree for order 2, one less per order after it, but

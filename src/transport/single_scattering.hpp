@@ -148,6 +148,20 @@ class InScatteringSource {
   virtual bool irradiance_on(double /*r_m*/, double /*mu_sun*/, const Vec3& /*normal_local*/, float* /*out*/) const {
     return false;
   }
+  /// source() split at a straight skyline passing skyline_rad (0 to pi / 2) above the view
+  /// direction, where a surface in front hides the sky: hidden[s] = the integral of
+  /// p_s(view . w) L(w) over the directions below it, each ring about the view direction counted
+  /// with the share of it below the skyline and with its mean radiance (skyline_legendre_moments:
+  /// the addition theorem with the phase function's moments over that region); out[s] = J_s less
+  /// hidden[s]; hidden_share[s] = the same integral of p_s alone (what a uniform radiance there
+  /// adds per unit radiance); hidden_multiple[s] = the part of hidden[s] from the field's light
+  /// scattered more than once (hidden[s] from a source that does not separate it). The field is
+  /// the one source() uses. False (nothing written) if the source has no angular field.
+  virtual bool source_above_skyline(double /*r_m*/, double /*mu_sun*/, double /*mu_view*/, double /*nu*/,
+                                    double /*skyline_rad*/, float* const* /*out*/, float* const* /*hidden*/,
+                                    float* const* /*hidden_share*/, float* const* /*hidden_multiple*/) const {
+    return false;
+  }
 };
 
 /// What a radiance evaluation includes.
@@ -166,8 +180,9 @@ struct ScatteringSources {
   /// it meets the surface, whose Lambertian reflection (albedo a) of the sun, where the terrain
   /// does not hide it, and of the sky is added as the ground's is; single scattering is collected
   /// only where the sun is visible past the terrain (Terrain::sunlit_parts: exact to its sampling).
-  /// The higher orders' sources are the tables' (computed without terrain): light scattered more
-  /// than once is not shadowed (docs/terrain.md gives the error). Their irradiance on a surface of
+  /// The higher orders' sources are the tables' (computed without terrain), less what the terrain
+  /// hides from the points of a ray that ends on a surface where its shadow falls on the ray
+  /// (SkylineCut in single_scattering.cpp; docs/terrain.md gives the error). Their irradiance on a surface of
   /// normal n is the tables' field integrated about n (InScatteringSource::irradiance_on), or G
   /// times the sky's share it sees, (1 + n.up) / 2, from a source without an angular field.
   const Terrain* terrain = nullptr;
@@ -280,9 +295,12 @@ class SingleScattering {
   void single_scattering_piece(const Node* nodes, int m, double os, double ds, PieceScratch& sc,
                                ScatteringWorkspace& ws) const;
   struct RayFrame;
-  /// True if it integrated the polarised sources too.
+  struct SkylineCut;
+  /// True if it integrated the polarised sources too. With `cut`, the sky the terrain at the
+  /// ray's end hides is the surface's light (SkylineCut).
   bool higher_orders_piece(const Node* nodes, int m, double os, double ds, double od, const InScatteringSource& higher,
-                           const RayFrame* polarisation, PieceScratch& sc, ScatteringWorkspace& ws) const;
+                           const RayFrame* polarisation, const SkylineCut* cut, PieceScratch& sc,
+                           ScatteringWorkspace& ws) const;
   bool polarised_sources(const Node* nodes, int m, const RayFrame& frame, const InScatteringSource& higher,
                          PieceScratch& sc) const;
   /// Adds scatterer s's fine and coarse sums over the piece (sc.tau, sc.trans) to sums[0], sums[1].
@@ -291,7 +309,14 @@ class SingleScattering {
   void optical_depth(const double* columns, Spectrum& tau) const;
   void ground_reflection(const Node& ground, const Vec3& ground_point, const Vec3& s, double mu_sun,
                          const ScatteringSources& sources, ScatteringWorkspace& ws, RadianceParts& parts) const;
-  /// The same at a point of the terrain (the ray's end p, direction d), with its normal and shadow.
+  /// The irradiance (per unit solar irradiance) on the sphere's ground there, into ws.source.
+  void ground_irradiance_at(const Vec3& ground_point, const Vec3& s, double mu_sun, const ScatteringSources& sources,
+                            ScatteringWorkspace& ws) const;
+  /// The irradiance (per unit solar irradiance) on the terrain at the ray's end p, with its normal
+  /// and shadow, into ws.source.
+  void terrain_irradiance(const Node& ground, const Vec3& p, const Vec3& s, const ScatteringSources& sources,
+                          ScatteringWorkspace& ws) const;
+  /// Its reflection seen through the view ray, added to the phase-free part.
   void terrain_reflection(const Node& ground, const Vec3& p, const Vec3& s, const ScatteringSources& sources,
                           ScatteringWorkspace& ws, RadianceParts& parts) const;
   void view_optical_depth(const Node& node, Spectrum& tau) const;

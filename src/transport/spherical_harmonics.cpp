@@ -104,6 +104,45 @@ std::vector<double> legendre_moments(const std::function<double(double)>& phase,
   return chi;
 }
 
+double skyline_hidden_share(double gamma, double theta) {
+  if (theta <= gamma) return 1.0;
+  if (theta >= kPi - gamma) return 0.0;
+  return 1.0 - std::acos(std::clamp(std::tan(gamma) / std::tan(theta), -1.0, 1.0)) / kPi;
+}
+
+std::vector<double> skyline_legendre_moments(const std::function<double(double)>& phase, int degree, int count,
+                                             double step_rad, int nodes_per_step) {
+  const size_t stride = static_cast<size_t>(degree) + 1;
+  std::vector<double> out(static_cast<size_t>(std::max(count, 0)) * stride, 0.0);
+  std::vector<double> x, w;
+  gauss_legendre(nodes_per_step, 0.0, step_rad, x, w);
+  const int steps = static_cast<int>(std::lround(kPi / step_rad));
+  std::vector<double> pl(stride);
+  for (int k = 0; k < steps; ++k) {
+    for (size_t i = 0; i < x.size(); ++i) {
+      // p P_l sin(theta) at this node once, then its share under each skyline.
+      const double theta = k * step_rad + x[i], mu = std::cos(theta);
+      const double f = 2.0 * kPi * w[i] * std::sin(theta) * phase(mu);
+      pl[0] = f;
+      if (degree >= 1) pl[1] = f * mu;
+      double p0 = 1.0, p1 = mu;  // P_{l-2}, P_{l-1}
+      for (int l = 2; l <= degree; ++l) {
+        const double p = ((2.0 * l - 1.0) * mu * p1 - (l - 1.0) * p0) / l;
+        pl[static_cast<size_t>(l)] = f * p;
+        p0 = p1;
+        p1 = p;
+      }
+      for (int j = 0; j < count; ++j) {
+        const double share = skyline_hidden_share(j * step_rad, theta);
+        if (share == 0.0) continue;
+        double* chi = &out[static_cast<size_t>(j) * stride];
+        for (size_t l = 0; l < stride; ++l) chi[l] += share * pl[l];
+      }
+    }
+  }
+  return out;
+}
+
 const std::array<Eigen::Matrix3d, 3>& quadrupole_tensors() {
   // Gauss-Legendre in mu and the midpoint rule in phi, both exact for these polynomials of degree 4.
   static const std::array<Eigen::Matrix3d, 3> k = [] {

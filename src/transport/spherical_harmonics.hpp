@@ -40,6 +40,20 @@ void symmetric_harmonics(int degree, double mu, double cos_phi, double* out);
 /// with `nodes` nodes (p normalised to 1 over the sphere, so chi_0 = 1).
 std::vector<double> legendre_moments(const std::function<double(double)>& phase, int degree, int nodes = 512);
 
+/// The moments of the phase function over the directions a straight skyline hides: the great
+/// circle that passes gamma above the forward direction (the view direction w) bounds a half of
+/// the sphere, and of each ring at angle theta from w the share
+///   f_gamma(theta) = 1 (theta <= gamma), 1 - arccos(tan gamma / tan theta) / pi (between), 0 (theta >= pi - gamma)
+/// lies below it (f = 1/2 at theta = 90 degrees; gamma = 90 degrees hides the hemisphere about w).
+/// chi_l(gamma) = 2 pi integral f_gamma(theta) p(cos theta) P_l(cos theta) sin theta dtheta, for
+/// gamma_j = j step_rad, j = 0..count - 1 (step_rad dividing 90 degrees): out[j (degree + 1) + l].
+/// By the addition theorem sum_l chi_l(gamma) sum_m a_lm Y_lm(w) is the part of J(w) that arrives
+/// from below the skyline for a field taken as its mean over each ring about w. Gauss-Legendre in
+/// theta over each step (nodes_per_step nodes), so that a forward peak is resolved where it lies.
+double skyline_hidden_share(double gamma, double theta);
+std::vector<double> skyline_legendre_moments(const std::function<double(double)>& phase, int degree, int count,
+                                             double step_rad, int nodes_per_step = 16);
+
 /// The second moments of the degree-2 harmonics: K_m = integral over the sphere of Y_2m(w) w w^T dw
 /// for m = 0, 1, 2 (local frame). A field L = sum a_lm Y_lm has the second-moment tensor
 /// T = integral L(w) w w^T dw = (a_00 / sqrt(4 pi)) (4 pi / 3) I + sum_m a_2m K_m: only its mean and

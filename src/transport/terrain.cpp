@@ -263,6 +263,35 @@ bool Terrain::shadowed(const Vec3& p, const Vec3& s) const {
   return trace(q, 0.0, kSunRayLength_m);
 }
 
+Vec3 Terrain::skyline_above(const Vec3& o, const Vec3& d, double t_hit) const {
+  const Vec3 up = o.normalized();
+  Vec3 e = up - up.dot(d) * d;  // upwards, perpendicular to d
+  if (e.norm() < 1e-9) e = std::abs(d.x()) < 0.9 ? Vec3(1.0, 0.0, 0.0).cross(d) : Vec3(0.0, 1.0, 0.0).cross(d);
+  e = e.normalized();
+  Vec3 best = o + t_hit * d;
+  const auto meets = [&](double tilt) {
+    const Vec3 dm = std::cos(tilt) * d + std::sin(tilt) * e;
+    const double t = intersect(o, dm, 0.0, kSunRayLength_m);
+    if (t < kInf) best = o + t * dm;
+    return t < kInf;
+  };
+  // The tilt doubled from a milliradian until the ray clears the surface (straight up counts as
+  // clear), then bisected.
+  double lo = 0.0, hi = 1e-3;
+  while (hi < 0.5 * kPi && meets(hi)) {
+    lo = hi;
+    hi = std::min(2.0 * hi, 0.5 * kPi);
+  }
+  for (int k = 0; k < kSkylineSteps; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    if (meets(mid))
+      lo = mid;
+    else
+      hi = mid;
+  }
+  return best;
+}
+
 bool Terrain::probe_sun(const Vec3& p, const Vec3& s, double& safe_m) const {
   const double spacing = grid_.spacing_m, longest = kMaxSunStep * spacing / 1.01;
   RayQuery q(p, s, R_);

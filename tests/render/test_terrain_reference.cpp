@@ -2,11 +2,12 @@
 // (issue 38, item 4): a ridge 1500 m high 20 km west of a camera 300 m up. Single scattering
 // (with the ground's reflection of the direct sun) is exact in the renderer up to its quadrature,
 // so it must agree within 2 % + 3 standard errors in shadowed and lit air and on the terrain; the
-// higher orders are not shadowed by the terrain (single_scattering.hpp), and what that costs is
-// measured here and stated in docs/terrain.md.
+// higher orders come from tables built without terrain (single_scattering.hpp), and what that
+// costs is measured here and stated in docs/terrain.md.
 
 #include <boost/test/unit_test.hpp>
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -25,10 +26,11 @@ struct Outcome {
   double worst_excess = 0.0;  // the largest |renderer - reference| - 3 se, relative to the reference
 };
 
-// allowed[k]: probe k's allowance (relative to the reference, beyond 3 standard errors); negative:
-// measured and reported only.
+// allowed[k][i]: probe k's allowance at wavelength i (relative to the reference, beyond 3 standard
+// errors); negative: measured and reported only.
+using Allowance = std::array<double, 2>;
 Outcome compare(double sun_azimuth, double sun_elevation, int orders, const std::vector<ReferenceProbe>& probes,
-                const std::vector<double>& allowed) {
+                const std::vector<Allowance>& allowed) {
   char toml[512];
   std::snprintf(toml, sizeof toml,
                 "[sun]\nelevation_deg = %g\nazimuth_deg = %g\n[spectrum]\nwavelengths_nm = [450, 650]\n"
@@ -54,8 +56,8 @@ Outcome compare(double sun_azimuth, double sun_elevation, int orders, const std:
                                    << ", reference " << ref << " +- " << se << " (" << 100.0 * (value / ref - 1.0)
                                    << " %)");
       if (ref > 0.0) out.worst_excess = std::max(out.worst_excess, (std::abs(value - ref) - 3.0 * se) / ref);
-      if (allowed[k] >= 0.0)
-        BOOST_TEST(std::abs(value - ref) <= allowed[k] * ref + 3.0 * se,
+      if (allowed[k][i] >= 0.0)
+        BOOST_TEST(std::abs(value - ref) <= allowed[k][i] * ref + 3.0 * se,
                    probes[k].label << " " << mc.wavelengths_nm[i] << " nm: " << value << " vs " << ref << " +- " << se);
     }
   }
@@ -64,18 +66,18 @@ Outcome compare(double sun_azimuth, double sun_elevation, int orders, const std:
 
 // The sun low behind the ridge: the air near the camera in its shadow, the far air lit, the
 // ridge's face dark but for the sky.
-const std::vector<ReferenceProbe> kBehind = {{"shadowed air, north", 0.0, 2.0},
-                                             {"air above the shadow", 0.0, 20.0},
-                                             {"the ridge's dark face", 270.0, 3.0},
-                                             {"over the crest", 270.0, 4.5},
-                                             {"east, away from the sun", 90.0, 5.0}};
+const std::vector<ReferenceProbe> kBehind = {
+    {"shadowed air, north", 0.0, 2.0},      {"air above the shadow", 0.0, 20.0},
+    {"the ridge's dark face", 270.0, 3.0},  {"over the crest", 270.0, 4.5},
+    {"east, away from the sun", 90.0, 5.0}, {"the plain in the shadow", 270.0, -2.0}};
 // The sun in the east lighting the ridge's face.
 const std::vector<ReferenceProbe> kFacing = {{"the sunlit face", 270.0, 1.5}, {"north", 0.0, 5.0}};
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(single_scattering_agrees_with_the_reference) {
-  compare(270.0, 3.0, 1, kBehind, {0.02, 0.02, 0.02, 0.02, 0.02});
-  compare(90.0, 15.0, 1, kFacing, {0.02, 0.02});
+  const Allowance two{0.02, 0.02};
+  compare(270.0, 3.0, 1, kBehind, {two, two, two, two, two, two});
+  compare(90.0, 15.0, 1, kFacing, {two, two});
 }
 
 // A ridge a centimetre high is the sphere's ground: looking down at it, the terrain's sky light (the
@@ -103,13 +105,18 @@ BOOST_AUTO_TEST_CASE(flat_terrain_sees_the_grounds_sky_light) {
   }
 }
 
-// All orders: the renderer's higher orders see no terrain, and a face's diffuse light is the
-// sphere's field. In the air that costs at most 3.5 % here (enforced at 5 %), on the sunlit face
-// 2.2 % (enforced at 4 %); the face in the ridge's shadow is far too bright (reported, not
-// enforced): docs/terrain.md has the figures (and this test's messages: --log_level=message).
+// All orders: the renderer's higher orders come from tables built without terrain; along rays that
+// end on a surface the sky the terrain hides is replaced where the air in front of it is in the
+// terrain's shadow (single_scattering.cpp, SkylineCut), and a face's diffuse light is the sphere's
+// field. In the air that costs at most 3.5 % here (enforced at 5 %), on the sunlit face 2.2 %
+// (enforced at 4 %); looking at the face in the ridge's shadow -15 % at 450 nm and +33 % at 650 nm
+// (enforced at 18 % and 40 %; +23 % and +143 % with the tables' light kept), the plain in the
+// shadow -16 % and +19 % (enforced at 20 % and 25 %; +25 % and +194 % kept). docs/terrain.md has
+// the figures (and this test's messages: --log_level=message).
 BOOST_AUTO_TEST_CASE(all_orders_error_of_unshadowed_higher_orders) {
-  const Outcome behind = compare(270.0, 3.0, 6, kBehind, {0.05, 0.05, -1.0, 0.05, 0.05});
-  const Outcome facing = compare(90.0, 15.0, 6, kFacing, {0.04, 0.05});
+  const Allowance air{0.05, 0.05};
+  const Outcome behind = compare(270.0, 3.0, 6, kBehind, {air, air, {0.18, 0.40}, air, air, {0.20, 0.25}});
+  const Outcome facing = compare(90.0, 15.0, 6, kFacing, {{0.04, 0.04}, air});
   BOOST_TEST_MESSAGE("worst excess over 3 se: sun behind the ridge "
                      << 100.0 * behind.worst_excess << " %, sun facing it " << 100.0 * facing.worst_excess << " %");
 }

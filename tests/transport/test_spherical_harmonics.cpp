@@ -87,6 +87,40 @@ BOOST_AUTO_TEST_CASE(legendre_moments_of_the_phase_functions) {
   BOOST_TEST(cs[1] > 0.6);  // forward scattering
 }
 
+// What a straight skyline hides (skyline_legendre_moments): always half the sphere, so an isotropic
+// phase function gives chi_0 = 1/2 for every skyline and chi_1 = sin(gamma) / 4 (the first moment of
+// a hemisphere is pi times its pole, here sin(gamma) from the view direction); a skyline through the
+// view direction (gamma = 0) hides half of every ring, so chi_l(0) = chi_l / 2 for any phase
+// function; a skyline 90 degrees up hides the hemisphere about the view direction.
+BOOST_AUTO_TEST_CASE(moments_below_a_skyline) {
+  const double step = kPi / 90.0;
+  const std::vector<double> iso = skyline_legendre_moments([](double) { return 1.0 / (4.0 * kPi); }, 4, 46, step);
+  for (int j = 0; j < 46; ++j) {
+    const double gamma = j * step;
+    BOOST_TEST_CONTEXT("gamma " << gamma) {
+      BOOST_TEST(iso[static_cast<size_t>(j * 5)] == 0.5, boost::test_tools::tolerance(2e-4));
+      BOOST_TEST(std::abs(iso[static_cast<size_t>(j * 5 + 1)] - std::sin(gamma) / 4.0) < 2e-4);
+    }
+  }
+  const auto hg = [](double mu) { return henyey_greenstein_phase(mu, 0.8); };
+  const std::vector<double> all = legendre_moments(hg, 10);
+  const std::vector<double> below = skyline_legendre_moments(hg, 10, 46, step);
+  for (int l = 0; l <= 10; ++l)
+    BOOST_TEST(below[static_cast<size_t>(l)] == all[static_cast<size_t>(l)] / 2.0, boost::test_tools::tolerance(1e-4));
+  const double forward = 2.0 * kPi * [&] {
+    std::vector<double> x, w;
+    gauss_legendre(512, 0.0, 1.0, x, w);
+    double sum = 0.0;
+    for (size_t i = 0; i < x.size(); ++i) sum += w[i] * hg(x[i]);
+    return sum;
+  }();
+  BOOST_TEST(below[45 * 11] == forward, boost::test_tools::tolerance(1e-4));
+  BOOST_TEST(skyline_hidden_share(0.3, 0.2) == 1.0);
+  BOOST_TEST(skyline_hidden_share(0.3, kPi - 0.2) == 0.0);
+  BOOST_TEST(skyline_hidden_share(0.0, 1.0) == 0.5, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(skyline_hidden_share(0.4, 0.5 * kPi) == 0.5, boost::test_tools::tolerance(1e-9));
+}
+
 // The quadrupole tensors K_m = integral Y_2m(w) w w^T dw: for a field of two equal narrow beams
 // from u and its mirror image u' = (ux, -uy, uz) (symmetric about the xz plane, as the basis
 // assumes), a_lm = Y_lm(u) and the second moments are (u u^T + u' u'^T) / 2; the mean's share is
