@@ -76,26 +76,43 @@ std::shared_ptr<const PhaseMoments> PhaseMoments::of(const AtmosphereModel& atm,
   return m;
 }
 
-const std::vector<float>& PhaseMoments::skyline_chi(int s) const {
+void PhaseMoments::compute_skyline_moments() const {
   std::call_once(skyline_once_, [this] {
     const int n = wavelengths;
     const size_t per_skyline = static_cast<size_t>(degree + 1) * static_cast<size_t>(n);
     skyline_chi_.resize(phases_.size());
+    skyline_gradient_chi_.resize(phases_.size());
     for (size_t k = 0; k < phases_.size(); ++k) {
       std::vector<float>& out = skyline_chi_[k];
+      std::vector<float>& grad = skyline_gradient_chi_[k];
       out.assign(static_cast<size_t>(kSkylines) * per_skyline + SourceTable::kLookupSlack, 0.0f);
+      grad.assign(out.size(), 0.0f);
       for (int i = 0; i < n; ++i) {
         const MediumPhase& phase = phases_[k];
-        const std::vector<double> hidden = skyline_legendre_moments([&phase, i](double mu) { return phase.at(i, mu); },
-                                                                    degree, kSkylines, kSkylineStep_rad);
+        const auto p = [&phase, i](double mu) { return phase.at(i, mu); };
+        const std::vector<double> hidden = skyline_legendre_moments(p, degree, kSkylines, kSkylineStep_rad);
+        const std::vector<double> delta = skyline_gradient_moments(p, degree, kSkylines, kSkylineStep_rad);
         for (int j = 0; j < kSkylines; ++j)
-          for (int l = 0; l <= degree; ++l)
-            out[static_cast<size_t>(j) * per_skyline + static_cast<size_t>(l) * static_cast<size_t>(n) +
-                static_cast<size_t>(i)] = static_cast<float>(hidden[static_cast<size_t>(j * (degree + 1) + l)]);
+          for (int l = 0; l <= degree; ++l) {
+            const size_t at = static_cast<size_t>(j) * per_skyline + static_cast<size_t>(l) * static_cast<size_t>(n) +
+                              static_cast<size_t>(i);
+            const size_t from = static_cast<size_t>(j * (degree + 1) + l);
+            out[at] = static_cast<float>(hidden[from]);
+            grad[at] = static_cast<float>(delta[from]);
+          }
       }
     }
   });
+}
+
+const std::vector<float>& PhaseMoments::skyline_chi(int s) const {
+  compute_skyline_moments();
   return skyline_chi_.at(static_cast<size_t>(s));
+}
+
+const std::vector<float>& PhaseMoments::skyline_gradient_chi(int s) const {
+  compute_skyline_moments();
+  return skyline_gradient_chi_.at(static_cast<size_t>(s));
 }
 
 SourceTable::SourceTable(double planet_radius_m, double top_radius_m, int n_altitude, int n_sun,
@@ -328,11 +345,32 @@ bool SourceTable::source_above_skyline(double r_m, double mu, double mu_view, do
     }
     harmonic_source(degree_, r_m, mu, mu_view, nu, media, chi, media_degree, out);
   }
+  add_skyline_gradient(r_m, mu, mu_view, nu, j, hidden);
   for (int s = 0; s < media; ++s) {
     for (size_t i = 0; i < per_degree; ++i) out[s][i] -= hidden[s][i];
     std::copy_n(hidden[s], per_degree, hidden_multiple[s]);
   }
   return true;
+}
+
+void SourceTable::add_skyline_gradient(double r_m, double mu, double mu_view, double nu, int skyline,
+                                       float* const* hidden) const {
+  const int media = std::min(static_cast<int>(moments_->media.size()), kMaxMedia);
+  const int d = moments_->degree;
+  const size_t per_degree = static_cast<size_t>(n_l_), per_skyline = static_cast<size_t>(d + 1) * per_degree;
+  thread_local std::vector<float> gradient;
+  gradient.resize(static_cast<size_t>(media) * per_degree + kLookupSlack);
+  const float* chi[kMaxMedia];
+  int media_degree[kMaxMedia];
+  float* sums[kMaxMedia];
+  for (int s = 0; s < media; ++s) {
+    chi[s] = moments_->skyline_gradient_chi(s).data() + static_cast<size_t>(skyline) * per_skyline;
+    media_degree[s] = std::min(d, degree_);
+    sums[s] = gradient.data() + static_cast<size_t>(s) * per_degree;
+  }
+  harmonic_source(degree_, r_m, mu, mu_view, nu, media, chi, media_degree, sums, false, true);
+  for (int s = 0; s < media; ++s)
+    for (size_t i = 0; i < per_degree; ++i) hidden[s][i] += sums[s][i];
 }
 
 void SourceTable::source_below_skyline(double r_m, double mu, double mu_view, double nu, double skyline_rad,
@@ -349,6 +387,7 @@ void SourceTable::source_below_skyline(double r_m, double mu, double mu_view, do
     media_degree[s] = std::min(d, degree_);
   }
   harmonic_source(degree_, r_m, mu, mu_view, nu, media, chi, media_degree, hidden, false);
+  add_skyline_gradient(r_m, mu, mu_view, nu, j, hidden);
 }
 
 bool ScatteringOrders::source_above_skyline(double r_m, double mu_sun, double mu_view, double nu, double skyline_rad,
@@ -370,7 +409,7 @@ bool ScatteringOrders::source_above_skyline(double r_m, double mu_sun, double mu
 
 void SourceTable::harmonic_source(int degree, double r_m, double mu, double mu_view, double nu, int media,
                                   const float* const* chi, const int* media_degree, float* const* out,
-                                  bool polarised_share) const {
+                                  bool polarised_share, bool upward_derivative) const {
   const Blend w = blend(r_m, mu);
   // The view direction's azimuth from the sun's vertical plane at this point.
   const double mu_s = std::clamp(mu, -1.0, 1.0);
@@ -379,6 +418,18 @@ void SourceTable::harmonic_source(int degree, double r_m, double mu, double mu_v
   const double cos_phi = sin_product > 1e-12 ? (nu - mv * mu_s) / sin_product : 1.0;
   double basis_d[kMaxHarmonics];
   symmetric_harmonics(degree, mv, cos_phi, basis_d);
+  if (upward_derivative) {
+    // d Y_lm / d(elevation) at the view direction, its azimuth held: a central difference of
+    // 1e-4 rad (one-sided at the zenith and the nadir).
+    constexpr double h = 1e-4;
+    const double zenith = std::acos(mv);
+    const double up = std::max(0.0, zenith - h), down = std::min(kPi, zenith + h);
+    double above[kMaxHarmonics], below[kMaxHarmonics];
+    symmetric_harmonics(degree, std::cos(up), cos_phi, above);
+    symmetric_harmonics(degree, std::cos(down), cos_phi, below);
+    for (int k = 0; k < skyspec::harmonic_count(degree); ++k) basis_d[k] = (above[k] - below[k]) / (down - up);
+    polarised_share = false;
+  }
   float basis[kMaxHarmonics];
   for (int k = 0; k < skyspec::harmonic_count(degree); ++k) basis[k] = static_cast<float>(basis_d[k]);
 

@@ -81,13 +81,16 @@ struct PhaseMoments {
   /// (skyline_legendre_moments), [skyline][l][wavelength] followed by kLookupSlack zeros; computed
   /// on first use (only terrain asks for them), from the phase functions kept for that.
   const std::vector<float>& skyline_chi(int s) const;
+  /// The moments of its first-order correction (skyline_gradient_moments), laid out the same way.
+  const std::vector<float>& skyline_gradient_chi(int s) const;
   std::vector<OfMedium> media;
   static std::shared_ptr<const PhaseMoments> of(const AtmosphereModel& atm, int degree);
 
  private:
   std::vector<MediumPhase> phases_;  // the media's phase functions, for skyline_chi
   mutable std::once_flag skyline_once_;
-  mutable std::vector<std::vector<float>> skyline_chi_;
+  mutable std::vector<std::vector<float>> skyline_chi_, skyline_gradient_chi_;
+  void compute_skyline_moments() const;
 };
 
 /// One scattering order (or a sum of orders): the harmonics of its radiance field over (r, mu_s)
@@ -179,9 +182,15 @@ class SourceTable : public InScatteringSource {
   /// out[s] = sum_l chi[s]_l sum_m a_lm Y_lm(view) to `degree` with the moments chi[s] up to
   /// media_degree[s], s < count (source_to_degree, source_above_skyline), and for the molecules
   /// among the first media their polarised share (unless polarised_share is false: parts of a
-  /// source below a skyline).
+  /// source below a skyline); with upward_derivative, the harmonics' derivative towards the zenith
+  /// (in the view's vertical plane) in the place of their values.
   void harmonic_source(int degree, double r_m, double mu, double mu_view, double nu, int count, const float* const* chi,
-                       const int* media_degree, float* const* out, bool polarised_share = true) const;
+                       const int* media_degree, float* const* out, bool polarised_share = true,
+                       bool upward_derivative = false) const;
+  /// hidden[s] += the first-order correction below the skyline (skyline_gradient_moments) of
+  /// tabulated skyline `skyline`: the field's derivative towards the zenith at the view direction
+  /// (harmonic_source's upward_derivative) weighted by its moments.
+  void add_skyline_gradient(double r_m, double mu, double mu_view, double nu, int skyline, float* const* hidden) const;
   /// The four entries around (r, mu_s) and their weights (per wavelength in steep rows).
   Blend blend(double r_m, double mu_s) const;
   /// One row of n wavelengths blended as `w` says from `data` (laid out by `at`), from `offset` on.

@@ -868,7 +868,8 @@ bool SingleScattering::polarised_sources(const Node* nodes, int m, const RayFram
 // gamma(p) the angle between d and the skyline point seen from p, and everything below it is the
 // surface seen through the air between p and it. There the tables (built without terrain) hold
 // the sky and the sphere's sunlit ground, J_hidden,s of the source
-// (InScatteringSource::source_above_skyline, which averages the field over each ring about d).
+// (InScatteringSource::source_above_skyline, from the field's mean over each ring about d and its
+// variation upwards around the ring).
 // The surface's light replaces it by the share that reaches p unscattered, T(p, hit), where the
 // terrain shadows the air in front of the surface:
 //   J_s = J_s,tables - f_shadow T(p, hit) (J_hidden,s - hidden_share_s L_surface),

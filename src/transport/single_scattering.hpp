@@ -151,8 +151,10 @@ class InScatteringSource {
   /// source() split at a straight skyline passing skyline_rad (0 to pi / 2) above the view
   /// direction, where a surface in front hides the sky: hidden[s] = the integral of
   /// p_s(view . w) L(w) over the directions below it, each ring about the view direction counted
-  /// with the share of it below the skyline and with its mean radiance (skyline_legendre_moments:
-  /// the addition theorem with the phase function's moments over that region); out[s] = J_s less
+  /// with the share of it below the skyline, with its mean radiance and its first Fourier term
+  /// around the ring (the field's variation upwards; skyline_legendre_moments and
+  /// skyline_gradient_moments: the addition theorem with the phase function's moments over that
+  /// region); out[s] = J_s less
   /// hidden[s]; hidden_share[s] = the same integral of p_s alone (what a uniform radiance there
   /// adds per unit radiance); hidden_multiple[s] = the part of hidden[s] from the field's light
   /// scattered more than once (hidden[s] from a source that does not separate it). The field is

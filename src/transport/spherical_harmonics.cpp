@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <mutex>
 #include <utility>
 #include <vector>
 
@@ -110,37 +112,92 @@ double skyline_hidden_share(double gamma, double theta) {
   return 1.0 - std::acos(std::clamp(std::tan(gamma) / std::tan(theta), -1.0, 1.0)) / kPi;
 }
 
-std::vector<double> skyline_legendre_moments(const std::function<double(double)>& phase, int degree, int count,
-                                             double step_rad, int nodes_per_step) {
-  const size_t stride = static_cast<size_t>(degree) + 1;
-  std::vector<double> out(static_cast<size_t>(std::max(count, 0)) * stride, 0.0);
+namespace {
+// The scattering angles both skyline integrals are summed over (Gauss-Legendre over each step of
+// [0, pi]) and, per node and skyline, the hidden share f_gamma and sin(phi_0): the same for every
+// phase function, so computed once per layout (the last one asked for is kept).
+struct SkylineNodes {
+  int count = 0, nodes_per_step = 0;
+  double step_rad = 0.0;
+  std::vector<double> theta, weight;
+  std::vector<double> share, sin_phi0;  // [node * count + skyline]
+};
+
+std::shared_ptr<const SkylineNodes> skyline_nodes(int count, double step_rad, int nodes_per_step) {
+  static std::mutex mutex;
+  static std::shared_ptr<const SkylineNodes> last;
+  std::lock_guard<std::mutex> lock(mutex);
+  if (last && last->count == count && last->step_rad == step_rad && last->nodes_per_step == nodes_per_step) return last;
+  auto g = std::make_shared<SkylineNodes>();
+  g->count = count;
+  g->step_rad = step_rad;
+  g->nodes_per_step = nodes_per_step;
   std::vector<double> x, w;
   gauss_legendre(nodes_per_step, 0.0, step_rad, x, w);
   const int steps = static_cast<int>(std::lround(kPi / step_rad));
-  std::vector<double> pl(stride);
-  for (int k = 0; k < steps; ++k) {
+  for (int k = 0; k < steps; ++k)
     for (size_t i = 0; i < x.size(); ++i) {
-      // p P_l sin(theta) at this node once, then its share under each skyline.
-      const double theta = k * step_rad + x[i], mu = std::cos(theta);
-      const double f = 2.0 * kPi * w[i] * std::sin(theta) * phase(mu);
-      pl[0] = f;
-      if (degree >= 1) pl[1] = f * mu;
-      double p0 = 1.0, p1 = mu;  // P_{l-2}, P_{l-1}
-      for (int l = 2; l <= degree; ++l) {
-        const double p = ((2.0 * l - 1.0) * mu * p1 - (l - 1.0) * p0) / l;
-        pl[static_cast<size_t>(l)] = f * p;
-        p0 = p1;
-        p1 = p;
-      }
+      const double theta = k * step_rad + x[i];
+      g->theta.push_back(theta);
+      g->weight.push_back(w[i]);
       for (int j = 0; j < count; ++j) {
-        const double share = skyline_hidden_share(j * step_rad, theta);
-        if (share == 0.0) continue;
-        double* chi = &out[static_cast<size_t>(j) * stride];
-        for (size_t l = 0; l < stride; ++l) chi[l] += share * pl[l];
+        const double gamma = j * step_rad;
+        g->share.push_back(skyline_hidden_share(gamma, theta));
+        const bool between = theta > gamma && theta < kPi - gamma;
+        const double c = between ? std::clamp(std::tan(gamma) / std::tan(theta), -1.0, 1.0) : 1.0;
+        g->sin_phi0.push_back(std::sqrt(1.0 - c * c));
       }
+    }
+  last = g;
+  return g;
+}
+}  // namespace
+
+namespace {
+// Both skyline integrals over the nodes of skyline_nodes: the moments below the skyline
+// (gradient = false: 2 pi w sin(theta) p P_l, weighted by the hidden share) or their first-order
+// correction (gradient = true: -4 / (l (l + 1)) w sin^2(theta) p P_l', weighted by sin(phi_0)).
+std::vector<double> skyline_moments(const std::function<double(double)>& phase, int degree, int count, double step_rad,
+                                    int nodes_per_step, bool gradient) {
+  const size_t stride = static_cast<size_t>(degree) + 1;
+  std::vector<double> out(static_cast<size_t>(std::max(count, 0)) * stride, 0.0);
+  const auto g = skyline_nodes(count, step_rad, nodes_per_step);
+  std::vector<double> term(stride);
+  for (size_t node = 0; node < g->theta.size(); ++node) {
+    const double theta = g->theta[node], mu = std::cos(theta), sin_theta = std::sin(theta);
+    const double f = g->weight[node] * sin_theta * phase(mu) * (gradient ? sin_theta : 2.0 * kPi);
+    // P_l by its recurrence and P_l' = P_{l-2}' + (2 l - 1) P_{l-1}, from P_0 = 1, P_1 = mu.
+    double p_prev = 1.0, p_cur = mu, dp_prev = 0.0, dp_cur = 1.0;
+    term[0] = gradient ? 0.0 : f;
+    if (degree >= 1) term[1] = gradient ? -2.0 * f : f * mu;
+    for (int l = 2; l <= degree; ++l) {
+      const double dp = dp_prev + (2.0 * l - 1.0) * p_cur;
+      const double p = ((2.0 * l - 1.0) * mu * p_cur - (l - 1.0) * p_prev) / l;
+      term[static_cast<size_t>(l)] = gradient ? -4.0 / (l * (l + 1.0)) * f * dp : f * p;
+      dp_prev = dp_cur;
+      dp_cur = dp;
+      p_prev = p_cur;
+      p_cur = p;
+    }
+    const double* weight = &(gradient ? g->sin_phi0 : g->share)[node * static_cast<size_t>(count)];
+    for (int j = 0; j < count; ++j) {
+      if (weight[j] == 0.0) continue;
+      double* chi = &out[static_cast<size_t>(j) * stride];
+      for (size_t l = 0; l < stride; ++l) chi[l] += weight[j] * term[l];
     }
   }
   return out;
+}
+}  // namespace
+
+std::vector<double> skyline_legendre_moments(const std::function<double(double)>& phase, int degree, int count,
+                                             double step_rad, int nodes_per_step) {
+  return skyline_moments(phase, degree, count, step_rad, nodes_per_step, false);
+}
+
+std::vector<double> skyline_gradient_moments(const std::function<double(double)>& phase, int degree, int count,
+                                             double step_rad, int nodes_per_step) {
+  return skyline_moments(phase, degree, count, step_rad, nodes_per_step, true);
 }
 
 const std::array<Eigen::Matrix3d, 3>& quadrupole_tensors() {

@@ -54,6 +54,18 @@ double skyline_hidden_share(double gamma, double theta);
 std::vector<double> skyline_legendre_moments(const std::function<double(double)>& phase, int degree, int count,
                                              double step_rad, int nodes_per_step = 16);
 
+/// The same region's first-order correction for a field that is not uniform around each ring: on
+/// the ring at theta about w (azimuth phi from the direction towards the skyline) the field's
+/// cos(phi) component, A_1(theta) = sum_l 2 g_l / (l (l + 1)) sin(theta) P_l'(cos theta) with g_l the
+/// derivative of the field's degree-l part at w towards the skyline, contributes
+/// -2 A_1 sin(phi_0) of the hidden arc (cos phi_0 = tan gamma / tan theta), so that
+///   integral below the skyline of p L = sum_l chi_l(gamma) F_l(w) + sum_l delta_l(gamma) g_l,
+///   delta_l(gamma) = -4 / (l (l + 1)) integral sin(phi_0) p(cos theta) P_l'(cos theta) sin^2 theta dtheta
+/// (delta_0 = 0), exact for fields of degree 1, the rings' higher Fourier terms left out above. Laid
+/// out as skyline_legendre_moments.
+std::vector<double> skyline_gradient_moments(const std::function<double(double)>& phase, int degree, int count,
+                                             double step_rad, int nodes_per_step = 16);
+
 /// The second moments of the degree-2 harmonics: K_m = integral over the sphere of Y_2m(w) w w^T dw
 /// for m = 0, 1, 2 (local frame). A field L = sum a_lm Y_lm has the second-moment tensor
 /// T = integral L(w) w w^T dw = (a_00 / sqrt(4 pi)) (4 pi / 3) I + sum_m a_2m K_m: only its mean and

@@ -121,6 +121,45 @@ BOOST_AUTO_TEST_CASE(moments_below_a_skyline) {
   BOOST_TEST(skyline_hidden_share(0.4, 0.5 * kPi) == 0.5, boost::test_tools::tolerance(1e-9));
 }
 
+// For a field of degree 1, L(w) = a + b w.u, the moments below a skyline and their first-order
+// correction give the integral of p(d.w) L(w) over the hidden half of the sphere exactly (the
+// rings about d carry no Fourier terms beyond cos(phi)): against a brute-force quadrature over
+// that half, {w : w.n < 0} with n = cos(gamma) e - sin(gamma) d (e up, perpendicular to d).
+BOOST_AUTO_TEST_CASE(gradient_moments_below_a_skyline) {
+  const auto hg = [](double mu) { return henyey_greenstein_phase(mu, 0.6); };
+  const double step = kPi / 180.0;
+  const std::vector<double> below = skyline_legendre_moments(hg, 1, 91, step);
+  const std::vector<double> delta = skyline_gradient_moments(hg, 1, 91, step);
+  const Eigen::Vector3d d(1.0, 0.0, 0.0), e(0.0, 0.0, 1.0), y = e.cross(d);
+  const Eigen::Vector3d u = Eigen::Vector3d(0.3, -0.2, 0.9).normalized();
+  const double a = 0.7, b = 0.5;
+  for (int j : {0, 10, 40, 90}) {
+    const double gamma = j * step;
+    const Eigen::Vector3d n = std::cos(gamma) * e - std::sin(gamma) * d;
+    // Brute force: Gauss-Legendre in cos(theta) about d (split at the forward peak), midpoint in phi.
+    std::vector<double> x, w;
+    gauss_legendre(2000, -1.0, 1.0, x, w);
+    double brute = 0.0;
+    const int n_phi = 2000;
+    for (size_t i = 0; i < x.size(); ++i) {
+      const double st = std::sqrt(1.0 - x[i] * x[i]);
+      double ring = 0.0;
+      for (int k = 0; k < n_phi; ++k) {
+        const double phi = (k + 0.5) * 2.0 * kPi / n_phi;
+        const Eigen::Vector3d v = x[i] * d + st * (std::cos(phi) * e + std::sin(phi) * y);
+        if (v.dot(n) < 0.0) ring += a + b * v.dot(u);
+      }
+      brute += w[i] * hg(x[i]) * ring * 2.0 * kPi / n_phi;
+    }
+    const double formula = below[static_cast<size_t>(2 * j)] * a +
+                           below[static_cast<size_t>(2 * j + 1)] * b * d.dot(u) +
+                           delta[static_cast<size_t>(2 * j + 1)] * b * e.dot(u);
+    BOOST_TEST_CONTEXT("gamma " << j << " degrees") {
+      BOOST_TEST(formula == brute, boost::test_tools::tolerance(2e-3));
+    }
+  }
+}
+
 // The quadrupole tensors K_m = integral Y_2m(w) w w^T dw: for a field of two equal narrow beams
 // from u and its mirror image u' = (ux, -uy, uz) (symmetric about the xz plane, as the basis
 // assumes), a_lm = Y_lm(u) and the second moments are (u u^T + u' u'^T) / 2; the mean's share is
