@@ -182,11 +182,12 @@ struct RenderOutputs {
   /// output.polarisation: <name>-polarisation.exr (Y, DoLP, AoLP; not for a tile) and, with
   /// output.polarisation_png, <name>-polarisation.png.
   std::filesystem::path polarisation_exr, polarisation_png;
-  double preview_scale = 1.0;  ///< the exposure: factor applied to linear RGB before display
-  double preview_ev = 0.0;     ///< log2(preview_scale)
-  std::string exposure;        ///< how the exposure was chosen (also in the files' headers)
-  std::string display;         ///< the display pipeline used for the PNG
-  double seconds = 0.0;        ///< wall time of the whole call
+  std::filesystem::path surface_exr;  ///< output.surface: distance and masks (render/surface_pass.hpp)
+  double preview_scale = 1.0;         ///< the exposure: factor applied to linear RGB before display
+  double preview_ev = 0.0;            ///< log2(preview_scale)
+  std::string exposure;               ///< how the exposure was chosen (also in the files' headers)
+  std::string display;                ///< the display pipeline used for the PNG
+  double seconds = 0.0;               ///< wall time of the whole call
   // Where it went (wall time; the rest is what `prepared` does, such as the render-budget sample):
   double tables_seconds = 0.0;  ///< set-up: atmosphere, optical-depth, scattering-order and sky-view tables
   double image_seconds = 0.0;   ///< exposure metering and the image's rows (with the EXR's bands, written meanwhile)

@@ -120,6 +120,9 @@ struct OutputSpec {
   /// With polarisation and png: also <name>-polarisation.png, the angle of linear polarisation as
   /// hue and its degree as brightness (colour/polarisation_colour.hpp).
   bool polarisation_png = false;
+  /// Also <name>-surface.exr: per pixel the distance to the surface its ray ends on (Z, metres)
+  /// and masks of the terrain and the planet's ground (render/surface_pass.hpp).
+  bool surface = false;
 };
 
 struct Scene {

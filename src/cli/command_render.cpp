@@ -150,6 +150,7 @@ int run_render(RenderOptions& o) {
     if (!out.working_exr.empty()) std::cout << "wrote " << out.working_exr.string() << "\n";
     if (!out.polarisation_exr.empty()) std::cout << "wrote " << out.polarisation_exr.string() << "\n";
     if (!out.polarisation_png.empty()) std::cout << "wrote " << out.polarisation_png.string() << "\n";
+    if (!out.surface_exr.empty()) std::cout << "wrote " << out.surface_exr.string() << "\n";
     if (!out.png.empty()) std::cout << "display: " << out.display << "\n";
     std::cout << "exposure: " << out.exposure << "\n";
     std::cout << "estimate: " << estimate.describe() << "\n";

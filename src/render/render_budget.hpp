@@ -50,7 +50,7 @@ struct RenderPlan {
   int width = 0, height = 0, wavelengths = 0, view_segments = 0, threads = 1;
   int frames = 1;
   /// The files of one frame, by their id in the outputs list: "spectral_exr", "png",
-  /// "working_exr", "polarisation_exr", "polarisation_png".
+  /// "working_exr", "polarisation_exr", "polarisation_png", "surface_exr".
   std::vector<std::string> outputs;
   bool writes(const std::string& id) const;
   void drop(const std::string& id);

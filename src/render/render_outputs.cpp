@@ -27,6 +27,7 @@
 #include "physics/unmodelled_absorption.hpp"
 #include "render/render_budget.hpp"
 #include "render/scene_provenance.hpp"
+#include "render/surface_pass.hpp"
 #include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/render.hpp"
@@ -337,6 +338,19 @@ const std::vector<FileOutput>& file_outputs() {
          write_polarisation_png(path, i.scene, i.stokes_y, i.provenance);
        },
        [](const RenderPlan& p) { return png_bytes(p.width, p.height, 8); }},
+      {"surface_exr", [](const Scene& s, const DisplaySettings&, bool tile) { return s.output.surface && !tile; },
+       [](const Scene& s, const DisplaySettings&) { return s.output.name + "-surface.exr"; },
+       &RenderOutputs::surface_exr, false, false,
+       [](const FinishedImage& i, const std::filesystem::path& path) {
+         std::map<std::string, std::string> strings = i.provenance;
+         strings["skyspec:units"] =
+             "Z: distance in metres from the camera along the pixel's central ray to the first surface it meets "
+             "(0 where it meets none); mask.terrain, mask.ground: 1 where that surface is the terrain or the "
+             "planet's ground, else 0";
+         write_float_channels_exr(path, i.scene.camera.width, i.scene.camera.height, surface_channel_names(),
+                                  surface_channels(i.scene), strings, is_latlong_envmap(i.scene.camera));
+       },
+       [](const RenderPlan& p) { return rgb_exr_bytes(p.width, p.height); }},  // Z and two masks
   };
   return outputs;
 }

@@ -452,6 +452,11 @@ const std::vector<KeyDef>& registry() {
                          "with output.polarisation and output.png: also <name>-polarisation.png, the angle of linear "
                          "polarisation as hue (a colour wheel over 180 degrees) and its degree as brightness",
                          [](Scene& s) -> bool& { return s.output.polarisation_png; }));
+    r.push_back(bool_key("output.surface",
+                         "also <name>-surface.exr: per pixel Z, the distance in metres along its ray to the surface it "
+                         "ends on (0 for the sky), and mask.terrain and mask.ground (1 where that surface is the "
+                         "terrain or the planet's ground), for compositing",
+                         [](Scene& s) -> bool& { return s.output.surface; }));
     r.push_back(choice_key(
         "output.exr_compression", {"piz", "zip", "zips", "rle", "none"},
         "lossless compression of the spectral EXR: piz (wavelet, smallest and fastest to write for sky "

@@ -870,12 +870,14 @@ bool SingleScattering::polarised_sources(const Node* nodes, int m, const RayFram
 // the sky and the sphere's sunlit ground, J_hidden,s of the source
 // (InScatteringSource::source_above_skyline, from the field's mean over each ring about d and its
 // variation upwards around the ring).
-// The surface's light replaces it by the share that reaches p unscattered, T(p, hit), where the
-// terrain shadows the air in front of the surface:
-//   J_s = J_s,tables - f_shadow T(p, hit) (J_hidden,s - hidden_share_s L_surface),
+// Where the terrain shadows the air in front of the surface, that light is replaced by the
+// surface's, by the share that reaches p unscattered, T(p, hit), and by the air's own light
+// scattered more than once (that air gets no direct sun):
+//   J_s = J_s,tables - f_shadow [J_hidden,s - T h_s L_surface - (1 - T) J_hidden,s,multiple],
 // f_shadow the share of the ray's length from p to its end in the terrain's shadow (not the
-// planet's: the tables hold that). The rest of J_hidden,s stands for the air's own light in front
-// of the surface. Where that air is lit the tables' light is kept: the lit air and the surface
+// planet's: the tables hold that), h_s the phase function's share of the hidden region and
+// J_hidden,multiple the part of J_hidden from the tables' orders 3 and up (source_above_skyline's
+// hidden_multiple). Where the air in front is lit the tables' light is kept: the lit air and the surface
 // behind it make up for it (the sunlit face of docs/terrain.md agrees with the reference within
 // 2.2 % so, and errs by +5.6 % with the surface put in as in shadow). In the shadow this is where
 // the tables err most: looking towards the terrain, the aerosol's forward scattering sees the

@@ -15,6 +15,13 @@ ridge=(--set terrain.model=ridge --set terrain.ridge.notch_spacing_m=6000)
 "$skyspec" render "${view[@]}" "${ridge[@]}" --out "$work/ridge" 2>"$work/stderr" && ok \
   || bad "ridge render failed: $(cat "$work/stderr")"
 exrheader "$work/ridge/sky.exr" | grep -q 'model = "ridge"' && ok || bad "the EXR's scene lacks the terrain"
+# output.surface: a third file with each pixel's distance (Z) and masks that other tools read; the
+# centre looks at the ridge (mask.terrain 1, Z about 17-20 km).
+"$skyspec" render "${view[@]}" "${ridge[@]}" --set output.surface=true --set output.png=false \
+  --out "$work/surface" 2>"$work/stderr" && ok || bad "surface render failed: $(cat "$work/stderr")"
+exrheader "$work/surface/sky-surface.exr" | grep -q 'mask.terrain' && ok || bad "no mask.terrain channel"
+z=$(oiiotool "$work/surface/sky-surface.exr" --ch Z --cut 1x1+16+9 --printstats 2>/dev/null | awk '/Stats Avg/ {print $3}')
+awk -v z="$z" 'BEGIN { exit !(z > 15000 && z < 21000) }' && ok || bad "Z at the centre $z"
 "$skyspec" render "${view[@]}" --out "$work/open" 2>"$work/stderr" && ok || bad "render failed: $(cat "$work/stderr")"
 # The ridge hides the sun (its disk and the glow around it): the image is darker than the open sky's.
 sum() { oiiotool "$1" --ch 0 --printstats 2>/dev/null | awk '/Stats Avg/ {print $3}'; }
