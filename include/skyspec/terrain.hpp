@@ -37,6 +37,7 @@
 // shorter than a quarter of a cell along the view ray can be missed.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "skyspec/geometry.hpp"
@@ -126,6 +127,11 @@ class Terrain {
   bool trace(RayQuery& q, double t0, double t1) const;
   /// The sun's visibility from p and how far p can move keeping it (metres).
   bool probe_sun(const Vec3& p, const Vec3& s, double& safe_m) const;
+  /// sunlit_parts without its memory of the last call.
+  void probe_sunlit_parts(const Vec3& o, const Vec3& d, double t0, double t1, const Vec3& s,
+                          std::vector<Interval>& out) const;
+  std::uint64_t serial_;  // tells terrains apart in sunlit_parts' memory (next_serial)
+  static std::uint64_t next_serial();
 };
 
 /// A synthetic mountain ridge (terrain.model = "ridge"): a straight crest at distance_m from the

@@ -135,19 +135,23 @@ struct SkyRenderer::Impl {
                           RadianceParts& parts) const {
     const Vec3& o = camera->origin_m();
     const double ground = sphere_entry_distance(o, dir, atmosphere.planet_radius_m());
-    if (std::isfinite(terrain->intersect(o, dir, stretch.t0_m, std::min(stretch.t1_m, ground)))) return false;
+    const double end = std::min(stretch.t1_m, ground);
+    if (std::isfinite(terrain->intersect(o, dir, stretch.t0_m, end))) return false;
     if (!sky_view->lookup(dir, parts)) return false;
+    // No terrain shadow on the ray (its visibility probed as the integrator probes it): the table's
+    // parts are the answer (the two marches below would be equal).
+    thread_local std::vector<Interval> lit;
+    lit.clear();
+    terrain->sunlit_parts(o, dir, stretch.t0_m, end, sun_dir, lit);
+    double covered = 0.0;
+    for (const Interval& i : lit) covered += i.t1_m - i.t0_m;
+    if (covered >= (end - stretch.t0_m) * (1.0 - 1e-12)) return true;
+    if (sources.higher && std::isfinite(ground)) return false;
     thread_local RadianceParts open, shaded;
     ScatteringSources single;  // order 1: the sun's light scattered once, and off the ground
     integrator.radiance_parts(o, dir, sun_dir, single, ws, open);
     single.terrain = terrain.get();
     integrator.radiance_parts(o, dir, sun_dir, single, ws, shaded);
-    if (sources.higher && std::isfinite(ground)) {
-      bool shadowed = (open.phase_free != shaded.phase_free).any();
-      for (size_t j = 0; j < parts.scattered.size() && !shadowed; ++j)
-        shadowed = (open.scattered[j] != shaded.scattered[j]).any();
-      if (shadowed) return false;
-    }
     for (size_t j = 0; j < parts.scattered.size(); ++j)
       parts.scattered[j] = (parts.scattered[j] - (open.scattered[j] - shaded.scattered[j])).max(0.0f);
     parts.phase_free = (parts.phase_free - (open.phase_free - shaded.phase_free)).max(0.0f);

@@ -1,7 +1,9 @@
 #include "skyspec/terrain.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 
@@ -38,7 +40,8 @@ struct Terrain::RayQuery {
   double t_at_north(double n) const { return (n * o.z() - R * o.y()) / (R * d.y() - n * d.z()); }
 };
 
-Terrain::Terrain(HeightGrid grid, double planet_radius_m) : grid_(std::move(grid)), R_(planet_radius_m) {
+Terrain::Terrain(HeightGrid grid, double planet_radius_m)
+    : grid_(std::move(grid)), R_(planet_radius_m), serial_(next_serial()) {
   const HeightGrid& g = grid_;
   if (g.columns < 2 || g.rows < 2)
     throw Error("terrain: a height grid needs at least 2 x 2 samples, not " + std::to_string(g.columns) + " x " +
@@ -263,6 +266,11 @@ bool Terrain::shadowed(const Vec3& p, const Vec3& s) const {
   return trace(q, 0.0, kSunRayLength_m);
 }
 
+std::uint64_t Terrain::next_serial() {
+  static std::atomic<std::uint64_t> counter{0};
+  return ++counter;
+}
+
 Vec3 Terrain::skyline_above(const Vec3& o, const Vec3& d, double t_hit) const {
   const Vec3 up = o.normalized();
   Vec3 e = up - up.dot(d) * d;  // upwards, perpendicular to d
@@ -332,6 +340,32 @@ bool Terrain::probe_sun(const Vec3& p, const Vec3& s, double& safe_m) const {
 void Terrain::sunlit_parts(const Vec3& o, const Vec3& d, double t0, double t1, const Vec3& s,
                            std::vector<Interval>& out) const {
   if (!(t1 > t0)) return;
+  // The last answer on this thread, for the same terrain and the same arguments exactly: the
+  // renderer asks whether a ray is shadowed and then the integrator asks again along the same ray.
+  struct Last {
+    std::uint64_t serial = 0;
+    Vec3 o, d, s;
+    double t0 = 0.0, t1 = 0.0;
+    std::vector<Interval> parts;
+  };
+  thread_local Last last;
+  if (last.serial == serial_ && last.t0 == t0 && last.t1 == t1 && last.o == o && last.d == d && last.s == s) {
+    out.insert(out.end(), last.parts.begin(), last.parts.end());
+    return;
+  }
+  const size_t first = out.size();
+  probe_sunlit_parts(o, d, t0, t1, s, out);
+  last.serial = serial_;
+  last.o = o;
+  last.d = d;
+  last.s = s;
+  last.t0 = t0;
+  last.t1 = t1;
+  last.parts.assign(out.begin() + static_cast<std::ptrdiff_t>(first), out.end());
+}
+
+void Terrain::probe_sunlit_parts(const Vec3& o, const Vec3& d, double t0, double t1, const Vec3& s,
+                                 std::vector<Interval>& out) const {
   const double shortest = 0.25 * grid_.spacing_m;
   double safe = 0.0;
   double t = t0;
