@@ -103,6 +103,11 @@ int run_render(RenderOptions& o) {
   // Absurd requests are refused up front (render_budget.hpp): the sizes and the memory before the
   // renderer is built, the time once it is (measured on it, inside render_scene_to_files).
   const std::optional<PixelBounds> tile = tile_of(o, scene);
+  // A tile writes its spectral EXR alone, and the surface file cannot be merged from tiles.
+  if (tile && scene.output.surface)
+    throw InputError("output.surface", "true",
+                     "false with --pixel-bounds (a tile writes its spectral EXR alone; render the surface file "
+                     "without --pixel-bounds: it is geometry only)");
   RenderPlan plan = RenderPlan::for_scene(scene, display, 1, tile.has_value());
   if (tile) plan.width = tile->x1 - tile->x0, plan.height = tile->y1 - tile->y0;
   // Its errors first; a folder created here is removed again if the render is refused or fails.

@@ -105,6 +105,10 @@ void PhaseMoments::compute_skyline_moments() const {
   });
 }
 
+int PhaseMoments::nearest_skyline(double skyline_rad) {
+  return static_cast<int>(std::lround(std::clamp(skyline_rad / kSkylineStep_rad, 0.0, kSkylines - 1.0)));
+}
+
 const std::vector<float>& PhaseMoments::skyline_chi(int s) const {
   compute_skyline_moments();
   return skyline_chi_.at(static_cast<size_t>(s));
@@ -316,8 +320,7 @@ bool SourceTable::source_above_skyline(double r_m, double mu, double mu_view, do
                                        float* const* hidden_multiple) const {
   const int media = std::min(static_cast<int>(moments_->media.size()), kMaxMedia);
   const int d = moments_->degree;
-  const int j = static_cast<int>(
-      std::lround(std::clamp(skyline_rad / PhaseMoments::kSkylineStep_rad, 0.0, PhaseMoments::kSkylines - 1.0)));
+  const int j = PhaseMoments::nearest_skyline(skyline_rad);
   const size_t per_degree = static_cast<size_t>(n_l_), per_skyline = static_cast<size_t>(d + 1) * per_degree;
   const float* chi[kMaxMedia];
   int media_degree[kMaxMedia];
@@ -377,8 +380,7 @@ void SourceTable::source_below_skyline(double r_m, double mu, double mu_view, do
                                        float* const* hidden) const {
   const int media = std::min(static_cast<int>(moments_->media.size()), kMaxMedia);
   const int d = moments_->degree;
-  const int j = static_cast<int>(
-      std::lround(std::clamp(skyline_rad / PhaseMoments::kSkylineStep_rad, 0.0, PhaseMoments::kSkylines - 1.0)));
+  const int j = PhaseMoments::nearest_skyline(skyline_rad);
   const size_t per_skyline = static_cast<size_t>(d + 1) * static_cast<size_t>(n_l_);
   const float* chi[kMaxMedia];
   int media_degree[kMaxMedia];

@@ -81,6 +81,8 @@ struct PhaseMoments {
   /// (skyline_legendre_moments), [skyline][l][wavelength] followed by kLookupSlack zeros; computed
   /// on first use (only terrain asks for them), from the phase functions kept for that.
   const std::vector<float>& skyline_chi(int s) const;
+  /// The tabulated skyline nearest to skyline_rad above the view direction (clamped to 0..90 degrees).
+  static int nearest_skyline(double skyline_rad);
   /// The moments of its first-order correction (skyline_gradient_moments), laid out the same way.
   const std::vector<float>& skyline_gradient_chi(int s) const;
   std::vector<OfMedium> media;

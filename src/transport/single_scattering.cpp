@@ -878,8 +878,8 @@ bool SingleScattering::polarised_sources(const Node* nodes, int m, const RayFram
 // planet's: the tables hold that), h_s the phase function's share of the hidden region and
 // J_hidden,multiple the part of J_hidden from the tables' orders 3 and up (source_above_skyline's
 // hidden_multiple). Where the air in front is lit the tables' light is kept: the lit air and the surface
-// behind it make up for it (the sunlit face of docs/terrain.md agrees with the reference within
-// 2.2 % so, and errs by +5.6 % with the surface put in as in shadow). In the shadow this is where
+// behind it make up for it (docs/terrain.md compares both choices with the reference on a sunlit
+// face). In the shadow this is where
 // the tables err most: looking towards the terrain, the aerosol's forward scattering sees the
 // bright sky around the sun that the terrain hides. The skyline's shape (straight, level across
 // d's vertical plane), the air in front seen along d only, and the sky the terrain hides from

@@ -20,6 +20,12 @@ exrheader "$work/ridge/sky.exr" | grep -q 'model = "ridge"' && ok || bad "the EX
 "$skyspec" render "${view[@]}" "${ridge[@]}" --set output.surface=true --set output.png=false \
   --out "$work/surface" 2>"$work/stderr" && ok || bad "surface render failed: $(cat "$work/stderr")"
 exrheader "$work/surface/sky-surface.exr" | grep -q 'mask.terrain' && ok || bad "no mask.terrain channel"
+# A tile cannot carry it: refused naming the key and the flag, nothing written.
+"$skyspec" render "${view[@]}" "${ridge[@]}" --set output.surface=true --pixel-bounds 0,16,0,9 \
+  --out "$work/surface-tile" >"$work/stdout" 2>&1 && bad "a tile with output.surface was rendered" \
+  || { grep -q 'output.surface = true is not allowed: false with --pixel-bounds' "$work/stdout" && ok \
+    || bad "refusal: $(cat "$work/stdout")"; }
+[ ! -e "$work/surface-tile" ] && ok || bad "the refused tile left $(ls -R "$work/surface-tile")"
 z=$(oiiotool "$work/surface/sky-surface.exr" --ch Z --cut 1x1+16+9 --printstats 2>/dev/null | awk '/Stats Avg/ {print $3}')
 awk -v z="$z" 'BEGIN { exit !(z > 15000 && z < 21000) }' && ok || bad "Z at the centre $z"
 "$skyspec" render "${view[@]}" --out "$work/open" 2>"$work/stderr" && ok || bad "render failed: $(cat "$work/stderr")"

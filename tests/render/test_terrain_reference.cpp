@@ -108,11 +108,11 @@ BOOST_AUTO_TEST_CASE(flat_terrain_sees_the_grounds_sky_light) {
 // All orders: the renderer's higher orders come from tables built without terrain; along rays that
 // end on a surface the sky the terrain hides is replaced where the air in front of it is in the
 // terrain's shadow (single_scattering.cpp, SkylineCut), and a face's diffuse light is the sphere's
-// field. In the air that costs at most 3.5 % here (enforced at 5 %), on the sunlit face 2.2 %
-// (enforced at 4 %); looking at the face in the ridge's shadow -0.3 % at 450 nm and +29 % at 650 nm
-// (enforced at 5 % and 40 %; +23 % and +143 % with the tables' light kept), the plain in the
-// shadow +1.7 % and +54 % (enforced at 6 % and 65 %; +25 % and +194 % kept). docs/terrain.md has
-// the figures (and this test's messages: --log_level=message).
+// field. The allowances (beyond 3 standard errors): 5 % in the air, 4 % on the sunlit face, and for
+// the face and the plain in the ridge's shadow, where that approximation errs most (too bright in
+// red), 5 %/40 % and 6 %/65 % at 450/650 nm, as guards against it getting worse. docs/terrain.md has
+// the measured errors, with and without the correction (and this test's messages:
+// --log_level=message).
 BOOST_AUTO_TEST_CASE(all_orders_error_of_unshadowed_higher_orders) {
   const Allowance air{0.05, 0.05};
   const Outcome behind = compare(270.0, 3.0, 6, kBehind, {air, air, {0.05, 0.40}, air, air, {0.06, 0.65}});
