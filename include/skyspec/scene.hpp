@@ -53,22 +53,34 @@ inline constexpr double kPanoramaGroundAlbedo = 0.25;
 
 /// Terrain (terrain.hpp, docs/terrain.md): mountains that hide what lies behind them, shadow the
 /// air and reflect light. Its albedo is the ground's (atmosphere.ground).
+/// A height map's scale (terrain.model = heightmap): an image without georeferencing, centred on
+/// the reference point, top row north, pixel centres pixel_m apart on the ground; height =
+/// value x height_scale_m + height_offset_m, the value a PNG's (or another unsigned 8/16-bit
+/// image's) code over its largest (0 to 1), an EXR's or a float image's value as stored.
+struct HeightMapSpec {
+  std::optional<double> pixel_m;  ///< required with model = heightmap
+  double height_scale_m = 1.0;
+  double height_offset_m = 0.0;
+};
+
 struct TerrainSpec {
-  enum class Model { None, Ridge, File };
+  enum class Model { None, Ridge, File, HeightMap };
   Model model = Model::None;
   RidgeSpec ridge;  ///< model = ridge: the synthetic ridge
   /// model = file: an elevation raster GDAL opens (GeoTIFF and the others), georeferenced, heights
   /// in metres above sea level; read over the square of half-size extent_m around the reference
-  /// point (location.latitude_deg / longitude_deg).
+  /// point (location.latitude_deg / longitude_deg). model = heightmap: a height map (EXR, PNG or
+  /// another image GDAL reads) whose scale `heightmap` states.
   std::string file;
+  HeightMapSpec heightmap;
   double extent_m = 30000.0;
   double spacing_m = 100.0;  ///< the spacing of the map grid the heights are sampled on
 };
 
-/// Every terrain model by its name in scene files: none, ridge, file (scene/scene_terrain.cpp
-/// builds each).
+/// Every terrain model by its name in scene files: none, ridge, file, heightmap
+/// (scene/scene_terrain.cpp builds each).
 const std::vector<NamedValue<TerrainSpec::Model>>& terrain_models();
-/// "none", "ridge" or "file".
+/// "none", "ridge", "file" or "heightmap".
 const char* terrain_model_name(TerrainSpec::Model model);
 
 struct SpectrumSpec {

@@ -1,10 +1,14 @@
 #include "io/elevation_raster.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <memory>
 #include <vector>
+
+#include <ImfChannelList.h>
 
 #include <cpl_conv.h>
 #include <cpl_error.h>
@@ -12,6 +16,8 @@
 #include <ogr_spatialref.h>
 
 #include "base/text_format.hpp"
+#include "io/exr_channels.hpp"
+#include "io/exr_open.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/units.hpp"
 
@@ -164,6 +170,155 @@ HeightGrid read_elevation_raster(const std::string& path, const ElevationSamplin
              std::to_string(ix) + ", " + std::to_string(iy) + " it is " + format_number(h) + " m)");
     g.height_m[i] = static_cast<float>(std::max(0.0, h));
   }
+  return g;
+}
+
+namespace {
+// A height map's values, top row first, each already times its type's scale (1 / 255, 1 / 65535
+// for unsigned 8- and 16-bit images, else 1).
+struct HeightImage {
+  int width = 0, height = 0;
+  std::vector<double> value;
+};
+
+constexpr double kMaxHeightMapPixels = 1e8;
+
+bool has_exr_extension(const std::string& path) {
+  if (path.size() < 4) return false;
+  std::string ext = path.substr(path.size() - 4);
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".exr";
+}
+
+template <class Refuse>
+void check_height_map_size(long long width, long long height, const Refuse& refuse) {
+  if (width < 2 || height < 2 || static_cast<double>(width) * static_cast<double>(height) > kMaxHeightMapPixels)
+    refuse("a height map of at least 2 x 2 and at most 1e8 pixels (this one is " + std::to_string(width) + " x " +
+           std::to_string(height) + ")");
+}
+
+template <class Refuse>
+HeightImage read_exr_height_image(const std::string& path, const Refuse& refuse) {
+  std::string channel;
+  long long width = 0, height = 0;
+  try {
+    const auto file = open_exr_input(path);
+    const Imath::Box2i dw = file->header().dataWindow();
+    width = static_cast<long long>(dw.max.x) - dw.min.x + 1;
+    height = static_cast<long long>(dw.max.y) - dw.min.y + 1;
+    std::vector<std::string> names;
+    for (auto it = file->header().channels().begin(); it != file->header().channels().end(); ++it)
+      names.emplace_back(it.name());
+    for (const char* wanted : {"Y", "Z", "R"})
+      if (channel.empty() && std::find(names.begin(), names.end(), wanted) != names.end()) channel = wanted;
+    if (channel.empty() && names.size() == 1) channel = names.front();
+    if (channel.empty()) {
+      std::string have;
+      for (const auto& n : names) have += (have.empty() ? "" : ", ") + n;
+      refuse("an OpenEXR height map with a channel Y, Z or R, or a single channel (this one has: " + have + ")");
+    }
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    refuse(std::string("an OpenEXR file skyspec can read (") + e.what() + ")");
+  }
+  check_height_map_size(width, height, refuse);
+  HeightImage image;
+  image.width = static_cast<int>(width);
+  image.height = static_cast<int>(height);
+  try {
+    const ExrChannels read = read_exr_channels(path, {channel});
+    const std::vector<float>& v = read.channels.at(channel);
+    image.value.assign(v.begin(), v.end());
+  } catch (const std::exception& e) {
+    refuse(std::string("an OpenEXR file skyspec can read (") + e.what() + ")");
+  }
+  return image;
+}
+
+template <class Refuse>
+HeightImage read_gdal_height_image(const std::string& path, const Refuse& refuse) {
+  GDALAllRegister();
+  const QuietGdal quiet;
+  std::unique_ptr<GDALDataset> ds(
+      GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+  if (!ds) refuse("a height map OpenEXR or GDAL can open (EXR, PNG, TIFF, ...)" + QuietGdal::last());
+  if (ds->GetRasterCount() < 1) refuse("an image with at least one band (heights)");
+  check_height_map_size(ds->GetRasterXSize(), ds->GetRasterYSize(), refuse);
+  GDALRasterBand* band = ds->GetRasterBand(1);
+  HeightImage image;
+  image.width = ds->GetRasterXSize();
+  image.height = ds->GetRasterYSize();
+  image.value.resize(static_cast<size_t>(image.width) * static_cast<size_t>(image.height));
+  if (band->RasterIO(GF_Read, 0, 0, image.width, image.height, image.value.data(), image.width, image.height,
+                     GDT_Float64, 0, 0, nullptr) != CE_None)
+    refuse("an image GDAL can read" + QuietGdal::last());
+  int has_nodata = 0;
+  const double nodata = band->GetNoDataValue(&has_nodata);
+  const GDALDataType type = band->GetRasterDataType();
+  const double unit = type == GDT_Byte ? 1.0 / 255.0 : type == GDT_UInt16 ? 1.0 / 65535.0 : 1.0;
+  for (size_t i = 0; i < image.value.size(); ++i) {
+    if (has_nodata && image.value[i] == nodata)
+      refuse("heights everywhere (pixel " + std::to_string(i % image.width) + ", " + std::to_string(i / image.width) +
+             " holds the no-data value)");
+    image.value[i] *= unit;
+  }
+  return image;
+}
+}  // namespace
+
+HeightGrid read_height_map(const std::string& path, const HeightMapSampling& s, const std::string& setting) {
+  auto refuse = [&](const std::string& what) { throw InputError(setting, path, what); };
+  if (!(s.pixel_m > 0.0))
+    throw InputError("terrain.heightmap.pixel_m", format_number(s.pixel_m),
+                     "the distance between the height map's pixel centres on the ground, in metres (> 0)");
+  if (!(s.spacing_m > 0.0) || !(s.extent_m >= s.spacing_m))
+    throw InputError("terrain.extent_m", format_number(s.extent_m),
+                     "at least terrain.spacing_m (" + format_number(s.spacing_m) + " m)");
+  const HeightImage image =
+      has_exr_extension(path) ? read_exr_height_image(path, refuse) : read_gdal_height_image(path, refuse);
+  // The grid, centred on the image's centre, as far as the image and extent_m reach.
+  const double centre_x = 0.5 * (image.width - 1), centre_y = 0.5 * (image.height - 1);
+  const int half_columns =
+      static_cast<int>(std::floor(std::min(s.extent_m, centre_x * s.pixel_m) / s.spacing_m + 1e-9));
+  const int half_rows = static_cast<int>(std::floor(std::min(s.extent_m, centre_y * s.pixel_m) / s.spacing_m + 1e-9));
+  if (half_columns < 1 || half_rows < 1)
+    throw InputError("terrain.spacing_m", format_number(s.spacing_m),
+                     "at most half the height map's size on the ground (" +
+                         format_number(std::min(centre_x, centre_y) * s.pixel_m) + " m)");
+  HeightGrid g;
+  g.columns = 2 * half_columns + 1;
+  g.rows = 2 * half_rows + 1;
+  g.spacing_m = s.spacing_m;
+  g.east0_m = -half_columns * s.spacing_m;
+  g.north0_m = -half_rows * s.spacing_m;
+  if (static_cast<double>(g.columns) * g.rows > 1e8)
+    throw InputError("terrain.spacing_m", format_number(s.spacing_m),
+                     "a spacing that gives at most 1e8 samples over the height map");
+  auto at = [&](int x, int y) {
+    x = std::clamp(x, 0, image.width - 1);
+    y = std::clamp(y, 0, image.height - 1);
+    return image.value[static_cast<size_t>(y) * static_cast<size_t>(image.width) + static_cast<size_t>(x)];
+  };
+  g.height_m.resize(static_cast<size_t>(g.columns) * static_cast<size_t>(g.rows));
+  for (int r = 0; r < g.rows; ++r)
+    for (int c = 0; c < g.columns; ++c) {
+      const double px = centre_x + g.east_m(c) / s.pixel_m, py = centre_y - g.north_m(r) / s.pixel_m;
+      const int ix = static_cast<int>(std::floor(px)), iy = static_cast<int>(std::floor(py));
+      const double fx = px - ix, fy = py - iy;
+      const double v[4] = {at(ix, iy), at(ix + 1, iy), at(ix, iy + 1), at(ix + 1, iy + 1)};
+      for (double value : v)
+        if (!std::isfinite(value))
+          refuse("finite heights (near pixel " + std::to_string(ix) + ", " + std::to_string(iy) + " one is not)");
+      const double raw = (1.0 - fy) * ((1.0 - fx) * v[0] + fx * v[1]) + fy * ((1.0 - fx) * v[2] + fx * v[3]);
+      const double h = raw * s.height_scale_m + s.height_offset_m;
+      if (!(h >= kLowest_m && h <= kHighest_m))
+        refuse("heights between " + format_number(kLowest_m) + " and " + format_number(kHighest_m) +
+               " m once scaled (near pixel " + std::to_string(ix) + ", " + std::to_string(iy) + " it is " +
+               format_number(h) + " m)");
+      g.height_m[static_cast<size_t>(r) * static_cast<size_t>(g.columns) + static_cast<size_t>(c)] =
+          static_cast<float>(std::max(0.0, h));
+    }
   return g;
 }
 

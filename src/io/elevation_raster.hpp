@@ -1,5 +1,6 @@
 // Elevation rasters (digital elevation models) through GDAL: GeoTIFF and every raster format GDAL
-// reads, with their georeferencing (a geotransform and a coordinate reference system).
+// reads, with their georeferencing (a geotransform and a coordinate reference system); and height
+// maps, images without georeferencing whose scale the scene states (OpenEXR, PNG, ...).
 #pragma once
 
 #include <string>
@@ -25,6 +26,28 @@ struct ElevationSampling {
 /// falls on a cell without data, or a height is absurd (below -500 m or above 9000 m).
 HeightGrid read_elevation_raster(const std::string& path, const ElevationSampling& sampling,
                                  const std::string& setting = "terrain.file");
+
+/// How a height map (an image without georeferencing) lies on the map and what its values mean:
+/// its pixel centres are pixel_m apart in the map, the image's centre on the reference point, its
+/// top row north and its columns west to east; a value v is the height v x height_scale_m +
+/// height_offset_m, where v is the stored value for floating-point and signed-integer images and
+/// the code over its largest (255, 65535) for 8- and 16-bit unsigned images (a PNG's codes are 0
+/// to 1). The terrain's grid (spacing_m) is sampled from it over at most extent_m from the centre
+/// in each direction, and no further than the image reaches.
+struct HeightMapSampling {
+  double pixel_m = 0.0;
+  double height_scale_m = 1.0, height_offset_m = 0.0;
+  double extent_m = 30000.0, spacing_m = 100.0;
+};
+
+/// The height map's values, bilinearly interpolated at each sample of the terrain's grid: OpenEXR
+/// files (.exr; the channel Y, Z or R, or the only channel) through OpenEXR, every other image
+/// GDAL reads (PNG, TIFF, ...) through GDAL (band 1; any georeferencing is ignored). Heights below
+/// 0 are raised to it. Throws InputError naming `setting` and the file when it cannot be read, has
+/// no channel to take, is smaller than 2 x 2 pixels or larger than 1e8, holds a value that is not
+/// finite (or GDAL's no-data value), or gives a height outside -500 to 9000 m.
+HeightGrid read_height_map(const std::string& path, const HeightMapSampling& sampling,
+                           const std::string& setting = "terrain.file");
 
 /// The latitude and longitude (degrees) of the point of the sphere at map coordinates (east,
 /// north) around the reference point: the inverse of the gnomonic projection.

@@ -293,21 +293,38 @@ const std::vector<KeyDef>& registry() {
     r.push_back(choice_key(
         "terrain.model", names_of(terrain_models()),
         "none: the planet's sphere is the ground; ridge: a synthetic mountain ridge (terrain.ridge.*); file: "
-        "heights from an elevation raster (terrain.file), around location.latitude_deg / longitude_deg",
+        "heights from an elevation raster (terrain.file), around location.latitude_deg / longitude_deg; heightmap: "
+        "heights from an image without georeferencing (terrain.file) at the scale terrain.heightmap.* states, "
+        "centred on the reference point",
         [](Scene& s, const std::string& v) { s.terrain.model = value_named(terrain_models(), v, "terrain.model"); },
         [](const Scene& s) { return std::string(terrain_model_name(s.terrain.model)); }));
     {
       KeyDef k = text_key(
           "terrain.file",
           "model = file: a georeferenced elevation raster GDAL reads (GeoTIFF, ...), heights in metres "
-          "above sea level; a relative path is taken from the current folder",
+          "above sea level; model = heightmap: an OpenEXR file (channel Y, Z or R, or its only channel) or "
+          "another image GDAL reads (PNG, TIFF, ...; band 1), its top row north; a relative path is taken "
+          "from the current folder",
           [](Scene& s) -> std::string& { return s.terrain.file; }, false);
       const auto written = k.get;
       k.get = [written](const Scene& s) { return s.terrain.file.empty() ? std::string() : written(s); };  // unset
       r.push_back(k);
     }
+    r.push_back(
+        optional_number_key("terrain.heightmap.pixel_m", "m", {1e-3, 1e5},
+                            "heightmap: distance between the centres of neighbouring pixels on the ground (required)",
+                            [](Scene& s) -> std::optional<double>& { return s.terrain.heightmap.pixel_m; }));
+    r.push_back(number_key("terrain.heightmap.height_scale_m", "m", {-1e5, 1e5},
+                           "heightmap: metres per unit of value (height = value x scale + offset); the value is "
+                           "the code over 255 or 65535 for an 8- or 16-bit unsigned image (a PNG: 0 to 1), "
+                           "as stored for EXR, float and signed images",
+                           [](Scene& s) -> double& { return s.terrain.heightmap.height_scale_m; }));
+    r.push_back(number_key("terrain.heightmap.height_offset_m", "m", {-1e4, 1e4},
+                           "heightmap: metres added to every height (heights below 0 are raised to 0, the sphere)",
+                           [](Scene& s) -> double& { return s.terrain.heightmap.height_offset_m; }));
     r.push_back(number_key("terrain.extent_m", "m", {100.0, 1e6},
-                           "model = file: half the side of the square read around the reference point",
+                           "model = file, heightmap: half the side of the square read around the reference point "
+                           "(a height map: no further than it reaches)",
                            [](Scene& s) -> double& { return s.terrain.extent_m; }));
     r.push_back(number_key("terrain.spacing_m", "m", {1.0, 1e5},
                            "spacing of the grid the terrain's heights are sampled on (bilinear between samples)",

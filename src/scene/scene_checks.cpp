@@ -36,6 +36,14 @@ void check_terrain(const Scene& s) {
   const TerrainSpec& t = s.terrain;
   if (t.model == TerrainSpec::Model::File && t.file.empty())
     throw InputError("terrain.file", "(not set)", "the path of an elevation raster (terrain.model = \"file\")");
+  if (t.model == TerrainSpec::Model::HeightMap) {
+    if (t.file.empty())
+      throw InputError("terrain.file", "(not set)", "the path of a height map (terrain.model = \"heightmap\")");
+    if (!t.heightmap.pixel_m)
+      throw InputError("terrain.heightmap.pixel_m", "(not set)",
+                       "the distance between the height map's pixel centres on the ground, in metres "
+                       "(terrain.model = \"heightmap\")");
+  }
   if (t.model != TerrainSpec::Model::Ridge) return;
   const RidgeSpec& r = t.ridge;
   if (!(r.length_m > 2.0 * r.half_width_m))

@@ -14,17 +14,27 @@ const std::vector<NamedValue<TerrainSpec::Model>>& terrain_models() {
       {TerrainSpec::Model::None, "none"},
       {TerrainSpec::Model::Ridge, "ridge"},
       {TerrainSpec::Model::File, "file"},
+      {TerrainSpec::Model::HeightMap, "heightmap"},
   };
   return table;
 }
 
 namespace {
-// The grid of the scene's terrain; for a raster, only the samples within extent_m of the
-// reference point (the grid is centred there with the same spacing, so its samples are the full
-// grid's).
+// The grid of the scene's terrain; for a raster or a height map, only the samples within extent_m
+// of the reference point (the grid is centred there with the same spacing, so its samples are the
+// full grid's).
 HeightGrid terrain_grid(const Scene& s, double extent_m) {
   const TerrainSpec& spec = s.terrain;
   if (spec.model == TerrainSpec::Model::Ridge) return ridge_heights(spec.ridge, spec.spacing_m);
+  if (spec.model == TerrainSpec::Model::HeightMap) {
+    HeightMapSampling sampling;
+    sampling.pixel_m = spec.heightmap.pixel_m.value_or(0.0);
+    sampling.height_scale_m = spec.heightmap.height_scale_m;
+    sampling.height_offset_m = spec.heightmap.height_offset_m;
+    sampling.extent_m = extent_m;
+    sampling.spacing_m = spec.spacing_m;
+    return read_height_map(spec.file, sampling);
+  }
   ElevationSampling sampling;
   sampling.latitude_deg = s.location.latitude_deg;
   sampling.longitude_deg = s.location.longitude_deg;

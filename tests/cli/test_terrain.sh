@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Terrain from the command line (terrain.*): a synthetic ridge that hides the sun and shadows the
-# air, an elevation raster read through GDAL (an ESRI ASCII grid with its .prj, written here), and
-# bad input refused naming the key or the file. Usage: test_terrain.sh SKYSPEC
+# air, an elevation raster read through GDAL (an ESRI ASCII grid with its .prj, written here), height
+# maps (PNG and EXR, written with oiiotool), and bad input refused naming the key or the file. Usage: test_terrain.sh SKYSPEC
 set -u
 skyspec=$1
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
@@ -55,6 +55,22 @@ dem=(--set terrain.model=file --set "terrain.file=\"$work/dem.asc\"" --set terra
 c=$(sum "$work/dem/sky.exr")
 awk -v a="$c" -v b="$b" 'BEGIN { exit !(a > 0 && a < 0.8 * b) }' && ok || bad "mean radiance $c behind the DEM's block, $b without"
 
+# The same block as a height map without georeferencing, centred on the reference point: a 16-bit
+# PNG (codes over 65535 times terrain.heightmap.height_scale_m) and an EXR in metres render alike.
+oiiotool --create 101x101 1 --fill:color=0.42857143 101x101+0+0 --fill:color=1 4x101+23+0 -d uint16 \
+  -o "$work/block.png" && oiiotool --create 101x101 1 --fill:color=300 101x101+0+0 --fill:color=700 4x101+23+0 \
+  -d float -o "$work/block.exr" && ok || bad "oiiotool could not write the height maps"
+hm=(--set terrain.model=heightmap --set terrain.heightmap.pixel_m=100 --set terrain.extent_m=6000
+  --set camera.position_m=[0,0,400])
+"$skyspec" render "${view[@]}" "${hm[@]}" --set "terrain.file=\"$work/block.png\"" \
+  --set terrain.heightmap.height_scale_m=700 --out "$work/hm-png" 2>"$work/stderr" && ok \
+  || bad "PNG height map render failed: $(cat "$work/stderr")"
+"$skyspec" render "${view[@]}" "${hm[@]}" --set "terrain.file=\"$work/block.exr\"" --out "$work/hm-exr" \
+  2>"$work/stderr" && ok || bad "EXR height map render failed: $(cat "$work/stderr")"
+p=$(sum "$work/hm-png/sky.exr") e=$(sum "$work/hm-exr/sky.exr")
+awk -v p="$p" -v e="$e" -v b="$b" 'BEGIN { exit !(p > 0 && p < 0.8 * b && (p - e) ^ 2 < (1e-3 * e) ^ 2) }' && ok \
+  || bad "mean radiance $p (PNG) and $e (EXR) behind the height map's block, $b without"
+
 # A camera standing 2 m above the crest: its height is computed along its own vertical (the crest,
 # 20 km from the reference point, stands 1500 m above the sphere, whose curvature there is 31.4 m).
 "$skyspec" render "${view[@]}" "${ridge[@]}" --set camera.position_m=[-20000,0,5] --set camera.above_ground_m=2 \
@@ -90,6 +106,8 @@ run_expecting_error "no file" 2 "terrain.file" "$work/x" \
   "$skyspec" render "${view[@]}" --set terrain.model=file --out "$work/x"
 run_expecting_error "missing file" 2 "$work/none.tif" "$work/x" \
   "$skyspec" render "${view[@]}" --set terrain.model=file --set "terrain.file=\"$work/none.tif\"" --out "$work/x"
+run_expecting_error "height map without its scale" 2 "terrain.heightmap.pixel_m" "$work/x" \
+  "$skyspec" render "${view[@]}" --set terrain.model=heightmap --set "terrain.file=\"$work/block.png\"" --out "$work/x"
 rm "$work/dem.prj"
 run_expecting_error "no coordinate system" 2 "georeferenced" "$work/x" \
   "$skyspec" render "${view[@]}" "${dem[@]}" --out "$work/x"

@@ -6,10 +6,16 @@
 #include <string>
 #include <vector>
 
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfOutputFile.h>
+
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 
 #include "io/elevation_raster.hpp"
+#include "io/exr_channels.hpp"
 #include "scratch_folder.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/units.hpp"
@@ -182,6 +188,148 @@ BOOST_AUTO_TEST_CASE(unusable_rasters_are_refused_naming_the_file) {
       -9999.0);
   m = message_of([&] { read_elevation_raster(holes, s); });
   BOOST_TEST(m.find("no data") != std::string::npos, m);
+}
+
+namespace {
+// Writes a single-band image with GDAL (MEM, then CreateCopy: PNG's driver only copies): width x
+// height pixels of type `type`, code(x, y) at column x, row y (row 0 on top), no georeferencing.
+void write_gdal_image(const std::string& path, const char* driver_name, GDALDataType type, int width, int height,
+                      const std::function<double(int, int)>& code) {
+  GDALAllRegister();
+  GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(driver_name);
+  BOOST_REQUIRE(mem && driver);
+  std::unique_ptr<GDALDataset> ds(mem->Create("", width, height, 1, type, nullptr));
+  BOOST_REQUIRE(ds);
+  std::vector<double> v(static_cast<size_t>(width) * height);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) v[static_cast<size_t>(y) * width + x] = code(x, y);
+  BOOST_REQUIRE(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, width, height, v.data(), width, height, GDT_Float64, 0,
+                                               0, nullptr) == CE_None);
+  std::unique_ptr<GDALDataset> out(driver->CreateCopy(path.c_str(), ds.get(), TRUE, nullptr, nullptr, nullptr));
+  BOOST_REQUIRE(out);
+}
+
+HeightMapSampling height_map(double pixel_m, double scale_m, double extent_m, double spacing_m) {
+  HeightMapSampling s;
+  s.pixel_m = pixel_m;
+  s.height_scale_m = scale_m;
+  s.extent_m = extent_m;
+  s.spacing_m = spacing_m;
+  return s;
+}
+}  // namespace
+
+// A 16-bit PNG: its codes over 65535 times the scale, the image's centre on the reference point,
+// its top row north and its columns eastwards.
+BOOST_AUTO_TEST_CASE(png_height_map_is_scaled_and_placed) {
+  const ScratchFolder dir("heightmap");
+  const std::string path = (dir.path / "peak.png").string();
+  // 201 x 101 pixels, 40 m apart: a peak of 3000 m (code 49152 of 65535 at a scale of 4000 m) at
+  // column 150, row 20 (2000 m east, 1200 m north of the centre), a cone of 1 km radius.
+  auto code = [](int x, int y) {
+    const double d = std::hypot(x - 150.0, y - 20.0) * 40.0;
+    return std::round(49152.0 * std::max(0.0, 1.0 - d / 1000.0));
+  };
+  write_gdal_image(path, "PNG", GDT_UInt16, 201, 101, code);
+  const HeightGrid g = read_height_map(path, height_map(40.0, 4000.0, 30000.0, 40.0));
+  // The grid reaches as far as the image: 100 and 50 pixels from its centre.
+  BOOST_TEST(g.columns == 201);
+  BOOST_TEST(g.rows == 101);
+  BOOST_TEST(g.east0_m == -4000.0);
+  BOOST_TEST(g.north0_m == -2000.0);
+  // Samples on pixel centres are the pixels: grid row r is image row 100 - r.
+  double worst = 0.0;
+  for (int r = 0; r < g.rows; ++r)
+    for (int c = 0; c < g.columns; ++c)
+      worst = std::max(worst, std::abs(g.at(c, r) - code(c, 100 - r) / 65535.0 * 4000.0));
+  BOOST_TEST(worst < 1e-3);
+  const Terrain t(g, R);
+  BOOST_TEST(std::abs(t.height_at(2000.0, 1200.0) - 49152.0 / 65535.0 * 4000.0) < 1e-3);
+  BOOST_TEST(t.height_at(-2000.0, -1200.0) == 0.0);
+  // Between pixel centres, bilinear: halfway between two samples of the cone's flank.
+  const double between = t.height_at(2020.0, 1200.0);
+  BOOST_TEST(std::abs(between - 0.5 * (code(150, 20) + code(151, 20)) / 65535.0 * 4000.0) < 1e-3);
+  // A coarser grid over a part of it (extent 1000 m, spacing 100 m) samples the same surface.
+  const HeightGrid coarse = read_height_map(path, height_map(40.0, 4000.0, 1000.0, 100.0));
+  BOOST_TEST(coarse.columns == 21);
+  BOOST_TEST(coarse.rows == 21);
+}
+
+// An OpenEXR height map: its values as stored, times the scale, plus the offset; negative heights
+// raised to the sphere's.
+BOOST_AUTO_TEST_CASE(exr_height_map_values_as_stored) {
+  const ScratchFolder dir("heightmap");
+  const std::string path = (dir.path / "ramp.exr").string();
+  const int w = 65, h = 33;
+  std::vector<float> y(static_cast<size_t>(w) * h);
+  for (int r = 0; r < h; ++r)
+    for (int c = 0; c < w; ++c) y[static_cast<size_t>(r) * w + c] = static_cast<float>(10.0 * c - 5.0 * r);
+  write_exr_channels(path, w, h, {{"Y", &y}}, {});
+  HeightMapSampling s = height_map(25.0, 2.0, 30000.0, 25.0);
+  s.height_offset_m = 100.0;
+  const HeightGrid g = read_height_map(path, s);
+  BOOST_TEST(g.columns == w);
+  BOOST_TEST(g.rows == h);
+  for (int r = 0; r < g.rows; ++r)
+    for (int c = 0; c < g.columns; ++c) {
+      const double want = std::max(0.0, 2.0 * (10.0 * c - 5.0 * (h - 1 - r)) + 100.0);
+      BOOST_TEST(std::abs(g.at(c, r) - want) < 1e-3, "column " << c << ", row " << r);
+    }
+}
+
+BOOST_AUTO_TEST_CASE(unusable_height_maps_are_refused_naming_the_file_or_the_key) {
+  const ScratchFolder dir("heightmap");
+  const HeightMapSampling s = height_map(30.0, 1.0, 10000.0, 30.0);
+  std::vector<float> flat(16 * 16, 100.0f);
+  // No channel to take.
+  const std::string ab = (dir.path / "ab.exr").string();
+  write_exr_channels(ab, 16, 16, {{"A", &flat}, {"B", &flat}}, {});
+  std::string m = message_of([&] { read_height_map(ab, s); });
+  BOOST_TEST(m.find("terrain.file") != std::string::npos, m);
+  BOOST_TEST(m.find("ab.exr") != std::string::npos, m);
+  BOOST_TEST(m.find("A, B") != std::string::npos, m);
+  // A value that is not finite.
+  std::vector<float> hole = flat;
+  hole[8 * 16 + 8] = NAN;
+  const std::string nan = (dir.path / "nan.exr").string();
+  {  // (skyspec's own writer refuses it)
+    Imf::Header header(16, 16);
+    header.channels().insert("Z", Imf::Channel(Imf::FLOAT));
+    Imf::OutputFile out(nan.c_str(), header);
+    Imf::FrameBuffer frame;
+    frame.insert("Z", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(hole.data()), sizeof(float), 16 * sizeof(float)));
+    out.setFrameBuffer(frame);
+    out.writePixels(16);
+  }
+  m = message_of([&] { read_height_map(nan, s); });
+  BOOST_TEST(m.find("finite") != std::string::npos, m);
+  // Absurd once scaled: 100 x 100 m.
+  const std::string tall = (dir.path / "tall.exr").string();
+  write_exr_channels(tall, 16, 16, {{"Y", &flat}}, {});
+  m = message_of([&] { read_height_map(tall, height_map(30.0, 100.0, 10000.0, 30.0)); });
+  BOOST_TEST(m.find("9000") != std::string::npos, m);
+  // Too small, not an image, no scale.
+  const std::string one = (dir.path / "one.png").string();
+  write_gdal_image(one, "PNG", GDT_Byte, 1, 1, [](int, int) { return 7.0; });
+  m = message_of([&] { read_height_map(one, s); });
+  BOOST_TEST(m.find("2 x 2") != std::string::npos, m);
+  const std::string text = (dir.path / "notes.png").string();
+  skyspec::test::write_text(dir.path / "notes.png", "not an image\n");
+  m = message_of([&] { read_height_map(text, s); });
+  BOOST_TEST(m.find("notes.png") != std::string::npos, m);
+  m = message_of([&] { read_height_map(one, height_map(0.0, 1.0, 10000.0, 30.0)); });
+  BOOST_TEST(m.find("terrain.heightmap.pixel_m") != std::string::npos, m);
+  // A PNG's no-data value (GDAL's) is refused like a DEM's hole.
+  const std::string nodata = (dir.path / "nodata.tif").string();
+  write_gdal_image(nodata, "GTiff", GDT_Int16, 16, 16, [](int x, int) { return x == 8 ? -32768.0 : 50.0; });
+  {
+    std::unique_ptr<GDALDataset> ds(GDALDataset::Open(nodata.c_str(), GDAL_OF_RASTER | GDAL_OF_UPDATE));
+    BOOST_REQUIRE(ds);
+    ds->GetRasterBand(1)->SetNoDataValue(-32768.0);
+  }
+  m = message_of([&] { read_height_map(nodata, s); });
+  BOOST_TEST(m.find("no-data") != std::string::npos, m);
 }
 
 BOOST_AUTO_TEST_SUITE_END()
