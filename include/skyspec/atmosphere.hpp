@@ -161,6 +161,10 @@ class AtmosphereModel {
 /// Piecewise-linear interpolation of (x, y) samples at x0, constant beyond the ends.
 double interpolate_linear(const std::vector<double>& x, const std::vector<double>& y, double x0);
 
+/// A surface's albedo at each wavelength of a grid: albedo_values interpolated linearly (constant
+/// beyond their ends), or `albedo` everywhere when there are none.
+SpectrumD albedo_on_grid(const GroundSpec& surface, const WavelengthGrid& grid);
+
 /// Build the density profile of a kind (exponential needs its scale height).
 DensityProfile make_profile(ProfileKind kind, double scale_height_m, double top_altitude_m);
 

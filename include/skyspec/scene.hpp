@@ -73,6 +73,13 @@ struct TerrainSpec {
   /// another image GDAL reads) whose scale `heightmap` states.
   std::string file;
   HeightMapSpec heightmap;
+  /// The surface's own Lambertian albedo: albedo_values at albedo_wavelengths_nm (linearly
+  /// interpolated) or a constant `albedo`; neither: the ground's (ground.albedo, ...).
+  std::optional<double> albedo;
+  std::vector<double> albedo_wavelengths_nm, albedo_values;
+  /// An albedo map (model = file: a georeferenced raster read as the heights are; heightmap: an
+  /// image over the height map's ground): a factor in [0, 1] on the albedo at each point. Empty: none.
+  std::string albedo_map;
   double extent_m = 30000.0;
   double spacing_m = 100.0;  ///< the spacing of the map grid the heights are sampled on
 };

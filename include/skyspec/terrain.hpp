@@ -41,6 +41,7 @@
 #include <vector>
 
 #include "skyspec/geometry.hpp"
+#include "skyspec/spectrum.hpp"
 #include "skyspec/vec3.hpp"
 
 namespace skyspec {
@@ -58,12 +59,22 @@ struct HeightGrid {
   double north_m(int row) const { return north0_m + spacing_m * row; }
 };
 
+/// What the terrain's surface reflects (Lambertian): its own albedo per wavelength of the render's
+/// grid (empty: the ground's, AtmosphereModel::ground_albedo), times a factor in [0, 1] given at
+/// each sample of the height grid (empty: 1) and interpolated bilinearly between samples (an
+/// albedo map). Beyond the grid the ground is the sphere, with the ground's albedo.
+struct TerrainAlbedo {
+  SpectrumD spectrum;
+  std::vector<float> map;  ///< row-major like HeightGrid::height_m
+};
+
 /// A height field on a planet of radius planet_radius_m, with its quadtree.
 class Terrain {
  public:
   /// Throws Error when the grid is malformed (sizes, a non-finite or negative height, a spacing
-  /// that is not positive, or a grid reaching more than 30 degrees from the reference point).
-  Terrain(HeightGrid grid, double planet_radius_m);
+  /// that is not positive, or a grid reaching more than 30 degrees from the reference point), or
+  /// the albedo is (a value outside [0, 1], a map of another size than the grid).
+  Terrain(HeightGrid grid, double planet_radius_m, TerrainAlbedo albedo = {});
 
   const HeightGrid& grid() const { return grid_; }
   double planet_radius_m() const { return R_; }
@@ -81,6 +92,17 @@ class Terrain {
   double clearance(const Vec3& p) const { return p.norm() - R_ - height_under(p); }
   /// The surface's outward unit normal at the surface point under p.
   Vec3 normal_under(const Vec3& p) const;
+  /// Whether p lies over the grid (its map coordinates within the grid's rectangle): the ground
+  /// there is the terrain's surface, with the terrain's albedo, wherever a ray meets it (also
+  /// where the grid's height is 0 and a ray ends on the sphere).
+  bool covers(const Vec3& p) const;
+  /// The terrain's own spectral albedo (empty: the ground's), whether it has one or an albedo map
+  /// (else its surface reflects as the ground does), and the map's factor under p (1 without a map
+  /// or beyond the grid).
+  const SpectrumD& own_albedo() const { return albedo_.spectrum; }
+  bool has_albedo_map() const { return !albedo_.map.empty(); }
+  bool has_own_albedo() const { return albedo_.spectrum.size() > 0 || !albedo_.map.empty(); }
+  double albedo_factor_under(const Vec3& p) const;
 
   /// The first t in [t0, t1] where the ray o + t d (|d| = 1) meets the surface, or +infinity.
   double intersect(const Vec3& o, const Vec3& d, double t0, double t1) const;
@@ -114,12 +136,15 @@ class Terrain {
   struct RayQuery;
   HeightGrid grid_;
   double R_;
+  TerrainAlbedo albedo_;
   std::vector<Level> levels_;  // levels_[0]: one block per cell
   double slope_ = 0.0;
   double lipschitz_ = 1.0;   // 1 + slope x the projection's largest scale: c / lipschitz_ is a safe step
   float border_max_ = 0.0f;  // the highest sample on the grid's edge
   Vec3 box_lo_, box_hi_;     // a world box holding the terrain
   double cell_height(int cell_x, int cell_y, double fx, double fy) const;
+  /// values (one per grid sample) interpolated bilinearly at map coordinates; `outside` beyond the grid.
+  double on_grid(const std::vector<float>& values, double east_m, double north_m, double outside) const;
   bool clip_to_rect(const RayQuery& q, double e0, double e1, double n0, double n1, double& t0, double& t1) const;
   bool visit(int level, int bx, int by, double t0, double t1, RayQuery& q) const;
   bool leaf(int cx, int cy, double t0, double t1, RayQuery& q) const;

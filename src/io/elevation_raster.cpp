@@ -57,17 +57,56 @@ void map_to_latitude_longitude(double east_m, double north_m, const ElevationSam
   longitude_deg = radians_to_degrees(std::atan2(y, x));
 }
 
-HeightGrid read_elevation_raster(const std::string& path, const ElevationSampling& s, const std::string& setting) {
-  auto refuse = [&](const std::string& what) { throw InputError(setting, path, what); };
+namespace {
+// What a raster's values are and which are allowed (after the raster's scale and offset).
+struct ValueRule {
+  const char* what;  // in messages
+  double lowest, highest;
+  const char* unit;
+  bool heights;  // heights: a DEM's unit converts to metres; below 0 raised to 0
+};
+constexpr ValueRule kHeights{"heights", kLowest_m, kHighest_m, " m", true};
+constexpr ValueRule kAlbedoFactors{"albedo factors", 0.0, 1.0, "", false};
+
+// The value kept for a sample, or a refusal naming the pixel near which it lies.
+template <class Refuse>
+float accepted(double value, const ValueRule& rule, int ix, int iy, const Refuse& refuse) {
+  if (!(value >= rule.lowest && value <= rule.highest))
+    refuse(std::string(rule.what) + " between " + format_number(rule.lowest) + " and " + format_number(rule.highest) +
+           rule.unit + " (near pixel " + std::to_string(ix) + ", " + std::to_string(iy) + " it is " +
+           format_number(value) + rule.unit + ")");
+  return static_cast<float>(rule.heights ? std::max(0.0, value) : value);
+}
+
+// The map grid of ElevationSampling: centred on the reference point, square.
+HeightGrid map_grid(const ElevationSampling& s) {
   if (!(s.spacing_m > 0.0) || !(s.extent_m >= s.spacing_m))
     throw InputError("terrain.extent_m", format_number(s.extent_m),
                      "at least terrain.spacing_m (" + format_number(s.spacing_m) + " m)");
+  HeightGrid g;
+  const int half = static_cast<int>(std::ceil(s.extent_m / s.spacing_m - 1e-9));
+  g.columns = g.rows = 2 * half + 1;
+  g.spacing_m = s.spacing_m;
+  g.east0_m = g.north0_m = -half * s.spacing_m;
+  if (static_cast<double>(g.columns) * static_cast<double>(g.rows) > 1e8)
+    throw InputError(
+        "terrain.spacing_m", format_number(s.spacing_m),
+        "a spacing that gives at most 1e8 samples over terrain.extent_m = " + format_number(s.extent_m) + " m");
+  return g;
+}
+
+// A georeferenced raster's first band at each sample of the grid (its latitude and longitude).
+std::vector<float> sample_georeferenced(const std::string& path, const HeightGrid& g, const ElevationSampling& s,
+                                        const std::string& setting, const ValueRule& rule) {
+  auto refuse = [&](const std::string& what) { throw InputError(setting, path, what); };
   GDALAllRegister();
   const QuietGdal quiet;
   std::unique_ptr<GDALDataset> ds(
       GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
-  if (!ds) refuse("an elevation raster GDAL can open (GeoTIFF or another raster format)" + QuietGdal::last());
-  if (ds->GetRasterCount() < 1) refuse("a raster with at least one band (heights)");
+  if (!ds)
+    refuse(std::string(rule.heights ? "an elevation raster" : "an albedo raster") +
+           " GDAL can open (GeoTIFF or another raster format)" + QuietGdal::last());
+  if (ds->GetRasterCount() < 1) refuse("a raster with at least one band");
   double gt[6];
   const OGRSpatialReference* srs = ds->GetSpatialRef();
   if (ds->GetGeoTransform(gt) != CE_None || !srs)
@@ -78,7 +117,9 @@ HeightGrid read_elevation_raster(const std::string& path, const ElevationSamplin
   GDALRasterBand* band = ds->GetRasterBand(1);
   const std::string unit = band->GetUnitType() ? band->GetUnitType() : "";
   double to_m = 1.0;
-  if (unit == "ft" || unit == "foot" || unit == "feet" || unit == "US survey foot")
+  if (!rule.heights)
+    ;  // an albedo has no unit; whatever the band says
+  else if (unit == "ft" || unit == "foot" || unit == "feet" || unit == "US survey foot")
     to_m = unit == "US survey foot" ? 1200.0 / 3937.0 : 0.3048;
   else if (!(unit.empty() || unit == "m" || unit == "metre" || unit == "meter" || unit == "metres" || unit == "meters"))
     refuse("heights in metres or feet (band 1's unit is \"" + unit + "\")");
@@ -88,17 +129,7 @@ HeightGrid read_elevation_raster(const std::string& path, const ElevationSamplin
   if (!has_offset) offset = 0.0;
   const double nodata = band->GetNoDataValue(&has_nodata);
 
-  // The map grid, centred on the reference point.
-  HeightGrid g;
-  const int half = static_cast<int>(std::ceil(s.extent_m / s.spacing_m - 1e-9));
-  g.columns = g.rows = 2 * half + 1;
-  g.spacing_m = s.spacing_m;
-  g.east0_m = g.north0_m = -half * s.spacing_m;
   const size_t count = static_cast<size_t>(g.columns) * static_cast<size_t>(g.rows);
-  if (static_cast<double>(count) > 1e8)
-    throw InputError(
-        "terrain.spacing_m", format_number(s.spacing_m),
-        "a spacing that gives at most 1e8 samples over terrain.extent_m = " + format_number(s.extent_m) + " m");
   // Each sample's latitude and longitude, into the raster's coordinates, into its pixels.
   std::vector<double> px(count), py(count);
   for (int r = 0; r < g.rows; ++r)
@@ -154,23 +185,31 @@ HeightGrid read_elevation_raster(const std::string& path, const ElevationSamplin
     y = std::clamp(y, 0, height - 1) - y0;
     return window[static_cast<size_t>(y) * ww + x];
   };
-  g.height_m.resize(count);
+  std::vector<float> values(count);
   for (size_t i = 0; i < count; ++i) {
     const int ix = static_cast<int>(std::floor(px[i])), iy = static_cast<int>(std::floor(py[i]));
     const double fx = px[i] - ix, fy = py[i] - iy;
     const double v[4] = {at(ix, iy), at(ix + 1, iy), at(ix, iy + 1), at(ix + 1, iy + 1)};
     for (double value : v)
       if ((has_nodata && value == nodata) || !std::isfinite(value))
-        refuse("heights everywhere in the square of half-size terrain.extent_m (a cell near pixel " +
+        refuse(std::string(rule.what) + " everywhere in the square of half-size terrain.extent_m (a cell near pixel " +
                std::to_string(ix) + ", " + std::to_string(iy) + " has no data)");
     const double raw = (1.0 - fy) * ((1.0 - fx) * v[0] + fx * v[1]) + fy * ((1.0 - fx) * v[2] + fx * v[3]);
-    const double h = (raw * scale + offset) * to_m;
-    if (!(h >= kLowest_m && h <= kHighest_m))
-      refuse("heights between " + format_number(kLowest_m) + " and " + format_number(kHighest_m) + " m (near pixel " +
-             std::to_string(ix) + ", " + std::to_string(iy) + " it is " + format_number(h) + " m)");
-    g.height_m[i] = static_cast<float>(std::max(0.0, h));
+    values[i] = accepted((raw * scale + offset) * to_m, rule, ix, iy, refuse);
   }
+  return values;
+}
+}  // namespace
+
+HeightGrid read_elevation_raster(const std::string& path, const ElevationSampling& s, const std::string& setting) {
+  HeightGrid g = map_grid(s);
+  g.height_m = sample_georeferenced(path, g, s, setting, kHeights);
   return g;
+}
+
+std::vector<float> read_georeferenced_albedo_map(const std::string& path, const HeightGrid& grid,
+                                                 const ElevationSampling& s, const std::string& setting) {
+  return sample_georeferenced(path, grid, s, setting, kAlbedoFactors);
 }
 
 namespace {
@@ -193,12 +232,12 @@ bool has_exr_extension(const std::string& path) {
 template <class Refuse>
 void check_height_map_size(long long width, long long height, const Refuse& refuse) {
   if (width < 2 || height < 2 || static_cast<double>(width) * static_cast<double>(height) > kMaxHeightMapPixels)
-    refuse("a height map of at least 2 x 2 and at most 1e8 pixels (this one is " + std::to_string(width) + " x " +
+    refuse("an image of at least 2 x 2 and at most 1e8 pixels (this one is " + std::to_string(width) + " x " +
            std::to_string(height) + ")");
 }
 
 template <class Refuse>
-HeightImage read_exr_height_image(const std::string& path, const Refuse& refuse) {
+HeightImage read_exr_height_image(const std::string& path, const Refuse& refuse, bool pixels) {
   std::string channel;
   long long width = 0, height = 0;
   try {
@@ -215,7 +254,7 @@ HeightImage read_exr_height_image(const std::string& path, const Refuse& refuse)
     if (channel.empty()) {
       std::string have;
       for (const auto& n : names) have += (have.empty() ? "" : ", ") + n;
-      refuse("an OpenEXR height map with a channel Y, Z or R, or a single channel (this one has: " + have + ")");
+      refuse("an OpenEXR image with a channel Y, Z or R, or a single channel (this one has: " + have + ")");
     }
   } catch (const InputError&) {
     throw;
@@ -226,6 +265,7 @@ HeightImage read_exr_height_image(const std::string& path, const Refuse& refuse)
   HeightImage image;
   image.width = static_cast<int>(width);
   image.height = static_cast<int>(height);
+  if (!pixels) return image;
   try {
     const ExrChannels read = read_exr_channels(path, {channel});
     const std::vector<float>& v = read.channels.at(channel);
@@ -237,18 +277,19 @@ HeightImage read_exr_height_image(const std::string& path, const Refuse& refuse)
 }
 
 template <class Refuse>
-HeightImage read_gdal_height_image(const std::string& path, const Refuse& refuse) {
+HeightImage read_gdal_height_image(const std::string& path, const Refuse& refuse, bool pixels) {
   GDALAllRegister();
   const QuietGdal quiet;
   std::unique_ptr<GDALDataset> ds(
       GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
-  if (!ds) refuse("a height map OpenEXR or GDAL can open (EXR, PNG, TIFF, ...)" + QuietGdal::last());
-  if (ds->GetRasterCount() < 1) refuse("an image with at least one band (heights)");
+  if (!ds) refuse("an image OpenEXR or GDAL can open (EXR, PNG, TIFF, ...)" + QuietGdal::last());
+  if (ds->GetRasterCount() < 1) refuse("an image with at least one band");
   check_height_map_size(ds->GetRasterXSize(), ds->GetRasterYSize(), refuse);
   GDALRasterBand* band = ds->GetRasterBand(1);
   HeightImage image;
   image.width = ds->GetRasterXSize();
   image.height = ds->GetRasterYSize();
+  if (!pixels) return image;
   image.value.resize(static_cast<size_t>(image.width) * static_cast<size_t>(image.height));
   if (band->RasterIO(GF_Read, 0, 0, image.width, image.height, image.value.data(), image.width, image.height,
                      GDT_Float64, 0, 0, nullptr) != CE_None)
@@ -259,11 +300,46 @@ HeightImage read_gdal_height_image(const std::string& path, const Refuse& refuse
   const double unit = type == GDT_Byte ? 1.0 / 255.0 : type == GDT_UInt16 ? 1.0 / 65535.0 : 1.0;
   for (size_t i = 0; i < image.value.size(); ++i) {
     if (has_nodata && image.value[i] == nodata)
-      refuse("heights everywhere (pixel " + std::to_string(i % image.width) + ", " + std::to_string(i / image.width) +
+      refuse("a value everywhere (pixel " + std::to_string(i % image.width) + ", " + std::to_string(i / image.width) +
              " holds the no-data value)");
     image.value[i] *= unit;
   }
   return image;
+}
+template <class Refuse>
+HeightImage read_height_image(const std::string& path, const Refuse& refuse, bool pixels) {
+  return has_exr_extension(path) ? read_exr_height_image(path, refuse, pixels)
+                                 : read_gdal_height_image(path, refuse, pixels);
+}
+
+// The image's values (times scale, plus offset) interpolated bilinearly at each sample of the
+// grid, the image centred on the reference point with pixel centres pixel_east_m and
+// pixel_north_m apart, its top row north.
+template <class Refuse>
+std::vector<float> sample_image(const HeightImage& image, const HeightGrid& g, double pixel_east_m,
+                                double pixel_north_m, double scale, double offset, const ValueRule& rule,
+                                const Refuse& refuse) {
+  const double centre_x = 0.5 * (image.width - 1), centre_y = 0.5 * (image.height - 1);
+  const auto at = [&](int x, int y) {
+    x = std::clamp(x, 0, image.width - 1);
+    y = std::clamp(y, 0, image.height - 1);
+    return image.value[static_cast<size_t>(y) * static_cast<size_t>(image.width) + static_cast<size_t>(x)];
+  };
+  std::vector<float> values(static_cast<size_t>(g.columns) * static_cast<size_t>(g.rows));
+  for (int r = 0; r < g.rows; ++r)
+    for (int c = 0; c < g.columns; ++c) {
+      const double px = centre_x + g.east_m(c) / pixel_east_m, py = centre_y - g.north_m(r) / pixel_north_m;
+      const int ix = static_cast<int>(std::floor(px)), iy = static_cast<int>(std::floor(py));
+      const double fx = px - ix, fy = py - iy;
+      const double v[4] = {at(ix, iy), at(ix + 1, iy), at(ix, iy + 1), at(ix + 1, iy + 1)};
+      for (double value : v)
+        if (!std::isfinite(value))
+          refuse("finite values (near pixel " + std::to_string(ix) + ", " + std::to_string(iy) + " one is not)");
+      const double raw = (1.0 - fy) * ((1.0 - fx) * v[0] + fx * v[1]) + fy * ((1.0 - fx) * v[2] + fx * v[3]);
+      values[static_cast<size_t>(r) * static_cast<size_t>(g.columns) + static_cast<size_t>(c)] =
+          accepted(raw * scale + offset, rule, ix, iy, refuse);
+    }
+  return values;
 }
 }  // namespace
 
@@ -275,8 +351,7 @@ HeightGrid read_height_map(const std::string& path, const HeightMapSampling& s, 
   if (!(s.spacing_m > 0.0) || !(s.extent_m >= s.spacing_m))
     throw InputError("terrain.extent_m", format_number(s.extent_m),
                      "at least terrain.spacing_m (" + format_number(s.spacing_m) + " m)");
-  const HeightImage image =
-      has_exr_extension(path) ? read_exr_height_image(path, refuse) : read_gdal_height_image(path, refuse);
+  const HeightImage image = read_height_image(path, refuse, true);
   // The grid, centred on the image's centre, as far as the image and extent_m reach.
   const double centre_x = 0.5 * (image.width - 1), centre_y = 0.5 * (image.height - 1);
   const int half_columns =
@@ -295,31 +370,22 @@ HeightGrid read_height_map(const std::string& path, const HeightMapSampling& s, 
   if (static_cast<double>(g.columns) * g.rows > 1e8)
     throw InputError("terrain.spacing_m", format_number(s.spacing_m),
                      "a spacing that gives at most 1e8 samples over the height map");
-  auto at = [&](int x, int y) {
-    x = std::clamp(x, 0, image.width - 1);
-    y = std::clamp(y, 0, image.height - 1);
-    return image.value[static_cast<size_t>(y) * static_cast<size_t>(image.width) + static_cast<size_t>(x)];
-  };
-  g.height_m.resize(static_cast<size_t>(g.columns) * static_cast<size_t>(g.rows));
-  for (int r = 0; r < g.rows; ++r)
-    for (int c = 0; c < g.columns; ++c) {
-      const double px = centre_x + g.east_m(c) / s.pixel_m, py = centre_y - g.north_m(r) / s.pixel_m;
-      const int ix = static_cast<int>(std::floor(px)), iy = static_cast<int>(std::floor(py));
-      const double fx = px - ix, fy = py - iy;
-      const double v[4] = {at(ix, iy), at(ix + 1, iy), at(ix, iy + 1), at(ix + 1, iy + 1)};
-      for (double value : v)
-        if (!std::isfinite(value))
-          refuse("finite heights (near pixel " + std::to_string(ix) + ", " + std::to_string(iy) + " one is not)");
-      const double raw = (1.0 - fy) * ((1.0 - fx) * v[0] + fx * v[1]) + fy * ((1.0 - fx) * v[2] + fx * v[3]);
-      const double h = raw * s.height_scale_m + s.height_offset_m;
-      if (!(h >= kLowest_m && h <= kHighest_m))
-        refuse("heights between " + format_number(kLowest_m) + " and " + format_number(kHighest_m) +
-               " m once scaled (near pixel " + std::to_string(ix) + ", " + std::to_string(iy) + " it is " +
-               format_number(h) + " m)");
-      g.height_m[static_cast<size_t>(r) * static_cast<size_t>(g.columns) + static_cast<size_t>(c)] =
-          static_cast<float>(std::max(0.0, h));
-    }
+  g.height_m = sample_image(image, g, s.pixel_m, s.pixel_m, s.height_scale_m, s.height_offset_m, kHeights, refuse);
   return g;
+}
+
+void height_map_pixels(const std::string& path, int& width, int& height, const std::string& setting) {
+  auto refuse = [&](const std::string& what) { throw InputError(setting, path, what); };
+  const HeightImage image = read_height_image(path, refuse, false);
+  width = image.width;
+  height = image.height;
+}
+
+std::vector<float> read_albedo_image(const std::string& path, const HeightGrid& grid, double width_m, double height_m,
+                                     const std::string& setting) {
+  auto refuse = [&](const std::string& what) { throw InputError(setting, path, what); };
+  const HeightImage image = read_height_image(path, refuse, true);
+  return sample_image(image, grid, width_m / image.width, height_m / image.height, 1.0, 0.0, kAlbedoFactors, refuse);
 }
 
 }  // namespace skyspec

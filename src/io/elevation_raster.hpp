@@ -1,9 +1,11 @@
 // Elevation rasters (digital elevation models) through GDAL: GeoTIFF and every raster format GDAL
-// reads, with their georeferencing (a geotransform and a coordinate reference system); and height
-// maps, images without georeferencing whose scale the scene states (OpenEXR, PNG, ...).
+// reads, with their georeferencing (a geotransform and a coordinate reference system); height
+// maps, images without georeferencing whose scale the scene states (OpenEXR, PNG, ...); and
+// albedo maps read either way onto the same grid.
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "skyspec/terrain.hpp"
 
@@ -48,6 +50,22 @@ struct HeightMapSampling {
 /// finite (or GDAL's no-data value), or gives a height outside -500 to 9000 m.
 HeightGrid read_height_map(const std::string& path, const HeightMapSampling& sampling,
                            const std::string& setting = "terrain.file");
+
+/// A height map's size in pixels (width, height), from its header. Throws as read_height_map.
+void height_map_pixels(const std::string& path, int& width, int& height, const std::string& setting = "terrain.file");
+
+/// An albedo map on the samples of `grid` (one factor per sample, row-major like its heights), each
+/// in [0, 1]. Georeferenced (terrain.model = file): the raster's first band at each sample's
+/// latitude and longitude, as read_elevation_raster reads heights (its scale and offset applied,
+/// its unit ignored). Over a height map (heightmap): an image read as read_height_map reads one
+/// (8- and 16-bit codes over their largest), spread over the ground of width_m x height_m the
+/// height map covers, centred on the reference point, top row north. Throws InputError naming
+/// `setting` and the file as the readers of heights do, and for a factor outside [0, 1].
+std::vector<float> read_georeferenced_albedo_map(const std::string& path, const HeightGrid& grid,
+                                                 const ElevationSampling& sampling,
+                                                 const std::string& setting = "terrain.albedo_map");
+std::vector<float> read_albedo_image(const std::string& path, const HeightGrid& grid, double width_m, double height_m,
+                                     const std::string& setting = "terrain.albedo_map");
 
 /// The latitude and longitude (degrees) of the point of the sphere at map coordinates (east,
 /// north) around the reference point: the inverse of the gnomonic projection.

@@ -50,12 +50,15 @@ AtmosphereModel::AtmosphereModel(const AtmosphereSpec& spec, const WavelengthGri
   ozone_peak_per_m3_ = skyspec::ozone_peak_number_density_per_m3(spec.ozone);
 
   // --- Ground -----------------------------------------------------------------------------
-  const int n = grid.size();
-  ground_albedo_.resize(n);
-  const auto& g = spec.ground;
-  for (int i = 0; i < n; ++i)
-    ground_albedo_[i] =
+  ground_albedo_ = albedo_on_grid(spec.ground, grid);
+}
+
+SpectrumD albedo_on_grid(const GroundSpec& g, const WavelengthGrid& grid) {
+  SpectrumD albedo(grid.size());
+  for (int i = 0; i < grid.size(); ++i)
+    albedo[i] =
         g.albedo_values.empty() ? g.albedo : interpolate_linear(g.albedo_wavelengths_nm, g.albedo_values, grid.nm(i));
+  return albedo;
 }
 
 const Medium* AtmosphereModel::medium(const std::string& name) const {

@@ -124,6 +124,7 @@ ReferenceResult monte_carlo_reference(const Scene& scene, const std::vector<Refe
   for (int i = 0; i < n; ++i) {
     MonteCarloMedium medium = MonteCarloMedium::from_atmosphere(atmosphere, i);
     medium.terrain = terrain;
+    if (terrain && terrain->own_albedo().size() > 0) medium.terrain_albedo = terrain->own_albedo()[i];
     const MonteCarloIntegrator integrator(std::move(medium), sun);
     const double e = sun_irradiance[i];
     for (size_t k = 0; k < probes.size(); ++k) {

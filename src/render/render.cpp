@@ -127,7 +127,8 @@ struct SkyRenderer::Impl {
   // quadrature wherever no shadow falls on the ray, so the difference is exactly that of the
   // shadowed pieces and of a shadowed ground). The higher orders are the table's where the ray
   // ends in the sky, or on the ground without the terrain's shadow on it (single_scattering.hpp).
-  // False where the ray meets the terrain, where it ends on the ground past the terrain's shadow
+  // False where the ray meets the terrain or ends on the ground over its grid with the terrain's own
+  // albedo, where it ends on the ground past the terrain's shadow
   // with higher orders (the sky the terrain hides from its points: SkylineCut in
   // single_scattering.cpp), or where the table does not hold the direction: then it is marched.
   // `stretch`: terrain_touches()'s.
@@ -137,6 +138,8 @@ struct SkyRenderer::Impl {
     const double ground = sphere_entry_distance(o, dir, atmosphere.planet_radius_m());
     const double end = std::min(stretch.t1_m, ground);
     if (std::isfinite(terrain->intersect(o, dir, stretch.t0_m, end))) return false;
+    // The ground over the terrain's grid reflects with the terrain's albedo, which the table does not know.
+    if (std::isfinite(ground) && terrain->has_own_albedo() && terrain->covers(o + ground * dir)) return false;
     if (!sky_view->lookup(dir, parts)) return false;
     // No terrain shadow on the ray (its visibility probed as the integrator probes it): the table's
     // parts are the answer (the two marches below would be equal).

@@ -322,6 +322,29 @@ const std::vector<KeyDef>& registry() {
     r.push_back(number_key("terrain.heightmap.height_offset_m", "m", {-1e4, 1e4},
                            "heightmap: metres added to every height (heights below 0 are raised to 0, the sphere)",
                            [](Scene& s) -> double& { return s.terrain.heightmap.height_offset_m; }));
+    r.push_back(optional_number_key(
+        "terrain.albedo", "", {0.0, 1.0},
+        "Lambertian albedo of the terrain's surface (unset: the ground's, ground.albedo or ground.albedo_values); "
+        "beyond the terrain's grid the ground is the sphere, with the ground's albedo",
+        [](Scene& s) -> std::optional<double>& { return s.terrain.albedo; }));
+    r.push_back(list_key("terrain.albedo_wavelengths_nm", "nm", {1.0, 1e5}, 1024,
+                         "the terrain's spectral albedo: wavelengths (replaces terrain.albedo when not empty)",
+                         [](Scene& s) -> std::vector<double>& { return s.terrain.albedo_wavelengths_nm; }));
+    r.push_back(list_key("terrain.albedo_values", "", {0.0, 1.0}, 1024,
+                         "the terrain's spectral albedo: values at terrain.albedo_wavelengths_nm, linearly "
+                         "interpolated",
+                         [](Scene& s) -> std::vector<double>& { return s.terrain.albedo_values; }));
+    {
+      KeyDef k = text_key(
+          "terrain.albedo_map",
+          "a factor in [0, 1] on the terrain's albedo at each point: model = file: a georeferenced raster GDAL "
+          "reads (band 1, its scale and offset applied); model = heightmap: an image (EXR, or PNG and the others "
+          "GDAL reads, 8/16-bit codes over 255/65535) spread over the height map's ground, top row north",
+          [](Scene& s) -> std::string& { return s.terrain.albedo_map; }, false);
+      const auto written = k.get;
+      k.get = [written](const Scene& s) { return s.terrain.albedo_map.empty() ? std::string() : written(s); };  // unset
+      r.push_back(k);
+    }
     r.push_back(number_key("terrain.extent_m", "m", {100.0, 1e6},
                            "model = file, heightmap: half the side of the square read around the reference point "
                            "(a height map: no further than it reaches)",

@@ -44,6 +44,11 @@ void check_terrain(const Scene& s) {
                        "the distance between the height map's pixel centres on the ground, in metres "
                        "(terrain.model = \"heightmap\")");
   }
+  if (!t.albedo_map.empty() && t.model != TerrainSpec::Model::File && t.model != TerrainSpec::Model::HeightMap)
+    throw InputError("terrain.albedo_map", t.albedo_map,
+                     "an albedo map only with terrain.model = \"file\" (georeferenced, like the heights) or "
+                     "\"heightmap\" (over the height map's ground), not \"" +
+                         std::string(terrain_model_name(t.model)) + "\"");
   if (t.model != TerrainSpec::Model::Ridge) return;
   const RidgeSpec& r = t.ridge;
   if (!(r.length_m > 2.0 * r.half_width_m))

@@ -156,6 +156,20 @@ std::string toml_number(double v) {
   return s.str();
 }
 
+// A spectral albedo's lists (<prefix>.albedo_wavelengths_nm, <prefix>.albedo_values): as long as
+// each other, wavelengths strictly increasing.
+void check_spectral_albedo(const std::string& prefix, const std::vector<double>& wavelengths_nm,
+                           const std::vector<double>& values) {
+  if (wavelengths_nm.size() != values.size())
+    throw InputError(
+        prefix + ".albedo_values", std::to_string(values.size()) + " values",
+        "one value per entry of " + prefix + ".albedo_wavelengths_nm (" + std::to_string(wavelengths_nm.size()) + ")");
+  for (size_t i = 1; i < wavelengths_nm.size(); ++i)
+    if (!(wavelengths_nm[i] > wavelengths_nm[i - 1]))
+      throw InputError(prefix + ".albedo_wavelengths_nm", format_number(wavelengths_nm[i]),
+                       "strictly increasing wavelengths");
+}
+
 }  // namespace
 
 std::string toml_quoted(const std::string& text) {
@@ -301,15 +315,8 @@ Scene SceneLoader::finish(SceneUse use) const {
         throw InputError("atmosphere.mie.table_wavelengths_nm", format_number(mie.table_wavelengths_nm[i]),
                          "strictly increasing wavelengths");
   }
-  const auto& gr = s.atmosphere.ground;
-  if (gr.albedo_wavelengths_nm.size() != gr.albedo_values.size())
-    throw InputError("ground.albedo_values", std::to_string(gr.albedo_values.size()) + " values",
-                     "one value per entry of ground.albedo_wavelengths_nm (" +
-                         std::to_string(gr.albedo_wavelengths_nm.size()) + ")");
-  for (size_t i = 1; i < gr.albedo_wavelengths_nm.size(); ++i)
-    if (!(gr.albedo_wavelengths_nm[i] > gr.albedo_wavelengths_nm[i - 1]))
-      throw InputError("ground.albedo_wavelengths_nm", format_number(gr.albedo_wavelengths_nm[i]),
-                       "strictly increasing wavelengths");
+  check_spectral_albedo("ground", s.atmosphere.ground.albedo_wavelengths_nm, s.atmosphere.ground.albedo_values);
+  check_spectral_albedo("terrain", s.terrain.albedo_wavelengths_nm, s.terrain.albedo_values);
   if (s.output.polarisation_png && !s.output.polarisation)
     throw InputError("output.polarisation_png", "true",
                      "false unless output.polarisation = true (it draws the polarisation)");

@@ -23,6 +23,16 @@ namespace {
 // The grid of the scene's terrain; for a raster or a height map, only the samples within extent_m
 // of the reference point (the grid is centred there with the same spacing, so its samples are the
 // full grid's).
+ElevationSampling georeferenced_sampling(const Scene& s, double extent_m) {
+  ElevationSampling sampling;
+  sampling.latitude_deg = s.location.latitude_deg;
+  sampling.longitude_deg = s.location.longitude_deg;
+  sampling.extent_m = extent_m;
+  sampling.spacing_m = s.terrain.spacing_m;
+  sampling.planet_radius_m = s.atmosphere.planet_radius_m;
+  return sampling;
+}
+
 HeightGrid terrain_grid(const Scene& s, double extent_m) {
   const TerrainSpec& spec = s.terrain;
   if (spec.model == TerrainSpec::Model::Ridge) return ridge_heights(spec.ridge, spec.spacing_m);
@@ -35,13 +45,31 @@ HeightGrid terrain_grid(const Scene& s, double extent_m) {
     sampling.spacing_m = spec.spacing_m;
     return read_height_map(spec.file, sampling);
   }
-  ElevationSampling sampling;
-  sampling.latitude_deg = s.location.latitude_deg;
-  sampling.longitude_deg = s.location.longitude_deg;
-  sampling.extent_m = extent_m;
-  sampling.spacing_m = spec.spacing_m;
-  sampling.planet_radius_m = s.atmosphere.planet_radius_m;
-  return read_elevation_raster(spec.file, sampling);
+  return read_elevation_raster(spec.file, georeferenced_sampling(s, extent_m));
+}
+
+// The terrain's own albedo (terrain.albedo*, on the scene's wavelength grid) and its albedo map
+// on the grid's samples (terrain.albedo_map: georeferenced like a DEM, or over a height map's ground).
+TerrainAlbedo terrain_albedo(const Scene& s, const HeightGrid& grid) {
+  const TerrainSpec& spec = s.terrain;
+  TerrainAlbedo albedo;
+  if (spec.albedo || !spec.albedo_values.empty()) {
+    GroundSpec own;
+    own.albedo = spec.albedo.value_or(0.0);
+    own.albedo_wavelengths_nm = spec.albedo_wavelengths_nm;
+    own.albedo_values = spec.albedo_values;
+    albedo.spectrum = albedo_on_grid(own, make_wavelength_grid(s));
+  }
+  if (spec.albedo_map.empty()) return albedo;
+  if (spec.model == TerrainSpec::Model::File) {
+    albedo.map = read_georeferenced_albedo_map(spec.albedo_map, grid, georeferenced_sampling(s, spec.extent_m));
+  } else if (spec.model == TerrainSpec::Model::HeightMap) {
+    int width = 0, height = 0;
+    height_map_pixels(spec.file, width, height);
+    const double pixel_m = spec.heightmap.pixel_m.value_or(0.0);
+    albedo.map = read_albedo_image(spec.albedo_map, grid, width * pixel_m, height * pixel_m);
+  }
+  return albedo;
 }
 }  // namespace
 
@@ -68,7 +96,8 @@ std::shared_ptr<const Terrain> scene_terrain(const Scene& s) {
   const double R = s.atmosphere.planet_radius_m;
   if (spec.model == TerrainSpec::Model::None) return nullptr;
   HeightGrid grid = terrain_grid(s, spec.extent_m);
-  auto terrain = std::make_shared<const Terrain>(std::move(grid), R);
+  TerrainAlbedo albedo = terrain_albedo(s, grid);
+  auto terrain = std::make_shared<const Terrain>(std::move(grid), R, std::move(albedo));
   const Vec3& c = s.camera.position_m;
   const Vec3 camera(c.x(), c.y(), R + c.z());
   const double under = terrain->height_under(camera);

@@ -182,6 +182,11 @@ Vec3 MonteCarloIntegrator::ground_normal(const Vec3& g) const {
   return medium_.terrain ? medium_.terrain->normal_under(g) : up(g);
 }
 
+double MonteCarloIntegrator::surface_albedo(const Vec3& g) const {
+  if (!medium_.terrain || !medium_.terrain->covers(g)) return medium_.ground_albedo;
+  return medium_.terrain_albedo.value_or(medium_.ground_albedo) * medium_.terrain->albedo_factor_under(g);
+}
+
 Vec3 MonteCarloIntegrator::snap_to_surface(const Vec3& g, bool on_terrain) const {
   if (!on_terrain) return snap_to_ground(g);
   return g + 1e-3 * medium_.terrain->normal_under(g);  // off the surface, which hides nothing from it
@@ -444,10 +449,10 @@ Eigen::Matrix<double, N, 1> MonteCarloIntegrator::path(Vec3 p, Vec3 d, const Vec
       const Vec3 g = p + t_max * d;
       const Vec3 n = on_terrain ? ground_normal(g) : up(g);
       const double cos_sun = n.dot(sun_);
-      if (cos_sun > 0.0 && medium_.ground_albedo > 0.0) {
+      const double albedo = surface_albedo(g);
+      if (cos_sun > 0.0 && albedo > 0.0) {
         // Lambertian: unpolarised whatever the light it reflects.
-        const double k = w * T * medium_.ground_albedo / kPi * E * cos_sun *
-                         transmittance_to_sun(snap_to_surface(g, on_terrain), rng);
+        const double k = w * T * albedo / kPi * E * cos_sun * transmittance_to_sun(snap_to_surface(g, on_terrain), rng);
         if constexpr (kStokes)
           L += k * M.col(0);
         else
@@ -472,8 +477,8 @@ Eigen::Matrix<double, N, 1> MonteCarloIntegrator::path(Vec3 p, Vec3 d, const Vec
     } else if (ground) {
       const Vec3 g = p + t_max * d;
       const Vec3 n = on_terrain ? ground_normal(g) : up(g);
+      w *= surface_albedo(g);
       p = snap_to_surface(g, on_terrain);
-      w *= medium_.ground_albedo;
       // Cosine-distributed about the surface's normal: mu = sqrt(xi) (Malley's method).
       double mu = 0.0;
       do mu = std::sqrt(rng.uniform());

@@ -37,6 +37,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "physics/scattering_matrix.hpp"
@@ -70,10 +71,13 @@ struct MonteCarloMedium {
   double top_altitude_m = 60e3;  ///< the medium ends here
   std::vector<MonteCarloComponent> components;
   double ground_albedo = 0.0;  ///< Lambertian
-  /// Terrain on the shell's ground (terrain.hpp), Lambertian with ground_albedo: it ends the
-  /// segments that meet it, shadows the points it hides the sun from, and reflects paths about
-  /// its own normal. Null: none.
+  /// Terrain on the shell's ground (terrain.hpp), Lambertian with terrain_albedo (unset: the
+  /// ground's) times its albedo map's factor (Terrain::albedo_factor_under) wherever the ground
+  /// lies over its grid (Terrain::covers): it ends the segments
+  /// that meet it, shadows the points it hides the sun from, and reflects paths about its own
+  /// normal. Null: none.
   std::shared_ptr<const Terrain> terrain;
+  std::optional<double> terrain_albedo;
   double sun_irradiance = 1.0;  ///< irradiance normal to the sun's direction at the top
 
   /// Wavelength i of an atmosphere on its grid: a component per medium that extinguishes light
@@ -147,6 +151,9 @@ class MonteCarloIntegrator {
   double distance_to_shell_boundary(const Vec3& p, const Vec3& d, bool& ground) const;
   Vec3 ground_normal(const Vec3& g) const;
   Vec3 snap_to_surface(const Vec3& g, bool on_terrain) const;
+  /// The Lambertian albedo of the surface at g: the terrain's over its grid (Terrain::covers), else
+  /// the ground's.
+  double surface_albedo(const Vec3& g) const;
   double extinction_at(double altitude_m) const;
   double scattering_at(double altitude_m, double* per_component) const;
   double transmittance_to_sun(const Vec3& p, Rng& rng) const;

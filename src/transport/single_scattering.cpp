@@ -7,6 +7,7 @@
 
 #include "base/quadrature.hpp"
 #include "skyspec/atmosphere.hpp"
+#include "skyspec/error.hpp"
 #include "skyspec/phase_function.hpp"
 #include "skyspec/units.hpp"
 #include "transport/multiple_scattering.hpp"  // gauss_legendre
@@ -15,7 +16,8 @@
 
 namespace skyspec {
 
-ScatteringWorkspace::ScatteringWorkspace(int n) : view_tau(n), view_trans(n), source(n), ground_sun(n), ground_sky(n) {
+ScatteringWorkspace::ScatteringWorkspace(int n)
+    : view_tau(n), view_trans(n), source(n), ground_sun(n), ground_sky(n), surface_albedo_over_pi(n) {
   for (Sums& s : sums)
     for (Spectrum* v : {&s.single[0], &s.single[1], &s.higher[0], &s.higher[1], &s.q[0], &s.q[1], &s.u[0], &s.u[1]})
       v->setZero(n);
@@ -1005,7 +1007,7 @@ void SingleScattering::ground_reflection(const Node& ground, const Vec3& ground_
   ground_irradiance_at(ground_point, s, mu_sun, sources, ws);
   view_optical_depth(ground, ws.view_tau);
   ws.view_trans = (-ws.view_tau).exp();
-  parts.phase_free += ws.view_trans * albedo_over_pi_ * ws.source;
+  parts.phase_free += ws.view_trans * albedo_over_pi_at(ground_point, sources.terrain, ws) * ws.source;
 }
 
 void SingleScattering::ground_irradiance_at(const Vec3& ground_point, const Vec3& s, double mu_sun,
@@ -1038,7 +1040,22 @@ void SingleScattering::terrain_reflection(const Node& ground, const Vec3& p, con
   terrain_irradiance(ground, p, s, sources, ws);
   view_optical_depth(ground, ws.view_tau);
   ws.view_trans = (-ws.view_tau).exp();
-  parts.phase_free += ws.view_trans * albedo_over_pi_ * ws.source;
+  parts.phase_free += ws.view_trans * albedo_over_pi_at(p, sources.terrain, ws) * ws.source;
+}
+
+const Spectrum& SingleScattering::albedo_over_pi_at(const Vec3& p, const Terrain* terrain,
+                                                    ScatteringWorkspace& ws) const {
+  if (!terrain || !terrain->has_own_albedo() || !terrain->covers(p)) return albedo_over_pi_;
+  if (terrain->own_albedo().size() == 0) {
+    ws.surface_albedo_over_pi = albedo_over_pi_;
+  } else {
+    if (terrain->own_albedo().size() != n_)
+      throw Error("terrain: an albedo of " + std::to_string(terrain->own_albedo().size()) + " wavelengths for " +
+                  std::to_string(n_));
+    ws.surface_albedo_over_pi = (terrain->own_albedo() / kPi).cast<float>();
+  }
+  if (terrain->has_albedo_map()) ws.surface_albedo_over_pi *= static_cast<float>(terrain->albedo_factor_under(p));
+  return ws.surface_albedo_over_pi;
 }
 
 void SingleScattering::terrain_irradiance(const Node& ground, const Vec3& p, const Vec3& s,
@@ -1108,7 +1125,7 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
       terrain_irradiance(last, o + last.t * d, s, sources, ws);
     else
       ground_irradiance_at(o + last.t * d, s, (os + last.t * ds) / last.r, sources, ws);
-    skyline.radiance = albedo_over_pi_ * ws.source;
+    skyline.radiance = albedo_over_pi_at(o + last.t * d, sources.terrain, ws) * ws.source;
     view_optical_depth(last, skyline.tau_end);
   }
   for (int i = 0; i < ray.n_pieces; ++i) {
@@ -1154,8 +1171,9 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
     view_optical_depth(last, ws.view_tau);
     *sources.transmittance = (-ws.view_tau).exp();
   }
-  if (ray.hits_ground && albedo_over_pi_.maxCoeff() > 0.0f) {  // the last node is the ground point
-    if (cut)                                                   // the surface's radiance is known already (SkylineCut)
+  if (ray.hits_ground &&
+      albedo_over_pi_at(o + last.t * d, sources.terrain, ws).maxCoeff() > 0.0f) {  // the last node is the ground point
+    if (cut)  // the surface's radiance is known already (SkylineCut)
       parts.phase_free += (-skyline.tau_end).exp() * skyline.radiance;
     else if (ray.hits_terrain)
       terrain_reflection(last, o + last.t * d, s, sources, ws, parts);

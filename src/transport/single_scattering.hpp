@@ -82,6 +82,7 @@ Vec3 polarisation_frame(const Vec3& view, const Vec3& sun);
 struct ScatteringWorkspace {
   explicit ScatteringWorkspace(int n_wavelengths);
   Spectrum view_tau, view_trans, source, ground_sun, ground_sky;  // the ground's light
+  Spectrum surface_albedo_over_pi;                                // the terrain's where it differs from the ground's
   /// The fine and coarse (paired) log-mean sums of one scattering medium: of order 1, of the
   /// higher orders' J_s, and (polarisation) of J_s + P_Q,s and J_s + P_U,s.
   struct Sums {
@@ -319,6 +320,9 @@ class SingleScattering {
   void terrain_irradiance(const Node& ground, const Vec3& p, const Vec3& s, const ScatteringSources& sources,
                           ScatteringWorkspace& ws) const;
   /// Its reflection seen through the view ray, added to the phase-free part.
+  /// albedo / pi of the surface at a ray's end p: the ground's, or over the terrain's grid
+  /// (Terrain::covers) its own albedo (or the ground's) times its map's factor under p.
+  const Spectrum& albedo_over_pi_at(const Vec3& p, const Terrain* terrain, ScatteringWorkspace& ws) const;
   void terrain_reflection(const Node& ground, const Vec3& p, const Vec3& s, const ScatteringSources& sources,
                           ScatteringWorkspace& ws, RadianceParts& parts) const;
   void view_optical_depth(const Node& node, Spectrum& tau) const;

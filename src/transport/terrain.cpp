@@ -40,8 +40,8 @@ struct Terrain::RayQuery {
   double t_at_north(double n) const { return (n * o.z() - R * o.y()) / (R * d.y() - n * d.z()); }
 };
 
-Terrain::Terrain(HeightGrid grid, double planet_radius_m)
-    : grid_(std::move(grid)), R_(planet_radius_m), serial_(next_serial()) {
+Terrain::Terrain(HeightGrid grid, double planet_radius_m, TerrainAlbedo albedo)
+    : grid_(std::move(grid)), R_(planet_radius_m), albedo_(std::move(albedo)), serial_(next_serial()) {
   const HeightGrid& g = grid_;
   if (g.columns < 2 || g.rows < 2)
     throw Error("terrain: a height grid needs at least 2 x 2 samples, not " + std::to_string(g.columns) + " x " +
@@ -55,6 +55,14 @@ Terrain::Terrain(HeightGrid grid, double planet_radius_m)
     if (!std::isfinite(h) || h < 0.0f)
       throw Error("terrain: heights must be finite and not negative (the sphere is height 0), found " +
                   std::to_string(h));
+  for (double a : albedo_.spectrum)
+    if (!(a >= 0.0 && a <= 1.0)) throw Error("terrain: an albedo must lie in [0, 1], not " + std::to_string(a));
+  if (!albedo_.map.empty() && albedo_.map.size() != g.height_m.size())
+    throw Error("terrain: an albedo map of " + std::to_string(albedo_.map.size()) + " samples for a grid of " +
+                std::to_string(g.height_m.size()));
+  for (float a : albedo_.map)
+    if (!(a >= 0.0f && a <= 1.0f))
+      throw Error("terrain: an albedo map's factor must lie in [0, 1], not " + std::to_string(a));
   const double e1 = g.east_m(g.columns - 1), n1 = g.north_m(g.rows - 1);
   const double reach = std::max(
       {std::hypot(g.east0_m, g.north0_m), std::hypot(e1, g.north0_m), std::hypot(g.east0_m, n1), std::hypot(e1, n1)});
@@ -130,16 +138,34 @@ double Terrain::cell_height(int cx, int cy, double fx, double fy) const {
   return (1.0 - fy) * ((1.0 - fx) * a + fx * b) + fy * ((1.0 - fx) * c + fx * e);
 }
 
-double Terrain::height_at(double east_m, double north_m) const {
+double Terrain::on_grid(const std::vector<float>& values, double east_m, double north_m, double outside) const {
   const double x = (east_m - grid_.east0_m) / grid_.spacing_m, y = (north_m - grid_.north0_m) / grid_.spacing_m;
-  if (!(x >= 0.0 && y >= 0.0 && x <= grid_.columns - 1 && y <= grid_.rows - 1)) return 0.0;
+  if (!(x >= 0.0 && y >= 0.0 && x <= grid_.columns - 1 && y <= grid_.rows - 1)) return outside;
   const int cx = std::min(static_cast<int>(x), grid_.columns - 2), cy = std::min(static_cast<int>(y), grid_.rows - 2);
-  return cell_height(cx, cy, x - cx, y - cy);
+  const double fx = x - cx, fy = y - cy;
+  const auto at = [&](int c, int r) {
+    return static_cast<double>(values[static_cast<size_t>(r) * static_cast<size_t>(grid_.columns) + c]);
+  };
+  return (1.0 - fy) * ((1.0 - fx) * at(cx, cy) + fx * at(cx + 1, cy)) +
+         fy * ((1.0 - fx) * at(cx, cy + 1) + fx * at(cx + 1, cy + 1));
 }
+
+double Terrain::height_at(double east_m, double north_m) const { return on_grid(grid_.height_m, east_m, north_m, 0.0); }
 
 double Terrain::height_under(const Vec3& p) const {
   if (!(p.z() > 0.0)) return 0.0;
   return height_at(east_of(p), north_of(p));
+}
+
+bool Terrain::covers(const Vec3& p) const {
+  if (!(p.z() > 0.0)) return false;
+  const double x = (east_of(p) - grid_.east0_m) / grid_.spacing_m, y = (north_of(p) - grid_.north0_m) / grid_.spacing_m;
+  return x >= 0.0 && y >= 0.0 && x <= grid_.columns - 1 && y <= grid_.rows - 1;
+}
+
+double Terrain::albedo_factor_under(const Vec3& p) const {
+  if (albedo_.map.empty() || !(p.z() > 0.0)) return 1.0;
+  return on_grid(albedo_.map, east_of(p), north_of(p), 1.0);
 }
 
 Vec3 Terrain::normal_under(const Vec3& p) const {

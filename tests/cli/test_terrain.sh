@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Terrain from the command line (terrain.*): a synthetic ridge that hides the sun and shadows the
 # air, an elevation raster read through GDAL (an ESRI ASCII grid with its .prj, written here), height
-# maps (PNG and EXR, written with oiiotool), and bad input refused naming the key or the file. Usage: test_terrain.sh SKYSPEC
+# maps (PNG and EXR, written with oiiotool) and albedo maps, and bad input refused naming the key or
+# the file. Usage: test_terrain.sh SKYSPEC
 set -u
 skyspec=$1
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
@@ -70,6 +71,25 @@ hm=(--set terrain.model=heightmap --set terrain.heightmap.pixel_m=100 --set terr
 p=$(sum "$work/hm-png/sky.exr") e=$(sum "$work/hm-exr/sky.exr")
 awk -v p="$p" -v e="$e" -v b="$b" 'BEGIN { exit !(p > 0 && p < 0.8 * b && (p - e) ^ 2 < (1e-3 * e) ^ 2) }' && ok \
   || bad "mean radiance $p (PNG) and $e (EXR) behind the height map's block, $b without"
+
+# The terrain's own albedo and its map, looking down at the height map's plain in the sun: a white
+# map (factor 1) changes nothing, a black one (0) leaves the air's light only.
+oiiotool --create 2x2 1 --fill:color=1 2x2+0+0 -d uint8 -o "$work/white.png" \
+  && oiiotool --create 2x2 1 -d uint8 -o "$work/black.png" && ok || bad "oiiotool could not write the albedo maps"
+down=(--set camera.type=perspective --width 16 --height 9 --set camera.look_at_m=[0,-1000,0] --set camera.fov_deg=30
+  --set sun.elevation_deg=40 --wavelengths 450,550,650 --set render.scattering_orders=1 -q "${hm[@]}"
+  --set "terrain.file=\"$work/block.exr\"" --set terrain.albedo=0.5)
+for map in none white black; do
+  extra=()
+  [ "$map" = none ] || extra=(--set "terrain.albedo_map=\"$work/$map.png\"")
+  "$skyspec" render "${down[@]}" "${extra[@]}" --out "$work/albedo-$map" 2>"$work/stderr" && ok \
+    || bad "render with albedo map $map failed: $(cat "$work/stderr")"
+done
+n=$(sum "$work/albedo-none/sky.exr") w=$(sum "$work/albedo-white/sky.exr") k=$(sum "$work/albedo-black/sky.exr")
+awk -v n="$n" -v w="$w" -v k="$k" 'BEGIN { exit !(n > 0 && (w - n) ^ 2 < (1e-6 * n) ^ 2 && k < 0.5 * n) }' && ok \
+  || bad "mean radiance looking down: $n (terrain.albedo = 0.5), $w (white map), $k (black map)"
+run_expecting_error "albedo map on the ridge" 2 "terrain.albedo_map" "$work/x" \
+  "$skyspec" render "${view[@]}" "${ridge[@]}" --set "terrain.albedo_map=\"$work/white.png\"" --out "$work/x"
 
 # A camera standing 2 m above the crest: its height is computed along its own vertical (the crest,
 # 20 km from the reference point, stands 1500 m above the sphere, whose curvature there is 31.4 m).

@@ -332,4 +332,60 @@ BOOST_AUTO_TEST_CASE(unusable_height_maps_are_refused_naming_the_file_or_the_key
   BOOST_TEST(m.find("no-data") != std::string::npos, m);
 }
 
+// An albedo map read as a DEM is, at each grid sample's latitude and longitude, with the band's
+// scale applied (0.001, as land-cover albedo products store it).
+BOOST_AUTO_TEST_CASE(georeferenced_albedo_map_lands_on_the_grid) {
+  const ScratchFolder dir("albedo");
+  const std::string dem = (dir.path / "cone.tif").string(), map = (dir.path / "albedo.tif").string();
+  write_geotiff(dem, 500, 500, kGeographic, 4326, [](double lon, double lat) { return cone(lat, lon); });
+  write_geotiff(map, 500, 500, kGeographic, 4326, [](double lon, double) { return lon < 7.25 ? 200.0 : 800.0; });
+  {
+    std::unique_ptr<GDALDataset> ds(GDALDataset::Open(map.c_str(), GDAL_OF_RASTER | GDAL_OF_UPDATE));
+    BOOST_REQUIRE(ds);
+    ds->GetRasterBand(1)->SetScale(0.001);
+  }
+  const ElevationSampling s = around_reference(5000.0, 100.0);
+  const HeightGrid g = read_elevation_raster(dem, s);
+  const std::vector<float> a = read_georeferenced_albedo_map(map, g, s);
+  BOOST_REQUIRE(a.size() == g.height_m.size());
+  for (int r = 0; r < g.rows; r += 10)
+    for (int c = 0; c < g.columns; ++c) {
+      if (std::abs(g.east_m(c)) < 200.0) continue;  // the edge between the halves, interpolated
+      const float want = g.east_m(c) < 0.0 ? 0.2f : 0.8f;
+      BOOST_TEST(std::abs(a[static_cast<size_t>(r) * g.columns + c] - want) < 1e-6f, "column " << c << ", row " << r);
+    }
+  // Factors beyond [0, 1] are refused naming the key and the file.
+  const std::string bright = (dir.path / "bright.tif").string();
+  write_geotiff(bright, 500, 500, kGeographic, 4326, [](double, double) { return 1.5; });
+  const std::string m = message_of([&] { read_georeferenced_albedo_map(bright, g, s); });
+  BOOST_TEST(m.find("terrain.albedo_map") != std::string::npos, m);
+  BOOST_TEST(m.find("bright.tif") != std::string::npos, m);
+  BOOST_TEST(m.find("albedo factors between 0 and 1") != std::string::npos, m);
+}
+
+// An albedo image over a height map's ground: a 2 x 2 PNG (codes 51 and 204 of 255, west and east)
+// spread over the 4040 m the 101 pixels of 40 m cover, its pixel centres 1010 m either side.
+BOOST_AUTO_TEST_CASE(albedo_image_spreads_over_the_height_maps_ground) {
+  const ScratchFolder dir("albedo");
+  const std::string heights = (dir.path / "flat.png").string(), map = (dir.path / "albedo.png").string();
+  write_gdal_image(heights, "PNG", GDT_UInt16, 101, 101, [](int, int) { return 1000.0; });
+  write_gdal_image(map, "PNG", GDT_Byte, 2, 2, [](int x, int) { return x == 0 ? 51.0 : 204.0; });
+  const HeightGrid g = read_height_map(heights, height_map(40.0, 100.0, 30000.0, 40.0));
+  int width = 0, height = 0;
+  height_map_pixels(heights, width, height);
+  BOOST_TEST(width == 101);
+  BOOST_TEST(height == 101);
+  const std::vector<float> a = read_albedo_image(map, g, width * 40.0, height * 40.0);
+  BOOST_REQUIRE(a.size() == g.height_m.size());
+  const auto at = [&](double east_m) {
+    const int c = static_cast<int>(std::lround((east_m - g.east0_m) / g.spacing_m));
+    return a[static_cast<size_t>(50) * g.columns + c];
+  };
+  BOOST_TEST(std::abs(at(-2000.0) - 0.2f) < 1e-6f);
+  BOOST_TEST(std::abs(at(-1040.0) - 0.2f) < 1e-6f);
+  BOOST_TEST(std::abs(at(0.0) - 0.5f) < 1e-6f);
+  BOOST_TEST(std::abs(at(520.0) - (0.5f + 0.3f * 520.0f / 1010.0f)) < 1e-5f);
+  BOOST_TEST(std::abs(at(2000.0) - 0.8f) < 1e-6f);
+}
+
 BOOST_AUTO_TEST_SUITE_END()

@@ -164,17 +164,32 @@ BOOST_AUTO_TEST_CASE(single_scattering_in_terrain_shadow_matches_brute_force) {
   }
 }
 
-// Terrain of height 0 everywhere is the sphere's ground: the same light, ground included.
-BOOST_AUTO_TEST_CASE(flat_terrain_is_the_ground) {
-  const std::vector<double> nm = {440, 550, 680};
-  AtmosphereSpec spec = test::simple_atmosphere(ProfileKind::Exponential, 60e3, nm, {33.1e-6, 13.5e-6, 5.8e-6}, 8e-6);
-  spec.ground.albedo = 0.3;
-  const test::IntegratorChain chain(spec, nm, {128, 256, 64}, 64);
+namespace {
+// Three wavelengths of air and haze over a ground of albedo 0.3; a grid of height 0, 20 km square,
+// centred on the reference point.
+const test::IntegratorChain& flat_ground_chain() {
+  static const std::vector<double> nm = {440, 550, 680};
+  static const test::IntegratorChain chain = [] {
+    AtmosphereSpec spec = test::simple_atmosphere(ProfileKind::Exponential, 60e3, nm, {33.1e-6, 13.5e-6, 5.8e-6}, 8e-6);
+    spec.ground.albedo = 0.3;
+    return test::IntegratorChain(spec, nm, {128, 256, 64}, 64);
+  }();
+  return chain;
+}
+HeightGrid flat_grid() {
   HeightGrid flat;
   flat.columns = flat.rows = 201;
   flat.spacing_m = 100.0;
   flat.east0_m = flat.north0_m = -10000.0;
   flat.height_m.assign(201 * 201, 0.0f);
+  return flat;
+}
+}  // namespace
+
+// Terrain of height 0 everywhere is the sphere's ground: the same light, ground included.
+BOOST_AUTO_TEST_CASE(flat_terrain_is_the_ground) {
+  const test::IntegratorChain& chain = flat_ground_chain();
+  const HeightGrid flat = flat_grid();
   const Terrain terrain(flat, 6360e3);
   const Vec3 o(0.0, 0.0, 6360e3 + 500.0), s = direction_from_angles(120.0, 15.0);
   for (double el : {-20.0, -2.0, 3.0, 40.0}) {
@@ -187,6 +202,49 @@ BOOST_AUTO_TEST_CASE(flat_terrain_is_the_ground) {
     chain.integrator.radiance(o, d, s, Spectrum::Ones(3), with, ws, b);
     for (int i = 0; i < 3; ++i) BOOST_TEST(b[i] == a[i], boost::test_tools::tolerance(1e-5f));
   }
+}
+
+// The terrain's own albedo and its map: the light its surface reflects is the ground's times
+// (own albedo x map factor) / ground albedo, wavelength by wavelength; the air's is unchanged.
+BOOST_AUTO_TEST_CASE(terrain_albedo_and_map_scale_the_reflection) {
+  const test::IntegratorChain& chain = flat_ground_chain();
+  const HeightGrid flat = flat_grid();
+  TerrainAlbedo own;
+  own.spectrum = SpectrumD(3);
+  own.spectrum << 0.05, 0.2, 0.9;
+  own.map.assign(201 * 201, 1.0f);  // factor 0.25 west of the reference point, 1 east of it
+  for (int r = 0; r < 201; ++r)
+    for (int c = 0; c < 100; ++c) own.map[static_cast<size_t>(r) * 201 + c] = 0.25f;
+  TerrainAlbedo black;
+  black.spectrum = SpectrumD::Zero(3);
+  const Terrain coloured(flat, 6360e3, own), dark(flat, 6360e3, black), plain(flat, 6360e3);
+  BOOST_TEST(coloured.albedo_factor_under(Vec3(1370.0, 0.0, 6360e3)) == 1.0);
+  BOOST_TEST(coloured.albedo_factor_under(Vec3(-1370.0, 0.0, 6360e3)) == 0.25);
+  BOOST_TEST(coloured.albedo_factor_under(Vec3(-50.0, 0.0, 6360e3)) == 0.625);   // halfway across the edge's cell
+  BOOST_TEST(coloured.albedo_factor_under(Vec3(-20000.0, 0.0, 6360e3)) == 1.0);  // beyond the grid
+  const Vec3 o(0.0, 0.0, 6360e3 + 500.0), s = direction_from_angles(120.0, 15.0);
+  for (double az : {90.0, 270.0}) {
+    const Vec3 d = direction_from_angles(az, -20.0);  // the ground 1.37 km away, east or west
+    const double factor = az == 90.0 ? 1.0 : 0.25;
+    ScatteringWorkspace ws(3);
+    Spectrum L(3), L_dark(3), L_plain(3);
+    ScatteringSources with;
+    with.terrain = &coloured;
+    chain.integrator.radiance(o, d, s, Spectrum::Ones(3), with, ws, L);
+    with.terrain = &dark;
+    chain.integrator.radiance(o, d, s, Spectrum::Ones(3), with, ws, L_dark);
+    with.terrain = &plain;
+    chain.integrator.radiance(o, d, s, Spectrum::Ones(3), with, ws, L_plain);
+    for (int i = 0; i < 3; ++i) {
+      const double ratio = (L[i] - L_dark[i]) / (L_plain[i] - L_dark[i]);
+      BOOST_TEST(ratio == own.spectrum[i] * factor / 0.3, boost::test_tools::tolerance(1e-4));
+    }
+  }
+  own.spectrum[1] = 1.5;
+  BOOST_CHECK_THROW((void)Terrain(flat, 6360e3, own), Error);
+  own.spectrum[1] = 0.2;
+  own.map.pop_back();
+  BOOST_CHECK_THROW((void)Terrain(flat, 6360e3, own), Error);
 }
 
 BOOST_AUTO_TEST_CASE(malformed_grids_are_refused) {
