@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Are this tree's renders byte-identical to another revision's? For refactors that must not change a
 # pixel. Builds REV's program in a scratch worktree (release, the CLI only), renders the same six
-# scenes with both programs (each with its own, empty table cache, so the tables are built by each),
+# scenes (seven where REV has terrain: a ridge at sunset) with both programs (each with its own, empty table cache, so the tables are built by each),
 # and compares every EXR and PNG byte for byte; where the bytes differ, their pixels (every
 # channel, exactly: OpenImageIO's idiff -fail 0 -warn 0 -a), since a new scene key changes the
 # scene text in the files' headers but no pixel.
@@ -29,7 +29,13 @@ renders() {  # renders PROGRAM DIR: the default, hazy, polarised, panorama, seed
   "$s" render --quiet --preset seed --width 64 --height 64 --out "$o/seed"
   "$s" render --quiet --width 48 --height 48 --set 'atmosphere.mie.model="opac"' --set output.polarisation=true \
     --out "$o/opac"
+  if [ "$terrain" = yes ]; then  # the notched ridge at sunset, all orders (the light shafts' picture, small)
+    "$s" render --quiet --scene docs/images/terrain-light-shafts.toml --width 96 --height 54 --out "$o/terrain"
+  fi
 }
+# The terrain scene where REV has the picture's scene (terrain exists there).
+terrain=no
+[ -f "$work/src/docs/images/terrain-light-shafts.toml" ] && terrain=yes
 renders "$work/build/skyspec" "$work/theirs"
 renders "$this" "$work/ours"
 status=0

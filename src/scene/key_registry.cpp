@@ -304,8 +304,9 @@ const std::vector<KeyDef>& registry() {
           "model = file: a georeferenced elevation raster GDAL reads (GeoTIFF, ...), heights in metres "
           "above sea level; model = heightmap: an OpenEXR file (channel Y, Z or R, or its only channel) or "
           "another image GDAL reads (PNG, TIFF, ...; band 1), its top row north; a relative path is taken "
-          "from the current folder",
+          "from the scene file's folder (elsewhere: from the current folder)",
           [](Scene& s) -> std::string& { return s.terrain.file; }, false);
+      k.input_path = true;
       const auto written = k.get;
       k.get = [written](const Scene& s) { return s.terrain.file.empty() ? std::string() : written(s); };  // unset
       r.push_back(k);
@@ -339,8 +340,10 @@ const std::vector<KeyDef>& registry() {
           "terrain.albedo_map",
           "a factor in [0, 1] on the terrain's albedo at each point: model = file: a georeferenced raster GDAL "
           "reads (band 1, its scale and offset applied); model = heightmap: an image (EXR, or PNG and the others "
-          "GDAL reads, 8/16-bit codes over 255/65535) spread over the height map's ground, top row north",
+          "GDAL reads, 8/16-bit codes over 255/65535) spread over the height map's ground, top row north; a "
+          "relative path as terrain.file's",
           [](Scene& s) -> std::string& { return s.terrain.albedo_map; }, false);
+      k.input_path = true;
       const auto written = k.get;
       k.get = [written](const Scene& s) { return s.terrain.albedo_map.empty() ? std::string() : written(s); };  // unset
       r.push_back(k);

@@ -27,6 +27,9 @@ struct KeyDef {
   /// The camera types that read this key (empty: every one). Its help starts with their names, and
   /// a flag or an override that sets it for another camera is refused (SceneLoader::finish).
   std::vector<CameraSpec::Type> cameras;
+  /// A file the render reads (terrain.file, ...): a relative path given in a scene file is taken
+  /// from that file's folder (SceneLoader::apply_file), one given elsewhere from the current folder.
+  bool input_path = false;
 };
 
 /// Every scene key, in the order help texts and scene_to_toml list them.

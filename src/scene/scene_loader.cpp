@@ -39,8 +39,10 @@ using namespace scene_keys;
 
 namespace {
 
+// scene_dir: the folder of the scene file the table comes from (input paths are taken from it), or
+// null.
 void apply_table(Scene& scene, const toml::table& tbl, const std::string& prefix, const std::string& fallback_origin,
-                 std::set<std::string>& applied) {
+                 std::set<std::string>& applied, const std::filesystem::path* scene_dir = nullptr) {
   for (const auto& [k, node] : tbl) {
     const std::string key = prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
     // A table where the registry has a value ([sun] elevation_deg = {a = 1}) is that key's wrong
@@ -51,12 +53,19 @@ void apply_table(Scene& scene, const toml::table& tbl, const std::string& prefix
       for (const auto& def : registry())
         if (def.key.rfind(key + ".", 0) == 0) any = true;
       if (!any) unknown_key(key, origin_of_key(k, fallback_origin));
-      apply_table(scene, *sub, key, fallback_origin, applied);
+      apply_table(scene, *sub, key, fallback_origin, applied, scene_dir);
       continue;
     }
     const KeyDef* def = find_key(key);
     if (!def) unknown_key(key, origin_of_key(k, fallback_origin));
-    def->set(scene, node, origin_of(node, fallback_origin));
+    const auto* text = node.as_string();
+    if (def->input_path && scene_dir && text && !text->get().empty() &&
+        std::filesystem::path(text->get()).is_relative()) {
+      const toml::value<std::string> resolved((*scene_dir / text->get()).lexically_normal().string());
+      def->set(scene, resolved, origin_of(node, fallback_origin));
+    } else {
+      def->set(scene, node, origin_of(node, fallback_origin));
+    }
     applied.insert(key);
   }
 }
@@ -144,7 +153,8 @@ void SceneLoader::apply_file(const std::string& path) {
     }
     std::fclose(f);
   }
-  apply_toml(text, path);
+  const std::filesystem::path dir = std::filesystem::absolute(path).parent_path();
+  apply_table(scene_, parse_toml(text, path), "", path, given_, &dir);
 }
 
 namespace {

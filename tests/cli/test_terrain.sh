@@ -72,6 +72,16 @@ p=$(sum "$work/hm-png/sky.exr") e=$(sum "$work/hm-exr/sky.exr")
 awk -v p="$p" -v e="$e" -v b="$b" 'BEGIN { exit !(p > 0 && p < 0.8 * b && (p - e) ^ 2 < (1e-3 * e) ^ 2) }' && ok \
   || bad "mean radiance $p (PNG) and $e (EXR) behind the height map's block, $b without"
 
+# A relative terrain.file in a scene file is taken from the scene file's folder, wherever skyspec runs.
+mkdir -p "$work/scenes"
+printf '[terrain]\nmodel = "heightmap"\nfile = "../block.exr"\nheightmap.pixel_m = 100\nextent_m = 6000\n' \
+  >"$work/scenes/block.toml"
+(cd / && "$skyspec" render --scene "$work/scenes/block.toml" "${view[@]}" --set camera.position_m=[0,0,400] \
+  --out "$work/hm-scene" 2>"$work/stderr") && ok || bad "scene with a relative height map failed: $(cat "$work/stderr")"
+r=$(sum "$work/hm-scene/sky.exr")
+awk -v r="$r" -v e="$e" 'BEGIN { exit !((r - e) ^ 2 < (1e-6 * e) ^ 2) }' && ok \
+  || bad "mean radiance $r from the scene file, $e with --set"
+
 # The terrain's own albedo and its map, looking down at the height map's plain in the sun: a white
 # map (factor 1) changes nothing, a black one (0) leaves the air's light only.
 oiiotool --create 2x2 1 --fill:color=1 2x2+0+0 -d uint8 -o "$work/white.png" \
