@@ -176,6 +176,27 @@ PY
 "$skyspec" render -q --out "$work/quiet" --width 4 --height 4 "${stage_tables[@]}" >"$work/stdout" 2>"$work/stderr"
 [ ! -s "$work/stdout" ] && [ ! -s "$work/stderr" ] && ok || bad "--quiet was not quiet"
 
+# The numbers the docs quote for the default scene over a black ground (its own camera keeps the
+# albedo 0) and for the exposure of a 1024 x 512 panorama of it, as the docs' commands give them now
+# (issue 41: docs that went stale). The default tables of both are built above.
+if [ ${#stage_tables[@]} = 0 ]; then
+  tools="$(dirname "${BASH_SOURCE[0]}")/../../docs/other-tools.md"
+  physics="$(dirname "${BASH_SOURCE[0]}")/../../docs/physics.md"
+  "$skyspec" render --out "$work/black" --width 4 --height 4 >"$work/stdout" 2>"$work/stderr" \
+    || bad "black-ground render failed: $(cat "$work/stderr")"
+  zenith=$(sed -n 's/^luminance at the zenith \([0-9]*\) cd\/m2.*/\1/p' "$work/stdout")
+  diffuse=$(sed -n 's/.*, diffuse \([0-9]*\) lx$/\1/p' "$work/stdout")
+  grep -q "the default scene's zenith: $zenith cd/m^2" "$tools" && grep -q "($zenith cd/m^2 over a black ground)" "$tools" \
+    && grep -q "($zenith to " "$tools" && grep -q "($diffuse to " "$tools" && grep -q "$zenith cd m^-2 (measured" "$physics" \
+    && ok || bad "docs/other-tools.md and physics.md do not quote the black ground's zenith $zenith cd/m^2 and diffuse $diffuse lx"
+  "$skyspec" render --camera equirectangular --width 1024 --height 512 --panorama-convention blender \
+    --exr-space "Linear Rec.709" --no-png --out "$work/pano" >"$work/stdout" 2>"$work/stderr" \
+    || bad "the docs' panorama failed: $(cat "$work/stderr")"
+  exposure=$(sed -n 's/^exposure: automatic: .*, scale = \([^ ]*\) (EV \([^)]*\))$/\1 (EV \2)/p' "$work/stdout")
+  [ -n "$exposure" ] && grep -qF "exposure scale $exposure" "$tools" && grep -qF "scale = $exposure" "$tools" \
+    && ok || bad "docs/other-tools.md does not quote the panorama's exposure scale '$exposure'"
+fi
+
 # --help is something a newcomer can follow, and --help-keys documents every key with its unit.
 "$skyspec" render --help | grep -q -- "--sun-elevation" && ok || bad "render --help lacks --sun-elevation"
 "$skyspec" render --help-keys | grep -q "atmosphere.rayleigh.scale_height_m  (a number in m" && ok || bad "--help-keys"
