@@ -91,6 +91,17 @@ struct FogSpec {
   double scale_height_m = 100.0;  ///< density exp(-z / H) above the ground
 };
 
+/// Ice crystals near the ground (diamond dust): randomly oriented hexagonal prisms of ice
+/// (ice_crystals.hpp), whose geometric optics give the 22 and 46 degree halos; off by default.
+struct IceSpec {
+  bool enabled = false;
+  /// Meteorological optical range at the ground, 550 nm: the crystals' whole extinction
+  /// (refraction, reflection and diffraction: efficiency 2) is ln 20 / V.
+  double visibility_m = 5000.0;
+  double scale_height_m = 200.0;  ///< density exp(-z / H) above the ground
+  double aspect_ratio = 2.0;      ///< the prisms' length over their width (columns > 1, plates < 1)
+};
+
 /// The planet's surface: Lambertian, with a constant or a spectral albedo.
 struct GroundSpec {
   double albedo = 0.0;                                       ///< used when albedo_values is empty
@@ -104,6 +115,7 @@ struct AtmosphereSpec {
   MieSpec mie;
   OzoneSpec ozone;
   FogSpec fog;
+  IceSpec ice;
   GroundSpec ground;
 };
 

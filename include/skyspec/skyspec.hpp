@@ -14,6 +14,7 @@
 #include "skyspec/display.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/geometry.hpp"
+#include "skyspec/ice_crystals.hpp"
 #include "skyspec/king_factor.hpp"
 #include "skyspec/lee_diagram.hpp"
 #include "skyspec/lorenz_mie.hpp"

@@ -231,7 +231,7 @@ std::string optics_key(const AerosolMixture& mix, const WavelengthGrid& grid) {
 
 AerosolMixtureOptics aerosol_mixture_optics(const AerosolMixture& mix, const WavelengthGrid& grid,
                                             const std::string& setting, bool use_disk_cache) {
-  return cached_particle_optics(optics_key(mix, grid), grid.size(), use_disk_cache,
+  return cached_particle_optics(optics_key(mix, grid), grid.size(), aerosol_scattering_cosines(), use_disk_cache,
                                 [&] { return compute(mix, grid, setting); });
 }
 

@@ -89,18 +89,18 @@ bool deserialise(const std::string& in, const std::string& key, size_t n_expecte
   return true;
 }
 
-AerosolMixtureOptics from_raw(RawParticleOptics r) {
+AerosolMixtureOptics from_raw(RawParticleOptics r, const std::vector<double>& mu) {
   AerosolMixtureOptics o;
   const int n = static_cast<int>(r.sca.size());
   o.scattering_per_m = Eigen::Map<const SpectrumD>(r.sca.data(), n);
   o.extinction_per_m = Eigen::Map<const SpectrumD>(r.ext.data(), n);
-  o.matrix = std::make_shared<const TabulatedScatteringMatrix>(aerosol_scattering_cosines(), std::move(r.a1),
-                                                               std::move(r.b1), std::move(r.a3), std::move(r.b2));
+  o.matrix = std::make_shared<const TabulatedScatteringMatrix>(mu, std::move(r.a1), std::move(r.b1), std::move(r.a3),
+                                                               std::move(r.b2));
   return o;
 }
 
-AerosolMixtureOptics load_or_compute(const std::string& key, int wavelengths, bool use_disk_cache,
-                                     const std::function<RawParticleOptics()>& compute) {
+AerosolMixtureOptics load_or_compute(const std::string& key, int wavelengths, const std::vector<double>& mu,
+                                     bool use_disk_cache, const std::function<RawParticleOptics()>& compute) {
   const std::filesystem::path dir = use_disk_cache ? table_cache_directory() : std::filesystem::path();
   std::filesystem::path path;
   if (!dir.empty()) {
@@ -111,7 +111,7 @@ AerosolMixtureOptics load_or_compute(const std::string& key, int wavelengths, bo
   const std::uint64_t cap = path.empty() ? 0 : table_cache_cap_bytes();  // a bad value: refused before any work
   // Only a regular file of exactly the size this key's optics take is read (a file read back is
   // untrusted: never read a huge one whole).
-  const size_t values = static_cast<size_t>(wavelengths) * (2 + 4 * aerosol_scattering_cosines().size());
+  const size_t values = static_cast<size_t>(wavelengths) * (2 + 4 * mu.size());
   const std::uintmax_t expected = sizeof(kMagic) - 1 + sizeof(kByteOrder) + sizeof(std::uint64_t) + key.size() +
                                   2 * sizeof(std::uint32_t) + values * sizeof(double) + sizeof(std::uint64_t);
   std::error_code size_error;
@@ -121,9 +121,9 @@ AerosolMixtureOptics load_or_compute(const std::string& key, int wavelengths, bo
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     RawParticleOptics raw;
     if (in.good() || in.eof())
-      if (deserialise(bytes, key, static_cast<size_t>(wavelengths), aerosol_scattering_cosines().size(), raw)) {
+      if (deserialise(bytes, key, static_cast<size_t>(wavelengths), mu.size(), raw)) {
         mark_cache_file_used(path);
-        return from_raw(std::move(raw));
+        return from_raw(std::move(raw), mu);
       }
   }
   RawParticleOptics raw = compute();
@@ -135,12 +135,12 @@ AerosolMixtureOptics load_or_compute(const std::string& key, int wavelengths, bo
       warn_cache_unusable(dir, "the aerosol file could not be written");
     }
   }
-  return from_raw(std::move(raw));
+  return from_raw(std::move(raw), mu);
 }
 }  // namespace
 
-AerosolMixtureOptics cached_particle_optics(const std::string& key, int wavelengths, bool use_disk_cache,
-                                            const std::function<RawParticleOptics()>& compute) {
+AerosolMixtureOptics cached_particle_optics(const std::string& key, int wavelengths, const std::vector<double>& mu,
+                                            bool use_disk_cache, const std::function<RawParticleOptics()>& compute) {
   static std::mutex mutex;
   static std::map<std::string, AerosolMixtureOptics> cache;
   {
@@ -148,7 +148,7 @@ AerosolMixtureOptics cached_particle_optics(const std::string& key, int waveleng
     const auto it = cache.find(key);
     if (it != cache.end()) return it->second;
   }
-  AerosolMixtureOptics o = load_or_compute(key, wavelengths, use_disk_cache, compute);
+  AerosolMixtureOptics o = load_or_compute(key, wavelengths, mu, use_disk_cache, compute);
   std::lock_guard<std::mutex> lock(mutex);
   if (cache.size() > 16) cache.clear();  // a bound for long-lived processes (the viewer, Python)
   return cache.emplace(key, std::move(o)).first->second;

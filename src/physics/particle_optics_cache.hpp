@@ -13,8 +13,9 @@
 
 namespace skyspec {
 
-/// Optics as computed: volume coefficients per wavelength and the scattering matrix's rows at
-/// aerosol_scattering_cosines() before TabulatedScatteringMatrix normalises them.
+/// Optics as computed: volume coefficients per wavelength and the scattering matrix's rows at the
+/// medium's cosines (aerosol_scattering_cosines() for spheres) before TabulatedScatteringMatrix
+/// normalises them.
 struct RawParticleOptics {
   std::vector<double> sca, ext;
   std::vector<std::vector<double>> a1, b1, a3, b2;
@@ -24,7 +25,7 @@ struct RawParticleOptics {
 /// else from the disk cache when use_disk_cache (a file read back is untrusted: its size, key,
 /// checksum and values are checked), else compute() (then written to the cache). `wavelengths`:
 /// the grid's size, which a cached file must have.
-AerosolMixtureOptics cached_particle_optics(const std::string& key, int wavelengths, bool use_disk_cache,
-                                            const std::function<RawParticleOptics()>& compute);
+AerosolMixtureOptics cached_particle_optics(const std::string& key, int wavelengths, const std::vector<double>& mu,
+                                            bool use_disk_cache, const std::function<RawParticleOptics()>& compute);
 
 }  // namespace skyspec

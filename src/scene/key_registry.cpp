@@ -216,6 +216,21 @@ const std::vector<KeyDef>& registry() {
     r.push_back(number_key("atmosphere.fog.scale_height_m", "m", {1.0, 1e5},
                            "fog: its density falls as exp(-z / H) above the ground",
                            [](Scene& s) -> double& { return s.atmosphere.fog.scale_height_m; }));
+    // ice
+    r.push_back(bool_key("atmosphere.ice.enabled",
+                         "ice crystals near the ground (diamond dust): randomly oriented hexagonal prisms, ray-traced "
+                         "(22 and 46 degree halos), on or off; intensity only (not with output.polarisation)",
+                         [](Scene& s) -> bool& { return s.atmosphere.ice.enabled; }));
+    r.push_back(number_key("atmosphere.ice.visibility_m", "m", {1.0, 1e6},
+                           "ice: visibility at the ground (meteorological optical range, 550 nm: the crystals' whole "
+                           "extinction, diffraction included, is ln 20 / V)",
+                           [](Scene& s) -> double& { return s.atmosphere.ice.visibility_m; }));
+    r.push_back(number_key("atmosphere.ice.scale_height_m", "m", {1.0, 1e5},
+                           "ice: its density falls as exp(-z / H) above the ground",
+                           [](Scene& s) -> double& { return s.atmosphere.ice.scale_height_m; }));
+    r.push_back(number_key("atmosphere.ice.aspect_ratio", "", {0.05, 20.0},
+                           "ice: the prisms' length over their width across corners (columns > 1, plates < 1)",
+                           [](Scene& s) -> double& { return s.atmosphere.ice.aspect_ratio; }));
     // ground
     r.push_back(number_key("ground.albedo", "", {0.0, 1.0},
                            "Lambertian albedo of the ground (0: black); unless a preset, file or flag sets a ground "

@@ -327,6 +327,10 @@ Scene SceneLoader::finish(SceneUse use) const {
   }
   check_spectral_albedo("ground", s.atmosphere.ground.albedo_wavelengths_nm, s.atmosphere.ground.albedo_values);
   check_spectral_albedo("terrain", s.terrain.albedo_wavelengths_nm, s.terrain.albedo_values);
+  if (s.output.polarisation && s.atmosphere.ice.enabled)
+    throw InputError("atmosphere.ice.enabled", "true",
+                     "false with output.polarisation = true (the ice crystals' scattering is computed for intensity "
+                     "only)");
   if (s.output.polarisation_png && !s.output.polarisation)
     throw InputError("output.polarisation_png", "true",
                      "false unless output.polarisation = true (it draws the polarisation)");

@@ -203,6 +203,11 @@ fi
 # Polarisation: S0-S3 per wavelength with the layout's polarisationHandedness, the Y/DoLP/AoLP EXR
 # and the colour-wheel PNG; OpenImageIO reads them; the keys that cannot go together are refused.
 expect_error polarisation_png_alone 2 "output.polarisation_png = true is not allowed" --set output.polarisation_png=true
+# Ice crystals: intensity only; the index of ice is carried from 300 to 1100 nm.
+expect_error ice_polarised 2 "atmosphere.ice.enabled = true is not allowed: false with output.polarisation" \
+  --set atmosphere.ice.enabled=true --set output.polarisation=true
+expect_error ice_beyond_its_index 2 "spectrum = 290 nm is not allowed" --set atmosphere.ice.enabled=true \
+  --wavelengths 290,550
 expect_error polarisation_isotropic 2 "render.ms_angular_degree = 0" --set output.polarisation=true --quality draft
 pol="$work/polarised"  # small scattering-order tables: the files are checked here
 if "$skyspec" render -q --out "$pol" --camera equirectangular --width 32 --height 16 --lambda-min 450 --lambda-max 650 \

@@ -87,16 +87,10 @@ std::optional<Medium> build_fog(const MediumContext& c) {
   const FogSpec& f = c.spec.fog;
   if (!f.enabled) return std::nullopt;
   const AerosolMixtureOptics per_droplet =
-      cached_particle_optics(optics_key(c.grid), c.grid.size(), c.cache_on_disk, [&] { return compute(c.grid); });
+      cached_particle_optics(optics_key(c.grid), c.grid.size(), aerosol_scattering_cosines(), c.cache_on_disk,
+                             [&] { return compute(c.grid); });
   const double droplets_per_m3 = std::log(20.0) / (f.visibility_m * fog_extinction_cross_section_550nm_m2());
-  Medium fog;
-  fog.name = "fog";
-  fog.profile = DensityProfile::exponential(f.scale_height_m);
-  fog.scattering_per_m = per_droplet.scattering_per_m * droplets_per_m3;
-  fog.extinction_per_m = per_droplet.extinction_per_m * droplets_per_m3;
-  fog.phase.kind = MediumPhase::Kind::Tabulated;
-  fog.phase.matrix = per_droplet.matrix;
-  return fog;
+  return particle_medium("fog", DensityProfile::exponential(f.scale_height_m), per_droplet, droplets_per_m3);
 }
 
 }  // namespace skyspec

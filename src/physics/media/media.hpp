@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "skyspec/aerosol_components.hpp"
 #include "skyspec/atmosphere.hpp"
 #include "skyspec/medium.hpp"
 
@@ -33,6 +34,11 @@ struct MediumEntry {
   MediumBuilder build;
 };
 
+/// A medium of particles: `per_particle`'s coefficients times `amount` (particles per m^3 at
+/// density 1, or whatever unit per_particle is per), its tabulated matrix, density `profile`.
+Medium particle_medium(const char* name, DensityProfile profile, const AerosolMixtureOptics& per_particle,
+                       double amount);
+
 /// Every medium, in the order AtmosphereModel::media() holds them (and light transport sums them).
 const std::vector<MediumEntry>& medium_registry();
 
@@ -41,6 +47,7 @@ std::optional<Medium> build_air(const MediumContext& c);      // air.cpp: Raylei
 std::optional<Medium> build_aerosol(const MediumContext& c);  // aerosol.cpp: Angstrom law or OPAC by Lorenz-Mie
 std::optional<Medium> build_ozone(const MediumContext& c);    // ozone.cpp: absorption by the ozone layer
 std::optional<Medium> build_fog(const MediumContext& c);      // fog.cpp: water droplets by Lorenz-Mie
+std::optional<Medium> build_ice(const MediumContext& c);      // ice.cpp: ice prisms by ray tracing (halos)
 
 /// Air's number density at altitude 0 and how it was obtained (air.cpp; for the derivation report).
 struct AirNumberDensity {
@@ -51,6 +58,9 @@ AirNumberDensity air_number_density(const RayleighSpec& r);
 /// One fog droplet's extinction cross-section at 550 nm, m^2 (fog.cpp: what the visibility is
 /// measured at).
 double fog_extinction_cross_section_550nm_m2();
+/// The cosines the ice crystals' scattering function is tabulated at (ice.cpp): every 0.1 degree to
+/// 60 degrees (the halos' edges), every 0.5 degree beyond.
+const std::vector<double>& ice_scattering_cosines();
 /// Ozone's number density at the layer's peak, m^-3 (ozone.cpp; 0 without ozone).
 double ozone_peak_number_density_per_m3(const OzoneSpec& o);
 

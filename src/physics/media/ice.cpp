@@ -1,0 +1,98 @@
+// Ice: randomly oriented hexagonal prisms of ice near the ground (diamond dust), whose refraction
+// gives the 22 and 46 degree halos (ice_crystals.hpp: the ray tracing and its sources). Their
+// scattering function per wavelength is geometric optics with the index of ice at that wavelength
+// (Warren & Brandt 2008). Diffraction by the crystals' outlines takes half of their extinction
+// (extinction efficiency 2 for crystals much larger than the wavelength) into a forward peak about
+// lambda / D wide (0.4 degrees for crystals 50 um across): it is taken as unscattered light (the
+// medium's extinction is the other half, refraction and reflection), so that light reaches the
+// camera as if it had not met those crystals; the sun's aureole from diffraction by ice is not in
+// the image. Absorption is neglected (k < 1e-8 in the visible). Intensity only: the crystals'
+// matrix is the phase function (b1 = b2 = 0, a3 = a1), so scenes with ice are refused for
+// output.polarisation (scene_checks.cpp).
+#include <cmath>
+#include <sstream>
+
+#include <tbb/parallel_for.h>
+
+#include "base/preparation_progress.hpp"
+#include "physics/media/media.hpp"
+#include "physics/particle_optics_cache.hpp"
+#include "skyspec/ice_crystals.hpp"
+#include "skyspec/units.hpp"
+
+namespace skyspec {
+
+namespace {
+constexpr int kIceOpticsFormat = 1;
+constexpr long long kRaysPerWavelength = 500000;
+constexpr std::uint64_t kSeed = 0x1ce;
+
+std::vector<double> make_ice_cosines() {
+  std::vector<double> deg;
+  for (int k = 0; k < 600; ++k) deg.push_back(0.1 * k);          // 0 - 59.9
+  for (int k = 0; k <= 240; ++k) deg.push_back(60.0 + 0.5 * k);  // 60 - 180
+  std::vector<double> mu;
+  for (auto it = deg.rbegin(); it != deg.rend(); ++it) mu.push_back(std::cos(*it * kPi / 180.0));
+  mu.front() = -1.0;
+  mu.back() = 1.0;
+  return mu;
+}
+
+// Per unit of extinction (refraction and reflection): scattering = extinction = 1, and the phase
+// function's rows at the cosines: each interval's share of the rays over its solid angle, a node
+// the mean of the two intervals beside it.
+RawParticleOptics compute(const WavelengthGrid& grid, double aspect_ratio) {
+  const std::vector<double>& mu = ice_scattering_cosines();
+  const int n = grid.size();
+  RawParticleOptics o;
+  o.sca.assign(static_cast<size_t>(n), 1.0);
+  o.ext.assign(static_cast<size_t>(n), 1.0);
+  o.a1.assign(static_cast<size_t>(n), std::vector<double>(mu.size(), 0.0));
+  o.b1 = o.b2 = o.a1;
+  plan_preparation(n, "tracing rays through ice crystals (halos)");
+  tbb::parallel_for(0, n, [&](int i) {
+    const PrismScattering s = hexagonal_prism_scattering(HexagonalPrism{aspect_ratio}, ice_refractive_index(grid.nm(i)),
+                                                         mu, kRaysPerWavelength, kSeed + static_cast<std::uint64_t>(i));
+    std::vector<double>& a1 = o.a1[static_cast<size_t>(i)];
+    std::vector<double> density(s.share.size());
+    for (size_t k = 0; k < density.size(); ++k) density[k] = s.share[k] / (2.0 * kPi * (mu[k + 1] - mu[k]));
+    for (size_t k = 0; k < mu.size(); ++k) {
+      const double below = k > 0 ? density[k - 1] : density[k], above = k < density.size() ? density[k] : below;
+      a1[k] = 0.5 * (below + above);
+    }
+    finish_preparation(1);
+  });
+  o.a3 = o.a1;
+  return o;
+}
+
+std::string optics_key(const WavelengthGrid& grid, double aspect_ratio) {
+  std::ostringstream key;
+  key.precision(17);
+  key << "skyspec ice optics, format " << kIceOpticsFormat << "\nhexagonal prism " << aspect_ratio << "\nrays "
+      << kRaysPerWavelength << ' ' << kSeed << "\nwavelengths_nm";
+  for (double v : grid.nanometres()) key << ' ' << v;
+  key << "\ncosines " << ice_scattering_cosines().size() << '\n';
+  return key.str();
+}
+}  // namespace
+
+const std::vector<double>& ice_scattering_cosines() {
+  static const std::vector<double> mu = make_ice_cosines();
+  return mu;
+}
+
+std::optional<Medium> build_ice(const MediumContext& c) {
+  const IceSpec& ice = c.spec.ice;
+  if (!ice.enabled) return std::nullopt;
+  for (int i = 0; i < c.grid.size(); ++i)
+    (void)ice_refractive_index(c.grid.nm(i), "spectrum");  // refused before any work
+  const AerosolMixtureOptics unit =
+      cached_particle_optics(optics_key(c.grid, ice.aspect_ratio), c.grid.size(), ice_scattering_cosines(),
+                             c.cache_on_disk, [&] { return compute(c.grid, ice.aspect_ratio); });
+  // Half of the whole extinction ln 20 / V: the other half is diffraction, taken as unscattered.
+  const double beta = 0.5 * std::log(20.0) / ice.visibility_m;
+  return particle_medium("ice", DensityProfile::exponential(ice.scale_height_m), unit, beta);
+}
+
+}  // namespace skyspec
