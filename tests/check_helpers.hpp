@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "skyspec/error.hpp"
 
@@ -30,6 +31,16 @@ inline std::string input_error_message(const std::function<void()>& f) {
     return e.what();
   }
   return "";
+}
+
+/// Cosines every 0.1 degree of scattering angle, ascending from -1 to 1: interval k from the
+/// forward end is [k, k + 1] tenths of a degree.
+inline std::vector<double> tenth_degree_cosines() {
+  std::vector<double> mu;
+  for (int k = 1800; k >= 0; --k) mu.push_back(std::cos(k * 0.1 * 3.14159265358979323846 / 180.0));
+  mu.front() = -1.0;
+  mu.back() = 1.0;
+  return mu;
 }
 
 }  // namespace skyspec::test

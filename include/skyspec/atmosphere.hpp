@@ -102,6 +102,15 @@ struct IceSpec {
   double aspect_ratio = 2.0;      ///< the prisms' length over their width (columns > 1, plates < 1)
 };
 
+/// Rain: water drops of Marshall & Palmer's sizes for a rain rate, by geometric optics
+/// (drop_optics.hpp: the primary and secondary rainbows), falling through the air near the ground;
+/// off by default.
+struct RainSpec {
+  bool enabled = false;
+  double rate_mm_per_h = 2.0;      ///< Marshall-Palmer's R: the drops' number and sizes
+  double scale_height_m = 1500.0;  ///< density exp(-z / H) above the ground
+};
+
 /// The planet's surface: Lambertian, with a constant or a spectral albedo.
 struct GroundSpec {
   double albedo = 0.0;                                       ///< used when albedo_values is empty
@@ -116,6 +125,7 @@ struct AtmosphereSpec {
   OzoneSpec ozone;
   FogSpec fog;
   IceSpec ice;
+  RainSpec rain;
   GroundSpec ground;
 };
 

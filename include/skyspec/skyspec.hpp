@@ -12,6 +12,7 @@
 #include "skyspec/colour.hpp"
 #include "skyspec/density_profile.hpp"
 #include "skyspec/display.hpp"
+#include "skyspec/drop_optics.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/geometry.hpp"
 #include "skyspec/ice_crystals.hpp"

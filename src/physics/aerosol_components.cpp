@@ -90,11 +90,7 @@ std::vector<double> make_cosines() {
   for (int k = 0; k < 40; ++k) deg.push_back(0.05 * k);          // 0 - 1.95
   for (int k = 0; k < 32; ++k) deg.push_back(2.0 + 0.25 * k);    // 2 - 9.75
   for (int k = 0; k <= 340; ++k) deg.push_back(10.0 + 0.5 * k);  // 10 - 180
-  std::vector<double> mu;
-  for (auto it = deg.rbegin(); it != deg.rend(); ++it) mu.push_back(std::cos(*it * kPi / 180.0));
-  mu.front() = -1.0;
-  mu.back() = 1.0;
-  return mu;
+  return cosines_of_degrees(deg);
 }
 }  // namespace
 

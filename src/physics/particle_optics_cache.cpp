@@ -15,6 +15,7 @@
 #include "base/atomic_file.hpp"
 #include "base/disk_cache.hpp"
 #include "base/embedded_data.hpp"
+#include "skyspec/units.hpp"
 
 namespace skyspec {
 
@@ -152,6 +153,33 @@ AerosolMixtureOptics cached_particle_optics(const std::string& key, int waveleng
   std::lock_guard<std::mutex> lock(mutex);
   if (cache.size() > 16) cache.clear();  // a bound for long-lived processes (the viewer, Python)
   return cache.emplace(key, std::move(o)).first->second;
+}
+
+std::vector<double> cosines_of_degrees(const std::vector<double>& degrees) {
+  std::vector<double> mu;
+  for (auto it = degrees.rbegin(); it != degrees.rend(); ++it) mu.push_back(std::cos(*it * kPi / 180.0));
+  mu.front() = -1.0;
+  mu.back() = 1.0;
+  return mu;
+}
+
+RawParticleOptics optics_from_shares(const std::vector<std::vector<double>>& shares, const std::vector<double>& mu) {
+  RawParticleOptics o;
+  o.sca.assign(shares.size(), 1.0);
+  o.ext.assign(shares.size(), 1.0);
+  for (const std::vector<double>& share : shares) {
+    std::vector<double> density(share.size()), a1(mu.size());
+    for (size_t k = 0; k < density.size(); ++k) density[k] = share[k] / (2.0 * kPi * (mu[k + 1] - mu[k]));
+    for (size_t k = 0; k < mu.size(); ++k) {
+      const double below = k > 0 ? density[k - 1] : density[k], above = k < density.size() ? density[k] : below;
+      a1[k] = 0.5 * (below + above);
+    }
+    o.a1.push_back(a1);
+    o.a3.push_back(std::move(a1));
+    o.b1.emplace_back(mu.size(), 0.0);
+    o.b2.emplace_back(mu.size(), 0.0);
+  }
+  return o;
 }
 
 }  // namespace skyspec

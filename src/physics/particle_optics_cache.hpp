@@ -21,6 +21,16 @@ struct RawParticleOptics {
   std::vector<std::vector<double>> a1, b1, a3, b2;
 };
 
+/// Cosines of scattering angles given in degrees, ascending from 0 to 180: ascending cosines from
+/// -1 to 1 (the ends exact), as tabulated scattering functions take them.
+std::vector<double> cosines_of_degrees(const std::vector<double>& degrees);
+
+/// Optics per unit of extinction of particles that only scatter (scattering = extinction = 1) from
+/// the shares of their light in each interval of the cosines (shares[wavelength][interval]): the
+/// phase function's rows, each interval's share over its solid angle, a node the mean of the two
+/// intervals beside it; intensity only (b1 = b2 = 0, a3 = a1).
+RawParticleOptics optics_from_shares(const std::vector<std::vector<double>>& shares, const std::vector<double>& mu);
+
 /// The optics of `key` (text naming everything they depend on, the format included): from memory,
 /// else from the disk cache when use_disk_cache (a file read back is untrusted: its size, key,
 /// checksum and values are checked), else compute() (then written to the cache). `wavelengths`:

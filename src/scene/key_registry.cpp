@@ -231,6 +231,18 @@ const std::vector<KeyDef>& registry() {
     r.push_back(number_key("atmosphere.ice.aspect_ratio", "", {0.05, 20.0},
                            "ice: the prisms' length over their width across corners (columns > 1, plates < 1)",
                            [](Scene& s) -> double& { return s.atmosphere.ice.aspect_ratio; }));
+    // rain
+    r.push_back(bool_key("atmosphere.rain.enabled",
+                         "rain: water drops of Marshall-Palmer sizes by geometric optics (primary and secondary "
+                         "rainbows, Alexander's dark band; no supernumeraries) on or off; intensity only (not with "
+                         "output.polarisation)",
+                         [](Scene& s) -> bool& { return s.atmosphere.rain.enabled; }));
+    r.push_back(number_key("atmosphere.rain.rate_mm_per_h", "mm/h", {0.01, 500.0},
+                           "rain: rain rate R (Marshall-Palmer: the drops' number and sizes, hence its extinction)",
+                           [](Scene& s) -> double& { return s.atmosphere.rain.rate_mm_per_h; }));
+    r.push_back(number_key("atmosphere.rain.scale_height_m", "m", {1.0, 1e5},
+                           "rain: its density falls as exp(-z / H) above the ground",
+                           [](Scene& s) -> double& { return s.atmosphere.rain.scale_height_m; }));
     // ground
     r.push_back(number_key("ground.albedo", "", {0.0, 1.0},
                            "Lambertian albedo of the ground (0: black); unless a preset, file or flag sets a ground "

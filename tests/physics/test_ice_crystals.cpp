@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "check_helpers.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/ice_crystals.hpp"
 #include "skyspec/units.hpp"
@@ -16,14 +17,6 @@ BOOST_AUTO_TEST_SUITE(test_ice_crystals)
 using namespace skyspec;
 
 namespace {
-// Cosines every 0.1 degree of scattering angle: interval k (from the forward end) is [k, k + 1] / 10 degrees.
-std::vector<double> tenth_degree_cosines() {
-  std::vector<double> mu;
-  for (int k = 1800; k >= 0; --k) mu.push_back(std::cos(k * 0.1 * kPi / 180.0));
-  mu.front() = -1.0;
-  mu.back() = 1.0;
-  return mu;
-}
 // The share of interval [a, a + 0.1] degrees.
 double share_at(const PrismScattering& s, int tenths) { return s.share[static_cast<size_t>(1800 - tenths - 1)]; }
 // Where the share rises most from one interval to the next inwards (towards smaller angles the
@@ -61,7 +54,7 @@ BOOST_AUTO_TEST_CASE(index_of_ice_follows_warren_and_brandt) {
 // grid, at 400, 550 and 700 nm (red inside: 21.6 against 22.6 degrees); no light inside the 22
 // degree halo from the prisms' refraction but the faint reflections; every ray leaves.
 BOOST_AUTO_TEST_CASE(halos_at_the_minimum_deviation) {
-  const std::vector<double> mu = tenth_degree_cosines();
+  const std::vector<double> mu = test::tenth_degree_cosines();
   double previous_22 = 0.0;
   for (double nm : {700.0, 550.0, 400.0}) {
     const double n = ice_refractive_index(nm);
@@ -90,7 +83,7 @@ BOOST_AUTO_TEST_CASE(halos_at_the_minimum_deviation) {
 
 // The same seed, the same function; another seed, another sample of it.
 BOOST_AUTO_TEST_CASE(ray_tracing_is_deterministic) {
-  const std::vector<double> mu = tenth_degree_cosines();
+  const std::vector<double> mu = test::tenth_degree_cosines();
   const PrismScattering a = hexagonal_prism_scattering(HexagonalPrism{0.3}, 1.31, mu, 20000, 1);
   const PrismScattering b = hexagonal_prism_scattering(HexagonalPrism{0.3}, 1.31, mu, 20000, 1);
   const PrismScattering c = hexagonal_prism_scattering(HexagonalPrism{0.3}, 1.31, mu, 20000, 2);

@@ -31,39 +31,24 @@ std::vector<double> make_ice_cosines() {
   std::vector<double> deg;
   for (int k = 0; k < 600; ++k) deg.push_back(0.1 * k);          // 0 - 59.9
   for (int k = 0; k <= 240; ++k) deg.push_back(60.0 + 0.5 * k);  // 60 - 180
-  std::vector<double> mu;
-  for (auto it = deg.rbegin(); it != deg.rend(); ++it) mu.push_back(std::cos(*it * kPi / 180.0));
-  mu.front() = -1.0;
-  mu.back() = 1.0;
-  return mu;
+  return cosines_of_degrees(deg);
 }
 
-// Per unit of extinction (refraction and reflection): scattering = extinction = 1, and the phase
-// function's rows at the cosines: each interval's share of the rays over its solid angle, a node
-// the mean of the two intervals beside it.
+// Per unit of extinction (refraction and reflection): the shares of the rays traced at each
+// wavelength.
 RawParticleOptics compute(const WavelengthGrid& grid, double aspect_ratio) {
   const std::vector<double>& mu = ice_scattering_cosines();
   const int n = grid.size();
-  RawParticleOptics o;
-  o.sca.assign(static_cast<size_t>(n), 1.0);
-  o.ext.assign(static_cast<size_t>(n), 1.0);
-  o.a1.assign(static_cast<size_t>(n), std::vector<double>(mu.size(), 0.0));
-  o.b1 = o.b2 = o.a1;
+  std::vector<std::vector<double>> shares(static_cast<size_t>(n));
   plan_preparation(n, "tracing rays through ice crystals (halos)");
   tbb::parallel_for(0, n, [&](int i) {
-    const PrismScattering s = hexagonal_prism_scattering(HexagonalPrism{aspect_ratio}, ice_refractive_index(grid.nm(i)),
-                                                         mu, kRaysPerWavelength, kSeed + static_cast<std::uint64_t>(i));
-    std::vector<double>& a1 = o.a1[static_cast<size_t>(i)];
-    std::vector<double> density(s.share.size());
-    for (size_t k = 0; k < density.size(); ++k) density[k] = s.share[k] / (2.0 * kPi * (mu[k + 1] - mu[k]));
-    for (size_t k = 0; k < mu.size(); ++k) {
-      const double below = k > 0 ? density[k - 1] : density[k], above = k < density.size() ? density[k] : below;
-      a1[k] = 0.5 * (below + above);
-    }
+    shares[static_cast<size_t>(i)] =
+        hexagonal_prism_scattering(HexagonalPrism{aspect_ratio}, ice_refractive_index(grid.nm(i)), mu,
+                                   kRaysPerWavelength, kSeed + static_cast<std::uint64_t>(i))
+            .share;
     finish_preparation(1);
   });
-  o.a3 = o.a1;
-  return o;
+  return optics_from_shares(shares, mu);
 }
 
 std::string optics_key(const WavelengthGrid& grid, double aspect_ratio) {

@@ -13,6 +13,7 @@ const std::vector<MediumEntry>& medium_registry() {
       {"ozone", build_ozone},
       {"fog", build_fog},
       {"ice", build_ice},
+      {"rain", build_rain},
   };
   // clang-format on
   return media;

@@ -48,6 +48,7 @@ std::optional<Medium> build_aerosol(const MediumContext& c);  // aerosol.cpp: An
 std::optional<Medium> build_ozone(const MediumContext& c);    // ozone.cpp: absorption by the ozone layer
 std::optional<Medium> build_fog(const MediumContext& c);      // fog.cpp: water droplets by Lorenz-Mie
 std::optional<Medium> build_ice(const MediumContext& c);      // ice.cpp: ice prisms by ray tracing (halos)
+std::optional<Medium> build_rain(const MediumContext& c);     // rain.cpp: drops by geometric optics (rainbows)
 
 /// Air's number density at altitude 0 and how it was obtained (air.cpp; for the derivation report).
 struct AirNumberDensity {
