@@ -27,7 +27,7 @@ stage "sanitizer build"
 # check (it reads sources and preprocesses probes: nothing a sanitizer sees); seven tests of
 # properties a sanitizer does not change (byte-identical renders, provenance round trips, the
 # multiple-scattering physics, grid independence, the Monte Carlo reference, its polarised cases
-# and the renderer against it, with terrain too: cli_reference runs the scalar and the vector Monte
+# and the renderer against it, with terrain, ice and rain too: cli_reference runs the scalar and the vector Monte
 # Carlo here, cli_terrain the Monte Carlo with terrain); and
 # two long ones whose code the others run under the sanitizers: cli_display (the
 # display pipeline; every PNG of the other tests goes through it) and test_properties (random
@@ -41,5 +41,5 @@ stage "sanitizer build"
 SKYSPEC_SANITIZER_STAGE=1 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan --output-on-failure -j"$(nproc)" \
-    -E '^(python_.*|notebook_.*|install_consumer|slurm_job|layering|cli_determinism|cli_reproduce|test_multiple_scattering|test_grid_independence|test_monte_carlo|test_monte_carlo_reference|test_monte_carlo_polarisation|test_terrain_reference|cli_display|test_properties|viewer_browser)$'
+    -E '^(python_.*|notebook_.*|install_consumer|slurm_job|layering|cli_determinism|cli_reproduce|test_multiple_scattering|test_grid_independence|test_monte_carlo|test_monte_carlo_reference|test_monte_carlo_polarisation|test_terrain_reference|test_bows_reference|cli_display|test_properties|viewer_browser)$'
 stage "sanitizer tests"
