@@ -35,6 +35,18 @@ double descartes_scattering_angle(double n, int k);
 /// of scattering-angle cosines (mu strictly increasing from -1 to 1), unpolarised incident light.
 std::vector<double> drop_geometric_scattering(double n, const std::vector<double>& mu);
 
+/// The same with the scattering matrix: per interval, the shares of P11, P12 and P33 (Bohren &
+/// Huffman's convention: P12 = (|S2|^2 - |S1|^2) / 2 < 0 where the light is polarised perpendicular
+/// to the scattering plane, P33 = Re(S2 S1*)). A ray's amplitudes for the s and p polarisations are
+/// the Fresnel amplitude coefficients r_s, r_p (reflected off the outside) or (1 - r^2) (-r)^k
+/// (through, k reflections inside: the coefficient from inside is -r), real, so that P11 =
+/// (a_s^2 + a_p^2) / 2, P12 = (a_p^2 - a_s^2) / 2, P33 = a_s a_p and P34 = 0 for each ray, summed
+/// without interference between rays (geometric optics).
+struct DropMatrixShares {
+  std::vector<double> p11, p12, p33;
+};
+DropMatrixShares drop_geometric_matrix(double n, const std::vector<double>& mu);
+
 /// The Fresnel-weighted rays with up to this many internal reflections are followed.
 constexpr int kMaxDropReflections = 12;
 

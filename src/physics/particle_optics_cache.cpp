@@ -163,17 +163,22 @@ std::vector<double> cosines_of_degrees(const std::vector<double>& degrees) {
   return mu;
 }
 
+std::vector<double> node_densities(const std::vector<double>& share, const std::vector<double>& mu) {
+  std::vector<double> density(share.size()), at_nodes(mu.size());
+  for (size_t k = 0; k < density.size(); ++k) density[k] = share[k] / (2.0 * kPi * (mu[k + 1] - mu[k]));
+  for (size_t k = 0; k < mu.size(); ++k) {
+    const double below = k > 0 ? density[k - 1] : density[k], above = k < density.size() ? density[k] : below;
+    at_nodes[k] = 0.5 * (below + above);
+  }
+  return at_nodes;
+}
+
 RawParticleOptics optics_from_shares(const std::vector<std::vector<double>>& shares, const std::vector<double>& mu) {
   RawParticleOptics o;
   o.sca.assign(shares.size(), 1.0);
   o.ext.assign(shares.size(), 1.0);
   for (const std::vector<double>& share : shares) {
-    std::vector<double> density(share.size()), a1(mu.size());
-    for (size_t k = 0; k < density.size(); ++k) density[k] = share[k] / (2.0 * kPi * (mu[k + 1] - mu[k]));
-    for (size_t k = 0; k < mu.size(); ++k) {
-      const double below = k > 0 ? density[k - 1] : density[k], above = k < density.size() ? density[k] : below;
-      a1[k] = 0.5 * (below + above);
-    }
+    std::vector<double> a1 = node_densities(share, mu);
     o.a1.push_back(a1);
     o.a3.push_back(std::move(a1));
     o.b1.emplace_back(mu.size(), 0.0);

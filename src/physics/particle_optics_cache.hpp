@@ -30,6 +30,8 @@ std::vector<double> cosines_of_degrees(const std::vector<double>& degrees);
 /// phase function's rows, each interval's share over its solid angle, a node the mean of the two
 /// intervals beside it; intensity only (b1 = b2 = 0, a3 = a1).
 RawParticleOptics optics_from_shares(const std::vector<std::vector<double>>& shares, const std::vector<double>& mu);
+/// One row of those: an element's shares in each interval of mu as values at the nodes.
+std::vector<double> node_densities(const std::vector<double>& share, const std::vector<double>& mu);
 
 /// The optics of `key` (text naming everything they depend on, the format included): from memory,
 /// else from the disk cache when use_disk_cache (a file read back is untrusted: its size, key,

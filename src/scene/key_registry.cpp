@@ -234,8 +234,7 @@ const std::vector<KeyDef>& registry() {
     // rain
     r.push_back(bool_key("atmosphere.rain.enabled",
                          "rain: water drops of Marshall-Palmer sizes by geometric optics (primary and secondary "
-                         "rainbows, Alexander's dark band; no supernumeraries) on or off; intensity only (not with "
-                         "output.polarisation)",
+                         "rainbows, Alexander's dark band, their polarisation; no supernumeraries) on or off",
                          [](Scene& s) -> bool& { return s.atmosphere.rain.enabled; }));
     r.push_back(number_key("atmosphere.rain.rate_mm_per_h", "mm/h", {0.01, 500.0},
                            "rain: rain rate R (Marshall-Palmer: the drops' number and sizes, hence its extinction)",

@@ -331,9 +331,6 @@ Scene SceneLoader::finish(SceneUse use) const {
     throw InputError("atmosphere.ice.enabled", "true",
                      "false with output.polarisation = true (the ice crystals' scattering is computed for intensity "
                      "only)");
-  if (s.output.polarisation && s.atmosphere.rain.enabled)
-    throw InputError("atmosphere.rain.enabled", "true",
-                     "false with output.polarisation = true (the rain's scattering is computed for intensity only)");
   if (s.output.polarisation_png && !s.output.polarisation)
     throw InputError("output.polarisation_png", "true",
                      "false unless output.polarisation = true (it draws the polarisation)");

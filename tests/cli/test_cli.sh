@@ -204,15 +204,13 @@ fi
 # and the colour-wheel PNG; OpenImageIO reads them; the keys that cannot go together are refused.
 expect_error polarisation_png_alone 2 "output.polarisation_png = true is not allowed" --set output.polarisation_png=true
 # The scenes of docs/bows-and-halos.md's pictures load and plan.
-for scene in ice-halo fogbow-and-glory glory rainbow; do
+for scene in ice-halo fogbow-and-glory glory rainbow rainbow-polarised; do
   "$skyspec" render --scene "$(dirname "${BASH_SOURCE[0]}")/../../docs/images/$scene.toml" --dry-run --out "$work/docs" \
     >"$work/stdout" 2>&1 && ok || bad "$scene.toml: $(cat "$work/stdout")"
 done
 # Ice crystals: intensity only; the index of ice is carried from 300 to 1100 nm.
 expect_error ice_polarised 2 "atmosphere.ice.enabled = true is not allowed: false with output.polarisation" \
   --set atmosphere.ice.enabled=true --set output.polarisation=true
-expect_error rain_polarised 2 "atmosphere.rain.enabled = true is not allowed: false with output.polarisation" \
-  --set atmosphere.rain.enabled=true --set output.polarisation=true
 expect_error ice_beyond_its_index 2 "spectrum = 290 nm is not allowed" --set atmosphere.ice.enabled=true \
   --wavelengths 290,550
 expect_error polarisation_isotropic 2 "render.ms_angular_degree = 0" --set output.polarisation=true --quality draft

@@ -6,7 +6,7 @@
 // pi <r^2> N per m^3 is the medium's extinction at the ground. Diffraction, the other half of a
 // drop's extinction, stays within a few thousandths of a degree of forward for drops this large
 // and is taken as unscattered light. Absorption is neglected (less than 1e-4 over a 2 mm path in
-// the visible). Intensity only (scene_checks: refused with output.polarisation).
+// the visible). Polarised: the matrix's P12 and P33 from the rays' s and p amplitudes (P34 = 0).
 #include <cmath>
 #include <sstream>
 
@@ -23,7 +23,7 @@
 namespace skyspec {
 
 namespace {
-constexpr int kRainOpticsFormat = 1;
+constexpr int kRainOpticsFormat = 2;
 constexpr double kTemperatureK = 283.15;  // 10 degC
 
 // Every 0.5 degree of scattering angle, every 0.1 degree from 120 to 150 (the bows and the band).
@@ -38,19 +38,27 @@ const std::vector<double>& rain_cosines() {
   return mu;
 }
 
-// Per unit of extinction: the drops' shares at each wavelength.
+// Per unit of extinction: the drops' matrix (P11, P12, P33; P34 = 0) at each wavelength.
 RawParticleOptics compute(const WavelengthGrid& grid) {
   const std::vector<double>& mu = rain_cosines();
   const int n = grid.size();
-  std::vector<std::vector<double>> shares(static_cast<size_t>(n));
+  RawParticleOptics o;
+  o.sca.assign(static_cast<size_t>(n), 1.0);
+  o.ext.assign(static_cast<size_t>(n), 1.0);
+  o.a1.resize(static_cast<size_t>(n));
+  o.b1 = o.a3 = o.a1;
+  o.b2.assign(static_cast<size_t>(n), std::vector<double>(mu.size(), 0.0));
   plan_preparation(n, "the rain drops' geometric optics (rainbows)");
   const double rho = liquid_water_density_kg_per_m3(kTemperatureK);
   tbb::parallel_for(0, n, [&](int i) {
-    shares[static_cast<size_t>(i)] =
-        drop_geometric_scattering(water_refractive_index(kTemperatureK, rho, grid.nm(i)), mu);
+    const DropMatrixShares m = drop_geometric_matrix(water_refractive_index(kTemperatureK, rho, grid.nm(i)), mu);
+    const size_t w = static_cast<size_t>(i);
+    o.a1[w] = node_densities(m.p11, mu);
+    o.b1[w] = node_densities(m.p12, mu);
+    o.a3[w] = node_densities(m.p33, mu);
     finish_preparation(1);
   });
-  return optics_from_shares(shares, mu);
+  return o;
 }
 
 std::string optics_key(const WavelengthGrid& grid) {
