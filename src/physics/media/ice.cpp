@@ -24,8 +24,8 @@ namespace skyspec {
 
 namespace {
 constexpr int kIceOpticsFormat = 1;
-constexpr long long kRaysPerWavelength = 500000;
-constexpr std::uint64_t kSeed = 0x1ce;
+constexpr long long kIceRaysPerWavelength = 500000;
+constexpr std::uint64_t kIceSeed = 0x1ce;
 
 std::vector<double> make_ice_cosines() {
   std::vector<double> deg;
@@ -36,7 +36,7 @@ std::vector<double> make_ice_cosines() {
 
 // Per unit of extinction (refraction and reflection): the shares of the rays traced at each
 // wavelength.
-RawParticleOptics compute(const WavelengthGrid& grid, double aspect_ratio) {
+RawParticleOptics compute_ice_optics(const WavelengthGrid& grid, double aspect_ratio) {
   const std::vector<double>& mu = ice_scattering_cosines();
   const int n = grid.size();
   std::vector<std::vector<double>> shares(static_cast<size_t>(n));
@@ -44,18 +44,18 @@ RawParticleOptics compute(const WavelengthGrid& grid, double aspect_ratio) {
   tbb::parallel_for(0, n, [&](int i) {
     shares[static_cast<size_t>(i)] =
         hexagonal_prism_scattering(HexagonalPrism{aspect_ratio}, ice_refractive_index(grid.nm(i)), mu,
-                                   kRaysPerWavelength, kSeed + static_cast<std::uint64_t>(i))
+                                   kIceRaysPerWavelength, kIceSeed + static_cast<std::uint64_t>(i))
             .share;
     finish_preparation(1);
   });
   return optics_from_shares(shares, mu);
 }
 
-std::string optics_key(const WavelengthGrid& grid, double aspect_ratio) {
+std::string ice_optics_key(const WavelengthGrid& grid, double aspect_ratio) {
   std::ostringstream key;
   key.precision(17);
   key << "skyspec ice optics, format " << kIceOpticsFormat << "\nhexagonal prism " << aspect_ratio << "\nrays "
-      << kRaysPerWavelength << ' ' << kSeed << "\nwavelengths_nm";
+      << kIceRaysPerWavelength << ' ' << kIceSeed << "\nwavelengths_nm";
   for (double v : grid.nanometres()) key << ' ' << v;
   key << "\ncosines " << ice_scattering_cosines().size() << '\n';
   return key.str();
@@ -73,8 +73,8 @@ std::optional<Medium> build_ice(const MediumContext& c) {
   for (int i = 0; i < c.grid.size(); ++i)
     (void)ice_refractive_index(c.grid.nm(i), "spectrum");  // refused before any work
   const AerosolMixtureOptics unit =
-      cached_particle_optics(optics_key(c.grid, ice.aspect_ratio), c.grid.size(), ice_scattering_cosines(),
-                             c.cache_on_disk, [&] { return compute(c.grid, ice.aspect_ratio); });
+      cached_particle_optics(ice_optics_key(c.grid, ice.aspect_ratio), c.grid.size(), ice_scattering_cosines(),
+                             c.cache_on_disk, [&] { return compute_ice_optics(c.grid, ice.aspect_ratio); });
   // Half of the whole extinction ln 20 / V: the other half is diffraction, taken as unscattered.
   const double beta = 0.5 * std::log(20.0) / ice.visibility_m;
   return particle_medium("ice", DensityProfile::exponential(ice.scale_height_m), unit, beta);

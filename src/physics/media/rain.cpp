@@ -24,7 +24,7 @@ namespace skyspec {
 
 namespace {
 constexpr int kRainOpticsFormat = 2;
-constexpr double kTemperatureK = 283.15;  // 10 degC
+constexpr double kRainTemperatureK = 283.15;  // 10 degC
 
 // Every 0.5 degree of scattering angle, every 0.1 degree from 120 to 150 (the bows and the band).
 const std::vector<double>& rain_cosines() {
@@ -39,7 +39,7 @@ const std::vector<double>& rain_cosines() {
 }
 
 // Per unit of extinction: the drops' matrix (P11, P12, P33; P34 = 0) at each wavelength.
-RawParticleOptics compute(const WavelengthGrid& grid) {
+RawParticleOptics compute_rain_optics(const WavelengthGrid& grid) {
   const std::vector<double>& mu = rain_cosines();
   const int n = grid.size();
   RawParticleOptics o;
@@ -49,9 +49,9 @@ RawParticleOptics compute(const WavelengthGrid& grid) {
   o.b1 = o.a3 = o.a1;
   o.b2.assign(static_cast<size_t>(n), std::vector<double>(mu.size(), 0.0));
   plan_preparation(n, "the rain drops' geometric optics (rainbows)");
-  const double rho = liquid_water_density_kg_per_m3(kTemperatureK);
+  const double rho = liquid_water_density_kg_per_m3(kRainTemperatureK);
   tbb::parallel_for(0, n, [&](int i) {
-    const DropMatrixShares m = drop_geometric_matrix(water_refractive_index(kTemperatureK, rho, grid.nm(i)), mu);
+    const DropMatrixShares m = drop_geometric_matrix(water_refractive_index(kRainTemperatureK, rho, grid.nm(i)), mu);
     const size_t w = static_cast<size_t>(i);
     o.a1[w] = node_densities(m.p11, mu);
     o.b1[w] = node_densities(m.p12, mu);
@@ -61,11 +61,11 @@ RawParticleOptics compute(const WavelengthGrid& grid) {
   return o;
 }
 
-std::string optics_key(const WavelengthGrid& grid) {
+std::string rain_optics_key(const WavelengthGrid& grid) {
   std::ostringstream key;
   key.precision(17);
   key << "skyspec rain optics, format " << kRainOpticsFormat << "\ngeometric optics " << kMaxDropReflections
-      << "\nwater " << kTemperatureK << "\nwavelengths_nm";
+      << "\nwater " << kRainTemperatureK << "\nwavelengths_nm";
   for (double v : grid.nanometres()) key << ' ' << v;
   key << "\ncosines " << rain_cosines().size() << '\n';
   return key.str();
@@ -75,8 +75,9 @@ std::string optics_key(const WavelengthGrid& grid) {
 std::optional<Medium> build_rain(const MediumContext& c) {
   const RainSpec& rain = c.spec.rain;
   if (!rain.enabled) return std::nullopt;
-  const AerosolMixtureOptics unit = cached_particle_optics(optics_key(c.grid), c.grid.size(), rain_cosines(),
-                                                           c.cache_on_disk, [&] { return compute(c.grid); });
+  const AerosolMixtureOptics unit =
+      cached_particle_optics(rain_optics_key(c.grid), c.grid.size(), rain_cosines(), c.cache_on_disk,
+                             [&] { return compute_rain_optics(c.grid); });
   const SizeDistribution drops = SizeDistribution::marshall_palmer(rain.rate_mm_per_h);
   const double geometric_cross_section_per_m = kPi * drops.moment(2) * drops.number_per_m3();
   return particle_medium("rain", DensityProfile::exponential(rain.scale_height_m), unit, geometric_cross_section_per_m);
