@@ -203,9 +203,10 @@ fi
 # Polarisation: S0-S3 per wavelength with the layout's polarisationHandedness, the Y/DoLP/AoLP EXR
 # and the colour-wheel PNG; OpenImageIO reads them; the keys that cannot go together are refused.
 expect_error polarisation_png_alone 2 "output.polarisation_png = true is not allowed" --set output.polarisation_png=true
-# The scenes of docs/bows-and-halos.md's pictures load and plan.
+# The scenes of docs/bows-and-halos.md's pictures load (--print-scene: a plan would compute the
+# media's optics, seconds to a minute each; test_bows_reference renders such media).
 for scene in ice-halo fogbow-and-glory glory rainbow rainbow-polarised; do
-  "$skyspec" render --scene "$(dirname "${BASH_SOURCE[0]}")/../../docs/images/$scene.toml" --dry-run --out "$work/docs" \
+  "$skyspec" render --scene "$(dirname "${BASH_SOURCE[0]}")/../../docs/images/$scene.toml" --print-scene \
     >"$work/stdout" 2>&1 && ok || bad "$scene.toml: $(cat "$work/stdout")"
 done
 # Ice crystals: intensity only; the index of ice is carried from 300 to 1100 nm.

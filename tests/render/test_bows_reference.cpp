@@ -20,7 +20,7 @@ using namespace skyspec;
 
 namespace {
 // The renderer's radiance at 450 and 650 nm in each probe's direction ([probe][wavelength]), after
-// checking every probe at both against the Monte Carlo (20 000 paths, order 1).
+// checking every probe at both against the Monte Carlo (10 000 paths, order 1).
 std::vector<std::array<double, 2>> compare(const std::string& medium_toml, double sun_azimuth_deg,
                                            const std::vector<ReferenceProbe>& probes) {
   const std::string toml = "[sun]\nelevation_deg = 25\nazimuth_deg = " + std::to_string(sun_azimuth_deg) +
@@ -29,7 +29,7 @@ std::vector<std::array<double, 2>> compare(const std::string& medium_toml, doubl
                            "[render]\ncache_tables = false\nscattering_orders = 1\n";
   const Scene scene = test::scene_with(toml, "default");
   ReferenceSettings settings;
-  settings.paths = 20000;
+  settings.paths = 10000;
   settings.seed = 39;
   settings.max_orders = 1;
   const ReferenceResult mc = monte_carlo_reference(scene, probes, settings);
@@ -95,7 +95,7 @@ BOOST_AUTO_TEST_CASE(rainbow_polarisation_agrees_with_the_reference) {
       "default");
   const std::vector<ReferenceProbe> probes = {{"inside the primary", 0.0, 10.0}, {"on the primary", 0.0, 16.5}};
   ReferenceSettings settings;
-  settings.paths = 20000;
+  settings.paths = 10000;
   settings.seed = 39;
   settings.max_orders = 1;
   settings.stokes = true;
