@@ -14,8 +14,8 @@
 // (Alexander's dark band). Rays fall on the drop uniformly over its disk, so the share scattered
 // into an interval of angles is the integral of 2 b db over the impact parameters b = sin i whose
 // rays end there: skyspec sums it over 400 000 impact parameters evenly spaced in b^2, for
-// k = 0 to kMaxDropReflections (what is left inside after that, 5e-5 of the light, nearly all of it
-// from rays at grazing incidence, is dropped). This is the
+// k = 0 to kMaxDropReflections (what is left inside after that, nearly all of it from rays at
+// grazing incidence, is dropped: docs/bows-and-halos.md says how much). This is the
 // Descartes-Fresnel model: no wave optics, so no supernumerary bows and a sharp (geometric) edge
 // at the Descartes angle instead of Airy's maximum just inside it; for drops of 0.5 mm and larger
 // (the bulk of a rain's light) the two differ by less than 0.3 degrees (van de Hulst 1957, 13.2;

@@ -83,13 +83,11 @@ BOOST_AUTO_TEST_CASE(bows_are_polarised) {
   const int brightest = share_at(m.p11, tp) > share_at(m.p11, tp + 1) ? tp : tp + 1;
   BOOST_TEST_MESSAGE("degree of polarisation: primary " << dolp(brightest) << ", secondary " << dolp(tq));
   BOOST_TEST(dolp(brightest) > 0.9);
-  BOOST_TEST(dolp(tq) > 0.7);  // measured 0.80
+  BOOST_TEST(dolp(tq) > 0.7);
   for (size_t j = 0; j < m.p11.size(); ++j)
     BOOST_TEST(m.p12[j] * m.p12[j] + m.p33[j] * m.p33[j] <= m.p11[j] * m.p11[j] * (1.0 + 1e-12));
   BOOST_TEST(m.p33.front() < 0.0);                    // the interval next to 180 degrees
-  BOOST_TEST(-m.p33.front() / m.p11.front() > 0.85);  // measured 0.91: rays of several orders end there
-  const std::vector<double> p11 = drop_geometric_scattering(n, mu);
-  BOOST_TEST(p11 == m.p11);
+  BOOST_TEST(-m.p33.front() / m.p11.front() > 0.85);  // rays of several orders end there
 }
 
 BOOST_AUTO_TEST_SUITE_END()

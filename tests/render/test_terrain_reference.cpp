@@ -86,8 +86,8 @@ BOOST_AUTO_TEST_CASE(single_scattering_agrees_with_the_reference) {
 // ground's; and a ridge of height 0, whose grid is the sphere's ground with the terrain's albedo
 // (0.9). Single scattering within 2 % + 3 standard errors. All orders: the tables' field knows only
 // the ground's albedo, so the sky light on a terrain of another albedo (and the light it sends
-// into the air) is the ground's; measured (docs/terrain.md) 5.7 % / -4.5 % on the face, 7.0 % /
-// -7.5 % at the foot, 4.0 % / -3.6 % on the plain; the allowances (7, 9, 5 %) guard against worse.
+// into the air) is the ground's: docs/terrain.md gives the measured error; the allowances (7, 9,
+// 5 %) guard against worse.
 namespace {
 const char* const kOwnAlbedo = "albedo_wavelengths_nm = [450, 650]\nalbedo_values = [0.1, 0.6]\n";
 const std::vector<ReferenceProbe> kSurfaces = {
