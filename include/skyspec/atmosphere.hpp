@@ -91,15 +91,26 @@ struct FogSpec {
   double scale_height_m = 100.0;  ///< density exp(-z / H) above the ground
 };
 
-/// Ice crystals near the ground (diamond dust): randomly oriented hexagonal prisms of ice
-/// (ice_crystals.hpp), whose geometric optics give the 22 and 46 degree halos; off by default.
+/// Ice crystals: randomly oriented hexagonal prisms of ice (ice_crystals.hpp), whose geometric
+/// optics give the 22 and 46 degree halos, near the ground (diamond dust) or in a cloud layer aloft
+/// (cirrostratus); off by default.
 struct IceSpec {
   bool enabled = false;
+  /// Ground: density exp(-z / scale_height_m), visibility_m at the ground. Cloud: a layer
+  /// (DensityProfile::layer) from base_m to top_m whose edges fall by e every quarter of its
+  /// thickness, holding a vertical optical depth optical_depth at 550 nm.
+  enum class Layer { Ground, Cloud };
+  Layer layer = Layer::Ground;
   /// Meteorological optical range at the ground, 550 nm: the crystals' whole extinction
   /// (refraction, reflection and diffraction: efficiency 2) is ln 20 / V.
   double visibility_m = 5000.0;
   double scale_height_m = 200.0;  ///< density exp(-z / H) above the ground
-  double aspect_ratio = 2.0;      ///< the prisms' length over their width (columns > 1, plates < 1)
+  double base_m = 8000.0;         ///< cloud: the layer's base
+  double top_m = 10000.0;         ///< cloud: the layer's top
+  /// Cloud: the layer's whole vertical optical depth at 550 nm (diffraction included, like
+  /// visibility_m), from the ground to the top of the atmosphere.
+  double optical_depth = 0.3;
+  double aspect_ratio = 2.0;  ///< the prisms' length over their width (columns > 1, plates < 1)
 };
 
 /// Rain: water drops of Marshall & Palmer's sizes for a rain rate, by geometric optics

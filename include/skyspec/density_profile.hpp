@@ -11,7 +11,7 @@ namespace skyspec {
 
 class DensityProfile {
  public:
-  enum class Kind { Exponential, UsStandard1976, Constant, Tent };
+  enum class Kind { Exponential, UsStandard1976, Constant, Tent, Layer };
 
   /// rho(z) = exp(-z / H).
   static DensityProfile exponential(double scale_height_m);
@@ -23,6 +23,11 @@ class DensityProfile {
   /// A layer: 0 below bottom_m, rising linearly to 1 at peak_m, falling linearly to 0 at top_m
   /// (the ozone layer model of Bruneton 2017's reference implementation).
   static DensityProfile tent(double bottom_m, double peak_m, double top_m);
+  /// A cloud layer whose density is positive everywhere: rho(z) = 1 from base_m to top_m, falling
+  /// as exp(-(base_m - z) / edge_m) below the base and exp(-(z - top_m) / edge_m) above the top.
+  /// ln rho is piecewise linear in z, so the log-mean rule is exact between its two kinks
+  /// (breakpoints_m), where integrators split their rays.
+  static DensityProfile layer(double base_m, double top_m, double edge_m);
 
   Kind kind() const { return kind_; }
   double scale_height_m() const { return scale_height_m_; }  ///< exponential only
@@ -38,6 +43,12 @@ class DensityProfile {
   bool positive_everywhere() const { return kind_ != Kind::Tent; }
   /// Integral of rho over all altitudes, m (tent only: its thickness-weighted area).
   double tent_area_m() const { return 0.5 * (top_m_ - bottom_m_); }
+  /// Integral of rho from the ground (altitude 0) up, m (layer only):
+  /// edge (1 - exp(-base / edge)) + (top - base) + edge.
+  double layer_column_m() const;
+  /// Altitudes where ln rho has a kink that column integrals should not step across (layer: its
+  /// base and top); empty for the other profiles.
+  std::vector<double> breakpoints_m() const;
 
  private:
   Kind kind_ = Kind::Constant;
@@ -45,7 +56,8 @@ class DensityProfile {
   // US 1976: ln rho at altitudes step_m_ apart from 0 (values below 0 are extrapolated linearly).
   std::shared_ptr<const std::vector<double>> log_table_;
   double step_m_ = 10.0;
-  double bottom_m_ = 0.0, peak_m_ = 0.0, top_m_ = 0.0;  // tent
+  double bottom_m_ = 0.0, peak_m_ = 0.0, top_m_ = 0.0;  // tent; layer: bottom_m_ is its base
+  double edge_m_ = 0.0;                                 // layer
 };
 
 }  // namespace skyspec

@@ -27,6 +27,24 @@ DensityProfile DensityProfile::tent(double bottom_m, double peak_m, double top_m
   return p;
 }
 
+DensityProfile DensityProfile::layer(double base_m, double top_m, double edge_m) {
+  DensityProfile p;
+  p.kind_ = Kind::Layer;
+  p.bottom_m_ = base_m;
+  p.top_m_ = top_m;
+  p.edge_m_ = edge_m;
+  return p;
+}
+
+double DensityProfile::layer_column_m() const {
+  return edge_m_ * -std::expm1(-bottom_m_ / edge_m_) + (top_m_ - bottom_m_) + edge_m_;
+}
+
+std::vector<double> DensityProfile::breakpoints_m() const {
+  if (kind_ == Kind::Layer) return {bottom_m_, top_m_};
+  return {};
+}
+
 double DensityProfile::relative(double altitude_m) const {
   if (kind_ != Kind::Tent) return std::exp(log_relative(altitude_m));
   if (altitude_m <= bottom_m_ || altitude_m >= top_m_) return 0.0;
@@ -54,6 +72,10 @@ double DensityProfile::log_relative(double altitude_m) const {
     case Kind::Exponential:
       return -altitude_m / scale_height_m_;
     case Kind::Constant:
+      return 0.0;
+    case Kind::Layer:
+      if (altitude_m < bottom_m_) return (altitude_m - bottom_m_) / edge_m_;
+      if (altitude_m > top_m_) return (top_m_ - altitude_m) / edge_m_;
       return 0.0;
     case Kind::Tent: {
       const double rho = relative(altitude_m);
@@ -84,6 +106,10 @@ std::string DensityProfile::describe() const {
       break;
     case Kind::UsStandard1976:
       s << "U.S. Standard Atmosphere 1976 (N = P / kT)";
+      break;
+    case Kind::Layer:
+      s.precision(12);  // the tables' cache key holds this text
+      s << "layer from " << bottom_m_ << " m to " << top_m_ << " m, edges falling by e every " << edge_m_ << " m";
       break;
     case Kind::Tent:
       s << "layer from " << bottom_m_ << " m, peak at " << peak_m_ << " m, to " << top_m_ << " m (tent)";

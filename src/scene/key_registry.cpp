@@ -218,16 +218,36 @@ const std::vector<KeyDef>& registry() {
                            [](Scene& s) -> double& { return s.atmosphere.fog.scale_height_m; }));
     // ice
     r.push_back(bool_key("atmosphere.ice.enabled",
-                         "ice crystals near the ground (diamond dust): randomly oriented hexagonal prisms, ray-traced "
-                         "(22 and 46 degree halos), on or off; intensity only (not with output.polarisation)",
+                         "ice crystals near the ground (diamond dust) or in a cloud (cirrostratus): randomly oriented "
+                         "hexagonal prisms, ray-traced (22 and 46 degree halos), on or off; intensity only (not with "
+                         "output.polarisation)",
                          [](Scene& s) -> bool& { return s.atmosphere.ice.enabled; }));
+    r.push_back(choice_key(
+        "atmosphere.ice.layer", {"ground", "cloud"},
+        "ice: where the crystals are: ground (diamond dust: visibility_m, scale_height_m) or cloud (cirrostratus: "
+        "a layer from base_m to top_m with optical_depth; its edges fall by e every quarter of its thickness)",
+        [](Scene& s, const std::string& v) {
+          s.atmosphere.ice.layer = v == "cloud" ? IceSpec::Layer::Cloud : IceSpec::Layer::Ground;
+        },
+        [](const Scene& s) {
+          return std::string(s.atmosphere.ice.layer == IceSpec::Layer::Cloud ? "cloud" : "ground");
+        }));
     r.push_back(number_key("atmosphere.ice.visibility_m", "m", {1.0, 1e6},
-                           "ice: visibility at the ground (meteorological optical range, 550 nm: the crystals' whole "
-                           "extinction, diffraction included, is ln 20 / V)",
+                           "ice, layer = ground: visibility at the ground (meteorological optical range, 550 nm: the "
+                           "crystals' whole extinction, diffraction included, is ln 20 / V)",
                            [](Scene& s) -> double& { return s.atmosphere.ice.visibility_m; }));
     r.push_back(number_key("atmosphere.ice.scale_height_m", "m", {1.0, 1e5},
-                           "ice: its density falls as exp(-z / H) above the ground",
+                           "ice, layer = ground: its density falls as exp(-z / H) above the ground",
                            [](Scene& s) -> double& { return s.atmosphere.ice.scale_height_m; }));
+    r.push_back(number_key("atmosphere.ice.base_m", "m", {0.0, 1e5}, "ice, layer = cloud: the layer's base",
+                           [](Scene& s) -> double& { return s.atmosphere.ice.base_m; }));
+    r.push_back(number_key("atmosphere.ice.top_m", "m", {1.0, 1e5},
+                           "ice, layer = cloud: the layer's top (above base_m, below atmosphere.top_altitude_m)",
+                           [](Scene& s) -> double& { return s.atmosphere.ice.top_m; }));
+    r.push_back(number_key("atmosphere.ice.optical_depth", "", {1e-4, 10.0},
+                           "ice, layer = cloud: the layer's vertical optical depth at 550 nm, diffraction included "
+                           "(thin cirrostratus: about 0.03-0.3)",
+                           [](Scene& s) -> double& { return s.atmosphere.ice.optical_depth; }));
     r.push_back(number_key("atmosphere.ice.aspect_ratio", "", {0.05, 20.0},
                            "ice: the prisms' length over their width across corners (columns > 1, plates < 1)",
                            [](Scene& s) -> double& { return s.atmosphere.ice.aspect_ratio; }));

@@ -327,6 +327,15 @@ Scene SceneLoader::finish(SceneUse use) const {
   }
   check_spectral_albedo("ground", s.atmosphere.ground.albedo_wavelengths_nm, s.atmosphere.ground.albedo_values);
   check_spectral_albedo("terrain", s.terrain.albedo_wavelengths_nm, s.terrain.albedo_values);
+  const IceSpec& ice = s.atmosphere.ice;
+  if (ice.enabled && ice.layer == IceSpec::Layer::Cloud) {
+    if (!(ice.top_m > ice.base_m))
+      throw InputError("atmosphere.ice.top_m", format_number(ice.top_m),
+                       "above atmosphere.ice.base_m (" + format_number(ice.base_m) + " m)");
+    if (!(ice.top_m < s.atmosphere.top_altitude_m))
+      throw InputError("atmosphere.ice.top_m", format_number(ice.top_m),
+                       "below atmosphere.top_altitude_m (" + format_number(s.atmosphere.top_altitude_m) + " m)");
+  }
   if (s.output.polarisation && s.atmosphere.ice.enabled)
     throw InputError("atmosphere.ice.enabled", "true",
                      "false with output.polarisation = true (the ice crystals' scattering is computed for intensity "

@@ -85,11 +85,47 @@ void columns_piece(const DensityProfile* const* profiles, int count, double plan
   for (int i = 0; i < count; ++i) out[i] += column_on_nodes(*profiles[i], alt, dt, segments);
 }
 
-// Columns from (r, mu) to the top, split at the ray's lowest point when it descends first.
+// Where the ray from (r, mu) crosses the profiles' breakpoints (DensityProfile::breakpoints_m)
+// between 0 and d, with its lowest point, sorted; empty if no profile has a breakpoint.
+void breakpoint_cuts(const DensityProfile* const* profiles, int count, double planet_radius_m, double r_m, double mu,
+                     double d, std::vector<double>& cuts) {
+  cuts.clear();
+  for (int i = 0; i < count; ++i)
+    for (double h : profiles[i]->breakpoints_m()) {
+      // |r + t| = R + h: t^2 + 2 r mu t + r^2 - (R + h)^2 = 0.
+      const double rc = planet_radius_m + h;
+      const double disc = r_m * r_m * (mu * mu - 1.0) + rc * rc;
+      if (!(disc > 0.0)) continue;
+      for (double t : {-r_m * mu - std::sqrt(disc), -r_m * mu + std::sqrt(disc)})
+        if (t > 0.0 && t < d) cuts.push_back(t);
+    }
+  if (cuts.empty()) return;
+  const double t_low = -r_m * mu;
+  if (t_low > 0.0 && t_low < d) cuts.push_back(t_low);
+  std::sort(cuts.begin(), cuts.end());
+}
+
+// Columns from (r, mu) to the top, split at the ray's lowest point when it descends first, and
+// where it crosses a profile's breakpoints (a cloud layer's base and top), the segments shared in
+// proportion to length.
 void columns_to_top(const DensityProfile* const* profiles, int count, double planet_radius_m, double top_radius_m,
                     double r_m, double mu, int segments, double* out) {
   for (int i = 0; i < count; ++i) out[i] = 0.0;
   const double d = distance_to_top_m(r_m, mu, top_radius_m);
+  thread_local std::vector<double> cuts;
+  breakpoint_cuts(profiles, count, planet_radius_m, r_m, mu, d, cuts);
+  if (!cuts.empty()) {
+    double a = 0.0;
+    cuts.push_back(d);
+    for (double b : cuts) {
+      if (b > a) {
+        const int s = std::max(2, static_cast<int>(std::lround(segments * (b - a) / d)));
+        columns_piece(profiles, count, planet_radius_m, r_m, mu, a, b, s, out);
+      }
+      a = b;
+    }
+    return;
+  }
   const double t_low = -r_m * mu;  // lowest point of the ray (ahead only if mu < 0)
   if (t_low > 0.0 && t_low < d) {
     const int s1 = std::max(1, static_cast<int>(std::lround(segments * t_low / d)));

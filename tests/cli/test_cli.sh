@@ -205,7 +205,7 @@ fi
 expect_error polarisation_png_alone 2 "output.polarisation_png = true is not allowed" --set output.polarisation_png=true
 # The scenes of docs/bows-and-halos.md's pictures load (--print-scene: a plan would compute the
 # media's optics, seconds to a minute each; test_bows_reference renders such media).
-for scene in ice-halo fogbow-and-glory glory rainbow rainbow-polarised; do
+for scene in ice-halo cirrostratus-halo fogbow-and-glory glory rainbow rainbow-polarised; do
   "$skyspec" render --scene "$(dirname "${BASH_SOURCE[0]}")/../../docs/images/$scene.toml" --print-scene \
     >"$work/stdout" 2>&1 && ok || bad "$scene.toml: $(cat "$work/stdout")"
 done
@@ -214,6 +214,11 @@ expect_error ice_polarised 2 "atmosphere.ice.enabled = true is not allowed: fals
   --set atmosphere.ice.enabled=true --set output.polarisation=true
 expect_error ice_beyond_its_index 2 "spectrum = 290 nm is not allowed" --set atmosphere.ice.enabled=true \
   --wavelengths 290,550
+expect_error cirrus_upside_down 2 "atmosphere.ice.top_m = 7000 is not allowed: above atmosphere.ice.base_m (8000 m)" \
+  --set atmosphere.ice.enabled=true --set atmosphere.ice.layer=cloud --set atmosphere.ice.top_m=7000
+expect_error cirrus_above_the_air 2 "atmosphere.ice.top_m = 70000 is not allowed: below atmosphere.top_altitude_m" \
+  --set atmosphere.ice.enabled=true --set atmosphere.ice.layer=cloud --set atmosphere.ice.top_m=70000
+expect_error ice_layer_unknown 2 "atmosphere.ice.layer" --set atmosphere.ice.layer=sky
 expect_error polarisation_isotropic 2 "render.ms_angular_degree = 0" --set output.polarisation=true --quality draft
 pol="$work/polarised"  # small scattering-order tables: the files are checked here
 if "$skyspec" render -q --out "$pol" --camera equirectangular --width 32 --height 16 --lambda-min 450 --lambda-max 650 \

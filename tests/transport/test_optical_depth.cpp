@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "atmosphere_fixtures.hpp"
@@ -48,6 +49,34 @@ BOOST_AUTO_TEST_CASE(slant_column_converges) {
     const double coarse = column_to_top_m(p, R, R + top, r, mu, 64);
     const double fine = column_to_top_m(p, R, R + top, r, mu, 4096);
     BOOST_TEST(coarse == fine, boost::test_tools::tolerance(1e-5));
+  }
+}
+
+// A cloud layer (DensityProfile::layer: 1 from 8 to 10 km, edges falling by e every 500 m): ln rho
+// piecewise linear; its vertical columns in closed form with a few segments (the rays are split at
+// the base and the top), slanted and grazing columns converged with 64 segments (1e-4).
+BOOST_AUTO_TEST_CASE(layer_profile_columns) {
+  const double b = 8000, t = 10000, w = 500;
+  const DensityProfile p = DensityProfile::layer(b, t, w);
+  BOOST_TEST(p.log_relative(b - w) == -1.0, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(p.log_relative(t + 2 * w) == -2.0, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(p.log_relative(9000) == 0.0);
+  BOOST_TEST(p.relative(9500) == 1.0);
+  BOOST_TEST(p.positive_everywhere());
+  const double above = w * -std::expm1(-(top - t) / w);
+  BOOST_TEST(column_to_top_m(p, R, R + top, R, 1.0, 16) == w * -std::expm1(-b / w) + (t - b) + above,
+             boost::test_tools::tolerance(1e-10));
+  BOOST_TEST(p.layer_column_m() == w * -std::expm1(-b / w) + (t - b) + w, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(column_to_top_m(p, R, R + top, R + 9000, 1.0, 16) == (t - 9000) + above,
+             boost::test_tools::tolerance(1e-10));
+  // From the ground, from inside (level and descending: it crosses the layer's base twice ahead)
+  // and from above it.
+  const std::pair<double, double> rays[] = {{0.0, 0.5}, {0.0, 0.05}, {9000.0, 0.0}, {9000.0, -0.03}, {20000.0, -0.06}};
+  for (const auto& [z, mu] : rays) {
+    const double coarse = column_to_top_m(p, R, R + top, R + z, mu, 64);
+    const double fine = column_to_top_m(p, R, R + top, R + z, mu, 16384);
+    BOOST_TEST(coarse == fine, boost::test_tools::tolerance(1e-4));
+    BOOST_TEST(fine > 1000.0);
   }
 }
 

@@ -1,4 +1,5 @@
-// Ice: randomly oriented hexagonal prisms of ice near the ground (diamond dust), whose refraction
+// Ice: randomly oriented hexagonal prisms of ice near the ground (diamond dust) or in a cloud layer
+// aloft (cirrostratus: DensityProfile::layer, its vertical optical depth given), whose refraction
 // gives the 22 and 46 degree halos (ice_crystals.hpp: the ray tracing and its sources). Their
 // scattering function per wavelength is geometric optics with the index of ice at that wavelength
 // (Warren & Brandt 2008). Diffraction by the crystals' outlines takes half of their extinction
@@ -23,7 +24,7 @@
 namespace skyspec {
 
 namespace {
-constexpr int kIceOpticsFormat = 1;
+constexpr int kIceOpticsFormat = 2;
 constexpr long long kIceRaysPerWavelength = 500000;
 constexpr std::uint64_t kIceSeed = 0x1ce;
 
@@ -35,7 +36,12 @@ std::vector<double> make_ice_cosines() {
 }
 
 // Per unit of extinction (refraction and reflection): the shares of the rays traced at each
-// wavelength.
+// wavelength. The rays leaving within the first interval of forward (0.1 degree: those through
+// two parallel faces, which leave undeviated) are taken as unscattered, like diffraction: the
+// medium's extinction and scattering lose their share and the phase function is the rest,
+// renormalised. Light scattered by exactly 0 degrees is the same as light not scattered, but as a
+// spike 0.1 degree wide it would carry a large share of the light into quadratures over directions
+// (the scattering-order tables') that cannot resolve it (docs/bows-and-halos.md).
 RawParticleOptics compute_ice_optics(const WavelengthGrid& grid, double aspect_ratio) {
   const std::vector<double>& mu = ice_scattering_cosines();
   const int n = grid.size();
@@ -48,7 +54,18 @@ RawParticleOptics compute_ice_optics(const WavelengthGrid& grid, double aspect_r
             .share;
     finish_preparation(1);
   });
-  return optics_from_shares(shares, mu);
+  std::vector<double> kept(static_cast<size_t>(n));
+  for (size_t i = 0; i < shares.size(); ++i) {
+    std::vector<double>& share = shares[i];
+    double total = 0.0;
+    for (double v : share) total += v;
+    kept[i] = 1.0 - share.back() / total;
+    share.back() = 0.0;
+  }
+  RawParticleOptics optics = optics_from_shares(shares, mu);
+  optics.sca = kept;
+  optics.ext = kept;
+  return optics;
 }
 
 std::string ice_optics_key(const WavelengthGrid& grid, double aspect_ratio) {
@@ -61,6 +78,10 @@ std::string ice_optics_key(const WavelengthGrid& grid, double aspect_ratio) {
   return key.str();
 }
 }  // namespace
+
+DensityProfile cirrus_profile(const IceSpec& ice) {
+  return DensityProfile::layer(ice.base_m, ice.top_m, 0.25 * (ice.top_m - ice.base_m));
+}
 
 const std::vector<double>& ice_scattering_cosines() {
   static const std::vector<double> mu = make_ice_cosines();
@@ -75,7 +96,11 @@ std::optional<Medium> build_ice(const MediumContext& c) {
   const AerosolMixtureOptics unit =
       cached_particle_optics(ice_optics_key(c.grid, ice.aspect_ratio), c.grid.size(), ice_scattering_cosines(),
                              c.cache_on_disk, [&] { return compute_ice_optics(c.grid, ice.aspect_ratio); });
-  // Half of the whole extinction ln 20 / V: the other half is diffraction, taken as unscattered.
+  // Half of the whole extinction: the other half is diffraction, taken as unscattered.
+  if (ice.layer == IceSpec::Layer::Cloud) {
+    const DensityProfile cloud = cirrus_profile(ice);
+    return particle_medium("ice", cloud, unit, 0.5 * ice.optical_depth / cloud.layer_column_m());
+  }
   const double beta = 0.5 * std::log(20.0) / ice.visibility_m;
   return particle_medium("ice", DensityProfile::exponential(ice.scale_height_m), unit, beta);
 }

@@ -62,6 +62,9 @@ double fog_extinction_cross_section_550nm_m2();
 /// The cosines the ice crystals' scattering function is tabulated at (ice.cpp): every 0.1 degree to
 /// 60 degrees (the halos' edges), every 0.5 degree beyond.
 const std::vector<double>& ice_scattering_cosines();
+/// A cirrostratus layer's density profile (ice.cpp): 1 from base to top, edges falling by e every
+/// quarter of its thickness.
+DensityProfile cirrus_profile(const IceSpec& ice);
 /// Ozone's number density at the layer's peak, m^-3 (ozone.cpp; 0 without ozone).
 double ozone_peak_number_density_per_m3(const OzoneSpec& o);
 
