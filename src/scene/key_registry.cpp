@@ -17,6 +17,7 @@
 #include <optional>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 #include <toml++/toml.h>
 
@@ -55,6 +56,57 @@ KeyDef only_for(CameraSpec::Type type, KeyDef k) {
   const auto [allowed, meaning] = split_doc(k.doc);
   k.doc = "(" + allowed + ") " + camera_type_name(type) + ": " + meaning;
   return k;
+}
+
+// The keys a scene reads only when other keys say so (a medium turned on, a terrain model): one
+// list, which SceneLoader::finish enforces for flags and overrides.
+void add_conditions(std::vector<KeyDef>& r) {
+  struct Condition {
+    std::vector<std::string> keys;
+    std::function<bool(const Scene&)> holds;
+    std::string text;
+  };
+  using Model = TerrainSpec::Model;
+  const auto ice_in = [](IceSpec::Layer layer) {
+    return [layer](const Scene& s) { return s.atmosphere.ice.enabled && s.atmosphere.ice.layer == layer; };
+  };
+  const std::vector<Condition> conditions = {
+      {{"atmosphere.fog.visibility_m", "atmosphere.fog.scale_height_m"},
+       [](const Scene& s) { return s.atmosphere.fog.enabled; },
+       "atmosphere.fog.enabled = true"},
+      {{"atmosphere.rain.rate_mm_per_h", "atmosphere.rain.scale_height_m"},
+       [](const Scene& s) { return s.atmosphere.rain.enabled; },
+       "atmosphere.rain.enabled = true"},
+      {{"atmosphere.ice.layer", "atmosphere.ice.aspect_ratio"},
+       [](const Scene& s) { return s.atmosphere.ice.enabled; },
+       "atmosphere.ice.enabled = true"},
+      {{"atmosphere.ice.visibility_m", "atmosphere.ice.scale_height_m"},
+       ice_in(IceSpec::Layer::Ground),
+       "atmosphere.ice.enabled = true and atmosphere.ice.layer = \"ground\""},
+      {{"atmosphere.ice.base_m", "atmosphere.ice.top_m", "atmosphere.ice.optical_depth"},
+       ice_in(IceSpec::Layer::Cloud),
+       "atmosphere.ice.enabled = true and atmosphere.ice.layer = \"cloud\""},
+      {{"terrain.ridge.height_m", "terrain.ridge.distance_m", "terrain.ridge.azimuth_deg", "terrain.ridge.half_width_m",
+        "terrain.ridge.length_m", "terrain.ridge.notch_spacing_m", "terrain.ridge.notch_depth"},
+       [](const Scene& s) { return s.terrain.model == Model::Ridge; },
+       "terrain.model = \"ridge\""},
+      {{"terrain.heightmap.pixel_m", "terrain.heightmap.height_scale_m", "terrain.heightmap.height_offset_m"},
+       [](const Scene& s) { return s.terrain.model == Model::HeightMap; },
+       "terrain.model = \"heightmap\""},
+      {{"terrain.file", "terrain.albedo_map", "terrain.extent_m"},
+       [](const Scene& s) { return s.terrain.model == Model::File || s.terrain.model == Model::HeightMap; },
+       "terrain.model = \"file\" or \"heightmap\""},
+      {{"terrain.spacing_m", "terrain.albedo", "terrain.albedo_wavelengths_nm", "terrain.albedo_values"},
+       [](const Scene& s) { return s.terrain.model != Model::None; },
+       "terrain.model = \"ridge\", \"file\" or \"heightmap\""},
+  };
+  for (const Condition& c : conditions)
+    for (const std::string& key : c.keys) {
+      const auto it = std::find_if(r.begin(), r.end(), [&key](const KeyDef& k) { return k.key == key; });
+      if (it == r.end()) throw std::logic_error("add_conditions: no key " + key);
+      it->needs = c.holds;
+      it->needs_text = c.text;
+    }
 }
 }  // namespace
 
@@ -571,6 +623,7 @@ const std::vector<KeyDef>& registry() {
       k.get = [](const Scene& s) { return s.output.exposure_ev ? exact_number(*s.output.exposure_ev) : std::string(); };
       r.push_back(k);
     }
+    add_conditions(r);
     return r;
   }();
   return keys;

@@ -27,6 +27,11 @@ struct KeyDef {
   /// The camera types that read this key (empty: every one). Its help starts with their names, and
   /// a flag or an override that sets it for another camera is refused (SceneLoader::finish).
   std::vector<CameraSpec::Type> cameras;
+  /// When the scene reads this key at all, beyond the camera (empty: always; add_conditions in
+  /// key_registry.cpp lists them): a flag or an override that sets it when `needs` is false is
+  /// refused (SceneLoader::finish), naming the condition, needs_text.
+  std::function<bool(const Scene&)> needs;
+  std::string needs_text;
   /// A file the render reads (terrain.file, ...): a relative path given in a scene file is taken
   /// from that file's folder (SceneLoader::apply_file), one given elsewhere from the current folder.
   bool input_path = false;

@@ -374,6 +374,8 @@ Scene SceneLoader::finish(SceneUse use) const {
   // key: recorded scenes do).
   for (const auto& [key, origin] : overridden_) {
     const KeyDef* def = find_key(key);
+    if (def->needs && !def->needs(s))
+      throw InputError(key, def->get(s), "only with " + def->needs_text + " (this scene does not read it)", origin);
     if (def->cameras.empty() ||
         std::find(def->cameras.begin(), def->cameras.end(), s.camera.type) != def->cameras.end())
       continue;

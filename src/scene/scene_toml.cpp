@@ -59,9 +59,16 @@ std::string scene_to_toml(const Scene& scene, SceneTomlKeys keys) {
   return out.str();
 }
 
+namespace {
+// "; read only with CONDITION" for a key with a condition (KeyDef::needs), else "".
+std::string read_only_with(const KeyDef& k) {
+  return k.needs_text.empty() ? std::string() : "; read only with " + k.needs_text;
+}
+}  // namespace
+
 std::vector<std::pair<std::string, std::string>> scene_key_help() {
   std::vector<std::pair<std::string, std::string>> out;
-  for (const auto& k : registry()) out.push_back({k.key, k.doc});
+  for (const auto& k : registry()) out.push_back({k.key, k.doc + read_only_with(k)});
   return out;
 }
 
@@ -72,14 +79,15 @@ std::string scene_keys_markdown() {
       << "Generated from the key registry (src/scene/key_registry.cpp) by `skyspec render --help-keys=markdown`;\n"
       << "do not edit by hand. A scene file (TOML) or `--set KEY=VALUE` sets these; the default is the\n"
       << "built-in default scene (data/scenes/default.toml, equal to `Scene{}`). Values outside the allowed\n"
-      << "range are refused with a message naming the key.\n\n"
+      << "range are refused with a message naming the key, and so is a flag or `--set` of a key the scene does\n"
+      << "not read (another camera's, or one whose \"read only with\" condition does not hold).\n\n"
       << "| key | default | allowed | meaning |\n|---|---|---|---|\n";
   for (const auto& k : registry()) {
     const auto [allowed, meaning] = split_doc(k.doc);
     std::string value = k.get(defaults);
     if (value.empty()) value = "(none)";
     out << "| `" << k.key << "` | " << markdown_cell(value) << " | " << markdown_cell(allowed) << " | "
-        << markdown_cell(meaning) << " |\n";
+        << markdown_cell(meaning + read_only_with(k)) << " |\n";
   }
   return out.str();
 }

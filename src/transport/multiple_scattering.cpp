@@ -63,7 +63,13 @@ std::shared_ptr<const PhaseMoments> PhaseMoments::of(const AtmosphereModel& atm,
     m->phases_.push_back(medium.phase);
     for (int i = 0; i < n; ++i) {
       const auto phase = [&medium, i](double mu) { return medium.phase.at(i, mu); };
-      const std::vector<double> chi = legendre_moments(phase, degree);
+      // A tabulated function's moments exactly: a forward peak (fog's diffraction) can be narrower
+      // than the Gauss-Legendre nodes' spacing near mu = 1 (0.27 degree for 512 nodes).
+      const std::vector<double> chi =
+          medium.phase.kind == MediumPhase::Kind::Tabulated
+              ? piecewise_linear_legendre_moments(medium.phase.matrix->mu(),
+                                                  medium.phase.matrix->a1()[static_cast<size_t>(i)], degree)
+              : legendre_moments(phase, degree);
       for (int l = 0; l <= degree; ++l) {
         of.chi[static_cast<size_t>(l) * n + i] = static_cast<float>(chi[static_cast<size_t>(l)]);
         // Zero to rounding beyond l = 2 for molecules (the quadrature is exact for a quadratic).

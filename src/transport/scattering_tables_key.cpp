@@ -35,6 +35,7 @@ void write_medium(std::ostream& out, const Medium& m) {
       write_array(out, (name + ".phase.g").c_str(), p.g);
       break;
     case MediumPhase::Kind::Tabulated:
+      out << name << ".moments exact for the interpolant\n";  // before: Gauss-Legendre, 512 nodes
       write_array(out, (name + ".matrix.mu").c_str(), p.matrix->mu());
       for (int i = 0; i < p.matrix->wavelengths(); ++i) {
         write_array(out, (name + ".matrix.a1").c_str(), p.matrix->a1()[static_cast<size_t>(i)]);

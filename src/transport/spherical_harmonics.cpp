@@ -106,6 +106,29 @@ std::vector<double> legendre_moments(const std::function<double(double)>& phase,
   return chi;
 }
 
+std::vector<double> piecewise_linear_legendre_moments(const std::vector<double>& mu, const std::vector<double>& values,
+                                                      int degree) {
+  std::vector<double> x, w, chi(static_cast<size_t>(degree) + 1, 0.0);
+  gauss_legendre(degree / 2 + 2, 0.0, 1.0, x, w);  // on [0, 1], mapped to each interval
+  for (size_t k = 0; k + 1 < mu.size(); ++k) {
+    const double a = mu[k], b = mu[k + 1], h = b - a;
+    for (size_t q = 0; q < x.size(); ++q) {
+      const double m = a + h * x[q];
+      const double f = 2.0 * kPi * h * w[q] * (values[k] + (values[k + 1] - values[k]) * x[q]);
+      chi[0] += f;
+      if (degree >= 1) chi[1] += f * m;
+      double p0 = 1.0, p1 = m;
+      for (int l = 2; l <= degree; ++l) {
+        const double pl = ((2.0 * l - 1.0) * m * p1 - (l - 1.0) * p0) / l;
+        chi[static_cast<size_t>(l)] += f * pl;
+        p0 = p1;
+        p1 = pl;
+      }
+    }
+  }
+  return chi;
+}
+
 double skyline_hidden_share(double gamma, double theta) {
   if (theta <= gamma) return 1.0;
   if (theta >= kPi - gamma) return 0.0;

@@ -39,6 +39,12 @@ void symmetric_harmonics(int degree, double mu, double cos_phi, double* out);
 /// chi_l = 2 pi integral_{-1}^{1} p(mu) P_l(mu) dmu for l = 0..degree, by Gauss-Legendre quadrature
 /// with `nodes` nodes (p normalised to 1 over the sphere, so chi_0 = 1).
 std::vector<double> legendre_moments(const std::function<double(double)>& phase, int degree, int nodes = 512);
+/// chi_l of a phase function linear in mu between ascending cosines mu[k] (values[k] there, from
+/// -1 to 1), as tabulated scattering matrices are: exact for that interpolant (Gauss-Legendre on
+/// each interval, with the nodes a polynomial of degree `degree` + 1 needs), so that a forward peak
+/// narrower than the spacing of legendre_moments' nodes keeps its weight.
+std::vector<double> piecewise_linear_legendre_moments(const std::vector<double>& mu, const std::vector<double>& values,
+                                                      int degree);
 
 /// The moments of the phase function over the directions a straight skyline hides: the great
 /// circle that passes gamma above the forward direction (the view direction w) bounds a half of

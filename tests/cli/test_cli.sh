@@ -219,6 +219,15 @@ expect_error cirrus_upside_down 2 "atmosphere.ice.top_m = 7000 is not allowed: a
 expect_error cirrus_above_the_air 2 "atmosphere.ice.top_m = 70000 is not allowed: below atmosphere.top_altitude_m" \
   --set atmosphere.ice.enabled=true --set atmosphere.ice.layer=cloud --set atmosphere.ice.top_m=70000
 expect_error ice_layer_unknown 2 "atmosphere.ice.layer" --set atmosphere.ice.layer=sky
+# A flag or --set the scene would not read (docs/cli.md's example, then ice's layers and terrain).
+expect_error unread_fog_key 2 "--set atmosphere.fog.visibility_m: atmosphere.fog.visibility_m = 300 is not allowed: only with atmosphere.fog.enabled = true (this scene does not read it)" \
+  --set atmosphere.fog.visibility_m=300
+expect_error unread_ice_key 2 "atmosphere.ice.optical_depth = 0.1 is not allowed: only with atmosphere.ice.enabled = true and atmosphere.ice.layer = \"cloud\"" \
+  --set atmosphere.ice.enabled=true --set atmosphere.ice.optical_depth=0.1
+expect_error unread_ridge_key 2 "terrain.ridge.height_m = 900 is not allowed: only with terrain.model = \"ridge\"" \
+  --set terrain.ridge.height_m=900
+"$skyspec" render --help-keys | grep -q 'atmosphere.ice.base_m  .*; read only with atmosphere.ice.enabled = true and atmosphere.ice.layer = "cloud"' \
+  && ok || bad "--help-keys does not give atmosphere.ice.base_m's condition"
 expect_error polarisation_isotropic 2 "render.ms_angular_degree = 0" --set output.polarisation=true --quality draft
 pol="$work/polarised"  # small scattering-order tables: the files are checked here
 if "$skyspec" render -q --out "$pol" --camera equirectangular --width 32 --height 16 --lambda-min 450 --lambda-max 650 \

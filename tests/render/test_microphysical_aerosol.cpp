@@ -84,11 +84,6 @@ Largest compare(double sun, std::int64_t paths) {
   return largest;
 }
 
-boost::test_tools::assertion_result asked_for_by_the_benchmark(boost::unit_test::test_unit_id) {
-  boost::test_tools::assertion_result result(std::getenv("SKYSPEC_BENCH_OPAC") != nullptr);
-  result.message() << "run by bench/opac_aerosol.sh (SKYSPEC_BENCH_OPAC is not set)";
-  return result;
-}
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(renderer_matches_the_vector_reference,
@@ -97,8 +92,9 @@ BOOST_AUTO_TEST_CASE(renderer_matches_the_vector_reference,
 }
 
 // The benchmark's table: three suns, five times the paths.
-BOOST_AUTO_TEST_CASE(benchmark_table,
-                     *boost::unit_test::disabled() * boost::unit_test::precondition(asked_for_by_the_benchmark)) {
+BOOST_AUTO_TEST_CASE(benchmark_table, *boost::unit_test::disabled() *
+                                          boost::unit_test::precondition(test::asked_for_by("SKYSPEC_BENCH_OPAC",
+                                                                                            "bench/opac_aerosol.sh"))) {
   for (double sun : {30.0, 10.0, 2.0}) {
     const Largest l = compare(sun, 100000);
     std::printf("| %g | %.2f %% | %.1f | %.4f | %.4f |\n", sun, 100.0 * l.intensity, l.intensity_sigmas, l.dolp,

@@ -87,6 +87,30 @@ BOOST_AUTO_TEST_CASE(legendre_moments_of_the_phase_functions) {
   BOOST_TEST(cs[1] > 0.6);  // forward scattering
 }
 
+// Moments of a tabulated (piecewise-linear) phase function, exact: a linear function a + b mu on
+// uneven intervals gives chi_0 = 4 pi a, chi_1 = 4 pi b / 3 and nothing else; a spike 0.1 degree wide
+// holding 30 % of the light over an isotropic rest keeps chi_0 = 1 and puts 0.3 in every moment,
+// where 512 Gauss-Legendre nodes (0.27 degree apart at the forward end) miss it.
+BOOST_AUTO_TEST_CASE(legendre_moments_of_a_tabulated_phase_function) {
+  const std::vector<double> mu = {-1.0, -0.3, 0.1, 0.2, 0.75, 1.0};
+  std::vector<double> linear;
+  for (double m : mu) linear.push_back(0.05 + 0.02 * m);
+  const std::vector<double> chi = piecewise_linear_legendre_moments(mu, linear, 12);
+  BOOST_TEST(chi[0] == 4.0 * kPi * 0.05, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(chi[1] == 4.0 * kPi * 0.02 / 3.0, boost::test_tools::tolerance(1e-12));
+  for (int l = 2; l <= 12; ++l) BOOST_TEST(std::abs(chi[static_cast<size_t>(l)]) < 1e-13);
+
+  const double m0 = std::cos(degrees_to_radians(0.1)), spike = 0.3, rest = (1.0 - spike) / (4.0 * kPi);
+  // The rest is isotropic up to m0; the spike's triangle rises from rest at m0 to its peak at 1.
+  const double peak = rest + 2.0 * spike / (2.0 * kPi * (1.0 - m0));
+  const std::vector<double> spiked_mu = {-1.0, m0, 1.0}, spiked = {rest, rest, peak};
+  const std::vector<double> exact = piecewise_linear_legendre_moments(spiked_mu, spiked, 16);
+  BOOST_TEST(exact[0] == 1.0, boost::test_tools::tolerance(1e-9));
+  for (int l = 1; l <= 16; ++l) BOOST_TEST(exact[static_cast<size_t>(l)] == spike, boost::test_tools::tolerance(1e-3));
+  const auto table = [&](double m) { return m <= m0 ? rest : rest + (peak - rest) * (m - m0) / (1.0 - m0); };
+  BOOST_TEST(legendre_moments(table, 2)[0] < 0.8);
+}
+
 // What a straight skyline hides (skyline_legendre_moments): always half the sphere, so an isotropic
 // phase function gives chi_0 = 1/2 for every skyline and chi_1 = sin(gamma) / 4 (the first moment of
 // a hemisphere is pi times its pole, here sin(gamma) from the view direction); a skyline through the
