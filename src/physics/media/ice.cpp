@@ -5,8 +5,9 @@
 // (Warren & Brandt 2008). Diffraction by the crystals' outlines takes half of their extinction
 // (extinction efficiency 2 for crystals much larger than the wavelength) into a forward peak about
 // lambda / D wide (0.4 degrees for crystals 50 um across): it is taken as unscattered light (the
-// medium's extinction is the other half, refraction and reflection), so that light reaches the
-// camera as if it had not met those crystals; the sun's aureole from diffraction by ice is not in
+// medium's extinction is the other half, refraction and reflection, less the rays those leave
+// undeviated: compute_ice_optics), so that light reaches the camera as if it had not met those
+// crystals; the sun's aureole from diffraction by ice is not in
 // the image. Absorption is neglected (k < 1e-8 in the visible). Intensity only: the crystals'
 // matrix is the phase function (b1 = b2 = 0, a3 = a1), so scenes with ice are refused for
 // output.polarisation (scene_checks.cpp).
