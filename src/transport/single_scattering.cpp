@@ -67,6 +67,7 @@ SingleScattering::SingleScattering(const AtmosphereModel& atm, const SunColumns&
     const Medium& medium = atm.media()[static_cast<size_t>(j)];
     ext_[j] = medium.extinction_per_m.cast<float>();
     layer_[j] = !medium.profile.positive_everywhere();
+    for (double h : medium.profile.breakpoints_m()) breakpoint_radii_m_.push_back(atm.planet_radius_m() + h);
     if (!medium.scatters()) continue;
     Scatterer sc;
     sc.medium = j;
@@ -509,13 +510,26 @@ bool SingleScattering::trace(const Vec3& o, const Vec3& d, const Vec3& s, const 
   for (int i = 0; i < planet_lit.count; ++i) lit.push_back(planet_lit.parts[i]);
   if (terrain_stretch && !lit.empty()) sunlit_past_terrain(o, d, s, *sources.terrain, lit);
   if (!sources.higher && lit.empty() && !sources.transmittance) return false;
-  const double t_low = -o.dot(d);
-  double a = t_begin;
-  auto add = [&](double b, bool is_lit) {  // [a, b], cut at the ray's lowest point
-    if (t_low > a && t_low < b) {
-      ray.add_piece(a, t_low, is_lit);
-      a = t_low;
+  // Cuts: the ray's lowest point and where it crosses a layer's base or top.
+  thread_local std::vector<double> cuts;
+  cuts.clear();
+  const double od = o.dot(d);
+  cuts.push_back(-od);
+  for (double rc : breakpoint_radii_m_) {
+    const double disc = od * od - (o.squaredNorm() - rc * rc);  // |o + t d| = rc
+    if (disc > 0.0) {
+      cuts.push_back(-od - std::sqrt(disc));
+      cuts.push_back(-od + std::sqrt(disc));
     }
+  }
+  std::sort(cuts.begin(), cuts.end());
+  double a = t_begin;
+  auto add = [&](double b, bool is_lit) {  // [a, b], cut where cuts fall inside it
+    for (double c : cuts)
+      if (c > a && c < b) {
+        ray.add_piece(a, c, is_lit);
+        a = c;
+      }
     ray.add_piece(a, b, is_lit);
     a = b;
   };

@@ -259,6 +259,9 @@ class SingleScattering {
   int media_ = 0;               ///< AtmosphereModel::media().size()
   Spectrum ext_[kMaxMedia];     ///< each medium's extinction at relative density 1
   bool layer_[kMaxMedia] = {};  ///< its density is a layer (trapezoid rule for its columns)
+  /// Radii of the media's density breakpoints (DensityProfile::breakpoints_m: a cloud layer's base
+  /// and top), where trace() cuts rays into pieces so that nodes fall inside any layer, however thin.
+  std::vector<double> breakpoint_radii_m_;
   Spectrum albedo_over_pi_;
   int n_ = 0;  ///< wavelengths
   /// A scattering medium as the integrator uses it.
