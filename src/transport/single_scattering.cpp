@@ -513,13 +513,12 @@ bool SingleScattering::trace(const Vec3& o, const Vec3& d, const Vec3& s, const 
   // Cuts: the ray's lowest point and where it crosses a layer's base or top.
   thread_local std::vector<double> cuts;
   cuts.clear();
-  const double od = o.dot(d);
-  cuts.push_back(-od);
+  cuts.push_back(-o.dot(d));
   for (double rc : breakpoint_radii_m_) {
-    const double disc = od * od - (o.squaredNorm() - rc * rc);  // |o + t d| = rc
-    if (disc > 0.0) {
-      cuts.push_back(-od - std::sqrt(disc));
-      cuts.push_back(-od + std::sqrt(disc));
+    const SphereHit crossing = intersect_sphere(o, d, rc);
+    if (crossing.hit) {
+      cuts.push_back(crossing.t_near_m);
+      cuts.push_back(crossing.t_far_m);
     }
   }
   std::sort(cuts.begin(), cuts.end());
