@@ -128,6 +128,14 @@ struct GroundSpec {
   std::vector<double> albedo_wavelengths_nm, albedo_values;  ///< spectral albedo, linearly interpolated
 };
 
+/// Water vapour: its column and profile. Only the broadband irradiance (irradiance.broadband) models
+/// the gases' absorption bands (water vapour's, and the mixed gases' in the air: gas_bands.hpp);
+/// spectral images name the bands they do not model in their files.
+struct WaterVapourSpec {
+  double column_cm = 1.42;         ///< precipitable water, cm (ASTM G173-03's reference atmosphere: 1.4164 cm)
+  double scale_height_m = 2000.0;  ///< density exp(-z / H) above the ground
+};
+
 struct AtmosphereSpec {
   double planet_radius_m = 6360e3;
   double top_altitude_m = 60e3;  ///< thickness of the shell
@@ -138,6 +146,13 @@ struct AtmosphereSpec {
   IceSpec ice;
   RainSpec rain;
   GroundSpec ground;
+  WaterVapourSpec water_vapour;
+  /// Not a scene key: set by the broadband irradiance for each of its runs (broadband_irradiance.hpp),
+  /// the exponential term of the gas bands the run takes (gas_bands.hpp), with air's Rayleigh
+  /// coefficients continued as lambda^-4 beyond its refractive index's range and no ozone
+  /// absorption beyond its table's (both stated in docs/physics.md, "Gas bands"). -1 for every other
+  /// use: no gas bands, and every table's range enforced.
+  int gas_band_term = -1;
 };
 
 /// The atmosphere on a wavelength grid: its media (medium.hpp), the ground, and what the Rayleigh
@@ -175,7 +190,7 @@ class AtmosphereModel {
   /// coefficients).
   double rayleigh_number_density_per_m3() const { return rayleigh_n0_per_m3_; }
   const std::string& rayleigh_number_density_origin() const { return rayleigh_n0_origin_; }
-  /// The derivation (empty for the Fixed source).
+  /// The derivation (empty for the Fixed source and a broadband irradiance's run).
   const std::vector<RayleighDerivationStep>& rayleigh_derivation() const { return derivation_; }
   /// Number density of ozone at the layer's peak, m^-3 (0 without ozone).
   double ozone_peak_number_density_per_m3() const { return ozone_peak_per_m3_; }

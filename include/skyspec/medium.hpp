@@ -24,8 +24,8 @@
 namespace skyspec {
 
 /// At most this many media in one atmosphere (light transport keeps a column per medium in fixed
-/// arrays); the list has three.
-constexpr int kMaxMedia = 6;
+/// arrays); the list (medium_registry(), src/physics/media/) has seven, so one of a user's own fits.
+constexpr int kMaxMedia = 8;
 
 /// How a medium scatters, per wavelength: one of four forms.
 struct MediumPhase {

@@ -144,6 +144,14 @@ struct OutputSpec {
   bool surface = false;
 };
 
+/// What the irradiance outputs (skyspec irradiance, a job's irradiance tables, the render summary)
+/// hold beyond the render's band.
+struct IrradianceSpec {
+  /// Also the broadband irradiance, 300-4000 nm, with the gases' absorption bands
+  /// (broadband_irradiance.hpp).
+  bool broadband = false;
+};
+
 struct Scene {
   AtmosphereSpec atmosphere;
   SunSpec sun;
@@ -153,6 +161,7 @@ struct Scene {
   SpectrumSpec spectrum;
   RenderSpec render;
   OutputSpec output;
+  IrradianceSpec irradiance;
 };
 
 /// Names of the built-in presets ("default", "seed").

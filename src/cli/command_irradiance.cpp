@@ -54,15 +54,17 @@ int run(IrradianceOptions& o) {
   const std::vector<double> elevations =
       o.elevations.empty() ? std::vector<double>{base.sun.elevation_deg} : parse_elevations(o.elevations);
   std::ostringstream text;
+  const bool broadband = base.irradiance.broadband;
   if (o.format == "md") {
     text << "| sun elevation (deg) | direct normal (W/m2) | direct normal (lx) | direct horizontal (lx) | "
             "diffuse horizontal (W/m2) | diffuse horizontal (lx) | global horizontal (lx) | global CCT (K) | "
-            "diffuse CCT (K) |\n"
-         << "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
-  } else {  // the band the W/m2 columns integrate over, then every broadband quantity of the list
+            "diffuse CCT (K) |"
+         << (broadband ? " broadband global horizontal (W/m2) |\n" : "\n")
+         << "| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |" << (broadband ? " ---: |\n" : "\n");
+  } else {  // the band the W/m2 columns integrate over, then every number of the list
     text << "sun_elevation_deg,band_min_nm,band_max_nm";
     for (const IrradianceQuantity& q : irradiance_quantities())
-      if (!q.spectral()) text << "," << q.key;
+      if (!q.spectral() && (broadband || !q.of_broadband)) text << "," << q.key;
     text << ",global_cct_K,global_duv,diffuse_cct_K,diffuse_duv\n";
   }
   // A CCT as text: empty (CSV) or "-" (Markdown) where the light has none.
@@ -79,7 +81,7 @@ int run(IrradianceOptions& o) {
     Scene s = base;
     s.sun.elevation_deg = el;
     const SkyRenderer r(s);
-    const IrradianceReport rep = irradiance_at_camera(r);
+    const IrradianceReport rep = irradiance_report(s, r);
     char line[512];
     const bool md = o.format == "md";
     if (md)
@@ -91,18 +93,26 @@ int run(IrradianceOptions& o) {
     text << line;
     if (!md)
       for (const IrradianceQuantity& q : irradiance_quantities()) {
-        if (q.spectral()) continue;
+        if (q.spectral() || !q.present_in(rep)) continue;
         std::snprintf(line, sizeof line, "%.*f,", q.decimals, q.value(rep));
         text << line;
       }
-    text << cct_text(rep.global_horizontal_cct, !md) << (md ? " | " : ",") << cct_text(rep.diffuse_horizontal_cct, !md)
-         << (md ? " |\n" : "\n");
+    text << cct_text(rep.global_horizontal_cct, !md) << (md ? " | " : ",") << cct_text(rep.diffuse_horizontal_cct, !md);
+    if (md && rep.broadband) {
+      std::snprintf(line, sizeof line, " | %.1f", rep.broadband->global_horizontal_W_m2());
+      text << line;
+    }
+    text << (md ? " |\n" : "\n");
   }
   if (o.format == "md")
-    text << "\nBroadband W/m2 over " << make_wavelength_grid(base).min_nm() << "-"
+    text << "\nDirect normal and diffuse horizontal W/m2 over " << make_wavelength_grid(base).min_nm() << "-"
          << make_wavelength_grid(base).max_nm()
          << " nm; lux = 683 lm/W x y-bar-weighted integral; CCT: correlated colour temperature (CIE 015, nearest "
-            "Planckian chromaticity in the CIE 1960 UCS diagram; - where the light has none).\n";
+            "Planckian chromaticity in the CIE 1960 UCS diagram; - where the light has none)."
+         << (broadband ? " Broadband global horizontal: 300-4000 nm with the gases' absorption bands "
+                         "(irradiance.broadband; docs/jobs.md, \"Irradiance and pyranometers\")."
+                       : "")
+         << "\n";
   print_or_write(text.str(), o.out);
   return kExitOk;
 }

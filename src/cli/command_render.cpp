@@ -11,6 +11,7 @@
 #include "commands.hpp"
 #include "display_options.hpp"
 #include "progress.hpp"
+#include "render/broadband_irradiance.hpp"
 #include "render/irradiance.hpp"
 #include "render/render_budget.hpp"
 #include "scene_options.hpp"
@@ -79,7 +80,15 @@ std::string photometry_line(const SkyRenderer& r) {
   std::snprintf(buf, sizeof buf,
                 "luminance at the zenith %.4g cd/m2; at the camera, horizontal: direct %.4g lx, diffuse %.4g lx",
                 zenith_cd_m2, e.direct_horizontal_lux, e.diffuse_horizontal_lux);
-  return buf;
+  std::string line = buf;
+  // With irradiance.broadband, what a pyranometer at the camera would read (five more runs).
+  if (r.scene().irradiance.broadband) {
+    const BroadbandIrradiance bb = broadband_irradiance(r.scene(), 16, 32);
+    std::snprintf(buf, sizeof buf, "; broadband (300-4000 nm, the gases' bands) global horizontal %.1f W/m2",
+                  bb.global_horizontal_W_m2());
+    line += buf;
+  }
+  return line;
 }
 
 int run_render(RenderOptions& o) {
@@ -123,10 +132,22 @@ int run_render(RenderOptions& o) {
     if (!o.force) refuse_if_over_budget(estimate);
     estimate.table_seconds = tables;  // for the summary: what the tables were estimated to take
   };
+  // The summary's broadband irradiance (irradiance.broadband) solves five more scenes, each with
+  // scattering-order tables of its own.
+  const auto broadband_tables = [&scene](double& seconds, std::uint64_t& bytes) {
+    if (!scene.irradiance.broadband || scene.render.path != RenderSpec::Path::Spectral) return;
+    for (const Scene& run : broadband_run_scenes(scene)) {
+      seconds += estimate_scattering_orders_seconds(run);
+      bytes += estimate_table_cache_bytes(run);
+    }
+  };
   if (o.dry_run) {  // nothing expensive: a light renderer, and the tables it leaves out estimated
     const SkyRenderer light(scene_for_estimate(scene));
-    estimate.table_seconds = estimate_table_seconds(scene, light);
-    estimate.table_cache_bytes = estimate_table_cache_bytes(scene);
+    double seconds = estimate_table_seconds(scene, light);
+    std::uint64_t bytes = estimate_table_cache_bytes(scene);
+    broadband_tables(seconds, bytes);
+    estimate.table_seconds = seconds;
+    estimate.table_cache_bytes = bytes;
     estimate.seconds = measure_render_seconds(light, plan);
     if (!o.force) refuse_if_over_budget(estimate);
     std::cout << "estimate: " << estimate.describe() << " (" << plan.settings() << ")\n";
@@ -138,7 +159,10 @@ int run_render(RenderOptions& o) {
   bar.watch_preparation();
   // The scattering-order tables can take hours at extreme settings: refused before they are built.
   // (The summary then quotes that estimate when they were built, beside the time they took.)
-  if (const double orders = estimate_scattering_orders_seconds(scene); orders > 0.0) estimate.table_seconds = orders;
+  double orders = estimate_scattering_orders_seconds(scene);
+  std::uint64_t unused_bytes = 0;
+  broadband_tables(orders, unused_bytes);
+  if (orders > 0.0) estimate.table_seconds = orders;
   if (!o.force) refuse_if_over_budget(estimate);
   const auto prepared = [&](const SkyRenderer& r) {
     measure(r);

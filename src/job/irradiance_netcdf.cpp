@@ -182,10 +182,20 @@ void write_irradiance_netcdf(const std::filesystem::path& path, const JobPlan& p
     }
     // No CF standard name for the band-limited irradiance: surface_*_shortwave_flux_in_air means
     // the whole solar spectrum.
+    // The broadband values (300-4000 nm, the whole solar spectrum but 2 %) have them, when the
+    // first row has them (a row without them: NaN).
     std::vector<Series> data;
+    std::vector<const IrradianceQuantity*> quantities;
+    const json& first_irradiance = rows.front()->at("irradiance");
     for (const IrradianceQuantity& q : irradiance_quantities()) {
-      data.push_back(series(q.variable, nullptr, q.long_name, q.units, q.spectral()));
+      if (q.of_broadband && !first_irradiance.contains(q.key)) continue;
+      quantities.push_back(&q);
+      data.push_back(series(q.variable, q.standard_name, q.long_name, q.units, q.spectral()));
       if (q.band_limited()) nc.text(data.back().var, "comment", band_comment);
+      if (q.of_broadband)
+        nc.text(data.back().var, "comment",
+                "300-4000 nm (trapezoid over Bird & Riordan's 122 wavelengths), all scattering orders, with the "
+                "absorption bands of water vapour and the mixed gases (docs/jobs.md, \"Irradiance and pyranometers\")");
     }
     nc.check(nc_enddef(nc.id()), "end the definitions");
 
@@ -202,8 +212,10 @@ void write_irradiance_netcdf(const std::filesystem::path& path, const JobPlan& p
       }
       const json& irr = r->at("irradiance");
       for (std::size_t k = 0; k < data.size(); ++k) {
-        const IrradianceQuantity& q = irradiance_quantities()[k];
-        if (q.spectral())
+        const IrradianceQuantity& q = *quantities[k];
+        if (q.of_broadband && !irr.contains(q.key))
+          data[k].values.push_back(std::numeric_limits<double>::quiet_NaN());
+        else if (q.spectral())
           for (const auto& v : irr.at(q.key)) data[k].values.push_back(v.get<double>());
         else
           data[k].values.push_back(irr.at(q.key).get<double>());

@@ -51,13 +51,21 @@ void write_text_atomically(const std::filesystem::path& path, const std::string&
 }
 
 // The irradiance table (irradiance_<site>.csv): per task its sun, swept keys, the band the W m^-2
-// columns integrate over, then every quantity of irradiance_quantities().
+// columns integrate over, then every quantity of irradiance_quantities(): the broadband ones when
+// the first row has them (a row without them then leaves their fields empty).
+bool with_broadband(const json& first) {
+  for (const IrradianceQuantity& q : irradiance_quantities())
+    if (q.of_broadband) return first.at("irradiance").contains(q.key);
+  return false;
+}
+
 std::string table_header(const JobPlan& plan, const json& first) {
   std::string h = "task,date_time,sun_elevation_deg,sun_azimuth_deg";
   for (const auto& [key, value] : plan.combinations.front()) h += "," + key;
   h += ",band_min_nm,band_max_nm";
   const auto& wl = first.at("irradiance").at("wavelengths_nm");
   for (const IrradianceQuantity& q : irradiance_quantities()) {
+    if (q.of_broadband && !with_broadband(first)) continue;
     if (!q.spectral())
       h += std::string(",") + q.key;
     else
@@ -66,7 +74,7 @@ std::string table_header(const JobPlan& plan, const json& first) {
   return h + "\n";
 }
 
-std::string table_row(const JobPlan& plan, const json& r) {
+std::string table_row(const JobPlan& plan, const json& r, bool broadband) {
   std::string row = r.at("id").get<std::string>() + "," + csv_text(r.value("date_time", std::string())) + "," +
                     csv_number(r.at("sun_elevation_deg").get<double>()) + "," +
                     csv_number(r.at("sun_azimuth_deg").get<double>());
@@ -75,7 +83,10 @@ std::string table_row(const JobPlan& plan, const json& r) {
   const auto& wl = irr.at("wavelengths_nm");
   row += "," + csv_number(wl.front().get<double>()) + "," + csv_number(wl.back().get<double>());
   for (const IrradianceQuantity& q : irradiance_quantities()) {
-    if (!q.spectral())
+    if (q.of_broadband && !broadband) continue;
+    if (q.of_broadband && !irr.contains(q.key))
+      row += ",";
+    else if (!q.spectral())
       row += "," + csv_number(irr.at(q.key).get<double>());
     else
       for (const auto& v : irr.at(q.key)) row += "," + csv_number(v.get<double>());
@@ -184,9 +195,9 @@ JobSummary collect_job(const JobPlan& plan) {
     if (!plan.job.irradiance || !r.contains("irradiance")) continue;
     try {
       auto& table = tables[plan.site_name(task)];
-      if (table.empty()) table = table_header(plan, r);
-      table += table_row(plan, r);
       auto& rows = series[plan.site_name(task)];
+      if (table.empty()) table = table_header(plan, r);
+      table += table_row(plan, r, with_broadband(rows.second.empty() ? r : *rows.second.front()));
       rows.first = task.site;
       rows.second.push_back(&records[task.index]);
     } catch (const json::exception& e) {

@@ -5,6 +5,7 @@
 #include <tuple>
 #include <utility>
 
+#include "render/broadband_irradiance.hpp"
 #include "render/render_budget.hpp"
 #include "render/scene_tables.hpp"
 #include "transport/scattering_tables_cache.hpp"
@@ -56,34 +57,40 @@ JobTableEstimate estimate_job_tables(const JobPlan& plan) {
   JobTableEstimate out;
   // One scene per (site, parameter set): the tables do not depend on the date-time or the sun.
   struct DistinctSet {
-    const JobTask* task;      // the first task that uses it
+    Scene scene;              // the first (task or broadband run) scene that uses it
     ScatteringTablesKey key;  // (an atmosphere built on the grid: computed once per set)
     int chunks = 0;           // the chunks (processes) that use it, each building it without a disk cache
   };
-  std::map<std::pair<int, int>, std::pair<std::uint64_t, bool>> key_of;  // -> (key hash, disk cache on)
+  // A task's scenes: its own, and with irradiance.broadband in an irradiance job the broadband
+  // irradiance's runs (broadband_irradiance.hpp), each with tables of its own.
+  const auto scenes_of = [&plan](const JobTask& task) {
+    std::vector<Scene> scenes{task_scene(plan, task)};
+    if (plan.job.irradiance && scenes.front().irradiance.broadband)
+      for (Scene& run : broadband_run_scenes(scenes.front())) scenes.push_back(std::move(run));
+    return scenes;
+  };
+  std::map<std::pair<int, int>, std::vector<std::pair<std::uint64_t, bool>>> keys_of;  // -> (key hash, disk cache on)
   std::map<std::uint64_t, DistinctSet> sets;
   std::set<std::pair<int, std::uint64_t>> chunk_sets;  // (chunk, set) without a disk cache
   for (const JobTask& task : plan.tasks) {
     const auto pair = std::make_pair(task.site, task.combination);
-    auto found = key_of.find(pair);
-    if (found == key_of.end()) {
-      const Scene scene = task_scene(plan, task);
-      if (scene.render.scattering_orders < 2) {
-        found = key_of.emplace(pair, std::make_pair(std::uint64_t{0}, false)).first;
-      } else {
+    auto found = keys_of.find(pair);
+    if (found == keys_of.end()) {
+      found = keys_of.emplace(pair, std::vector<std::pair<std::uint64_t, bool>>{}).first;
+      for (Scene& scene : scenes_of(task)) {
+        if (scene.render.scattering_orders < 2) continue;
         ScatteringTablesKey key = scattering_tables_key(scene);
-        found = key_of.emplace(pair, std::make_pair(key.hash, scene.render.cache_tables)).first;
-        sets.emplace(key.hash, DistinctSet{&task, std::move(key)});
+        found->second.emplace_back(key.hash, scene.render.cache_tables);
+        sets.emplace(key.hash, DistinctSet{std::move(scene), std::move(key)});
       }
     }
-    const auto [hash, disk] = found->second;
-    if (hash != 0 && !disk && chunk_sets.emplace(task.index / plan.job.tasks_per_chunk, hash).second)
-      ++sets.at(hash).chunks;
+    for (const auto& [hash, disk] : found->second)
+      if (!disk && chunk_sets.emplace(task.index / plan.job.tasks_per_chunk, hash).second) ++sets.at(hash).chunks;
   }
   out.distinct = static_cast<int>(sets.size());
   std::map<BuildCost, double> seconds_of;  // measured once per distinct cost
   for (const auto& [hash, set] : sets) {
-    const Scene scene = task_scene(plan, *set.task);
+    const Scene& scene = set.scene;
     if (scattering_orders_cached(set.key, scene.render.cache_tables)) {
       ++out.cached;
       continue;

@@ -44,7 +44,7 @@ json spectrum_json(const SpectrumD& s) {
 json irradiance_json(const IrradianceReport& r) {
   json out = {{"wavelengths_nm", r.wavelengths_nm}};
   for (const IrradianceQuantity& q : irradiance_quantities())
-    out[q.key] = q.spectral() ? spectrum_json(q.spectrum(r)) : json(q.value(r));
+    if (q.present_in(r)) out[q.key] = q.spectral() ? spectrum_json(q.spectrum(r)) : json(q.value(r));
   return out;
 }
 
@@ -111,7 +111,7 @@ json run_task(const JobPlan& plan, const JobTask& task, int threads) {
       const RenderOutputs out = render_scene_to_files(
           scene, DisplaySettings{}, {},
           [&](const SkyRenderer& r) {
-            if (plan.job.irradiance) irradiance = irradiance_at_camera(r);
+            if (plan.job.irradiance) irradiance = irradiance_report(scene, r);
           },
           task.tile);
       written = out.files();  // every output of the task, polarisation files included
@@ -119,7 +119,7 @@ json run_task(const JobPlan& plan, const JobTask& task, int threads) {
     } else {
       Scene one = scene;  // only the camera position matters
       one.camera.width = one.camera.height = 1;
-      irradiance = irradiance_at_camera(SkyRenderer(one));
+      irradiance = irradiance_report(one, SkyRenderer(one));
     }
     json files = json::array();
     for (const auto& p : written) files.push_back(file_entry(plan, p));
@@ -194,7 +194,8 @@ std::string record_problem(const JobPlan& plan, const JobTask& task, const json&
     const json& irr = r.at("irradiance");
     if (!irr.is_object() || !irr.contains("wavelengths_nm") || !irr.at("wavelengths_nm").is_array())
       return "its irradiance has no wavelengths";
-    const std::vector<double> grid = make_wavelength_grid(task_scene(plan, task)).nanometres();
+    const Scene scene = task_scene(plan, task);
+    const std::vector<double> grid = make_wavelength_grid(scene).nanometres();
     const json& wl = irr.at("wavelengths_nm");
     if (wl.size() != grid.size())
       return "its irradiance has " + std::to_string(wl.size()) + " wavelengths, not the scene's " +
@@ -202,8 +203,13 @@ std::string record_problem(const JobPlan& plan, const JobTask& task, const json&
     for (std::size_t k = 0; k < wl.size(); ++k)
       if (!is_finite_number(wl[k]) || std::abs(wl[k].get<double>() - grid[k]) > 1e-9 * grid[k])
         return "its irradiance's wavelengths are not the scene's";
-    for (const IrradianceQuantity& q : irradiance_quantities())
-      if (!irr.contains(q.key)) return std::string("its irradiance has no \"") + q.key + "\"";
+    // The broadband values are there exactly when the task's scene asks for them.
+    for (const IrradianceQuantity& q : irradiance_quantities()) {
+      const bool expected = !q.of_broadband || scene.irradiance.broadband;
+      if (expected && !irr.contains(q.key)) return std::string("its irradiance has no \"") + q.key + "\"";
+      if (!expected && irr.contains(q.key))
+        return std::string("its irradiance has \"") + q.key + "\", which its scene does not ask for";
+    }
     for (const auto& [key, value] : irr.items()) {
       if (key == "wavelengths_nm") continue;
       if (value.is_array()) {

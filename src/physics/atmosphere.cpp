@@ -45,7 +45,7 @@ AtmosphereModel::AtmosphereModel(const AtmosphereSpec& spec, const WavelengthGri
   const AirNumberDensity n0 = air_number_density(spec.rayleigh);
   rayleigh_n0_per_m3_ = n0.per_m3;
   rayleigh_n0_origin_ = n0.origin;
-  if (spec.rayleigh.source == RayleighSpec::Source::Derived)
+  if (spec.rayleigh.source == RayleighSpec::Source::Derived && spec.gas_band_term < 0)
     derivation_ = derive_rayleigh(grid.nanometres(), spec.rayleigh.derivation);
   ozone_peak_per_m3_ = skyspec::ozone_peak_number_density_per_m3(spec.ozone);
 

@@ -75,7 +75,13 @@ IrradianceReport irradiance_at_camera(const SkyRenderer& r, int zenith_nodes, in
   return rep;
 }
 
-bool IrradianceQuantity::band_limited() const { return !spectral() && std::string(units) == "W m-2"; }
+IrradianceReport irradiance_report(const Scene& scene, const SkyRenderer& renderer) {
+  IrradianceReport rep = irradiance_at_camera(renderer);
+  if (scene.irradiance.broadband) rep.broadband = broadband_irradiance(scene);
+  return rep;
+}
+
+bool IrradianceQuantity::band_limited() const { return !spectral() && !of_broadband && std::string(units) == "W m-2"; }
 
 const std::vector<IrradianceQuantity>& irradiance_quantities() {
   using R = IrradianceReport;
@@ -107,6 +113,21 @@ const std::vector<IrradianceQuantity>& irradiance_quantities() {
        [](const R& r) { return r.diffuse_horizontal; }},
       {"direct_normal_W_m2_nm", "spectral_direct_normal_irradiance", "spectral direct normal irradiance", "W m-2 nm-1",
        6, nullptr, [](const R& r) { return r.direct_normal; }},
+      {"broadband_direct_normal_W_m2", "broadband_direct_normal_irradiance",
+       "direct normal irradiance, 300-4000 nm, with the gases' bands", "W m-2", 4,
+       [](const R& r) { return r.broadband->direct_normal_W_m2; }, nullptr, true, nullptr},
+      {"broadband_direct_horizontal_W_m2", "broadband_direct_horizontal_irradiance",
+       "direct irradiance on a horizontal surface, 300-4000 nm, with the gases' bands", "W m-2", 4,
+       [](const R& r) { return r.broadband->direct_horizontal_W_m2; }, nullptr, true,
+       "surface_direct_downwelling_shortwave_flux_in_air"},
+      {"broadband_diffuse_horizontal_W_m2", "broadband_diffuse_horizontal_irradiance",
+       "diffuse irradiance on a horizontal surface, 300-4000 nm, with the gases' bands", "W m-2", 4,
+       [](const R& r) { return r.broadband->diffuse_horizontal_W_m2; }, nullptr, true,
+       "surface_diffuse_downwelling_shortwave_flux_in_air"},
+      {"broadband_global_horizontal_W_m2", "broadband_global_horizontal_irradiance",
+       "global irradiance on a horizontal surface, 300-4000 nm, with the gases' bands (what a pyranometer measures)",
+       "W m-2", 4, [](const R& r) { return r.broadband->global_horizontal_W_m2(); }, nullptr, true,
+       "surface_downwelling_shortwave_flux_in_air"},
   };
   return list;
 }

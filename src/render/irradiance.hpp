@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "colour/colour_temperature.hpp"
+#include "render/broadband_irradiance.hpp"
 
 #include "skyspec/render.hpp"
 #include "skyspec/spectrum.hpp"
@@ -37,6 +38,8 @@ struct IrradianceReport {
   /// Correlated colour temperature of the global (direct + diffuse) and the diffuse horizontal
   /// light (colour_temperature.hpp); empty when the light has no colour or lies off the locus.
   std::optional<ColourTemperature> global_horizontal_cct, diffuse_horizontal_cct;
+  /// 300-4000 nm with the gases' bands, when the scene asks for it (irradiance.broadband).
+  std::optional<BroadbandIrradiance> broadband;
   /// A few lines for people, e.g. for the render summary.
   std::string describe() const;
 };
@@ -50,17 +53,29 @@ struct IrradianceQuantity {
   const char* long_name;  ///< what it is (NetCDF long_name)
   const char* units;      ///< UDUNITS
   int decimals;           ///< in tables for people (the CLI's CSV)
-  double (*value)(const IrradianceReport&);        ///< broadband; null for a spectral quantity
-  SpectrumD (*spectrum)(const IrradianceReport&);  ///< spectral; null for a broadband one
+  double (*value)(const IrradianceReport&);        ///< a number; null for a spectral quantity
+  SpectrumD (*spectrum)(const IrradianceReport&);  ///< spectral; null for a number
+  /// Of IrradianceReport::broadband (300-4000 nm, the gases' bands): present only when the scene
+  /// asks for it (irradiance.broadband).
+  bool of_broadband = false;
+  /// Its CF standard name (the broadband irradiance's: surface_*_shortwave_flux_in_air), or null.
+  const char* standard_name = nullptr;
   bool spectral() const { return spectrum != nullptr; }
-  /// True for an integral of W m^-2 nm^-1 over the band (illuminance is complete once the band
-  /// holds y-bar's range; spectral values are per wavelength).
+  /// True for an integral of W m^-2 nm^-1 over the render's band (illuminance is complete once the
+  /// band holds y-bar's range; spectral values are per wavelength; the broadband values have their
+  /// own band).
   bool band_limited() const;
+  /// Whether a report (or a task record's irradiance) has this quantity.
+  bool present_in(const IrradianceReport& r) const { return !of_broadband || r.broadband.has_value(); }
 };
 const std::vector<IrradianceQuantity>& irradiance_quantities();
 
 /// Irradiance on a horizontal surface at the renderer's camera position. zenith_nodes and
 /// azimuth_nodes set the hemisphere quadrature. For the spectral path only (needs the CMFs).
 IrradianceReport irradiance_at_camera(const SkyRenderer& renderer, int zenith_nodes = 32, int azimuth_nodes = 64);
+
+/// irradiance_at_camera(renderer), and the broadband irradiance (broadband_irradiance.hpp) when
+/// `scene` (the renderer's) has irradiance.broadband: what the irradiance outputs hold.
+IrradianceReport irradiance_report(const Scene& scene, const SkyRenderer& renderer);
 
 }  // namespace skyspec

@@ -74,6 +74,9 @@ void add_conditions(std::vector<KeyDef>& r) {
       {{"atmosphere.fog.visibility_m", "atmosphere.fog.scale_height_m"},
        [](const Scene& s) { return s.atmosphere.fog.enabled; },
        "atmosphere.fog.enabled = true"},
+      {{"atmosphere.water_vapour.column_cm", "atmosphere.water_vapour.scale_height_m"},
+       [](const Scene& s) { return s.irradiance.broadband; },
+       "irradiance.broadband = true"},
       {{"atmosphere.rain.rate_mm_per_h", "atmosphere.rain.scale_height_m"},
        [](const Scene& s) { return s.atmosphere.rain.enabled; },
        "atmosphere.rain.enabled = true"},
@@ -314,6 +317,15 @@ const std::vector<KeyDef>& registry() {
     r.push_back(number_key("atmosphere.rain.scale_height_m", "m", {1.0, 1e5},
                            "rain: its density falls as exp(-z / H) above the ground",
                            [](Scene& s) -> double& { return s.atmosphere.rain.scale_height_m; }));
+    // water vapour (the broadband irradiance's gas bands)
+    r.push_back(number_key("atmosphere.water_vapour.column_cm", "cm", {0.0, 15.0},
+                           "water vapour: precipitable water (the column as liquid), for the broadband irradiance's "
+                           "gas bands; 1.42 cm is ASTM G173's reference atmosphere, about 0.1 in polar air to 7 in the "
+                           "tropics",
+                           [](Scene& s) -> double& { return s.atmosphere.water_vapour.column_cm; }));
+    r.push_back(number_key("atmosphere.water_vapour.scale_height_m", "m", {100.0, 1e4},
+                           "water vapour: its density falls as exp(-z / H) above the ground",
+                           [](Scene& s) -> double& { return s.atmosphere.water_vapour.scale_height_m; }));
     // ground
     r.push_back(number_key("ground.albedo", "", {0.0, 1.0},
                            "Lambertian albedo of the ground (0: black); unless a preset, file or flag sets a ground "
@@ -623,6 +635,14 @@ const std::vector<KeyDef>& registry() {
       k.get = [](const Scene& s) { return s.output.exposure_ev ? exact_number(*s.output.exposure_ev) : std::string(); };
       r.push_back(k);
     }
+    // irradiance
+    r.push_back(
+        bool_key("irradiance.broadband",
+                 "irradiance outputs (skyspec irradiance, a job's irradiance tables, the render summary) "
+                 "also give the broadband irradiance, 300-4000 nm, with the gases' absorption bands (water vapour "
+                 "and the mixed gases, Bird & Riordan's band model): the light transport solved five more "
+                 "times on 122 wavelengths (docs/jobs.md, \"Irradiance and pyranometers\")",
+                 [](Scene& s) -> bool& { return s.irradiance.broadband; }));
     add_conditions(r);
     return r;
   }();

@@ -103,7 +103,10 @@ std::optional<SpectralLimit> refractive_index_limit(const Scene& s) {
 }
 std::vector<SpectralLimit> spectral_limits(const Scene& s) {
   std::vector<SpectralLimit> limits;
-  if (const auto air = refractive_index_limit(s)) limits.push_back(*air);
+  // A broadband irradiance's run continues air's coefficients and ozone's table beyond their ends
+  // (AtmosphereSpec::gas_band_term).
+  const bool broadband_run = s.atmosphere.gas_band_term >= 0;
+  if (const auto air = refractive_index_limit(s); air && !broadband_run) limits.push_back(*air);
   if (s.sun.spectrum == SunSpec::Spectrum::Solar) {
     const TabulatedSpectrum& sun = solar_irradiance_table();
     limits.push_back(
@@ -117,7 +120,7 @@ std::vector<SpectralLimit> spectral_limits(const Scene& s) {
   if (s.atmosphere.fog.enabled)
     limits.push_back({200.0, 1100.0, "water's refractive index (IAPWS R9-97; atmosphere.fog.enabled = true)"});
   const OzoneSpec& o3 = s.atmosphere.ozone;
-  if (o3.enabled && o3.cross_section_m2.empty()) {
+  if (o3.enabled && o3.cross_section_m2.empty() && !broadband_run) {
     const TabulatedSpectrum& table = ozone_cross_section_table();
     limits.push_back({table.min_nm(), table.max_nm(),
                       "the built-in ozone cross-sections (laboratory data at 233 K; ozone.enabled = true)"});

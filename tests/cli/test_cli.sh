@@ -144,6 +144,31 @@ else
   bad "irradiance failed"; cat "$work/stderr"
 fi
 
+# The broadband irradiance (300-4000 nm, the gases' bands: docs/jobs.md): its columns when asked for
+# (single scattering here: the columns are tested, test_broadband_irradiance the physics and, under
+# the sanitizers, the runs' sum; so this part is the release stage's); the water vapour's keys
+# refused without it, fog (water's index ends at 1100 nm) refused with it.
+if [ -n "${SKYSPEC_SANITIZER_STAGE:-}" ]; then
+  :
+elif "$skyspec" irradiance --format csv --set irradiance.broadband=true --set render.scattering_orders=1 \
+    --set render.cache_tables=false --set atmosphere.water_vapour.column_cm=3 >"$work/bb.csv" 2>"$work/stderr"; then
+  /usr/bin/python3 - "$work/bb.csv" <<'PY' && ok || bad "irradiance: broadband columns"
+import csv, sys
+(row,) = list(csv.DictReader(open(sys.argv[1])))
+bb = float(row["broadband_global_horizontal_W_m2"])
+assert bb > float(row["global_horizontal_W_m2"]) > 0, row
+assert abs(bb - float(row["broadband_direct_horizontal_W_m2"]) - float(row["broadband_diffuse_horizontal_W_m2"])) <= 2e-4, row
+PY
+else
+  bad "broadband irradiance failed"; cat "$work/stderr"
+fi
+"$skyspec" irradiance --format csv --set render.scattering_orders=1 | head -1 | grep -q broadband && bad "broadband columns without irradiance.broadband" || ok
+run_expecting_error water_vapour_without_broadband 2 "atmosphere.water_vapour.column_cm = 3 is not allowed: only with irradiance.broadband = true" \
+  "$work/none" "$skyspec" irradiance --set atmosphere.water_vapour.column_cm=3
+run_expecting_error broadband_with_fog 2 "irradiance.broadband = true is not allowed: false unless every medium" \
+  "$work/none" "$skyspec" irradiance --set irradiance.broadband=true --set atmosphere.fog.enabled=true \
+  --set render.scattering_orders=1
+
 # Aerial perspective: a constant distance, then a bad depth-mode.
 "$skyspec" aerial -q --distance 2000 --camera perspective --position 0,0,2 --look-at 0,1000,300 --fov 40 \
   "${stage_tables[@]}" --image "$out/sky.exr" --out "$work/ap" 2>"$work/stderr" && [ -s "$work/ap/sky_transmittance.exr" ] \

@@ -14,6 +14,7 @@ const std::vector<MediumEntry>& medium_registry() {
       {"fog", build_fog},
       {"ice", build_ice},
       {"rain", build_rain},
+      {"water_vapour", build_water_vapour},
   };
   // clang-format on
   return media;

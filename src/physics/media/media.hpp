@@ -43,12 +43,13 @@ Medium particle_medium(const char* name, DensityProfile profile, const AerosolMi
 const std::vector<MediumEntry>& medium_registry();
 
 // The builders, one file each.
-std::optional<Medium> build_air(const MediumContext& c);      // air.cpp: Rayleigh from n(lambda) and N
-std::optional<Medium> build_aerosol(const MediumContext& c);  // aerosol.cpp: Angstrom law or OPAC by Lorenz-Mie
-std::optional<Medium> build_ozone(const MediumContext& c);    // ozone.cpp: absorption by the ozone layer
-std::optional<Medium> build_fog(const MediumContext& c);      // fog.cpp: water droplets by Lorenz-Mie
-std::optional<Medium> build_ice(const MediumContext& c);      // ice.cpp: ice prisms by ray tracing (halos)
-std::optional<Medium> build_rain(const MediumContext& c);     // rain.cpp: drops by geometric optics (rainbows)
+std::optional<Medium> build_air(const MediumContext& c);           // air.cpp: Rayleigh from n(lambda) and N
+std::optional<Medium> build_aerosol(const MediumContext& c);       // aerosol.cpp: Angstrom law or OPAC by Lorenz-Mie
+std::optional<Medium> build_ozone(const MediumContext& c);         // ozone.cpp: absorption by the ozone layer
+std::optional<Medium> build_fog(const MediumContext& c);           // fog.cpp: water droplets by Lorenz-Mie
+std::optional<Medium> build_ice(const MediumContext& c);           // ice.cpp: ice prisms by ray tracing (halos)
+std::optional<Medium> build_rain(const MediumContext& c);          // rain.cpp: drops by geometric optics (rainbows)
+std::optional<Medium> build_water_vapour(const MediumContext& c);  // water_vapour.cpp: its bands (broadband runs)
 
 /// Air's number density at altitude 0 and how it was obtained (air.cpp; for the derivation report).
 struct AirNumberDensity {
@@ -56,6 +57,8 @@ struct AirNumberDensity {
   std::string origin;
 };
 AirNumberDensity air_number_density(const RayleighSpec& r);
+/// The surface's pressure over 101325 Pa (air.cpp): the air masses of the vertical column.
+double relative_surface_pressure(const RayleighSpec& r);
 /// One fog droplet's extinction cross-section at 550 nm, m^2 (fog.cpp: what the visibility is
 /// measured at).
 double fog_extinction_cross_section_550nm_m2();
