@@ -35,11 +35,13 @@ stage "sanitizer build"
 # run here in test_view_requests). cli (renders, time-lapses, aerial perspective) runs here with small
 # scattering-order tables (docs/performance.md, "Build and test times").
 # SKYSPEC_SANITIZER_STAGE also leaves a test's longest parts to the release stage where it says so
-# (cli_hostile, cli_tiles, cli_budget's job, cli's progress bar and cache cap, test_polarised_sky,
-# test_natraj_tables, test_sphere_ensemble's convergence, test_microphysical_aerosol's Monte Carlo comparison)
-# and makes cli's renders use small tables.
+# (cli_hostile, cli_tiles, cli_budget's job, cli's progress bar, cache cap and broadband irradiance,
+# cli_job's broadband job, test_polarised_sky, test_natraj_tables, test_sphere_ensemble's convergence,
+# test_microphysical_aerosol's Monte Carlo comparison, test_media's split aerosol and fog optics)
+# and makes cli's renders use small tables. cli_files_not_ours (links, devices, FIFOs planted as
+# outputs: system calls and their errors) runs in the release stage only.
 SKYSPEC_SANITIZER_STAGE=1 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-asan --output-on-failure -j"$(nproc)" \
-    -E '^(python_.*|notebook_.*|install_consumer|slurm_job|layering|cli_determinism|cli_reproduce|test_multiple_scattering|test_grid_independence|test_monte_carlo|test_monte_carlo_reference|test_monte_carlo_polarisation|test_terrain_reference|test_bows_reference|cli_display|test_properties|viewer_browser)$'
+    -E '^(python_.*|notebook_.*|install_consumer|slurm_job|layering|cli_determinism|cli_reproduce|test_multiple_scattering|test_grid_independence|test_monte_carlo|test_monte_carlo_reference|test_monte_carlo_polarisation|test_terrain_reference|test_bows_reference|cli_display|test_properties|viewer_browser|cli_files_not_ours)$'
 stage "sanitizer tests"

@@ -10,6 +10,7 @@
 
 #include "base/atomic_file.hpp"
 #include "commands.hpp"
+#include "render/broadband_irradiance.hpp"
 #include "render/irradiance.hpp"
 #include "scene_options.hpp"
 #include "skyspec/error.hpp"
@@ -51,6 +52,8 @@ int run(IrradianceOptions& o) {
   });
   if (base.render.path != RenderSpec::Path::Spectral)
     throw InputError("render.path", "\"rgb-fast\"", "\"spectral\" (illuminance needs the colour-matching functions)");
+  // The broadband irradiance's runs refused (a medium not defined to 4000 nm) before any work.
+  if (base.irradiance.broadband) broadband_run_scenes(base);
   const std::vector<double> elevations =
       o.elevations.empty() ? std::vector<double>{base.sun.elevation_deg} : parse_elevations(o.elevations);
   std::ostringstream text;

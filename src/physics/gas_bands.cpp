@@ -34,8 +34,8 @@ struct BandTable {
 const BandTable& band_table() {
   static const BandTable table = [] {
     BandTable t;
-    for (const CsvRow& row : parse_csv(kBandsFile, embedded_file(kBandsFile),
-                                       {"nm", "water_vapour_per_cm", "mixed_gases_per_air_mass"})) {
+    for (const CsvRow& row :
+         parse_csv(kBandsFile, embedded_file(kBandsFile), {"nm", "water_vapour_per_cm", "mixed_gases_per_air_mass"})) {
       const double nm = csv_number(kBandsFile, row, 0);
       if (!t.nm.empty() && !(nm > t.nm.back()))
         throw Error(std::string(kBandsFile) + ":" + std::to_string(row.line_number) + ": wavelengths must increase");

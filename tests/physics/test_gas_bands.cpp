@@ -84,7 +84,8 @@ BOOST_AUTO_TEST_CASE(terms_match_both_band_models) {
     for (size_t j = 0; j < nodes.size(); ++j) {
       const double nm = nodes[j], exact = band_model(nm, 1.42, m), terms = terms_transmittance(nm, 1.42, m);
       const bool both = band_coefficient(GasBand::WaterVapour, nm) > 0 && band_coefficient(GasBand::MixedGases, nm) > 0;
-      (both ? largest_overlap : largest_single) = std::max(both ? largest_overlap : largest_single, std::abs(terms - exact));
+      (both ? largest_overlap : largest_single) =
+          std::max(both ? largest_overlap : largest_single, std::abs(terms - exact));
       // Trapezoid weights over the band model's wavelengths.
       const double width = 0.5 * (nodes[std::min(j + 1, nodes.size() - 1)] - nodes[j == 0 ? 0 : j - 1]);
       const double sun = solar_irradiance_table().value_at(nm) * width;
@@ -114,9 +115,10 @@ BOOST_AUTO_TEST_CASE(the_wavelengths_integrate_the_solar_spectrum) {
   for (size_t j = 1; j < nodes.size(); ++j)
     trapezoid += 0.5 * (nodes[j] - nodes[j - 1]) * (mean(nodes[j]) + mean(nodes[j - 1]));
   const double exact = sun.integral(300.0, 4000.0);
-  std::printf("top of the atmosphere, 300-4000 nm: trapezoid %.1f W/m2, table %.1f W/m2 (%+.3f %%); 280-300 nm %.1f "
-              "W/m2, 280-4000 nm %.1f W/m2\n",
-              trapezoid, exact, 100.0 * (trapezoid / exact - 1.0), sun.integral(280.0, 300.0), sun.integral(280.0, 4000.0));
+  std::printf(
+      "top of the atmosphere, 300-4000 nm: trapezoid %.1f W/m2, table %.1f W/m2 (%+.3f %%); 280-300 nm %.1f "
+      "W/m2, 280-4000 nm %.1f W/m2\n",
+      trapezoid, exact, 100.0 * (trapezoid / exact - 1.0), sun.integral(280.0, 300.0), sun.integral(280.0, 4000.0));
   BOOST_TEST(std::abs(trapezoid / exact - 1.0) < 0.001);
 }
 

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "check_helpers.hpp"
-#include "release_stage.hpp"
 #include "physics/gas_bands.hpp"
+#include "release_stage.hpp"
 #include "render/broadband_irradiance.hpp"
 #include "render/irradiance.hpp"
 #include "scene_fixtures.hpp"
@@ -58,7 +58,8 @@ BOOST_AUTO_TEST_CASE(gases_absorb_the_direct_beam_as_the_band_models_say,
       const double a_w = band_coefficient(GasBand::WaterVapour, nm), a_u = band_coefficient(GasBand::MixedGases, nm);
       const double expected = band_transmittance(GasBand::WaterVapour, a_w * 2.5 * air_masses) *
                               band_transmittance(GasBand::MixedGases, a_u * air_masses);
-      const double got = bb.direct_normal[static_cast<Eigen::Index>(k)] / ref.direct_normal[static_cast<Eigen::Index>(k)];
+      const double got =
+          bb.direct_normal[static_cast<Eigen::Index>(k)] / ref.direct_normal[static_cast<Eigen::Index>(k)];
       const bool both = a_w > 0.0 && a_u > 0.0;
       BOOST_TEST_CONTEXT(nm << " nm, sun at " << elevation << " degrees") {
         BOOST_TEST(std::abs(got - expected) < (both ? 0.01 : 0.003), got << " vs " << expected);

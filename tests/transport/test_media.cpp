@@ -11,6 +11,7 @@
 
 #include "atmosphere_fixtures.hpp"
 #include "physics/media/media.hpp"
+#include "release_stage.hpp"
 #include "skyspec/camera.hpp"
 #include "skyspec/error.hpp"
 #include "transport/monte_carlo.hpp"
@@ -60,7 +61,10 @@ double relative(double a, double b) { return std::abs(a - b) / std::max(std::abs
 // Half the aerosol in each of two media is the same aerosol: the radiance and its polarisation
 // agree to the quadrature's placement of nodes (which follows each scattering medium's column, so
 // the split moves them) and the tables' rounding.
-BOOST_AUTO_TEST_CASE(an_aerosol_split_in_two_media_gives_the_same_light) {
+// Release stage only (release_stage.hpp): the integrator's and the tables' code runs under the
+// sanitizers in the other cases.
+BOOST_AUTO_TEST_CASE(an_aerosol_split_in_two_media_gives_the_same_light,
+                     *boost::unit_test::precondition(test::not_in_sanitizer_stage)) {
   const WavelengthGrid grid = WavelengthGrid::from_list(kNm);
   AtmosphereModel split(earth(21e-6 / 2), grid);
   Medium second = *split.medium("aerosol");
@@ -154,7 +158,9 @@ BOOST_AUTO_TEST_CASE(a_medium_of_ones_own_is_seen_by_the_integrator_and_the_mont
 // (its output file fogr00: per droplet per cm^3, extinction 0.5570 / 0.5620 / 0.5650 km^-1 at 400 /
 // 550 / 700 nm, asymmetry 0.866 at 550 nm, single-scattering albedo 1.000); the visibility
 // sets the extinction at 550 nm to ln 20 / V.
-BOOST_AUTO_TEST_CASE(fog_matches_opac) {
+// Release stage only: Lorenz-Mie over the fog's droplets (its code runs under the sanitizers in
+// test_lorenz_mie and test_sphere_ensemble).
+BOOST_AUTO_TEST_CASE(fog_matches_opac, *boost::unit_test::precondition(test::not_in_sanitizer_stage)) {
   const std::vector<double> nm = {400, 550, 700};
   const WavelengthGrid grid = WavelengthGrid::from_list(nm);
   AtmosphereSpec spec = earth(21e-6);

@@ -13,8 +13,9 @@ namespace skyspec {
 std::optional<Medium> build_water_vapour(const MediumContext& c) {
   const WaterVapourSpec& w = c.spec.water_vapour;
   if (!(w.column_cm >= 0.0 && w.column_cm <= 15.0))
-    throw InputError("atmosphere.water_vapour.column_cm", format_number(w.column_cm),
-                     "a precipitable water column from 0 to 15 cm (observed: about 0.1 in polar air to 7 in the tropics)");
+    throw InputError(
+        "atmosphere.water_vapour.column_cm", format_number(w.column_cm),
+        "a precipitable water column from 0 to 15 cm (observed: about 0.1 in polar air to 7 in the tropics)");
   if (!(w.scale_height_m >= 100.0 && w.scale_height_m <= 10e3))
     throw InputError("atmosphere.water_vapour.scale_height_m", format_number(w.scale_height_m),
                      "a scale height from 100 to 10000 m (observed: about 2000 m)");
