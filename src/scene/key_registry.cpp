@@ -318,11 +318,12 @@ const std::vector<KeyDef>& registry() {
                            "rain: its density falls as exp(-z / H) above the ground",
                            [](Scene& s) -> double& { return s.atmosphere.rain.scale_height_m; }));
     // water vapour (the broadband irradiance's gas bands)
-    r.push_back(number_key("atmosphere.water_vapour.column_cm", "cm", {0.0, 15.0},
-                           "water vapour: precipitable water (the column as liquid), for the broadband irradiance's "
-                           "gas bands; 1.42 cm is ASTM G173's reference atmosphere, about 0.1 in polar air to 7 in the "
-                           "tropics",
-                           [](Scene& s) -> double& { return s.atmosphere.water_vapour.column_cm; }));
+    r.push_back(
+        number_key("atmosphere.water_vapour.column_cm", "cm", {0.0, 15.0},
+                   "water vapour: precipitable water (the column as liquid) above the ground at altitude 0, for "
+                   "the broadband irradiance's gas bands (a camera raised by a site's altitude has less above "
+                   "it); 1.42 cm is ASTM G173's reference atmosphere, about 0.1 in polar air to 7 in the tropics",
+                   [](Scene& s) -> double& { return s.atmosphere.water_vapour.column_cm; }));
     r.push_back(number_key("atmosphere.water_vapour.scale_height_m", "m", {100.0, 1e4},
                            "water vapour: its density falls as exp(-z / H) above the ground",
                            [](Scene& s) -> double& { return s.atmosphere.water_vapour.scale_height_m; }));
