@@ -94,7 +94,12 @@ BroadbandIrradiance broadband_irradiance(const Scene& scene, int zenith_nodes, i
       out.direct_normal[j] += run.weight[k] * rep.direct_normal[i];
       out.diffuse_horizontal[j] += run.weight[k] * rep.diffuse_horizontal[i];
     }
-    if (rep.direct_normal[0] > 0.0) out.cos_sun = rep.direct_horizontal[0] / rep.direct_normal[0];
+    // The sun's cosine at the camera, where the most direct light is (a low sun leaves none at
+    // 300 nm, under the ozone).
+    Eigen::Index brightest = 0;
+    rep.direct_normal.maxCoeff(&brightest);
+    if (rep.direct_normal[brightest] > 0.0)
+      out.cos_sun = rep.direct_horizontal[brightest] / rep.direct_normal[brightest];
     ++out.runs;
   }
   for (int j = 1; j < n; ++j) {

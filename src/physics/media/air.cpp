@@ -58,8 +58,8 @@ SpectrumD fixed_coefficients(const RayleighSpec& r, const WavelengthGrid& grid) 
   return beta;
 }
 
-// Integral of rho from the ground to the top of the atmosphere, m (Simpson's rule, 1 m steps at most
-// 1/4000 of the height: exact to 1e-9 for these smooth profiles).
+// Integral of rho from the ground to the top of the atmosphere, m (Simpson's rule on 4000 steps;
+// the profiles are smooth).
 double vertical_column_m(const DensityProfile& profile, double top_m) {
   const int n = 4000;  // even
   const double h = top_m / n;
@@ -70,8 +70,7 @@ double vertical_column_m(const DensityProfile& profile, double top_m) {
 
 // Rayleigh steps at the grid's wavelengths; in a broadband run, wavelengths beyond the refractive
 // index's range take its end's cross-section and King factor, the cross-section scaled by lambda^-4
-// (the refractivity changes by 0.16 % from 1.69 to 4 um in the formulas' own continuation; the
-// optical depth there is below 0.0012).
+// (what that costs: docs/physics.md, "Gas bands").
 std::vector<RayleighDerivationStep> rayleigh_steps(const RayleighSpec& r, const WavelengthGrid& grid, bool broadband) {
   std::vector<double> nm = grid.nanometres();
   const double max_nm = validity(r.derivation.formula).max_nm;
