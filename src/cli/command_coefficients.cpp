@@ -15,6 +15,7 @@
 
 #include "base/atomic_file.hpp"
 #include "commands.hpp"
+#include "progress.hpp"
 #include "scene_options.hpp"
 #include "skyspec/coefficient_report.hpp"
 #include "skyspec/error.hpp"
@@ -30,6 +31,7 @@ struct CoefficientOptions {
   double latitude_deg = 45.0;
   std::optional<std::string> format;
   std::string out;
+  bool quiet = false;
 };
 
 std::vector<KeyFlag> coefficient_flags() {
@@ -154,7 +156,15 @@ int run_coefficients(const CoefficientOptions& o) {
     const auto parent = out_path.has_parent_path() ? out_path.parent_path() : std::filesystem::path(".");
     ensure_writable_directory(parent, "--out");
   }
-  const std::string text = format_report(make_coefficient_report(req), format);
+  // A microphysical aerosol's optics (Lorenz-Mie at every wavelength) can take a minute: the bar
+  // shows them.
+  std::string text;
+  {
+    ProgressBar bar("coefficients", o.quiet);
+    bar.watch_preparation();
+    text = format_report(make_coefficient_report(req), format);
+    bar.finish();
+  }
   if (o.out.empty()) {
     std::cout << text;
     return kExitOk;
@@ -190,6 +200,7 @@ Command add_coefficients_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--format", opts->format, "md, csv, json or html");
   cmd->add_option("--out", opts->out, "output file (written atomically); default: standard output");
+  cmd->add_flag("-q,--quiet", opts->quiet, "no progress bar");
   return {cmd, [opts] { return run_coefficients(*opts); },
           [opts] {  // run_coefficients' checks, without computing the report (Command::validate)
             choose_format(*opts);

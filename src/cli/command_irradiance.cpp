@@ -10,6 +10,7 @@
 
 #include "base/atomic_file.hpp"
 #include "commands.hpp"
+#include "progress.hpp"
 #include "render/broadband_irradiance.hpp"
 #include "render/irradiance.hpp"
 #include "scene_options.hpp"
@@ -25,6 +26,7 @@ struct IrradianceOptions {
   std::string elevations;  // comma-separated degrees
   std::string format = "md";
   std::string out;
+  bool quiet = false;
 };
 
 std::vector<double> parse_elevations(const std::string& text) {
@@ -56,6 +58,10 @@ int run(IrradianceOptions& o) {
   if (base.irradiance.broadband) broadband_run_scenes(base);
   const std::vector<double> elevations =
       o.elevations.empty() ? std::vector<double>{base.sun.elevation_deg} : parse_elevations(o.elevations);
+  // The first elevation builds the scattering-order tables (and the broadband runs' tables), which
+  // the bar shows; then the elevations done.
+  ProgressBar bar("irradiance", o.quiet);
+  bar.watch_preparation();
   std::ostringstream text;
   const bool broadband = base.irradiance.broadband;
   if (o.format == "md") {
@@ -80,7 +86,8 @@ int run(IrradianceOptions& o) {
       std::snprintf(buf, sizeof buf, "%.0f", c->cct_K);
     return std::string(buf);
   };
-  for (double el : elevations) {
+  for (size_t k = 0; k < elevations.size(); ++k) {
+    const double el = elevations[k];
     Scene s = base;
     s.sun.elevation_deg = el;
     const SkyRenderer r(s);
@@ -106,7 +113,9 @@ int run(IrradianceOptions& o) {
       text << line;
     }
     text << (md ? " |\n" : "\n");
+    bar.update(static_cast<int>(k + 1), static_cast<int>(elevations.size()));
   }
+  bar.finish();
   if (o.format == "md")
     text << "\nDirect normal and diffuse horizontal W/m2 over " << make_wavelength_grid(base).min_nm() << "-"
          << make_wavelength_grid(base).max_nm()
@@ -141,6 +150,7 @@ Command add_irradiance_command(CLI::App& app) {
                   "comma-separated sun elevations in degrees (default: the scene's)");
   cmd->add_option("--format", o->format, "md (Markdown table) or csv")->capture_default_str();
   cmd->add_option("--out", o->out, "write to this file instead of standard output");
+  cmd->add_flag("-q,--quiet", o->quiet, "no progress bar");
   return {cmd, [o] { return run(*o); },
           [o] {  // run's checks, without computing (Command::validate)
             load_scene(o->scene, [](SceneLoader& l) { l.apply_override("camera.width", "1", "irradiance"); });

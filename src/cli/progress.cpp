@@ -42,12 +42,17 @@ ProgressBar::ProgressBar(std::string label, bool quiet)
 
 ProgressBar::~ProgressBar() {
   stop_watching();
-  if (active_ && !finished_) std::fputs("\n", stderr);
+  if (active_ && !finished_ && drawn_) std::fputs("\n", stderr);
 }
 
 void ProgressBar::draw(const std::string& text) {  // with mutex_ held
-  std::fprintf(stderr, "\r%s %s   ", label_.c_str(), text.c_str());
+  std::string line = label_ + " " + text;
+  const size_t length = line.size();
+  if (length < drawn_length_) line.append(drawn_length_ - length, ' ');  // over a longer line drawn before
+  std::fprintf(stderr, "\r%s   ", line.c_str());
   std::fflush(stderr);
+  drawn_ = true;
+  drawn_length_ = length;
 }
 
 void ProgressBar::watch_preparation() {
@@ -103,7 +108,11 @@ void ProgressBar::update(int done, int total) {
 
 void ProgressBar::finish() {
   stop_watching();
-  if (active_ && !finished_) std::fputs("\n", stderr);
+  if (active_ && !finished_ && drawn_) {
+    if (!updated_)  // a preparation alone (no work reported after it): it is over
+      draw(bar_text(1.0, 0.0, std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count()));
+    std::fputs("\n", stderr);
+  }
   finished_ = true;
 }
 

@@ -35,7 +35,9 @@ class ProgressBar {
   bool finished_ = false;
   std::chrono::steady_clock::time_point start_, phase_start_{};
   std::chrono::steady_clock::time_point last_draw_{};
-  bool updated_ = false;  // update() has reported work: the preparation is over
+  bool drawn_ = false;       // a line is on the terminal (finish() ends it)
+  size_t drawn_length_ = 0;  // its length
+  bool updated_ = false;     // update() has reported work: the preparation is over
   int phase_first_done_ = 0;
   std::mutex mutex_;
   std::condition_variable wake_;

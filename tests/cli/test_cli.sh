@@ -307,6 +307,17 @@ elif command -v script >/dev/null; then
   SKYSPEC_CACHE_DIR="$work/bar-cache2" "$skyspec" render --width 16 --height 64 --out "$work/bar2" \
     --set render.ms_altitude_samples=16 --set render.ms_sun_samples=64 --set render.scattering_orders=3 2>"$work/stderr" >/dev/null
   [ ! -s "$work/stderr" ] && ok || bad "a bar without a terminal: $(head -c 200 "$work/stderr")"
+  # irradiance: a bar on a terminal (the tables above, cached: the elevations done), none with --quiet.
+  for q in "" -q; do
+    SKYSPEC_CACHE_DIR="$work/bar-cache" script -qec "'$skyspec' irradiance $q --sun-elevations 10,20 \
+      --set render.ms_altitude_samples=16 --set render.ms_sun_samples=64 --set render.scattering_orders=3" \
+      /dev/null >"$work/ibar.txt" 2>&1 || bad "irradiance $q on a terminal failed: $(tail -c 300 "$work/ibar.txt")"
+    if [ -z "$q" ]; then
+      grep -qaE "irradiance \[#{30}\] 100%  elapsed" "$work/ibar.txt" && ok || bad "no bar: $(tail -c 300 "$work/ibar.txt")"
+    else
+      ! grep -qaE "irradiance .*(ETA|elapsed)" "$work/ibar.txt" && ok || bad "a bar with --quiet: $(tail -c 300 "$work/ibar.txt")"
+    fi
+  done
 else
   echo "SKIP progress on a terminal: no script(1)"
 fi

@@ -2,7 +2,7 @@
 # The microphysical aerosol from the command line (atmosphere.mie.model = "opac"): a render, its
 # optics cached on disk beside the tables and read back bit for bit (a damaged cache file is
 # recomputed, not trusted; render.cache_tables = false writes none), the progress bar's phase while
-# they are computed, the coefficient report naming the mixture, and bad values refused naming the key. Usage: test_opac.sh SKYSPEC
+# they are computed (render and coefficients), the coefficient report naming the mixture, and bad values refused naming the key. Usage: test_opac.sh SKYSPEC
 set -u
 skyspec=$1
 source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
@@ -42,6 +42,19 @@ SKYSPEC_CACHE_DIR="$work/cache-tty" script -qc "'$skyspec' render --width 8 --he
   ${cheap[*]} --set render.scattering_orders=1 --out '$work/tty'" /dev/null >"$work/bar.txt" 2>&1
 grep -qaE "rendering computing the aerosol's optics \(Lorenz-Mie\) \[#*\.*\] +[0-9]+%" "$work/bar.txt" && ok \
   || bad "no bar while the aerosol's optics were computed: $(tr '\r' '\n' <"$work/bar.txt" | head -5)"
+
+# ... and so does the coefficient report's while it computes them, ending at 100 %; none with --quiet.
+for q in "" -q; do
+  SKYSPEC_CACHE_DIR="$work/cache-tty$q" script -qc "'$skyspec' coefficients $q --wavelengths 400,500,600,700 \
+    ${cheap[*]} --out '$work/tty$q.md'" /dev/null >"$work/cbar.txt" 2>&1
+  if [ -z "$q" ]; then
+    grep -qaE "coefficients computing the aerosol's optics \(Lorenz-Mie\) \[#*\.*\] +[0-9]+%" "$work/cbar.txt" &&
+      grep -qaE "coefficients \[#{30}\] 100%  elapsed" "$work/cbar.txt" && ok ||
+      bad "no bar while the report's optics were computed: $(tr '\r' '\n' <"$work/cbar.txt" | tail -3)"
+  else
+    [ -s "$work/tty-q.md" ] && ! grep -qa "coefficients" "$work/cbar.txt" && ok || bad "a bar with --quiet: $(head -c 300 "$work/cbar.txt")"
+  fi
+done
 
 # The coefficient report says what the aerosol is made of.
 "$skyspec" coefficients --wavelengths 450,550 "${cheap[@]}" --out "$work/report.md" \
