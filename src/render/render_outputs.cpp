@@ -114,8 +114,9 @@ SpectralExrMetadata spectral_exr_metadata(const Scene& scene, const std::map<std
         "axis "
         "carried onto the sky (perpendicular to the pixel's ray), e2 = k x e1 with k the light's direction (towards "
         "the "
-        "camera); S1 > 0 polarised along e1, S2 > 0 along e1 + e2; S3 = 0. Vector transport for the air; aerosols "
-        "scatter as unit matrices; the ground depolarises (docs/polarisation.md)";
+        "camera); S1 > 0 polarised along e1, S2 > 0 along e1 + e2; S3 = 0. Vector transport for the air; particles "
+        "polarise the sun's light by their scattering matrix (analytic aerosols: a unit matrix) and scatter light "
+        "scattered before as unit matrices; the ground depolarises (docs/polarisation.md)";
   return meta;
 }
 
