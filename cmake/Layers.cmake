@@ -17,7 +17,7 @@ set(SKYSPEC_PUBLIC_HEADERS_transport geometry.hpp terrain.hpp)
 set(SKYSPEC_PUBLIC_HEADERS_colour colour.hpp display.hpp)
 set(SKYSPEC_PUBLIC_HEADERS_io)
 set(SKYSPEC_PUBLIC_HEADERS_scene scene.hpp camera_spec.hpp)
-set(SKYSPEC_PUBLIC_HEADERS_render camera.hpp render.hpp monte_carlo_reference.hpp aerial_perspective.hpp)
+set(SKYSPEC_PUBLIC_HEADERS_render camera.hpp render.hpp monte_carlo_reference.hpp aerial_perspective.hpp irradiance.hpp)
 set(SKYSPEC_PUBLIC_HEADERS_report coefficient_report.hpp lee_diagram.hpp sky_comparison.hpp)
 set(SKYSPEC_PUBLIC_HEADERS_job skyspec.hpp timelapse.hpp)
 

@@ -153,6 +153,19 @@ def timelapse(
     scene's location, one exposure for every frame; files <name>_0000.exr/.png with records and
     manifest.jsonl in out. Returns frames, written, kept, failed, exposure_ev, files, manifest, ..."""
 
+def irradiance(
+    preset: str = "default",
+    *,
+    scene_file: Optional[_PathLike] = None,
+    scene_toml: Optional[str] = None,
+    overrides: Optional[Dict[str, Any]] = None,
+    sun_elevations: Optional[Sequence[float]] = None,
+    progress: _Progress = None,
+) -> Dict[str, Any]:
+    """The irradiance at the camera (`skyspec irradiance`) for each sun elevation: arrays named as the
+    irradiance tables' columns (direct_normal_W_m2, global_horizontal_lux, ..., spectra *_W_m2_nm),
+    wavelength_nm, sun_elevation_deg and the colour temperatures. docs/python.md."""
+
 def monte_carlo(
     preset: str = "default",
     *,

@@ -37,6 +37,7 @@
 #include "skyspec/colour.hpp"
 #include "skyspec/display.hpp"
 #include "skyspec/error.hpp"
+#include "skyspec/irradiance.hpp"
 #include "skyspec/lee_diagram.hpp"
 #include "skyspec/lorenz_mie.hpp"
 #include "skyspec/monte_carlo_reference.hpp"
@@ -763,6 +764,54 @@ py::dict aerial_perspective_py(const py::array_t<float, py::array::c_style | py:
 }
 
 // The Monte Carlo reference at probes given as (azimuth, elevation) pairs (default: the standard ones).
+// skyspec.irradiance: camera_irradiance's list as arrays over the sun elevations.
+py::dict irradiance_py(const std::string& preset, const std::optional<std::filesystem::path>& scene_file,
+                       const std::optional<std::string>& scene_toml, const std::optional<py::dict>& overrides,
+                       const py::object& sun_elevations, const py::object& progress) {
+  const Scene scene = load_scene(preset, scene_file, scene_toml, overrides);
+  std::vector<double> elevations;
+  if (!sun_elevations.is_none()) {
+    elevations = numbers_arg(sun_elevations, "sun_elevations");
+    if (elevations.empty()) throw InputError("sun_elevations", "[]", "at least one angle in degrees");
+    for (double el : elevations)
+      if (!(el >= -90.0 && el <= 90.0))
+        throw InputError("sun_elevations", format_number(el), "angles in degrees from -90 to 90");
+  }
+  const std::vector<CameraIrradiance> list = run_interruptible(
+      [&scene, &elevations](ProgressCounter& counter) { return camera_irradiance(scene, elevations, counter.rows()); },
+      progress, "irradiance");
+  const auto k = static_cast<py::ssize_t>(list.size());
+  const auto n = static_cast<py::ssize_t>(list.front().wavelengths_nm.size());
+  py::dict out;
+  out["wavelength_nm"] = array1(list.front().wavelengths_nm);
+  py::array_t<double> elevation(k);
+  for (py::ssize_t a = 0; a < k; ++a) elevation.mutable_at(a) = list[static_cast<size_t>(a)].sun_elevation_deg;
+  out["sun_elevation_deg"] = elevation;
+  for (size_t q = 0; q < list.front().values.size(); ++q) {  // every entry has the same names
+    py::array_t<double> v(k);
+    for (py::ssize_t a = 0; a < k; ++a) v.mutable_at(a) = list[static_cast<size_t>(a)].values[q].second;
+    out[py::str(list.front().values[q].first)] = v;
+  }
+  for (size_t q = 0; q < list.front().spectra.size(); ++q) {
+    py::array_t<double> v({k, n});
+    for (py::ssize_t a = 0; a < k; ++a)
+      for (py::ssize_t i = 0; i < n; ++i)
+        v.mutable_at(a, i) = list[static_cast<size_t>(a)].spectra[q].second[static_cast<size_t>(i)];
+    out[py::str(list.front().spectra[q].first)] = v;
+  }
+  // Colour temperatures: None where the light has none.
+  const auto column = [&](std::optional<double> CameraIrradiance::*member) {
+    py::list values;
+    for (const CameraIrradiance& c : list) values.append((c.*member) ? py::cast(*(c.*member)) : py::none());
+    return values;
+  };
+  out["global_cct_K"] = column(&CameraIrradiance::global_cct_K);
+  out["global_duv"] = column(&CameraIrradiance::global_duv);
+  out["diffuse_cct_K"] = column(&CameraIrradiance::diffuse_cct_K);
+  out["diffuse_duv"] = column(&CameraIrradiance::diffuse_duv);
+  return out;
+}
+
 py::dict monte_carlo(const std::string& preset, const std::optional<std::filesystem::path>& scene_file,
                      const std::optional<std::string>& scene_toml, const std::optional<py::dict>& overrides,
                      const py::object& probes, long long paths, unsigned long long seed, int orders, bool irradiance,
@@ -1328,6 +1377,21 @@ with a record <name>_0000.json, and manifest.jsonl. frames="A-B" renders only th
 resume=True keeps the frames an earlier run finished (record, scene and files checked); force=True skips the
 render budget's refusals. Returns a dict: frames, first, last, written, kept, failed, replaced, failures,
 exposure_ev, exposure, files, manifest.
+)" PROGRESS_DOC);
+
+  m.def("irradiance", &irradiance_py, py::arg("preset") = "default", py::kw_only(), py::arg("scene_file") = py::none(),
+        py::arg("scene_toml") = py::none(), py::arg("overrides") = py::none(), py::arg("sun_elevations") = py::none(),
+        py::arg("progress") = py::none(),
+        R"(The irradiance at the scene's camera (`skyspec irradiance`; docs/jobs.md, "Irradiance and pyranometers"):
+the direct beam (the sun's transmittance) and the diffuse light (the sky's radiance over the upper hemisphere,
+every scattering order the scene asks for) on a horizontal surface, for each of sun_elevations (degrees; default:
+the scene's), the sun at the scene's azimuth. Spectral scenes only.
+Returns a dict: wavelength_nm (n), sun_elevation_deg (k); the numbers (k), named as the irradiance tables'
+columns: direct_normal_W_m2, direct_horizontal_W_m2, diffuse_horizontal_W_m2, global_horizontal_W_m2 (over
+wavelength_nm's range), the same in lux (*_lux), and with overrides {"irradiance.broadband": True} also
+broadband_*_W_m2 (300-4000 nm with the gases' absorption bands, what a pyranometer measures); the spectra
+(k, n; W m^-2 nm^-1): global_horizontal_W_m2_nm, diffuse_horizontal_W_m2_nm, direct_normal_W_m2_nm; and lists
+(k) global_cct_K, global_duv, diffuse_cct_K, diffuse_duv (CIE 015; None where the light has none).
 )" PROGRESS_DOC);
 
   m.def("monte_carlo", &monte_carlo, py::arg("preset") = "default", py::kw_only(), py::arg("scene_file") = py::none(),

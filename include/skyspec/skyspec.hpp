@@ -16,6 +16,7 @@
 #include "skyspec/error.hpp"
 #include "skyspec/geometry.hpp"
 #include "skyspec/ice_crystals.hpp"
+#include "skyspec/irradiance.hpp"
 #include "skyspec/king_factor.hpp"
 #include "skyspec/lee_diagram.hpp"
 #include "skyspec/lorenz_mie.hpp"

@@ -11,7 +11,6 @@
 #include "base/atomic_file.hpp"
 #include "commands.hpp"
 #include "progress.hpp"
-#include "render/broadband_irradiance.hpp"
 #include "render/irradiance.hpp"
 #include "scene_options.hpp"
 #include "skyspec/error.hpp"
@@ -47,21 +46,20 @@ std::vector<double> parse_elevations(const std::string& text) {
 
 int run(IrradianceOptions& o) {
   if (o.format != "md" && o.format != "csv") throw InputError("--format", "\"" + o.format + "\"", "one of: md, csv");
-  Scene base = load_scene(o.scene, [](SceneLoader& l) {
+  const Scene base = load_scene(o.scene, [](SceneLoader& l) {
     // Only the camera position matters; a 1x1 image keeps the set-up cheap.
     l.apply_override("camera.width", "1", "irradiance");
     l.apply_override("camera.height", "1", "irradiance");
   });
-  if (base.render.path != RenderSpec::Path::Spectral)
-    throw InputError("render.path", "\"rgb-fast\"", "\"spectral\" (illuminance needs the colour-matching functions)");
-  // The broadband irradiance's runs refused (a medium not defined to 4000 nm) before any work.
-  if (base.irradiance.broadband) broadband_run_scenes(base);
   const std::vector<double> elevations =
       o.elevations.empty() ? std::vector<double>{base.sun.elevation_deg} : parse_elevations(o.elevations);
   // The first elevation builds the scattering-order tables (and the broadband runs' tables), which
-  // the bar shows; then the elevations done.
+  // the bar shows; then the elevations done. The scene's refusals come before any work.
   ProgressBar bar("irradiance", o.quiet);
   bar.watch_preparation();
+  const std::vector<IrradianceReport> reports =
+      irradiance_reports(base, elevations, [&](int done, int total) { bar.update(done, total); });
+  bar.finish();
   std::ostringstream text;
   const bool broadband = base.irradiance.broadband;
   if (o.format == "md") {
@@ -88,10 +86,7 @@ int run(IrradianceOptions& o) {
   };
   for (size_t k = 0; k < elevations.size(); ++k) {
     const double el = elevations[k];
-    Scene s = base;
-    s.sun.elevation_deg = el;
-    const SkyRenderer r(s);
-    const IrradianceReport rep = irradiance_report(s, r);
+    const IrradianceReport& rep = reports[k];
     char line[512];
     const bool md = o.format == "md";
     if (md)
@@ -113,9 +108,7 @@ int run(IrradianceOptions& o) {
       text << line;
     }
     text << (md ? " |\n" : "\n");
-    bar.update(static_cast<int>(k + 1), static_cast<int>(elevations.size()));
   }
-  bar.finish();
   if (o.format == "md")
     text << "\nDirect normal and diffuse horizontal W/m2 over " << make_wavelength_grid(base).min_nm() << "-"
          << make_wavelength_grid(base).max_nm()

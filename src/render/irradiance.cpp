@@ -7,7 +7,9 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include "base/cancellation.hpp"
 #include "base/quadrature.hpp"
+#include "base/text_format.hpp"
 #include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/units.hpp"
@@ -79,6 +81,56 @@ IrradianceReport irradiance_report(const Scene& scene, const SkyRenderer& render
   IrradianceReport rep = irradiance_at_camera(renderer);
   if (scene.irradiance.broadband) rep.broadband = broadband_irradiance(scene);
   return rep;
+}
+
+std::vector<IrradianceReport> irradiance_reports(const Scene& scene, const std::vector<double>& sun_elevations_deg,
+                                                 const ProgressFn& progress) {
+  if (scene.render.path != RenderSpec::Path::Spectral)
+    throw InputError("render.path", "\"rgb-fast\"", "\"spectral\" (illuminance needs the colour-matching functions)");
+  for (double el : sun_elevations_deg)
+    if (!(el >= -90.0 && el <= 90.0))
+      throw InputError("sun_elevations_deg", format_number(el), "angles in degrees from -90 to 90");
+  if (scene.irradiance.broadband) broadband_run_scenes(scene);  // its refusals, before any work
+  const std::vector<double> elevations =
+      sun_elevations_deg.empty() ? std::vector<double>{scene.sun.elevation_deg} : sun_elevations_deg;
+  Scene s = scene;
+  s.camera.width = s.camera.height = 1;  // only the camera's position matters: a cheap set-up
+  std::vector<IrradianceReport> reports;
+  for (size_t k = 0; k < elevations.size(); ++k) {
+    throw_if_cancelled();
+    s.sun.elevation_deg = elevations[k];
+    const SkyRenderer r(s);
+    reports.push_back(irradiance_report(s, r));
+    if (progress) progress(static_cast<int>(k + 1), static_cast<int>(elevations.size()));
+  }
+  return reports;
+}
+
+std::vector<CameraIrradiance> camera_irradiance(const Scene& scene, const std::vector<double>& sun_elevations_deg,
+                                                const ProgressFn& progress) {
+  const std::vector<IrradianceReport> reports = irradiance_reports(scene, sun_elevations_deg, progress);
+  std::vector<CameraIrradiance> out;
+  for (size_t k = 0; k < reports.size(); ++k) {
+    const IrradianceReport& rep = reports[k];
+    CameraIrradiance c;
+    c.sun_elevation_deg = sun_elevations_deg.empty() ? scene.sun.elevation_deg : sun_elevations_deg[k];
+    c.wavelengths_nm = rep.wavelengths_nm;
+    for (const IrradianceQuantity& q : irradiance_quantities()) {
+      if (!q.present_in(rep)) continue;
+      if (q.spectral()) {
+        const SpectrumD v = q.spectrum(rep);
+        c.spectra.emplace_back(q.key, std::vector<double>(v.data(), v.data() + v.size()));
+      } else {
+        c.values.emplace_back(q.key, q.value(rep));
+      }
+    }
+    if (rep.global_horizontal_cct)
+      c.global_cct_K = rep.global_horizontal_cct->cct_K, c.global_duv = rep.global_horizontal_cct->duv;
+    if (rep.diffuse_horizontal_cct)
+      c.diffuse_cct_K = rep.diffuse_horizontal_cct->cct_K, c.diffuse_duv = rep.diffuse_horizontal_cct->duv;
+    out.push_back(std::move(c));
+  }
+  return out;
 }
 
 bool IrradianceQuantity::band_limited() const { return !spectral() && !of_broadband && std::string(units) == "W m-2"; }

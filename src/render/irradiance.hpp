@@ -19,6 +19,7 @@
 #include "colour/colour_temperature.hpp"
 #include "render/broadband_irradiance.hpp"
 
+#include "skyspec/irradiance.hpp"
 #include "skyspec/render.hpp"
 #include "skyspec/spectrum.hpp"
 
@@ -77,5 +78,10 @@ IrradianceReport irradiance_at_camera(const SkyRenderer& renderer, int zenith_no
 /// irradiance_at_camera(renderer), and the broadband irradiance (broadband_irradiance.hpp) when
 /// `scene` (the renderer's) has irradiance.broadband: what the irradiance outputs hold.
 IrradianceReport irradiance_report(const Scene& scene, const SkyRenderer& renderer);
+
+/// irradiance_report for each sun elevation (camera_irradiance's contract: the checks before any
+/// work, progress after each elevation, the scene's elevation when the list is empty).
+std::vector<IrradianceReport> irradiance_reports(const Scene& scene, const std::vector<double>& sun_elevations_deg,
+                                                 const ProgressFn& progress = {});
 
 }  // namespace skyspec

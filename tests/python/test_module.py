@@ -342,6 +342,48 @@ class MonteCarloAgainstCli(unittest.TestCase):
         self.assertIn("paths", str(e.exception))
 
 
+class IrradianceAgainstCli(unittest.TestCase):
+    def test_irradiance_equals_the_cli_csv(self):
+        overrides = dict(SMALL_TABLES, **{"spectrum.wavelengths_nm": [400, 450, 550, 650, 700]})
+        calls = []
+        r = skyspec.irradiance(overrides=overrides, sun_elevations=[12, 40, -3],
+                               progress=lambda done, total: calls.append((done, total)))
+        self.assertEqual(calls[-1], (3, 3))
+        np.testing.assert_array_equal(r["sun_elevation_deg"], [12, 40, -3])
+        self.assertEqual(r["global_horizontal_W_m2_nm"].shape, (3, 5))
+        import csv
+        rows = list(csv.DictReader(cli("irradiance", "--sun-elevations", "12,40,-3", "--format", "csv",
+                                       *set_args({k: v for k, v in overrides.items() if k != "spectrum.wavelengths_nm"}),
+                                       "--wavelengths", "400,450,550,650,700").splitlines()))
+        self.assertEqual(len(rows), 3)
+        for k, row in enumerate(rows):
+            for key, text in row.items():
+                if key in r and key != "sun_elevation_deg":  # the CSV's numbers, rounded to its decimals
+                    value = r[key][k]
+                    if value is not None and re.fullmatch(r"-?[0-9.]+", text):
+                        decimals = len(text.split(".")[1]) if "." in text else 0
+                        self.assertAlmostEqual(value, float(text), delta=0.51 * 10 ** -decimals, msg=key)
+            # The spectrum integrates (trapezoid over the grid) to the band's number.
+            self.assertAlmostEqual(np.trapz(r["global_horizontal_W_m2_nm"][k], r["wavelength_nm"]),
+                                   r["global_horizontal_W_m2"][k], delta=1e-9 * max(1.0, r["global_horizontal_W_m2"][k]))
+        # The parts add up; the sun below the horizon leaves the diffuse light alone.
+        np.testing.assert_allclose(r["global_horizontal_W_m2"], r["direct_horizontal_W_m2"] + r["diffuse_horizontal_W_m2"],
+                                   rtol=1e-12)
+        self.assertEqual(r["direct_normal_W_m2"][2], 0.0)
+        self.assertGreater(r["diffuse_horizontal_W_m2"][2], 0.0)
+        self.assertTrue(all(c is None or 1000 < c < 100000 for c in r["global_cct_K"]))
+        self.assertNotIn("broadband_global_horizontal_W_m2", r)
+
+    def test_bad_input_names_the_argument_or_key(self):
+        for elevations, name in [([95], "sun_elevations"), ([], "sun_elevations"), (["x"], "sun_elevations")]:
+            with self.assertRaises(ValueError) as e:
+                skyspec.irradiance(sun_elevations=elevations)
+            self.assertIn(name, str(e.exception))
+        with self.assertRaises(ValueError) as e:
+            skyspec.irradiance(overrides={"render.path": "rgb-fast"})
+        self.assertIn("render.path", str(e.exception))
+
+
 class PublishedValues(unittest.TestCase):
     def test_standard_atmosphere_definition(self):
         # U.S. Standard Atmosphere 1976: 288.15 K and 101325 Pa at sea level, 216.65 K from 11 to 20 km
