@@ -199,6 +199,24 @@ def target_lines(out, base, table_p99):
     return lines
 
 
+def issue37_lines(out, base):
+    """Issue 37's target 3 (the CLI's first and cached render of the default scene), pass / FAIL."""
+    def mark(ok):
+        return "pass" if ok else "FAIL"
+    if not all((out / f"{n}.time").exists() for n in ("c37-cold", "c37-warm")):
+        return []
+    cold, _ = time_of(out, "c37-cold")
+    warm, _ = time_of(out, "c37-warm")
+    lines = ["Issue 37's target 3, from this run:",
+             f"3. default scene 512 x 512 (41 wl, 6 orders, PIZ): no cached tables {cold:.2f} s (at most 2 s: "
+             f"{mark(cold <= 2.0)}); tables cached, median of 5 {warm:.3f} s (at most 0.3 s: {mark(warm <= 0.3)})"]
+    if "30" in base:
+        b = base["30"]
+        lines.append(f"   against the baseline's median at sun 30 in this run ({b:.3f} s): {cold / b:.1f} x (at most 5 x: "
+                     f"{mark(cold <= 5 * b)}) and {warm / b:.2f} x (at most 0.75 x: {mark(warm <= 0.75 * b)})")
+    return lines
+
+
 def main():
     out = Path(sys.argv[1])
     rows = [line.rstrip("\n").split("\t") for line in (out / "manifest.tsv").read_text().splitlines()]
@@ -264,7 +282,7 @@ def main():
     if refcheck:
         print(f"reference check, case 1 at sun 2: 256 vs 512 view segments differ by p50 {refcheck[0]:.1e}, "
               f"p99 {refcheck[1]:.1e}")
-    for block in (codec_lines(out), target_lines(out, base, table_p99)):
+    for block in (codec_lines(out), target_lines(out, base, table_p99), issue37_lines(out, base)):
         if block:
             print()
             print("\n".join(block))

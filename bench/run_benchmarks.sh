@@ -203,6 +203,11 @@ echo "case 6 (multiple scattering tables, cold then cached) ..."
 sky time "c6-cold" "6: default scene (6 orders), tables built" 30 --width 256 --height 256
 sky time "c6-warm" "6: the same, tables from the disk cache" 30 --width 256 --height 256
 sky time "c6-single" "6: the same, single scattering (no tables)" 30 --width 256 --height 256 --set render.scattering_orders=1
+# Issue 37's target 3: the default scene at 512 x 512, first with no cached tables (the cache
+# emptied), then five times with them cached.
+rm -rf "$SKYSPEC_CACHE_DIR"
+sky time "c37-cold" "37: default scene 512x512 (6 orders), tables built" 30 --width 512 --height 512
+N=5 sky time "c37-warm" "37: the same, tables from the disk cache" 30 --width 512 --height 512
 # Issue 21's target 6 with multiple scattering: case 4's view of the default scene (tables cached).
 sky time "c6-hemi" "6: default scene, 512x256 equirect upper hemisphere, tables cached, EXR (PIZ)" 10 "${HEMI[@]}"
 # The default scene's accuracy at the default quality (ozone, sun disk, 6 orders; the reference

@@ -1,13 +1,13 @@
-// Stream buffers that hash (FNV-1a 64, base/embedded_data.hpp) the bytes passing through them, so
-// that a large file can be checksummed as it is written or read, without a copy of it in memory
-// (the scattering-order table cache, transport/multiple_scattering.cpp).
+// Stream buffers that hash (SHA-256, base/sha256.hpp) the bytes passing through them, so that a
+// large file can be checksummed as it is written or read, without a copy of it in memory (the
+// scattering-order table cache, transport/multiple_scattering.cpp). The checksum is the digest's
+// first 64 bits.
 #pragma once
 
 #include <cstdint>
 #include <streambuf>
-#include <string_view>
 
-#include "base/embedded_data.hpp"
+#include "base/sha256.hpp"
 
 namespace skyspec {
 
@@ -15,11 +15,12 @@ namespace skyspec {
 class HashingStreambuf final : public std::streambuf {
  public:
   explicit HashingStreambuf(std::streambuf* out) : out_(out) {}
-  std::uint64_t hash() const { return hash_; }
+  /// The checksum of everything written; ends the hashing.
+  std::uint64_t hash() { return sha_.first_64_bits(); }
 
  protected:
   std::streamsize xsputn(const char* s, std::streamsize n) override {
-    hash_ = fnv1a64(std::string_view(s, static_cast<size_t>(n)), hash_);
+    sha_.update(s, static_cast<size_t>(n));
     return out_->sputn(s, n);
   }
   int_type overflow(int_type c) override {
@@ -30,7 +31,7 @@ class HashingStreambuf final : public std::streambuf {
 
  private:
   std::streambuf* out_;
-  std::uint64_t hash_ = kFnv1a64Basis;
+  Sha256 sha_;
 };
 
 /// Passes on what is read from another stream buffer, unbuffered, and hashes it on the way: the
@@ -38,7 +39,8 @@ class HashingStreambuf final : public std::streambuf {
 class HashingInStreambuf final : public std::streambuf {
  public:
   explicit HashingInStreambuf(std::streambuf* in) : in_(in) {}
-  std::uint64_t hash() const { return hash_; }
+  /// The checksum of everything taken; ends the hashing.
+  std::uint64_t hash() { return sha_.first_64_bits(); }
 
  protected:
   int_type underflow() override { return in_->sgetc(); }
@@ -46,18 +48,18 @@ class HashingInStreambuf final : public std::streambuf {
     const int_type c = in_->sbumpc();
     if (!traits_type::eq_int_type(c, traits_type::eof())) {
       const char ch = traits_type::to_char_type(c);
-      hash_ = fnv1a64(std::string_view(&ch, 1), hash_);
+      sha_.update(&ch, 1);
     }
     return c;
   }
   std::streamsize xsgetn(char* s, std::streamsize n) override {
     const std::streamsize got = in_->sgetn(s, n);
-    hash_ = fnv1a64(std::string_view(s, static_cast<size_t>(got)), hash_);
+    if (got > 0) sha_.update(s, static_cast<size_t>(got));
     return got;
   }
 
  private:
   std::streambuf* in_;
-  std::uint64_t hash_ = kFnv1a64Basis;
+  Sha256 sha_;
 };
 }  // namespace skyspec

@@ -10,39 +10,53 @@
 #include "skyspec/error.hpp"
 
 namespace skyspec {
-namespace {
+namespace {}  // namespace
 
-struct DigestContext {
-  EVP_MD_CTX* ctx = EVP_MD_CTX_new();
-  DigestContext() {
-    if (!ctx || EVP_DigestInit_ex(ctx, EVP_sha256(), nullptr) != 1) throw Error("SHA-256: OpenSSL digest unavailable");
+Sha256::Sha256() : ctx_(EVP_MD_CTX_new()) {
+  if (!ctx_ || EVP_DigestInit_ex(static_cast<EVP_MD_CTX*>(ctx_), EVP_sha256(), nullptr) != 1) {
+    EVP_MD_CTX_free(static_cast<EVP_MD_CTX*>(ctx_));
+    throw Error("SHA-256: OpenSSL digest unavailable");
   }
-  ~DigestContext() { EVP_MD_CTX_free(ctx); }
-  DigestContext(const DigestContext&) = delete;
-  DigestContext& operator=(const DigestContext&) = delete;
-  void update(const void* data, std::size_t n) {
-    if (EVP_DigestUpdate(ctx, data, n) != 1) throw Error("SHA-256: digest update failed");
-  }
-  std::string hex() {
-    unsigned char md[EVP_MAX_MD_SIZE];
-    unsigned int len = 0;
-    if (EVP_DigestFinal_ex(ctx, md, &len) != 1) throw Error("SHA-256: digest failed");
-    static const char* digits = "0123456789abcdef";
-    std::string out(2 * len, '0');
-    for (unsigned i = 0; i < len; ++i) {
-      out[2 * i] = digits[md[i] >> 4];
-      out[2 * i + 1] = digits[md[i] & 15];
-    }
-    return out;
-  }
-};
+}
 
-}  // namespace
+Sha256::~Sha256() { EVP_MD_CTX_free(static_cast<EVP_MD_CTX*>(ctx_)); }
+
+void Sha256::update(const void* data, std::size_t n) {
+  if (finished_) throw Error("SHA-256: update after the digest");
+  if (n > 0 && EVP_DigestUpdate(static_cast<EVP_MD_CTX*>(ctx_), data, n) != 1)
+    throw Error("SHA-256: digest update failed");
+}
+
+void Sha256::finish() {
+  if (finished_) return;
+  unsigned int len = 0;
+  if (EVP_DigestFinal_ex(static_cast<EVP_MD_CTX*>(ctx_), digest_, &len) != 1 || len != sizeof digest_)
+    throw Error("SHA-256: digest failed");
+  finished_ = true;
+}
+
+std::uint64_t Sha256::first_64_bits() {
+  finish();
+  std::uint64_t v = 0;
+  for (int i = 0; i < 8; ++i) v = (v << 8) | digest_[i];
+  return v;
+}
+
+std::string Sha256::hex() {
+  finish();
+  static const char* digits = "0123456789abcdef";
+  std::string out(2 * sizeof digest_, '0');
+  for (std::size_t i = 0; i < sizeof digest_; ++i) {
+    out[2 * i] = digits[digest_[i] >> 4];
+    out[2 * i + 1] = digits[digest_[i] & 15];
+  }
+  return out;
+}
 
 std::string sha256_file_hex(const std::filesystem::path& path) {
   std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
   if (!f) throw IoError("cannot read " + path.string() + ": " + std::strerror(errno));
-  DigestContext d;
+  Sha256 d;
   char buf[1 << 16];
   std::size_t n;
   while ((n = std::fread(buf, 1, sizeof buf, f.get())) > 0) d.update(buf, n);
@@ -51,7 +65,7 @@ std::string sha256_file_hex(const std::filesystem::path& path) {
 }
 
 std::string sha256_hex(const std::string& bytes) {
-  DigestContext d;
+  Sha256 d;
   d.update(bytes.data(), bytes.size());
   return d.hex();
 }

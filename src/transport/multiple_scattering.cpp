@@ -862,9 +862,9 @@ double ScatteringOrders::estimate_build_seconds(const SingleScattering& integrat
 
 namespace {
 // The cache file: magic, key size and key (the inputs the tables depend on), table count, the
-// tables, and last an FNV-1a 64 checksum of everything before it, so that a file that was
-// truncated, damaged or edited is rebuilt rather than trusted.
-constexpr char kCacheMagic[] = "skyspec scattering orders v4\n";
+// tables, and last a checksum of everything before it (SHA-256's first 64 bits), so that a file
+// that was truncated, damaged or edited is rebuilt rather than trusted.
+constexpr char kCacheMagic[] = "skyspec scattering orders v5\n";
 
 }  // namespace
 
