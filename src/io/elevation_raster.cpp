@@ -4,17 +4,19 @@
 #include <cctype>
 #include <cmath>
 #include <exception>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <vector>
 
 #include <ImfChannelList.h>
 
-#include <cpl_conv.h>
 #include <cpl_error.h>
-#include <gdal_priv.h>
-#include <ogr_spatialref.h>
+#include <gdal.h>
+#include <gdal_alg.h>
+#include <ogr_srs_api.h>
 
+#include "base/dynamic_library.hpp"
 #include "base/text_format.hpp"
 #include "io/exr_channels.hpp"
 #include "io/exr_open.hpp"
@@ -27,20 +29,65 @@ namespace {
 constexpr double kLowest_m = -500.0, kHighest_m = 9000.0;  // the Dead Sea's shore, Everest
 constexpr double kMaxWindowPixels = 2.0e8;
 
+// GDAL's C functions, looked up once in the library opened on first use (base/dynamic_library.hpp):
+// a process that reads no raster does not load GDAL and the hundred libraries it brings.
+// clang-format off
+#define SKYSPEC_GDAL_FUNCTIONS(X)                                                                         \
+  X(GDALAllRegister) X(GDALOpenEx) X(GDALClose) X(GDALGetRasterCount) X(GDALGetSpatialRef)                \
+  X(GDALGetGeoTransform) X(GDALInvGeoTransform) X(GDALGetRasterBand) X(GDALGetRasterUnitType)             \
+  X(GDALGetRasterScale) X(GDALGetRasterOffset) X(GDALGetRasterNoDataValue) X(GDALGetRasterXSize)          \
+  X(GDALGetRasterYSize) X(GDALRasterIO) X(GDALGetRasterDataType) X(OSRNewSpatialReference)                \
+  X(OSRSetWellKnownGeogCS) X(OSRSetAxisMappingStrategy) X(OSRClone) X(OSRDestroySpatialReference)         \
+  X(OCTNewCoordinateTransformation) X(OCTTransform) X(OCTDestroyCoordinateTransformation)                 \
+  X(CPLPushErrorHandler) X(CPLQuietErrorHandler) X(CPLErrorReset) X(CPLPopErrorHandler) X(CPLGetLastErrorMsg)
+// clang-format on
+SKYSPEC_SHARED_LIBRARY_API(GdalApi, gdal_functions, SKYSPEC_GDAL_FUNCTIONS, SKYSPEC_GDAL_SONAME,
+                           "reading elevation and albedo rasters (GDAL)")
+
+// GDAL, with its drivers (GeoTIFF, PNG, ...) registered once.
+const GdalApi& gdal() {
+  static const GdalApi& api = [] {
+    const GdalApi& a = gdal_functions();
+    a.GDALAllRegister();
+    return std::cref(a);
+  }();
+  return api;
+}
+
 // GDAL's own messages are kept for ours, not printed.
 struct QuietGdal {
   QuietGdal() {
-    CPLPushErrorHandler(CPLQuietErrorHandler);
-    CPLErrorReset();
+    gdal().CPLPushErrorHandler(gdal().CPLQuietErrorHandler);
+    gdal().CPLErrorReset();
   }
-  ~QuietGdal() { CPLPopErrorHandler(); }
+  ~QuietGdal() { gdal().CPLPopErrorHandler(); }
   QuietGdal(const QuietGdal&) = delete;
   QuietGdal& operator=(const QuietGdal&) = delete;
   static std::string last() {
-    const char* m = CPLGetLastErrorMsg();
+    const char* m = gdal().CPLGetLastErrorMsg();
     return m && *m ? std::string(" (GDAL: ") + m + ")" : std::string();
   }
 };
+
+// A dataset, a spatial reference and a transformation, closed or destroyed at the end of scope.
+struct CloseDataset {
+  void operator()(void* h) const { gdal().GDALClose(static_cast<GDALDatasetH>(h)); }
+};
+using Dataset = std::unique_ptr<void, CloseDataset>;
+struct DestroyReference {
+  void operator()(void* h) const { gdal().OSRDestroySpatialReference(static_cast<OGRSpatialReferenceH>(h)); }
+};
+using SpatialReference = std::unique_ptr<void, DestroyReference>;
+struct DestroyTransformation {
+  void operator()(void* h) const {
+    gdal().OCTDestroyCoordinateTransformation(static_cast<OGRCoordinateTransformationH>(h));
+  }
+};
+using Transformation = std::unique_ptr<void, DestroyTransformation>;
+
+Dataset open_raster(const std::string& path) {
+  return Dataset(gdal().GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+}
 }  // namespace
 
 void map_to_latitude_longitude(double east_m, double north_m, const ElevationSampling& s, double& latitude_deg,
@@ -99,23 +146,23 @@ HeightGrid map_grid(const ElevationSampling& s) {
 std::vector<float> sample_georeferenced(const std::string& path, const HeightGrid& g, const ElevationSampling& s,
                                         const std::string& setting, const ValueRule& rule) {
   auto refuse = [&](const std::string& what) { throw InputError(setting, path, what); };
-  GDALAllRegister();
+  const GdalApi& g_ = gdal();
   const QuietGdal quiet;
-  std::unique_ptr<GDALDataset> ds(
-      GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+  const Dataset ds = open_raster(path);
   if (!ds)
     refuse(std::string(rule.heights ? "an elevation raster" : "an albedo raster") +
            " GDAL can open (GeoTIFF or another raster format)" + QuietGdal::last());
-  if (ds->GetRasterCount() < 1) refuse("a raster with at least one band");
+  if (g_.GDALGetRasterCount(ds.get()) < 1) refuse("a raster with at least one band");
   double gt[6];
-  const OGRSpatialReference* srs = ds->GetSpatialRef();
-  if (ds->GetGeoTransform(gt) != CE_None || !srs)
+  const OGRSpatialReferenceH srs = g_.GDALGetSpatialRef(ds.get());
+  if (g_.GDALGetGeoTransform(ds.get(), gt) != CE_None || !srs)
     refuse("a georeferenced raster (a geotransform and a coordinate reference system); this one has " +
            std::string(srs ? "no geotransform" : "no coordinate reference system"));
   double inv[6];
-  if (!GDALInvGeoTransform(gt, inv)) refuse("a geotransform that can be inverted");
-  GDALRasterBand* band = ds->GetRasterBand(1);
-  const std::string unit = band->GetUnitType() ? band->GetUnitType() : "";
+  if (!g_.GDALInvGeoTransform(gt, inv)) refuse("a geotransform that can be inverted");
+  const GDALRasterBandH band = g_.GDALGetRasterBand(ds.get(), 1);
+  const char* unit_type = g_.GDALGetRasterUnitType(band);
+  const std::string unit = unit_type ? unit_type : "";
   double to_m = 1.0;
   if (!rule.heights)
     ;  // an albedo has no unit; whatever the band says
@@ -124,10 +171,10 @@ std::vector<float> sample_georeferenced(const std::string& path, const HeightGri
   else if (!(unit.empty() || unit == "m" || unit == "metre" || unit == "meter" || unit == "metres" || unit == "meters"))
     refuse("heights in metres or feet (band 1's unit is \"" + unit + "\")");
   int has_scale = 0, has_offset = 0, has_nodata = 0;
-  double scale = band->GetScale(&has_scale), offset = band->GetOffset(&has_offset);
+  double scale = g_.GDALGetRasterScale(band, &has_scale), offset = g_.GDALGetRasterOffset(band, &has_offset);
   if (!has_scale) scale = 1.0;
   if (!has_offset) offset = 0.0;
-  const double nodata = band->GetNoDataValue(&has_nodata);
+  const double nodata = g_.GDALGetRasterNoDataValue(band, &has_nodata);
 
   const size_t count = static_cast<size_t>(g.columns) * static_cast<size_t>(g.rows);
   // Each sample's latitude and longitude, into the raster's coordinates, into its pixels.
@@ -137,18 +184,21 @@ std::vector<float> sample_georeferenced(const std::string& path, const HeightGri
       const size_t i = static_cast<size_t>(r) * g.columns + c;
       map_to_latitude_longitude(g.east_m(c), g.north_m(r), s, py[i], px[i]);  // lat into y, lon into x
     }
-  OGRSpatialReference geographic;
-  geographic.SetWellKnownGeogCS("WGS84");
-  geographic.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);  // longitude, latitude
-  OGRSpatialReference target(*srs);
-  target.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-  std::unique_ptr<OGRCoordinateTransformation> to_raster(OGRCreateCoordinateTransformation(&geographic, &target));
+  const SpatialReference geographic(g_.OSRNewSpatialReference(nullptr));
+  if (!geographic || g_.OSRSetWellKnownGeogCS(geographic.get(), "WGS84") != OGRERR_NONE)
+    refuse("GDAL with the WGS84 coordinate reference system (PROJ's data)" + QuietGdal::last());
+  g_.OSRSetAxisMappingStrategy(geographic.get(), OAMS_TRADITIONAL_GIS_ORDER);  // longitude, latitude
+  const SpatialReference target(g_.OSRClone(srs));
+  if (!target) refuse("a coordinate reference system GDAL can copy" + QuietGdal::last());
+  g_.OSRSetAxisMappingStrategy(target.get(), OAMS_TRADITIONAL_GIS_ORDER);
+  const Transformation to_raster(g_.OCTNewCoordinateTransformation(geographic.get(), target.get()));
   if (!to_raster)
     refuse("a coordinate reference system PROJ can transform latitude and longitude into" + QuietGdal::last());
-  if (!to_raster->Transform(static_cast<int>(count), px.data(), py.data()))
+  if (!g_.OCTTransform(static_cast<OGRCoordinateTransformationH>(to_raster.get()), static_cast<int>(count), px.data(),
+                       py.data(), nullptr))
     refuse("a raster whose coordinates hold the square of half-size terrain.extent_m around the location" +
            QuietGdal::last());
-  const int width = ds->GetRasterXSize(), height = ds->GetRasterYSize();
+  const int width = g_.GDALGetRasterXSize(ds.get()), height = g_.GDALGetRasterYSize(ds.get());
   double lo_x = std::numeric_limits<double>::infinity(), hi_x = -lo_x, lo_y = lo_x, hi_y = -lo_x;
   for (size_t i = 0; i < count; ++i) {
     const double x = px[i], y = py[i];
@@ -178,7 +228,7 @@ std::vector<float> sample_georeferenced(const std::string& path, const HeightGri
     refuse("a raster window of at most 2e8 pixels over terrain.extent_m (this needs " + std::to_string(ww) + " x " +
            std::to_string(wh) + "; make terrain.extent_m smaller)");
   std::vector<double> window(static_cast<size_t>(ww) * static_cast<size_t>(wh));
-  if (band->RasterIO(GF_Read, x0, y0, ww, wh, window.data(), ww, wh, GDT_Float64, 0, 0, nullptr) != CE_None)
+  if (g_.GDALRasterIO(band, GF_Read, x0, y0, ww, wh, window.data(), ww, wh, GDT_Float64, 0, 0) != CE_None)
     refuse("a raster GDAL can read" + QuietGdal::last());
   auto at = [&](int x, int y) {
     x = std::clamp(x, 0, width - 1) - x0;
@@ -278,25 +328,24 @@ HeightImage read_exr_height_image(const std::string& path, const Refuse& refuse,
 
 template <class Refuse>
 HeightImage read_gdal_height_image(const std::string& path, const Refuse& refuse, bool pixels) {
-  GDALAllRegister();
+  const GdalApi& g_ = gdal();
   const QuietGdal quiet;
-  std::unique_ptr<GDALDataset> ds(
-      GDALDataset::Open(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr));
+  const Dataset ds = open_raster(path);
   if (!ds) refuse("an image OpenEXR or GDAL can open (EXR, PNG, TIFF, ...)" + QuietGdal::last());
-  if (ds->GetRasterCount() < 1) refuse("an image with at least one band");
-  check_height_map_size(ds->GetRasterXSize(), ds->GetRasterYSize(), refuse);
-  GDALRasterBand* band = ds->GetRasterBand(1);
+  if (g_.GDALGetRasterCount(ds.get()) < 1) refuse("an image with at least one band");
+  check_height_map_size(g_.GDALGetRasterXSize(ds.get()), g_.GDALGetRasterYSize(ds.get()), refuse);
+  const GDALRasterBandH band = g_.GDALGetRasterBand(ds.get(), 1);
   HeightImage image;
-  image.width = ds->GetRasterXSize();
-  image.height = ds->GetRasterYSize();
+  image.width = g_.GDALGetRasterXSize(ds.get());
+  image.height = g_.GDALGetRasterYSize(ds.get());
   if (!pixels) return image;
   image.value.resize(static_cast<size_t>(image.width) * static_cast<size_t>(image.height));
-  if (band->RasterIO(GF_Read, 0, 0, image.width, image.height, image.value.data(), image.width, image.height,
-                     GDT_Float64, 0, 0, nullptr) != CE_None)
+  if (g_.GDALRasterIO(band, GF_Read, 0, 0, image.width, image.height, image.value.data(), image.width, image.height,
+                      GDT_Float64, 0, 0) != CE_None)
     refuse("an image GDAL can read" + QuietGdal::last());
   int has_nodata = 0;
-  const double nodata = band->GetNoDataValue(&has_nodata);
-  const GDALDataType type = band->GetRasterDataType();
+  const double nodata = g_.GDALGetRasterNoDataValue(band, &has_nodata);
+  const GDALDataType type = g_.GDALGetRasterDataType(band);
   const double unit = type == GDT_Byte ? 1.0 / 255.0 : type == GDT_UInt16 ? 1.0 / 65535.0 : 1.0;
   for (size_t i = 0; i < image.value.size(); ++i) {
     if (has_nodata && image.value[i] == nodata)

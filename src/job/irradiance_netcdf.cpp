@@ -9,6 +9,7 @@
 #include <string>
 
 #include "base/atomic_file.hpp"
+#include "base/dynamic_library.hpp"
 #include "base/text_format.hpp"
 #include "physics/date_time.hpp"
 #include "render/irradiance.hpp"
@@ -21,38 +22,49 @@ namespace {
 
 using nlohmann::json;
 
+// netCDF's C functions, looked up once in the library opened on first use
+// (base/dynamic_library.hpp): only a job's collection, which writes NetCDF, loads it.
+// clang-format off
+#define SKYSPEC_NETCDF_FUNCTIONS(X)                                                                         \
+  X(nc_create) X(nc_close) X(nc_strerror) X(nc_def_dim) X(nc_def_var) X(nc_put_att_text) X(nc_put_var_double) \
+  X(nc_put_var_text) X(nc_enddef)
+// clang-format on
+SKYSPEC_SHARED_LIBRARY_API(NetcdfApi, netcdf, SKYSPEC_NETCDF_FUNCTIONS, SKYSPEC_NETCDF_SONAME,
+                           "writing NetCDF irradiance tables (netCDF)")
+
 class NcFile {
  public:
   explicit NcFile(const std::filesystem::path& path) : path_(path) {
-    check(nc_create(path.c_str(), NC_CLOBBER | NC_64BIT_OFFSET, &id_), "create");
+    check(netcdf().nc_create(path.c_str(), NC_CLOBBER | NC_64BIT_OFFSET, &id_), "create");
   }
   ~NcFile() {
-    if (id_ >= 0) nc_close(id_);
+    if (id_ >= 0) netcdf().nc_close(id_);
   }
   NcFile(const NcFile&) = delete;
   NcFile& operator=(const NcFile&) = delete;
   int id() const { return id_; }
   void check(int status, const char* what) const {
     if (status != NC_NOERR)
-      throw IoError("NetCDF '" + path_.string() + "': cannot " + what + ": " + nc_strerror(status));
+      throw IoError("NetCDF '" + path_.string() + "': cannot " + what + ": " + netcdf().nc_strerror(status));
   }
   int dim(const std::string& name, size_t length) {
     int d = -1;
-    check(nc_def_dim(id_, name.c_str(), length, &d), "define a dimension");
+    check(netcdf().nc_def_dim(id_, name.c_str(), length, &d), "define a dimension");
     return d;
   }
   int var(const std::string& name, nc_type type, std::vector<int> dims) {
     int v = -1;
-    check(nc_def_var(id_, name.c_str(), type, static_cast<int>(dims.size()), dims.data(), &v), "define a variable");
+    check(netcdf().nc_def_var(id_, name.c_str(), type, static_cast<int>(dims.size()), dims.data(), &v),
+          "define a variable");
     return v;
   }
   void text(int var, const char* name, const std::string& value) {
-    check(nc_put_att_text(id_, var, name, value.size(), value.c_str()), "write an attribute");
+    check(netcdf().nc_put_att_text(id_, var, name, value.size(), value.c_str()), "write an attribute");
   }
   void put(int var, const std::vector<double>& values) {
-    check(nc_put_var_double(id_, var, values.data()), "write a variable");
+    check(netcdf().nc_put_var_double(id_, var, values.data()), "write a variable");
   }
-  void close() { check(nc_close(std::exchange(id_, -1)), "close"); }
+  void close() { check(netcdf().nc_close(std::exchange(id_, -1)), "close"); }
 
  private:
   std::filesystem::path path_;
@@ -197,7 +209,7 @@ void write_irradiance_netcdf(const std::filesystem::path& path, const JobPlan& p
                 "300-4000 nm (trapezoid over Bird & Riordan's 122 wavelengths), all scattering orders, with the "
                 "absorption bands of water vapour and the mixed gases (docs/jobs.md, \"Irradiance and pyranometers\")");
     }
-    nc.check(nc_enddef(nc.id()), "end the definitions");
+    nc.check(netcdf().nc_enddef(nc.id()), "end the definitions");
 
     std::vector<double> times;
     for (const json* r : rows) {
@@ -228,7 +240,7 @@ void write_irradiance_netcdf(const std::filesystem::path& path, const JobPlan& p
     nc.put(v_lat, {where.location.latitude_deg});
     nc.put(v_lon, {where.location.longitude_deg});
     nc.put(v_alt, {where.camera.position_m.z()});
-    nc.check(nc_put_var_text(nc.id(), v_name, station.c_str()), "write a variable");
+    nc.check(netcdf().nc_put_var_text(nc.id(), v_name, station.c_str()), "write a variable");
     nc.put(elevation.var, elevation.values);
     nc.put(azimuth.var, azimuth.values);
     for (const auto& s : swept) nc.put(s.var, s.values);
