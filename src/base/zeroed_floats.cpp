@@ -26,9 +26,11 @@ ZeroedFloats::ZeroedFloats(std::size_t n) : n_(n) {
     if (!p_) throw std::bad_alloc();
     return;
   }
-  // Anonymous pages are zero; one huge page more than needed, so that the array can start on a
-  // huge page's boundary.
-  mapping_bytes_ = bytes + kHugePage;
+  // Anonymous pages are zero. The array's bytes rounded up to whole huge pages, and one huge page
+  // more, so that the array can start on a huge page's boundary and the advice below covers only
+  // the mapping.
+  const std::size_t whole = (bytes + kHugePage - 1) & ~(kHugePage - 1);
+  mapping_bytes_ = whole + kHugePage;
   mapping_ = mmap(nullptr, mapping_bytes_, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
   if (mapping_ == MAP_FAILED) {
     mapping_ = nullptr;
@@ -36,7 +38,7 @@ ZeroedFloats::ZeroedFloats(std::size_t n) : n_(n) {
   }
   const auto start = (reinterpret_cast<std::uintptr_t>(mapping_) + kHugePage - 1) & ~(kHugePage - 1);
   p_ = reinterpret_cast<float*>(start);
-  madvise(p_, (bytes + kHugePage - 1) & ~(kHugePage - 1), MADV_HUGEPAGE);  // advice: no error if refused
+  madvise(p_, whole, MADV_HUGEPAGE);  // advice: a kernel without transparent huge pages ignores it
 }
 
 ZeroedFloats::~ZeroedFloats() {
