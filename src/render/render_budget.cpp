@@ -223,7 +223,7 @@ double estimate_scattering_orders_seconds(const Scene& scene) {
 }
 
 std::uint64_t scattering_tables_file_bytes(const Scene& scene, const ScatteringTablesKey& key) {
-  return ScatteringOrders::table_bytes(multiple_scattering_settings(scene), make_wavelength_grid(scene).size()) +
+  return ScatteringOrders::cache_bytes(multiple_scattering_settings(scene), make_wavelength_grid(scene).size()) +
          key.inputs.size();
 }
 

@@ -20,6 +20,7 @@
 #include "base/hashing_streambuf.hpp"
 #include "base/preparation_progress.hpp"
 #include "base/quadrature.hpp"
+#include "skyspec/error.hpp"
 #include "skyspec/phase_function.hpp"
 #include "skyspec/units.hpp"
 #include "transport/spherical_harmonics.hpp"
@@ -788,6 +789,26 @@ ScatteringOrders::ScatteringOrders(const SingleScattering& integrator, const Mul
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+std::uint64_t ScatteringOrders::cache_bytes(const MultipleScatteringSettings& st, int wavelengths) {
+  const std::uint64_t entry =
+      static_cast<std::uint64_t>(st.altitude_samples) * st.sun_samples * wavelengths * sizeof(float);
+  std::uint64_t harmonics = static_cast<std::uint64_t>(skyspec::harmonic_count(st.angular_degree));  // the sum
+  if (st.orders >= 2) harmonics += skyspec::harmonic_count(degree_of_order(st.angular_degree, 2));
+  if (st.polarisation) harmonics += 3 * static_cast<std::uint64_t>(st.orders >= 2 ? 2 : 1);
+  return entry * harmonics;
+}
+
+const SourceTable& ScatteringOrders::order(int k) const {
+  if (k < 2 || k > settings_.orders)
+    throw Error("scattering order " + std::to_string(k) + " is not among the tables' orders 2-" +
+                std::to_string(settings_.orders));
+  if (static_cast<size_t>(k - 2) >= orders_.size())
+    throw Error("the table of scattering order " + std::to_string(k) +
+                " is not kept in the table cache (order 2's and the sum of all orders are): built tables "
+                "(render.cache_tables = false, or an empty cache) hold every order's");
+  return *orders_[static_cast<size_t>(k - 2)];
+}
+
 std::uint64_t ScatteringOrders::table_bytes(const MultipleScatteringSettings& st, int wavelengths) {
   const std::uint64_t entry =
       static_cast<std::uint64_t>(st.altitude_samples) * st.sun_samples * wavelengths * sizeof(float);
@@ -862,9 +883,10 @@ double ScatteringOrders::estimate_build_seconds(const SingleScattering& integrat
 
 namespace {
 // The cache file: magic, key size and key (the inputs the tables depend on), table count, the
-// tables, and last a checksum of everything before it (SHA-256's first 64 bits), so that a file
+// tables a render reads (order 2's, whose field is the light scattered once, and the sum of all
+// orders), and last a checksum of everything before it (SHA-256's first 64 bits), so that a file
 // that was truncated, damaged or edited is rebuilt rather than trusted.
-constexpr char kCacheMagic[] = "skyspec scattering orders v5\n";
+constexpr char kCacheMagic[] = "skyspec scattering orders v6\n";
 
 }  // namespace
 
@@ -878,9 +900,9 @@ bool ScatteringOrders::save(const std::string& path, const std::string& key) con
     const uint64_t key_size = key.size();
     out.write(reinterpret_cast<const char*>(&key_size), sizeof key_size);
     out.write(key.data(), static_cast<std::streamsize>(key.size()));
-    const int32_t count = static_cast<int32_t>(orders_.size());
+    const int32_t count = orders_.empty() ? 0 : 1;
     out.write(reinterpret_cast<const char*>(&count), sizeof count);
-    for (const auto& t : orders_) t->write(out);
+    if (count == 1) orders_.front()->write(out);
     sum_->write(out);
     const uint64_t checksum = hashing.hash();
     f.write(reinterpret_cast<const char*>(&checksum), sizeof checksum);
@@ -909,7 +931,8 @@ std::unique_ptr<ScatteringOrders> ScatteringOrders::load(const std::string& path
   std::string stored(key.size(), '\0');
   if (!in.read(stored.data(), static_cast<std::streamsize>(stored.size())) || stored != key) return nullptr;
   int32_t count = 0;
-  if (!in.read(reinterpret_cast<char*>(&count), sizeof count) || count != settings.orders - 1) return nullptr;
+  if (!in.read(reinterpret_cast<char*>(&count), sizeof count) || count != (settings.orders >= 2 ? 1 : 0))
+    return nullptr;
   std::unique_ptr<ScatteringOrders> o(new ScatteringOrders(settings));
   const auto moments = PhaseMoments::of(atm, settings.angular_degree);
   auto make_table = [&] {

@@ -261,8 +261,9 @@ class ScatteringOrders : public InScatteringSource {
   /// order 2, whose source (single scattering) is cheap to evaluate and whose field has the
   /// sharpest features (the aerosol's forward peak around the sun), two more of each.
   static DirectionQuadrature quadrature_of_order(int angular_degree, int k, int refinement = 1);
-  /// The table of order k, 2 <= k <= highest_order().
-  const SourceTable& order(int k) const { return *orders_.at(static_cast<size_t>(k - 2)); }
+  /// The table of order k, 2 <= k <= highest_order(). Tables read from the cache hold order 2's
+  /// and the sum only (what renders read); asking one of them for a higher order throws Error.
+  const SourceTable& order(int k) const;
   const SourceTable& sum() const { return *sum_; }
   double build_seconds() const { return build_seconds_; }
 
@@ -272,9 +273,11 @@ class ScatteringOrders : public InScatteringSource {
   static double estimate_build_seconds(const SingleScattering& integrator, const MultipleScatteringSettings& settings);
   /// Bytes of the tables these settings build (every order's and the sum) for n wavelengths.
   static std::uint64_t table_bytes(const MultipleScatteringSettings& settings, int wavelengths);
+  /// Bytes of the tables save() writes (order 2's and the sum) for n wavelengths.
+  static std::uint64_t cache_bytes(const MultipleScatteringSettings& settings, int wavelengths);
 
-  /// Saves the tables to `path` atomically, tagged with `key` (the scene keys they depend on).
-  /// Returns false (and leaves no file) if it cannot.
+  /// Saves the tables a render reads (order 2's and the sum) to `path` atomically, tagged with
+  /// `key` (the scene keys they depend on). Returns false (and leaves no file) if it cannot.
   bool save(const std::string& path, const std::string& key) const;
   /// Loads tables saved under exactly `key` for this atmosphere and settings; null if the file is
   /// missing, from another key or version, or damaged.
