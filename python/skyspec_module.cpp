@@ -763,7 +763,6 @@ py::dict aerial_perspective_py(const py::array_t<float, py::array::c_style | py:
   return out;
 }
 
-// The Monte Carlo reference at probes given as (azimuth, elevation) pairs (default: the standard ones).
 // skyspec.irradiance: camera_irradiance's list as arrays over the sun elevations.
 py::dict irradiance_py(const std::string& preset, const std::optional<std::filesystem::path>& scene_file,
                        const std::optional<std::string>& scene_toml, const std::optional<py::dict>& overrides,
@@ -812,6 +811,7 @@ py::dict irradiance_py(const std::string& preset, const std::optional<std::files
   return out;
 }
 
+// The Monte Carlo reference at probes given as (azimuth, elevation) pairs (default: the standard ones).
 py::dict monte_carlo(const std::string& preset, const std::optional<std::filesystem::path>& scene_file,
                      const std::optional<std::string>& scene_toml, const std::optional<py::dict>& overrides,
                      const py::object& probes, long long paths, unsigned long long seed, int orders, bool irradiance,

@@ -1,9 +1,8 @@
 // Shared libraries opened on first use (dlopen) rather than at the process's start. GDAL (elevation
-// data) and netCDF (a job's tables) bring about a hundred shared libraries with them, which every
-// process would otherwise load before main (70 ms of each start on the development machine:
-// docs/performance.md, "Start-up"); only the commands that read a raster or write a NetCDF file
-// open them. Their functions are called through pointers looked up once (io/elevation_raster.cpp,
-// job/irradiance_netcdf.cpp).
+// data) and netCDF (a job's tables) bring many shared libraries with them, which every process
+// would otherwise load before main (what that cost: docs/performance.md, "Start-up and the table
+// cache"); only the commands that read a raster or write a NetCDF file open them. Their functions are called through
+// pointers looked up once (io/elevation_raster.cpp, job/irradiance_netcdf.cpp).
 #pragma once
 
 #include <string>

@@ -10,7 +10,6 @@
 #include "skyspec/error.hpp"
 
 namespace skyspec {
-namespace {}  // namespace
 
 Sha256::Sha256() : ctx_(EVP_MD_CTX_new()) {
   if (!ctx_ || EVP_DigestInit_ex(static_cast<EVP_MD_CTX*>(ctx_), EVP_sha256(), nullptr) != 1) {

@@ -4,7 +4,6 @@
 #include <cctype>
 #include <cmath>
 #include <exception>
-#include <functional>
 #include <limits>
 #include <memory>
 #include <vector>
@@ -30,7 +29,7 @@ constexpr double kLowest_m = -500.0, kHighest_m = 9000.0;  // the Dead Sea's sho
 constexpr double kMaxWindowPixels = 2.0e8;
 
 // GDAL's C functions, looked up once in the library opened on first use (base/dynamic_library.hpp):
-// a process that reads no raster does not load GDAL and the hundred libraries it brings.
+// a process that reads no raster does not load GDAL and the libraries it brings.
 // clang-format off
 #define SKYSPEC_GDAL_FUNCTIONS(X)                                                                         \
   X(GDALAllRegister) X(GDALOpenEx) X(GDALClose) X(GDALGetRasterCount) X(GDALGetSpatialRef)                \
@@ -46,12 +45,9 @@ SKYSPEC_SHARED_LIBRARY_API(GdalApi, gdal_functions, SKYSPEC_GDAL_FUNCTIONS, SKYS
 
 // GDAL, with its drivers (GeoTIFF, PNG, ...) registered once.
 const GdalApi& gdal() {
-  static const GdalApi& api = [] {
-    const GdalApi& a = gdal_functions();
-    a.GDALAllRegister();
-    return std::cref(a);
-  }();
-  return api;
+  static const bool registered = (gdal_functions().GDALAllRegister(), true);
+  static_cast<void>(registered);
+  return gdal_functions();
 }
 
 // GDAL's own messages are kept for ours, not printed.

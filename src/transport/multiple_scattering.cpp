@@ -789,13 +789,19 @@ ScatteringOrders::ScatteringOrders(const SingleScattering& integrator, const Mul
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+namespace {
+// Bytes of one harmonic's values over a table's entries and wavelengths.
+std::uint64_t bytes_per_harmonic(const MultipleScatteringSettings& st, int wavelengths) {
+  return static_cast<std::uint64_t>(st.altitude_samples) * st.sun_samples * wavelengths * sizeof(float);
+}
+}  // namespace
+
 std::uint64_t ScatteringOrders::cache_bytes(const MultipleScatteringSettings& st, int wavelengths) {
-  const std::uint64_t entry =
-      static_cast<std::uint64_t>(st.altitude_samples) * st.sun_samples * wavelengths * sizeof(float);
-  std::uint64_t harmonics = static_cast<std::uint64_t>(skyspec::harmonic_count(st.angular_degree));  // the sum
-  if (st.orders >= 2) harmonics += skyspec::harmonic_count(degree_of_order(st.angular_degree, 2));
-  if (st.polarisation) harmonics += 3 * static_cast<std::uint64_t>(st.orders >= 2 ? 2 : 1);
-  return entry * harmonics;
+  // The sum and order 2's table, each with its polarisation tensor when polarised.
+  std::uint64_t harmonics = static_cast<std::uint64_t>(skyspec::harmonic_count(st.angular_degree)) +
+                            skyspec::harmonic_count(degree_of_order(st.angular_degree, 2));
+  if (st.polarisation) harmonics += 2 * 3;
+  return bytes_per_harmonic(st, wavelengths) * harmonics;
 }
 
 const SourceTable& ScatteringOrders::order(int k) const {
@@ -810,8 +816,7 @@ const SourceTable& ScatteringOrders::order(int k) const {
 }
 
 std::uint64_t ScatteringOrders::table_bytes(const MultipleScatteringSettings& st, int wavelengths) {
-  const std::uint64_t entry =
-      static_cast<std::uint64_t>(st.altitude_samples) * st.sun_samples * wavelengths * sizeof(float);
+  const std::uint64_t entry = bytes_per_harmonic(st, wavelengths);
   std::uint64_t harmonics = static_cast<std::uint64_t>(skyspec::harmonic_count(st.angular_degree));  // the sum
   for (int k = 2; k <= st.orders; ++k) harmonics += skyspec::harmonic_count(degree_of_order(st.angular_degree, k));
   if (st.polarisation) harmonics += 3 * static_cast<std::uint64_t>(st.orders);  // each table's polarisation tensor
