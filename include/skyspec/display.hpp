@@ -44,6 +44,11 @@ struct DisplaySettings {
   std::string exr_space;  ///< non-empty: also write a scene-linear RGB EXR in this working space
 };
 
+/// How hard a PNG is compressed: Smallest as files are written (zlib's default level, libpng's
+/// adaptive row filters), Fastest for frames sent at once (zlib's level 1 and the Sub filter, which
+/// suits smooth skies: docs/viewer.md measures both). The pixels are the same.
+enum class PngCompression { Smallest, Fastest };
+
 /// The neutral ids of the settings above, as InputError::setting() reports them.
 namespace display_setting {
 inline constexpr const char* kOcio = "display.ocio";

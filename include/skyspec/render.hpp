@@ -169,12 +169,14 @@ double write_display_png(const SpectralImageBuffer& image, const std::filesystem
                          const DisplaySettings& display);
 
 /// The PNG write_display_png writes for the image and settings, as bytes in memory (the same code
-/// values and text chunks, no file): the viewer's frames.
-std::string display_png_bytes(const SpectralImageBuffer& image, const DisplaySettings& display = {});
+/// values and text chunks, no file), compressed as `compression` says: the viewer's frames.
+std::string display_png_bytes(const SpectralImageBuffer& image, const DisplaySettings& display = {},
+                              PngCompression compression = PngCompression::Smallest);
 /// The picture of a polarised image's polarisation (scene output.polarisation; InputError
 /// otherwise) as PNG bytes: the colours of <name>-polarisation.png (hue: the angle of linear
 /// polarisation of the luminance-weighted Stokes vector, brightness: its degree).
-std::string polarisation_png_bytes(const SpectralImageBuffer& image);
+std::string polarisation_png_bytes(const SpectralImageBuffer& image,
+                                   PngCompression compression = PngCompression::Smallest);
 
 struct RenderOutputs {
   std::filesystem::path exr, png;     ///< empty when not written

@@ -1,16 +1,22 @@
 #include "base/quadrature.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
 
 #include "skyspec/units.hpp"
 
 namespace skyspec {
+namespace {
 
-void gauss_legendre(int n, double a, double b, std::vector<double>& nodes, std::vector<double>& weights) {
-  // Roots of the Legendre polynomial P_n by Newton's method from Tricomi's initial guesses; weights
-  // 2 / ((1 - x^2) P_n'(x)^2), mapped from [-1, 1] to [a, b].
-  nodes.assign(static_cast<size_t>(n), 0.0);
-  weights.assign(static_cast<size_t>(n), 0.0);
+// The roots x of the Legendre polynomial P_n and P_n'(x) there, [node][x, P_n'(x)].
+using LegendreRoots = std::vector<std::pair<double, double>>;
+
+// Roots of P_n by Newton's method from Tricomi's initial guesses.
+LegendreRoots legendre_roots(int n) {
+  LegendreRoots roots(static_cast<size_t>(n));
   for (int i = 0; i < n; ++i) {
     double x = std::cos(kPi * (i + 0.75) / (n + 0.5));
     double dp = 1.0;
@@ -27,8 +33,34 @@ void gauss_legendre(int n, double a, double b, std::vector<double>& nodes, std::
       x -= dx;
       if (std::abs(dx) < 1e-15) break;
     }
-    nodes[static_cast<size_t>(i)] = 0.5 * (b - a) * x + 0.5 * (b + a);
-    weights[static_cast<size_t>(i)] = (b - a) / ((1.0 - x * x) * dp * dp);
+    roots[static_cast<size_t>(i)] = {x, dp};
+  }
+  return roots;
+}
+
+// Each n's roots once per process: finding them costs O(n^2) and renders ask for the same few
+// rules every time they are built (the integrator's 512-node rule, the tables' directions).
+const LegendreRoots& cached_legendre_roots(int n) {
+  static std::mutex mutex;
+  static std::map<int, std::unique_ptr<const LegendreRoots>> cache;
+  std::lock_guard<std::mutex> lock(mutex);
+  auto& roots = cache[n];
+  if (!roots) roots = std::make_unique<const LegendreRoots>(legendre_roots(n));
+  return *roots;
+}
+
+}  // namespace
+
+void gauss_legendre(int n, double a, double b, std::vector<double>& nodes, std::vector<double>& weights) {
+  // Weights 2 / ((1 - x^2) P_n'(x)^2), mapped from [-1, 1] to [a, b].
+  nodes.assign(static_cast<size_t>(std::max(n, 0)), 0.0);
+  weights.assign(nodes.size(), 0.0);
+  if (n <= 0) return;
+  const LegendreRoots& roots = cached_legendre_roots(n);
+  for (size_t i = 0; i < roots.size(); ++i) {
+    const auto [x, dp] = roots[i];
+    nodes[i] = 0.5 * (b - a) * x + 0.5 * (b + a);
+    weights[i] = (b - a) / ((1.0 - x * x) * dp * dp);
   }
 }
 

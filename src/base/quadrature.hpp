@@ -6,7 +6,8 @@
 
 namespace skyspec {
 
-/// The n Gauss-Legendre nodes on [a, b], in descending order (from b towards a), and their weights.
+/// The n Gauss-Legendre nodes on [a, b], in descending order (from b towards a), and their weights
+/// (none for n <= 0). The roots on [-1, 1] are found once per n and process (thread-safe).
 void gauss_legendre(int n, double a, double b, std::vector<double>& nodes, std::vector<double>& weights);
 
 }  // namespace skyspec

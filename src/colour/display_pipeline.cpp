@@ -63,8 +63,11 @@ struct OcioConfig::Impl {
   bool via_aces = false;    // true: XYZ -> ACES2065-1 with the built-in Bradford first
 };
 
-OcioConfig::OcioConfig(const OcioConfigSource& source) {
-  auto impl = std::make_shared<Impl>();
+namespace {
+
+// A config read and checked (OcioConfig's constructor).
+std::shared_ptr<const OcioConfig::Impl> load_config(const OcioConfigSource& source) {
+  auto impl = std::make_shared<OcioConfig::Impl>();
   impl->source = source;
   const std::string setting = source.origin.empty() ? "OCIO config" : source.origin;
   // Only regular files go to OpenColorIO: given a folder, its YAML reader (yaml-cpp 0.7) leaks a
@@ -99,7 +102,20 @@ OcioConfig::OcioConfig(const OcioConfigSource& source) {
                      "a config with a scene-referred colour space \"CIE-XYZ-D65\" or the role aces_interchange "
                      "(skyspec's images enter the config there)");
   }
-  impl_ = std::move(impl);
+  return impl;
+}
+
+}  // namespace
+
+OcioConfig::OcioConfig(const OcioConfigSource& source) {
+  if (source.path.empty()) {
+    // The built-in config is read once per process (the viewer asks for it with every frame); a
+    // config is immutable and OpenColorIO's const configs may be shared between threads.
+    static const std::shared_ptr<const Impl> builtin = load_config(OcioConfigSource{});
+    impl_ = builtin;
+    return;
+  }
+  impl_ = load_config(source);
 }
 
 OcioConfig::~OcioConfig() = default;

@@ -69,6 +69,7 @@ struct DisplayPngLayout {
   // anything with a destructor (a std::vector there leaked on a write error, found by ASan).
   const png_text* chunks;
   int chunk_count;
+  PngCompression compression = PngCompression::Smallest;
 };
 
 void set_chrm(png_structp png, png_infop info, double rx, double ry, double gx, double gy, double bx, double by) {
@@ -115,6 +116,10 @@ bool encode_display_png(FILE* out, const DisplayPngLayout& layout, const png_byt
       break;
     case PngColourTag::None:
       break;
+  }
+  if (layout.compression == PngCompression::Fastest) {
+    png_set_compression_level(png, 1);
+    png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
   }
   if (layout.chunk_count > 0) png_set_text(png, info, layout.chunks, layout.chunk_count);
   png_write_info(png, info);
@@ -208,7 +213,8 @@ void write_png_display(const std::filesystem::path& path, int width, int height,
 }
 
 std::string png_display_in_memory(int width, int height, const std::vector<float>& code_values, int bit_depth,
-                                  PngColourTag tag, const std::vector<std::pair<std::string, std::string>>& text) {
+                                  PngColourTag tag, const std::vector<std::pair<std::string, std::string>>& text,
+                                  PngCompression compression) {
   const std::string where = "PNG (in memory): ";
   std::vector<png_text> chunks = text_chunks(where, text);
   const std::vector<png_byte> pixels = quantised_pixels(where, width, height, code_values, bit_depth);
@@ -217,7 +223,8 @@ std::string png_display_in_memory(int width, int height, const std::vector<float
   FILE* out = open_memstream(&buffer, &size);
   if (!out) throw IoError(where + "cannot open a memory stream: " + std::strerror(errno));
   PngErrorMessage error;
-  const DisplayPngLayout layout{width, height, bit_depth, tag, chunks.data(), static_cast<int>(chunks.size())};
+  const DisplayPngLayout layout{width,      height, bit_depth, tag, chunks.data(), static_cast<int>(chunks.size()),
+                                compression};
   const bool encoded = encode_display_png(out, layout, pixels.data(), &error);
   std::fclose(out);  // sets buffer and size
   std::string bytes(buffer ? buffer : "", buffer ? size : 0);

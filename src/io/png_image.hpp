@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "colour/png_colour_tag.hpp"
+#include "skyspec/display.hpp"
 
 namespace skyspec {
 
@@ -25,10 +26,11 @@ void write_png_display(const std::filesystem::path& path, int width, int height,
                        int bit_depth, PngColourTag tag,
                        const std::vector<std::pair<std::string, std::string>>& text = {});
 
-/// The file write_png_display writes, as bytes in memory (the viewer's frames). Throws IoError as
-/// write_png_display does.
+/// The file write_png_display writes, as bytes in memory (the viewer's frames), compressed as
+/// `compression` says (the same pixels either way). Throws IoError as write_png_display does.
 std::string png_display_in_memory(int width, int height, const std::vector<float>& code_values, int bit_depth,
-                                  PngColourTag tag, const std::vector<std::pair<std::string, std::string>>& text = {});
+                                  PngColourTag tag, const std::vector<std::pair<std::string, std::string>>& text = {},
+                                  PngCompression compression = PngCompression::Smallest);
 
 /// The bytes write_png_display would write for these values (without text chunks), encoded into
 /// memory: the same quantisation and libpng compression, no file (the render budget times it on a

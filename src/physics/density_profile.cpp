@@ -97,6 +97,7 @@ double DensityProfile::log_relative(double altitude_m) const {
 
 std::string DensityProfile::describe() const {
   std::ostringstream s;
+  s.precision(12);  // the tables' cache keys hold this text
   switch (kind_) {
     case Kind::Exponential:
       s << "exponential, scale height " << scale_height_m_ << " m";
@@ -108,7 +109,6 @@ std::string DensityProfile::describe() const {
       s << "U.S. Standard Atmosphere 1976 (N = P / kT)";
       break;
     case Kind::Layer:
-      s.precision(12);  // the tables' cache key holds this text
       s << "layer from " << bottom_m_ << " m to " << top_m_ << " m, edges falling by e every " << edge_m_ << " m";
       break;
     case Kind::Tent:

@@ -57,7 +57,7 @@ struct SkyRenderer::Impl {
   Scene scene;
   WavelengthGrid grid;
   AtmosphereModel atmosphere;
-  SunColumnTable table;
+  std::shared_ptr<const SunColumnTable> table;  // shared with other renders of the same air
   TableSunColumns sun_columns;
   SingleScattering integrator;
   std::shared_ptr<const ScatteringOrders> orders;  // null for single scattering
@@ -78,10 +78,15 @@ struct SkyRenderer::Impl {
   // Adds the limb-darkened sun disk to the radiance of pixel (px, py) (top-left corner), whose
   // centre looks along dir. The disk is far smaller than most pixels, so the pixel's area is
   // sampled on an 8 x 8 grid and the disk's radiance averaged over it; the attenuation along the
-  // line of sight is taken at the pixel's centre.
-  void add_sun_disk(int px, int py, const Vec3& dir, float* radiance, Spectrum& disk, Spectrum& trans) const {
+  // line of sight is taken at the pixel's centre. `right`: the direction of pixel (px + 1, py) if the
+  // caller has it (null: asked of the camera).
+  void add_sun_disk(int px, int py, const Vec3& dir, const Vec3* right, float* radiance, Spectrum& disk,
+                    Spectrum& trans) const {
     Vec3 neighbour;
-    if (!camera->direction(px + 1.5, py + 0.5, neighbour) && !camera->direction(px - 0.5, py + 0.5, neighbour)) return;
+    if (right)
+      neighbour = *right;
+    else if (!camera->direction(px + 1.5, py + 0.5, neighbour) && !camera->direction(px - 0.5, py + 0.5, neighbour))
+      return;
     const double pixel_rad = std::acos(std::clamp(neighbour.dot(dir), -1.0, 1.0));
     const double to_sun = std::acos(std::clamp(dir.dot(sun_dir), -1.0, 1.0));
     if (to_sun > sun_radius_rad + 1.5 * pixel_rad) return;
@@ -203,8 +208,8 @@ struct SkyRenderer::Impl {
       : scene(s),
         grid(make_wavelength_grid(s)),
         atmosphere(s.atmosphere, grid, s.render.cache_tables),
-        table(atmosphere, sun_table_resolution(s), sun_band(s, atmosphere)),
-        sun_columns(table),
+        table(SunColumnTable::shared(atmosphere, sun_table_resolution(s), sun_band(s, atmosphere))),
+        sun_columns(*table),
         integrator(atmosphere, sun_columns, IntegratorSettings{s.render.view_segments}),
         orders(s.render.scattering_orders >= 2 ? build_orders(s, integrator) : nullptr),
         terrain(scene_terrain(s)),
@@ -415,7 +420,7 @@ void SkyRenderer::render_window_stokes(int x0, int x1, int y0, int rows, float* 
           std::copy(sc.q.data(), sc.q.data() + n, px + n);
           std::copy(sc.u.data(), sc.u.data() + n, px + 2 * n);
           std::fill(px + 3 * n, px + 4 * n, 0.0f);  // V: zero for these scattering matrices
-          if (m.scene.sun.disk) m.add_sun_disk(x, y, dir, px, sc.disk, sc.trans);  // unpolarised
+          if (m.scene.sun.disk) m.add_sun_disk(x, y, dir, nullptr, px, sc.disk, sc.trans);  // unpolarised
         }
         const Rgb c = spectrum_to_rgb(Eigen::Map<const Spectrum>(px, n));
         std::copy(c.data(), c.data() + 3, rgb + static_cast<size_t>(idx) * 3);
@@ -500,7 +505,11 @@ void SkyRenderer::render_window(int x0, int x1, int y0, int rows, float* spectra
                                     sc.radiance);
             std::copy(sc.radiance.data(), sc.radiance.data() + n, px);
           }
-          if (m.scene.sun.disk) m.add_sun_disk(x0 + idx % w, y0 + idx / w, dir, px, sc.disk, sc.trans);
+          if (m.scene.sun.disk) {
+            // The next pixel of the chunk is the one to the right unless this one ends its row.
+            const bool right = k + 1 < count && sc.pixel[k + 1] == idx + 1 && (idx + 1) % w != 0;
+            m.add_sun_disk(x0 + idx % w, y0 + idx / w, dir, right ? &sc.dirs[k + 1] : nullptr, px, sc.disk, sc.trans);
+          }
         }
         for (int idx = c0; idx < c1; ++idx) {
           const float* px = spectral + static_cast<size_t>(idx) * n;

@@ -215,8 +215,8 @@ double estimate_scattering_orders_seconds(const Scene& scene) {
   tbb::task_arena arena(scene.render.threads > 0 ? scene.render.threads : tbb::this_task_arena::max_concurrency());
   return arena.execute([&] {
     const AtmosphereModel atmosphere(scene.atmosphere, make_wavelength_grid(scene), scene.render.cache_tables);
-    const SunColumnTable table(atmosphere, sun_table_resolution(scene), SunColumnTable::MuBand{});
-    const TableSunColumns columns(table);
+    const auto table = SunColumnTable::shared(atmosphere, sun_table_resolution(scene), SunColumnTable::MuBand{});
+    const TableSunColumns columns(*table);
     const SingleScattering integrator(atmosphere, columns, IntegratorSettings{scene.render.view_segments});
     return ScatteringOrders::estimate_build_seconds(integrator, multiple_scattering_settings(scene));
   });

@@ -501,17 +501,18 @@ double write_display_png(const SpectralImageBuffer& image, const std::filesystem
   return exposure.resolved.scale;
 }
 
-std::string display_png_bytes(const SpectralImageBuffer& image, const DisplaySettings& display) {
+std::string display_png_bytes(const SpectralImageBuffer& image, const DisplaySettings& display,
+                              PngCompression compression) {
   check_image_buffer(image, "(in memory)");
   const DisplayPipeline pipeline(display);
   const ChosenExposure exposure = exposure_of(image, display);
   const auto provenance = render_provenance(image.scene, exposure.resolved, pipeline.config().is_builtin());
   return png_display_in_memory(image.width, image.height, pipeline.encode(image.rgb, exposure.resolved.scale),
                                display.png_bit_depth, pipeline.png_tag(),
-                               preview_png_text(pipeline, exposure.resolved, provenance));
+                               preview_png_text(pipeline, exposure.resolved, provenance), compression);
 }
 
-std::string polarisation_png_bytes(const SpectralImageBuffer& image) {
+std::string polarisation_png_bytes(const SpectralImageBuffer& image, PngCompression compression) {
   check_image_buffer(image, "(in memory)");
   if (!image.scene.output.polarisation)
     throw InputError("output.polarisation", "false", "true for a picture of the polarisation");
@@ -542,7 +543,7 @@ std::string polarisation_png_bytes(const SpectralImageBuffer& image) {
   const ChosenExposure exposure = exposure_of(image, DisplaySettings{});
   const auto provenance = render_provenance(image.scene, exposure.resolved, true);
   return png_display_in_memory(image.width, image.height, polarisation_code_values(stokes_y), 8, PngColourTag::Srgb,
-                               polarisation_png_text(provenance));
+                               polarisation_png_text(provenance), compression);
 }
 
 RenderOutputs render_output_paths(const Scene& scene, const DisplaySettings& display) {

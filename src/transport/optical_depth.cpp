@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
+#include <sstream>
+#include <string>
+#include <utility>
 
 #include <tbb/parallel_for.h>
 #include <Eigen/Core>
@@ -169,8 +173,7 @@ double mu_of(double r, double x_mu, double R, double Rt, double H) {
 }  // namespace
 
 SunColumnTable::SunColumnTable(const AtmosphereModel& atm, Resolution res, MuBand band)
-    : atm_(&atm),
-      media_(static_cast<int>(atm.media().size())),
+    : media_(static_cast<int>(atm.media().size())),
       R_(atm.planet_radius_m()),
       Rt_(atm.top_radius_m()),
       H_(std::sqrt((Rt_ - R_) * (Rt_ + R_))),
@@ -182,6 +185,7 @@ SunColumnTable::SunColumnTable(const AtmosphereModel& atm, Resolution res, MuBan
     const double rho = H_ * static_cast<double>(std::clamp(ir, 0, res_.n_r - 1)) / (res_.n_r - 1);
     return std::sqrt(rho * rho + R_ * R_);
   };
+  for (const Medium& m : atm.media()) profiles_.push_back(m.profile);
   const bool whole = band.lo <= -1.0 && band.hi >= 1.0;
   tbb::parallel_for(0, res_.n_r, [&](int ir) {
     throw_if_cancelled();  // a row of the table: a request stops it within a second
@@ -208,7 +212,7 @@ SunColumnTable::SunColumnTable(const AtmosphereModel& atm, Resolution res, MuBan
     }
     for (int im = first_[static_cast<size_t>(ir)]; im < end_[static_cast<size_t>(ir)]; ++im) {
       const double mu = mu_of(r, static_cast<double>(im) / (res_.n_mu - 1), R_, Rt_, H_);
-      data_[static_cast<size_t>(ir) * res_.n_mu + im] = columns_to_top_m(atm, r, mu, res_.segments);
+      data_[static_cast<size_t>(ir) * res_.n_mu + im] = integrate(r, mu);
     }
   });
 }
@@ -229,8 +233,37 @@ long SunColumnTable::computed_entries() const {
 }
 
 // A look-up outside the computed band: the columns at the same (r, x_mu), integrated directly.
-Columns SunColumnTable::direct(double r, double x_mu) const {
-  return columns_to_top_m(*atm_, r, mu_of(r, x_mu, R_, Rt_, H_), res_.segments);
+Columns SunColumnTable::direct(double r, double x_mu) const { return integrate(r, mu_of(r, x_mu, R_, Rt_, H_)); }
+
+Columns SunColumnTable::integrate(double r, double mu) const {
+  const DensityProfile* profiles[kMaxMedia];
+  for (int i = 0; i < media_; ++i) profiles[i] = &profiles_[static_cast<size_t>(i)];
+  Columns c{};
+  columns_to_top(profiles, media_, R_, Rt_, r, mu, res_.segments, c.data());
+  return c;
+}
+
+std::shared_ptr<const SunColumnTable> SunColumnTable::shared(const AtmosphereModel& atm, Resolution res, MuBand band) {
+  // What the table depends on: the numbers exactly (hexadecimal floats), the profiles as they
+  // describe themselves (to 12 significant digits, as in the scattering-order tables' key).
+  std::ostringstream key;
+  key << std::hexfloat << atm.planet_radius_m() << ' ' << atm.top_radius_m() << '\n'
+      << res.n_r << ' ' << res.n_mu << ' ' << res.segments << '\n'
+      << band.lo << ' ' << band.hi << ' ' << band.camera_radius_m << ' ' << band.sun_zenith_rad << '\n';
+  for (const Medium& m : atm.media()) key << m.profile.describe() << '\n';
+  static std::mutex mutex;
+  static std::vector<std::pair<std::string, std::shared_ptr<const SunColumnTable>>> recent;  // newest last
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    for (const auto& [k, table] : recent)
+      if (k == key.str()) return table;
+  }
+  // Built outside the lock (in parallel, and cancellable); two threads asking at once may both build it.
+  auto table = std::make_shared<const SunColumnTable>(atm, res, band);
+  std::lock_guard<std::mutex> lock(mutex);
+  recent.emplace_back(key.str(), table);
+  if (recent.size() > 4) recent.erase(recent.begin());
+  return table;
 }
 
 // Written with selects on values rather than branches, and inline, so that lookup_many's loop

@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include "skyspec/atmosphere.hpp"
@@ -66,6 +67,10 @@ class SunColumnTable {
   SunColumnTable(const AtmosphereModel& atm, Resolution res, MuBand band);
   SunColumnTable(const AtmosphereModel& atm, Resolution res) : SunColumnTable(atm, res, MuBand{-1.0, 1.0}) {}
   SunColumnTable(const AtmosphereModel& atm) : SunColumnTable(atm, Resolution{}) {}
+  /// The table these arguments build, built once per process while it is among the last few asked
+  /// for (thread-safe): frames of one atmosphere, such as the viewer's as the sun moves, share one.
+  /// It depends on the radii, the media's density profiles, the resolution and the band only.
+  static std::shared_ptr<const SunColumnTable> shared(const AtmosphereModel& atm, Resolution res, MuBand band);
 
   /// The local sun zenith cosines met in the part of the atmosphere seen from origin_m with the
   /// sun in direction sun_dir (unit). A point p at radius r seen from o is at most
@@ -94,8 +99,10 @@ class SunColumnTable {
   Place place(double r_m, double mu) const;
   Columns interpolate(const Place& p) const;
   Columns direct(double r, double x_mu) const;
-  const AtmosphereModel* atm_;
-  int media_;  // columns per entry: the atmosphere's media
+  /// The columns from (r, mu) to the top, integrated (columns_to_top_m).
+  Columns integrate(double r, double mu) const;
+  std::vector<DensityProfile> profiles_;  // the atmosphere's media's, in its order
+  int media_;                             // columns per entry: the atmosphere's media
   double R_, Rt_, H_;
   Resolution res_;
   std::vector<Columns> data_;     // [i_r * n_mu + i_mu]

@@ -122,8 +122,10 @@ Frame render_frame(const ViewRequest& request, bool tables_ready) {
   const SpectralImageBuffer image = render_to_memory(scene);
   frame.render_seconds = seconds_since(start);
   const auto encode = std::chrono::steady_clock::now();
-  frame.png = request.mode == ViewRequest::Mode::Polarisation ? polarisation_png_bytes(image)
-                                                              : display_png_bytes(image, request.display);
+  // Frames go out at once: compressed for speed (the pixels are those of the exported PNG).
+  frame.png = request.mode == ViewRequest::Mode::Polarisation
+                  ? polarisation_png_bytes(image, PngCompression::Fastest)
+                  : display_png_bytes(image, request.display, PngCompression::Fastest);
   frame.encode_seconds = seconds_since(encode);
   frame.width = image.width;
   frame.height = image.height;

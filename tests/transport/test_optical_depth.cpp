@@ -1,6 +1,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include <cmath>
+#include <memory>
 #include <random>
 #include <utility>
 #include <vector>
@@ -169,6 +170,33 @@ BOOST_AUTO_TEST_CASE(banded_table_serves_the_camera_exactly) {
       const Columns direct = columns_to_top_m(atm, R, 1.0, 64), out_of_band = banded.lookup(R, 1.0);
       for (int k = 0; k < 2; ++k) BOOST_TEST(out_of_band[k] == direct[k], boost::test_tools::tolerance(1e-12));
     }
+}
+
+// Renders of the same air share one table (SunColumnTable::shared), and a shared table keeps what
+// it integrates with: a banded table's look-ups out of its band still work after the atmosphere it
+// was built from is gone.
+BOOST_AUTO_TEST_CASE(shared_tables_are_one_per_air_and_outlive_their_atmosphere) {
+  const WavelengthGrid grid = WavelengthGrid::from_list({550});
+  const SunColumnTable::Resolution res{32, 64, 32};
+  const Vec3 o(0, 0, R + 1.0), s(std::cos(0.5), 0, std::sin(0.5));
+  std::shared_ptr<const SunColumnTable> banded, whole;
+  {
+    const AtmosphereModel atm(test::simple_atmosphere(ProfileKind::Exponential, top, {550}, {13.5e-6}, 21e-6), grid);
+    banded = SunColumnTable::shared(atm, res, SunColumnTable::band_seen_from(atm, o, s));
+    whole = SunColumnTable::shared(atm, res, SunColumnTable::MuBand{});
+    BOOST_TEST(banded != whole);
+    BOOST_TEST(banded.get() == SunColumnTable::shared(atm, res, SunColumnTable::band_seen_from(atm, o, s)).get());
+    BOOST_TEST(whole.get() == SunColumnTable::shared(atm, res, SunColumnTable::MuBand{}).get());
+    const SunColumnTable fresh(atm, res);
+    BOOST_TEST(whole->lookup(R + 500.0, 0.3) == fresh.lookup(R + 500.0, 0.3));
+    BOOST_TEST(whole.get() != SunColumnTable::shared(atm, SunColumnTable::Resolution{32, 64, 16}, {}).get());
+  }
+  const AtmosphereModel same(test::simple_atmosphere(ProfileKind::Exponential, top, {550}, {13.5e-6}, 21e-6), grid);
+  BOOST_TEST(whole.get() == SunColumnTable::shared(same, res, SunColumnTable::MuBand{}).get());
+  const Columns out_of_band = banded->lookup(R, 1.0), direct = columns_to_top_m(same, R, 1.0, res.segments);
+  for (int k = 0; k < 2; ++k) BOOST_TEST(out_of_band[k] == direct[k], boost::test_tools::tolerance(1e-12));
+  const AtmosphereModel other(test::simple_atmosphere(ProfileKind::Constant, top, {550}, {13.5e-6}, 21e-6), grid);
+  BOOST_TEST(whole.get() != SunColumnTable::shared(other, res, SunColumnTable::MuBand{}).get());
 }
 
 // The batched look-up (vectorised coordinates, then interpolation) gives lookup()'s values, in
