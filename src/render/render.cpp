@@ -7,8 +7,11 @@
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/global_control.h>
@@ -50,6 +53,54 @@ SunColumnTable::MuBand sun_band(const Scene& s, const AtmosphereModel& atmospher
 std::shared_ptr<const ScatteringOrders> build_orders(const Scene& s, const SingleScattering& integrator) {
   return scattering_orders_for(integrator, sun_table_resolution(s), multiple_scattering_settings(s),
                                s.render.cache_tables);
+}
+
+// The sky-view tables kept besides the newest: at most this many, of at most this many bytes.
+constexpr size_t kKeptSkyViewTables = 3;
+constexpr size_t kKeptSkyViewBytes = size_t{192} << 20;
+
+// The sky-view table of a render. Its entries depend on the air and the tables' settings (all of
+// which the scattering-order tables' key names), the integrator's segments, what the table holds,
+// its resolution, the camera's radius and the sun's zenith angle there (SkyViewTable marches in
+// its own frame): renders that agree on those share them, such as the viewer's frames while the
+// camera turns or the sun moves in azimuth. The newest tables are kept (kKeptSkyViewTables more).
+std::unique_ptr<SkyViewTable> sky_view_table_for(const Scene& s, const AtmosphereModel& atmosphere,
+                                                 const SingleScattering& integrator, const ScatteringSources& sources,
+                                                 const Vec3& origin_m, const Vec3& sun_dir, SkyViewResolution res,
+                                                 int threads) {
+  std::ostringstream key;
+  key << scattering_tables_key(atmosphere, sun_table_resolution(s), multiple_scattering_settings(s)).inputs
+      << "view_segments " << s.render.view_segments << "\nhigher " << (sources.higher != nullptr) << " polarisation "
+      << sources.polarisation << " single " << sources.single << "\nrows " << res.sky_rows << ' ' << res.ground_rows
+      << ' ' << res.azimuths << ' ' << res.ground_side << std::hexfloat << "\nradius " << origin_m.norm();
+  const Vec3 sun = SkyViewTable::own_frame_sun(origin_m, sun_dir);
+  key << " sun " << sun[0] << ' ' << sun[1] << ' ' << sun[2];
+  struct Kept {
+    std::string key;
+    std::shared_ptr<const SkyViewTable> table;
+  };
+  static std::mutex mutex;
+  static std::vector<Kept> kept;  // oldest first
+  std::shared_ptr<const SkyViewTable> table;
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    for (const Kept& k : kept)
+      if (k.key == key.str()) table = k.table;
+  }
+  if (!table) {
+    table = std::make_shared<const SkyViewTable>(integrator, sources, origin_m, sun_dir, res, threads);
+    std::lock_guard<std::mutex> lock(mutex);
+    kept.push_back(Kept{key.str(), table});
+    size_t bytes = 0;
+    for (size_t i = kept.size() - 1; i-- > 0;) {  // the older ones, newest first
+      bytes += kept[i].table->bytes();
+      if (kept.size() - 1 - i > kKeptSkyViewTables || bytes > kKeptSkyViewBytes) {
+        kept.erase(kept.begin(), kept.begin() + static_cast<std::ptrdiff_t>(i) + 1);
+        break;
+      }
+    }
+  }
+  return std::make_unique<SkyViewTable>(table->reoriented(origin_m, sun_dir));
 }
 }  // namespace
 
@@ -229,8 +280,8 @@ struct SkyRenderer::Impl {
         ScatteringSources table_sources = sources;
         table_sources.polarisation = s.output.polarisation;  // then it holds Q and U too
         table_sources.terrain = nullptr;  // directions the terrain touches: table_less_shadows or marched
-        sky_view = std::make_unique<SkyViewTable>(
-            integrator, table_sources, camera->origin_m(), sun_dir,
+        sky_view = sky_view_table_for(
+            s, atmosphere, integrator, table_sources, camera->origin_m(), sun_dir,
             SkyViewResolution{rows, std::max(2, rows / 2), s.render.sky_view_azimuth_samples, below}, threads);
       } catch (const Cancelled&) {
         throw;

@@ -142,6 +142,32 @@ Vec3 SkyViewTable::direction(bool sky_side, int row, int column) const {
   return std::sin(theta) * (std::cos(phi) * toward_sun_ + std::sin(phi) * across_) + std::cos(theta) * up_;
 }
 
+Vec3 SkyViewTable::own_frame_sun(const Vec3& origin_m, const Vec3& sun_dir) {
+  const double cos_zenith = std::clamp(sun_dir.dot(origin_m.normalized()), -1.0, 1.0);
+  return Vec3(std::sqrt((1.0 - cos_zenith) * (1.0 + cos_zenith)), 0.0, cos_zenith);
+}
+
+void SkyViewTable::set_frame(const Vec3& origin_m, const Vec3& sun_dir) {
+  up_ = origin_m.normalized();
+  // The sun's azimuth; for a sun at the zenith (or nadir) every azimuth is the same.
+  Vec3 horizontal = sun_dir - sun_dir.dot(up_) * up_;
+  if (horizontal.norm() < 1e-12) horizontal = up_.unitOrthogonal();
+  toward_sun_ = horizontal.normalized();
+  across_ = up_.cross(toward_sun_);
+}
+
+size_t SkyViewTable::bytes() const {
+  return sizeof(float) * (sky_.size() + ground_.size() + polarised_sky_.size() + polarised_ground_.size());
+}
+
+SkyViewTable SkyViewTable::reoriented(const Vec3& origin_m, const Vec3& sun_dir) const {
+  if (origin_m.norm() != r_m_ || own_frame_sun(origin_m, sun_dir) != own_sun_)
+    throw Error("sky-view table: reoriented for another camera radius or sun zenith angle than it was marched for");
+  SkyViewTable t = *this;
+  t.set_frame(origin_m, sun_dir);
+  return t;
+}
+
 SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringSources& sources, const Vec3& origin_m,
                            const Vec3& sun_dir, SkyViewResolution resolution, int threads)
     : res_(resolution), n_(integrator.atmosphere().grid().size()) {
@@ -149,12 +175,11 @@ SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringS
   if (!applicable(atm, origin_m)) throw Error("sky-view table: the camera is not inside the atmosphere");
   if (res_.sky_rows < 2 || res_.ground_rows < 2 || res_.azimuths < 2)
     throw Error("sky-view table: at least 2 rows and 2 azimuths on each side");
-  up_ = origin_m.normalized();
-  // The sun's azimuth; for a sun at the zenith (or nadir) every azimuth is the same.
-  Vec3 horizontal = sun_dir - sun_dir.dot(up_) * up_;
-  if (horizontal.norm() < 1e-12) horizontal = up_.unitOrthogonal();
-  toward_sun_ = horizontal.normalized();
-  across_ = up_.cross(toward_sun_);
+  // The rays are marched in the table's own frame (the camera on the z axis, the sun in the x-z
+  // plane); look-ups use the camera's (set_frame, at the end).
+  own_sun_ = own_frame_sun(origin_m, sun_dir);
+  const Vec3 own_origin(0.0, 0.0, origin_m.norm());
+  set_frame(own_origin, own_sun_);
   // The geometric horizon: sin of its depression below the horizontal is sqrt(r^2 - R^2) / r,
   // written without the cancellation of 1 - (R/r)^2 for a camera near the ground.
   r_m_ = origin_m.norm();
@@ -206,6 +231,7 @@ SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringS
   ScatteringSources src = sources;
   src.transmittance = nullptr;
   src.max_distance_m = std::numeric_limits<double>::infinity();
+  src.terrain = nullptr;  // it would break the symmetry the own frame relies on (renders march its pixels)
   // A row at a time: its rays share their zenith angle, so the integrator computes their nodes
   // once (SingleScattering::radiance_parts_same_zenith).
   struct RowScratch {
@@ -230,7 +256,7 @@ SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringS
         const int row = sky_side ? row_all : row_all - res_.sky_rows;
         for (int column = 0; column < m; ++column)
           sc.dirs[static_cast<size_t>(column)] = direction(sky_side, row, column);
-        integrator.radiance_parts_same_zenith(origin_m, sc.dirs.data(), m, sun_dir, src, sc.ws, sc.parts.data());
+        integrator.radiance_parts_same_zenith(own_origin, sc.dirs.data(), m, own_sun_, src, sc.ws, sc.parts.data());
         for (int column = 0; column < m; ++column) {
           const RadianceParts& p = sc.parts[static_cast<size_t>(column)];
           float* entry = (sky_side ? sky_ : ground_).data() + row * stride +
@@ -249,6 +275,7 @@ SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringS
       }
     });
   });
+  set_frame(origin_m, sun_dir);
 }
 
 // Angles by a polynomial atan2 good to 1e-9 rad (fast_atan2.hpp), cheaper than libm's correctly

@@ -18,6 +18,7 @@
 // It applies to cameras inside the atmosphere and above the ground (see applicable()).
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 #include "skyspec/geometry.hpp"
@@ -37,11 +38,22 @@ class SkyViewTable {
   /// Whether a table represents the sky seen from origin_m: inside the atmosphere, above ground.
   static bool applicable(const AtmosphereModel& atm, const Vec3& origin_m);
 
-  /// Marches every table ray with `integrator` (sources as for a pixel) from origin_m, for the sun
-  /// in direction sun_dir (unit), on `threads` threads. The entries do not depend on the number
-  /// of threads.
+  /// Marches every table ray with `integrator` (sources as for a pixel, without terrain) from
+  /// origin_m, for the sun in direction sun_dir (unit), on `threads` threads. The rays are marched
+  /// in the table's own frame, the camera on the z axis and the sun in the x-z plane
+  /// (own_frame_sun), so the entries depend on the camera's radius and the sun's zenith angle
+  /// there only, not on the number of threads: reoriented() serves every camera at that radius
+  /// with the sun at that zenith angle.
   SkyViewTable(const SingleScattering& integrator, const ScatteringSources& sources, const Vec3& origin_m,
                const Vec3& sun_dir, SkyViewResolution resolution, int threads);
+
+  /// The sun's direction in the table's own frame for a camera at origin_m: (sin z, 0, cos z), z
+  /// the sun's zenith angle there.
+  static Vec3 own_frame_sun(const Vec3& origin_m, const Vec3& sun_dir);
+  /// A copy of this table for a camera at origin_m with the sun along sun_dir: the same entries,
+  /// looked up in that camera's frame. Throws Error unless the camera's radius and own_frame_sun
+  /// are exactly this table's (the same entries would be marched).
+  SkyViewTable reoriented(const Vec3& origin_m, const Vec3& sun_dir) const;
 
   /// The phase-free parts of the radiance along the unit direction dir, per unit solar irradiance,
   /// interpolated (cubic across rows, linear in azimuth) on the side of the horizon dir is on.
@@ -68,6 +80,8 @@ class SkyViewTable {
   Vec3 direction(bool sky_side, int row, int column) const;
 
   const SkyViewResolution& resolution() const { return res_; }
+  /// The bytes its entries take.
+  size_t bytes() const;
 
  private:
   // Row placement coordinate in [0, 1] of a zenith angle on one side of the horizon, its inverse,
@@ -95,10 +109,14 @@ class SkyViewTable {
   void mix(const Weights& w, float* const* parts) const;
   void mix(const Weights& w, RadianceParts& out) const;
 
+  // The look-ups' frame for a camera at origin_m with the sun along sun_dir.
+  void set_frame(const Vec3& origin_m, const Vec3& sun_dir);
+
   SkyViewResolution res_;
   int n_ = 0;                      // wavelengths
   int parts_ = 0;                  // per direction: one per scattering medium, and the phase-free part
   Vec3 up_, toward_sun_, across_;  // local frame: zenith, sun's azimuth, perpendicular
+  Vec3 own_sun_;                   // own_frame_sun of the marched rays
   double horizon_zenith_rad_ = 0.0;
   double r_m_ = 0.0, R_m_ = 0.0, rho_m_ = 0.0;  // camera and planet radii, distance to the horizon
   std::vector<double> sky_theta_, ground_theta_, sky_key_, ground_key_;  // per row: zenith angle, key

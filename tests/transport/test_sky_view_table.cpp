@@ -7,6 +7,8 @@
 
 #include "atmosphere_fixtures.hpp"
 #include "skyspec/camera.hpp"
+#include "skyspec/error.hpp"
+#include "skyspec/units.hpp"
 #include "transport/sky_view_table.hpp"
 
 BOOST_AUTO_TEST_SUITE(test_sky_view_table)
@@ -115,6 +117,42 @@ BOOST_AUTO_TEST_CASE(sky_side_only) {
   BOOST_TEST(t.lookup(direction_from_angles(10, 0.0), p));  // the horizon is 0.32 deg below
   BOOST_TEST(!t.lookup(direction_from_angles(10, -0.5), p));
   BOOST_TEST(!t.lookup(Vec3(0, 0, -1), p));
+}
+
+// The rays are marched in the table's own frame: a table for the sun at another azimuth, or for a
+// camera elsewhere at the same radius, has the same entries, so reoriented() serves it with the
+// same values; a table for another sun zenith angle or radius cannot be reoriented.
+BOOST_AUTO_TEST_CASE(entries_depend_on_the_sun_zenith_and_the_radius_only) {
+  const Fixture f;
+  const Vec3 o(0, 0, R + 300);
+  const SkyViewResolution res{16, 8, 9};
+  const SkyViewTable north(f.integrator, f.sources, o, direction_from_angles(0, 25), res, 2);
+  const SkyViewTable west(f.integrator, f.sources, o, direction_from_angles(271.5, 25), res, 2);
+  const SkyViewTable turned = north.reoriented(o, direction_from_angles(271.5, 25));
+  std::mt19937_64 rng(11);
+  RadianceParts a(3), b(3);
+  for (int i = 0; i < 300; ++i) {
+    const Vec3 d = random_direction(rng);
+    BOOST_TEST_CONTEXT("direction " << d.transpose()) {
+      BOOST_TEST(west.lookup(d, a) == turned.lookup(d, b));
+      for (int k = 0; k < 3; ++k) {
+        BOOST_TEST(a.phase_free[k] == b.phase_free[k]);
+        for (size_t s = 0; s < a.scattered.size(); ++s) BOOST_TEST(a.scattered[s][k] == b.scattered[s][k]);
+      }
+    }
+  }
+  // Another camera at the same radius: the same sky about its own zenith.
+  const Vec3 elsewhere = (R + 300) * Vec3(0.6, 0.0, 0.8), up = elsewhere.normalized();
+  const Vec3 east(0, 1, 0), north_there = up.cross(east);
+  const Vec3 sun_there = std::cos(degrees_to_radians(25)) * north_there + std::sin(degrees_to_radians(25)) * up;
+  const SkyViewTable there(f.integrator, f.sources, elsewhere, sun_there, res, 2);
+  const Vec3 d_here = direction_from_angles(40, 30),
+             d_there = d_here.z() * up + d_here.y() * north_there + d_here.x() * east;
+  BOOST_TEST(there.lookup(d_there, a));
+  BOOST_TEST(north.lookup(d_here, b));
+  BOOST_TEST(relative_difference(a, b) < 1e-5);
+  BOOST_CHECK_THROW(north.reoriented(o, direction_from_angles(0, 26)), Error);
+  BOOST_CHECK_THROW(north.reoriented(o + Vec3(0, 0, 1), direction_from_angles(0, 25)), Error);
 }
 
 // Mirror symmetry about the vertical plane through the sun, and no dependence on thread count.
