@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "skyspec/camera_spec.hpp"
 #include "skyspec/geometry.hpp"
@@ -87,6 +88,9 @@ class EquirectangularCamera : public Camera {
  private:
   double min_elevation_deg_;
   PanoramaConvention convention_;
+  // At the pixels' centres, the sines and cosines direction() takes: of each column's azimuth and
+  // of each row's elevation (computed once; the same values as for any other point).
+  std::vector<double> sin_azimuth_, cos_azimuth_, sin_elevation_, cos_elevation_;
 };
 
 }  // namespace skyspec

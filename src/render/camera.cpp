@@ -80,6 +80,19 @@ EquirectangularCamera::EquirectangularCamera(int width, int height, Vec3 origin_
         "(min_elevation_deg = -90)");
   if (convention == PanoramaConvention::OpenExr && (width < 2 || height < 2))
     throw std::invalid_argument("EquirectangularCamera: the openexr convention needs at least 2 x 2 pixels");
+  for (int i = 0; i < width; ++i) {
+    double azimuth_deg, elevation_deg;
+    angles(i + 0.5, 0.5, azimuth_deg, elevation_deg);
+    sin_azimuth_.push_back(std::sin(degrees_to_radians(azimuth_deg)));
+    cos_azimuth_.push_back(std::cos(degrees_to_radians(azimuth_deg)));
+  }
+  for (int j = 0; j < height; ++j) {
+    double azimuth_deg, elevation_deg;
+    angles(0.5, j + 0.5, azimuth_deg, elevation_deg);
+    const double el = degrees_to_radians(std::clamp(elevation_deg, -90.0, 90.0));
+    sin_elevation_.push_back(std::sin(el));
+    cos_elevation_.push_back(std::cos(el));
+  }
 }
 
 void EquirectangularCamera::angles(double x, double y, double& azimuth_deg, double& elevation_deg) const {
@@ -102,6 +115,14 @@ void EquirectangularCamera::angles(double x, double y, double& azimuth_deg, doub
 }
 
 bool EquirectangularCamera::direction(double x, double y, Vec3& dir) const {
+  // A pixel's centre: direction_from_angles's products of the sines and cosines computed once.
+  const double column = x - 0.5, row = y - 0.5;
+  if (column >= 0.0 && column < width_ && row >= 0.0 && row < height_ && column == std::floor(column) &&
+      row == std::floor(row)) {
+    const auto i = static_cast<size_t>(column), j = static_cast<size_t>(row);
+    dir = Vec3(cos_elevation_[j] * sin_azimuth_[i], cos_elevation_[j] * cos_azimuth_[i], sin_elevation_[j]);
+    return true;
+  }
   double azimuth_deg, elevation_deg;
   angles(x, y, azimuth_deg, elevation_deg);
   // OpenEXR's first and last rows are the poles' centres; points beyond them (x, y outside the

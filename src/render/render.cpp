@@ -138,6 +138,10 @@ struct SkyRenderer::Impl {
       neighbour = *right;
     else if (!camera->direction(px + 1.5, py + 0.5, neighbour) && !camera->direction(px - 0.5, py + 0.5, neighbour))
       return;
+    // Most pixels are far from the sun, which their chords show without an arc cosine: an angle a
+    // with chord c = 2 sin(a / 2) has c <= a <= (pi / 2) c, so a chord to the sun longer than
+    // sun_radius + 1.5 (pi / 2) (the chord to the neighbour) fails the test below too.
+    if ((dir - sun_dir).norm() > sun_radius_rad + 0.75 * kPi * (neighbour - dir).norm()) return;
     const double pixel_rad = std::acos(std::clamp(neighbour.dot(dir), -1.0, 1.0));
     const double to_sun = std::acos(std::clamp(dir.dot(sun_dir), -1.0, 1.0));
     if (to_sun > sun_radius_rad + 1.5 * pixel_rad) return;

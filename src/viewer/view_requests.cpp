@@ -112,6 +112,7 @@ Frame render_frame(const ViewRequest& request, bool tables_ready) {
   if (request.preview || !tables_ready) {
     scene.render.sky_view_zenith_samples = std::min(scene.render.sky_view_zenith_samples, kPreviewZenithSamples);
     scene.render.sky_view_azimuth_samples = std::min(scene.render.sky_view_azimuth_samples, kPreviewAzimuthSamples);
+    scene.render.view_segments = std::min(scene.render.view_segments, kPreviewViewSegments);
     frame.preview = "coarse sky-view table";
   }
   if (!tables_ready) {

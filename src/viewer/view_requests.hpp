@@ -14,8 +14,9 @@
 //
 // Previews: a frame is exact (the scene as asked) unless the query asks for a preview or the
 // scene's scattering-order tables are not at hand yet; then it is a preview, and says which:
-//   coarse sky-view table   the sky-view table at kPreviewZenithSamples x kPreviewAzimuthSamples
-//                           (everything else as asked; docs/viewer.md measures the difference)
+//   coarse sky-view table   the sky-view table at kPreviewZenithSamples x kPreviewAzimuthSamples,
+//                           its rays marched in kPreviewViewSegments segments (everything else as
+//                           asked; docs/viewer.md measures the difference)
 //   single scattering       the tables are being built (the server starts that): the orders
 //                           above the first are missing until they are ready
 #pragma once
@@ -49,8 +50,9 @@ using Query = std::vector<std::pair<std::string, std::string>>;
 /// (its export folder), threads and the disk cache its command line's.
 inline const std::vector<std::string> kViewerOwnedKeys = {"output.directory", "output.name",    "output.exr",
                                                           "output.png",       "render.threads", "render.cache_tables"};
-/// The sky-view table of a preview: rows from the horizon to the zenith, and azimuths.
-constexpr int kPreviewZenithSamples = 32, kPreviewAzimuthSamples = 16;
+/// The sky-view table of a preview: rows from the horizon to the zenith, azimuths, and the
+/// segments of its rays (render.view_segments).
+constexpr int kPreviewZenithSamples = 32, kPreviewAzimuthSamples = 16, kPreviewViewSegments = 32;
 /// The largest frame the page may ask for, in pixels (an export is held to the render budget).
 constexpr std::int64_t kMaxFramePixels = std::int64_t{2048} * 2048;
 

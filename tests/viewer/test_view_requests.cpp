@@ -121,7 +121,14 @@ BOOST_AUTO_TEST_CASE(frames_are_the_display_png_and_too_large_ones_are_refused) 
   // scattering); without the tables: single scattering.
   const auto asked = viewer::parse_view_request(base, {{"sun.elevation_deg", "20"}, {"preview", "1"}});
   BOOST_TEST(asked.preview);
-  BOOST_TEST(viewer::render_frame(asked).preview == "coarse sky-view table");
+  const viewer::Frame preview = viewer::render_frame(asked);
+  BOOST_TEST(preview.preview == "coarse sky-view table");
+  Scene coarse = asked.scene;  // what the preview leaves out, set by hand
+  coarse.render.sky_view_zenith_samples = viewer::kPreviewZenithSamples;
+  coarse.render.sky_view_azimuth_samples = viewer::kPreviewAzimuthSamples;
+  coarse.render.view_segments = viewer::kPreviewViewSegments;
+  BOOST_TEST(preview.png == display_png_bytes(render_to_memory(coarse), {}, PngCompression::Fastest));
+  BOOST_TEST(preview.png != viewer::render_frame(viewer::parse_view_request(base, {{"sun.elevation_deg", "20"}})).png);
   BOOST_TEST(viewer::render_frame(request, false).preview.rfind("single scattering", 0) == 0);
   BOOST_TEST(viewer::scattering_tables_ready(request.scene));  // single scattering needs none
   BOOST_CHECK_EXCEPTION(viewer::parse_view_request(base, {{"preview", "yes"}}), InputError,
