@@ -148,11 +148,13 @@ def codec_lines(out):
     return lines
 
 
+def mark(ok):
+    """A target's verdict: pass, FAIL, or - where this run cannot tell (ok is None)."""
+    return "-" if ok is None else ("pass" if ok else "FAIL")
+
+
 def target_lines(out, base, table_p99):
     """Issue 21's six targets, each with its figure from this run and a pass / FAIL mark."""
-    def mark(ok):
-        return "-" if ok is None else ("pass" if ok else "FAIL")
-
     def exists(*names):
         return all((out / f"{n}.time").exists() for n in names)
     lines = ["Issue 21's targets, from this run:"]
@@ -201,8 +203,6 @@ def target_lines(out, base, table_p99):
 
 def issue37_lines(out, base):
     """Issue 37's target 3 (the CLI's first and cached render of the default scene), pass / FAIL."""
-    def mark(ok):
-        return "pass" if ok else "FAIL"
     if not all((out / f"{n}.time").exists() for n in ("c37-cold", "c37-warm")):
         return []
     cold, _ = time_of(out, "c37-cold")

@@ -27,12 +27,15 @@ import urllib.parse
 import urllib.request
 
 
+PNG_BYTES = []  # of every frame
+
+
 def frame(url, preview=False, **keys):
     """(render s, encode s, round trip s, the X-Skyspec-Preview header) of one frame."""
     query = urllib.parse.urlencode(keys) + ("&preview=1" if preview else "")
     start = time.perf_counter()
     with urllib.request.urlopen(url + "api/frame?" + query, timeout=600) as r:
-        r.read()
+        PNG_BYTES.append(len(r.read()))
         render = float(r.headers["X-Skyspec-Render-Seconds"])
         encode = float(r.headers["X-Skyspec-Encode-Seconds"])
         what = r.headers["X-Skyspec-Preview"]
@@ -99,6 +102,8 @@ def main():
               f"({what or 'exact'}); the exact frame {exact_after:.1f} s after the change")
         r, e, t, _ = frame(url, **view, **{"sun.elevation_deg": 10})
         print(f"  back to the first atmosphere (its tables in memory): render {1000 * r:.0f} ms, encode {1000 * e:.0f} ms")
+        print(f"  frames' PNGs: median {statistics.median(PNG_BYTES) / 1000:.1f} kB (range "
+              f"{min(PNG_BYTES) / 1000:.1f}-{max(PNG_BYTES) / 1000:.1f}, n = {len(PNG_BYTES)})")
         print(f"target 1, sun moved: a frame within 50 ms at the server: in elevation exact "
               f"{1000 * results[False]:.0f} ms, preview {1000 * results[True]:.0f} ms: "
               f"{'pass' if results[True] <= 0.05 else 'FAIL'}; in azimuth exact {1000 * results['azimuth']:.0f} ms: "
