@@ -64,4 +64,10 @@ void gauss_legendre(int n, double a, double b, std::vector<double>& nodes, std::
   }
 }
 
+double trapezoid(const double* x, const double* y, std::size_t n) {
+  double sum = 0.0;
+  for (std::size_t i = 1; i < n; ++i) sum += 0.5 * (x[i] - x[i - 1]) * (y[i] + y[i - 1]);
+  return sum;
+}
+
 }  // namespace skyspec

@@ -3,6 +3,7 @@
 
 #include <string>
 
+#include "base/quadrature.hpp"
 #include "physics/gas_bands.hpp"
 #include "physics/media/media.hpp"
 #include "render/irradiance.hpp"
@@ -102,11 +103,8 @@ BroadbandIrradiance broadband_irradiance(const Scene& scene, int zenith_nodes, i
       out.cos_sun = rep.direct_horizontal[brightest] / rep.direct_normal[brightest];
     ++out.runs;
   }
-  for (int j = 1; j < n; ++j) {
-    const double h = 0.5 * (nodes[static_cast<size_t>(j)] - nodes[static_cast<size_t>(j - 1)]);
-    out.direct_normal_W_m2 += h * (out.direct_normal[j] + out.direct_normal[j - 1]);
-    out.diffuse_horizontal_W_m2 += h * (out.diffuse_horizontal[j] + out.diffuse_horizontal[j - 1]);
-  }
+  out.direct_normal_W_m2 = trapezoid(nodes.data(), out.direct_normal.data(), nodes.size());
+  out.diffuse_horizontal_W_m2 = trapezoid(nodes.data(), out.diffuse_horizontal.data(), nodes.size());
   out.direct_horizontal_W_m2 = out.direct_normal_W_m2 * out.cos_sun;
   return out;
 }

@@ -20,9 +20,7 @@ namespace skyspec {
 namespace {
 // Trapezoid integral of a sampled spectrum over its grid.
 double integrate_over_grid(const WavelengthGrid& grid, const SpectrumD& v) {
-  double s = 0.0;
-  for (int i = 1; i < grid.size(); ++i) s += 0.5 * (grid.nm(i) - grid.nm(i - 1)) * (v[i] + v[i - 1]);
-  return s;
+  return trapezoid(grid.nanometres().data(), v.data(), grid.nanometres().size());
 }
 }  // namespace
 
