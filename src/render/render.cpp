@@ -55,7 +55,8 @@ std::shared_ptr<const ScatteringOrders> build_orders(const Scene& s, const Singl
                                s.render.cache_tables);
 }
 
-// The sky-view tables kept besides the newest: at most this many, of at most this many bytes.
+// The sky-view tables kept besides the newest: at most this many, of at most this many bytes; a
+// table larger than that is not kept at all (its render holds it while it needs it).
 constexpr size_t kKeptSkyViewTables = 3;
 constexpr size_t kKeptSkyViewBytes = size_t{192} << 20;
 
@@ -63,7 +64,8 @@ constexpr size_t kKeptSkyViewBytes = size_t{192} << 20;
 // which the scattering-order tables' key names), the integrator's segments, what the table holds,
 // its resolution, the camera's radius and the sun's zenith angle there (SkyViewTable marches in
 // its own frame): renders that agree on those share them, such as the viewer's frames while the
-// camera turns or the sun moves in azimuth. The newest tables are kept (kKeptSkyViewTables more).
+// camera turns or the sun moves in azimuth. The newest tables are kept (kKeptSkyViewTables more),
+// sharing their entries with the renders that use them.
 std::unique_ptr<SkyViewTable> sky_view_table_for(const Scene& s, const AtmosphereModel& atmosphere,
                                                  const SingleScattering& integrator, const ScatteringSources& sources,
                                                  const Vec3& origin_m, const Vec3& sun_dir, SkyViewResolution res,
@@ -89,6 +91,7 @@ std::unique_ptr<SkyViewTable> sky_view_table_for(const Scene& s, const Atmospher
   }
   if (!table) {
     table = std::make_shared<const SkyViewTable>(integrator, sources, origin_m, sun_dir, res, threads);
+    if (table->bytes() > kKeptSkyViewBytes) return std::make_unique<SkyViewTable>(table->reoriented(origin_m, sun_dir));
     std::lock_guard<std::mutex> lock(mutex);
     kept.push_back(Kept{key.str(), table});
     size_t bytes = 0;

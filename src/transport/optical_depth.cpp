@@ -260,6 +260,7 @@ std::shared_ptr<const SunColumnTable> SunColumnTable::shared(const AtmosphereMod
   }
   // Built outside the lock (in parallel, and cancellable); two threads asking at once may both build it.
   auto table = std::make_shared<const SunColumnTable>(atm, res, band);
+  if (table->data_.size() * sizeof(Columns) > kSharedBytes) return table;  // not kept: its render holds it
   std::lock_guard<std::mutex> lock(mutex);
   recent.emplace_back(key.str(), table);
   if (recent.size() > 4) recent.erase(recent.begin());

@@ -70,7 +70,9 @@ class SunColumnTable {
   /// The table these arguments build, built once per process while it is among the last few asked
   /// for (thread-safe): frames of one atmosphere, such as the viewer's as the sun moves, share one.
   /// It depends on the radii, the media's density profiles, the resolution and the band only.
+  /// Tables of more than kSharedBytes are built for the caller alone.
   static std::shared_ptr<const SunColumnTable> shared(const AtmosphereModel& atm, Resolution res, MuBand band);
+  static constexpr size_t kSharedBytes = size_t{64} << 20;
 
   /// The local sun zenith cosines met in the part of the atmosphere seen from origin_m with the
   /// sun in direction sun_dir (unit). A point p at radius r seen from o is at most

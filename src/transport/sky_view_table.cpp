@@ -157,7 +157,8 @@ void SkyViewTable::set_frame(const Vec3& origin_m, const Vec3& sun_dir) {
 }
 
 size_t SkyViewTable::bytes() const {
-  return sizeof(float) * (sky_.size() + ground_.size() + polarised_sky_.size() + polarised_ground_.size());
+  return sizeof(float) * (entries_->sky.size() + entries_->ground.size() + entries_->polarised_sky.size() +
+                          entries_->polarised_ground.size());
 }
 
 SkyViewTable SkyViewTable::reoriented(const Vec3& origin_m, const Vec3& sun_dir) const {
@@ -220,13 +221,14 @@ SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringS
 
   parts_ = integrator.scatterer_count() + 1;
   const size_t stride = static_cast<size_t>(res_.azimuths) * parts_ * static_cast<size_t>(n_);
-  sky_.assign(static_cast<size_t>(res_.sky_rows) * stride, 0.0f);
-  if (res_.ground_side) ground_.assign(static_cast<size_t>(res_.ground_rows) * stride, 0.0f);
+  entries_->sky.assign(static_cast<size_t>(res_.sky_rows) * stride, 0.0f);
+  if (res_.ground_side) entries_->ground.assign(static_cast<size_t>(res_.ground_rows) * stride, 0.0f);
   polarised_ = sources.polarisation;
   const size_t polarised_stride = static_cast<size_t>(res_.azimuths) * kPolarisedParts * static_cast<size_t>(n_);
   if (polarised_) {
-    polarised_sky_.assign(static_cast<size_t>(res_.sky_rows) * polarised_stride, 0.0f);
-    if (res_.ground_side) polarised_ground_.assign(static_cast<size_t>(res_.ground_rows) * polarised_stride, 0.0f);
+    entries_->polarised_sky.assign(static_cast<size_t>(res_.sky_rows) * polarised_stride, 0.0f);
+    if (res_.ground_side)
+      entries_->polarised_ground.assign(static_cast<size_t>(res_.ground_rows) * polarised_stride, 0.0f);
   }
   ScatteringSources src = sources;
   src.transmittance = nullptr;
@@ -259,15 +261,15 @@ SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringS
         integrator.radiance_parts_same_zenith(own_origin, sc.dirs.data(), m, own_sun_, src, sc.ws, sc.parts.data());
         for (int column = 0; column < m; ++column) {
           const RadianceParts& p = sc.parts[static_cast<size_t>(column)];
-          float* entry = (sky_side ? sky_ : ground_).data() + row * stride +
+          float* entry = (sky_side ? entries_->sky : entries_->ground).data() + row * stride +
                          static_cast<size_t>(column) * parts_ * static_cast<size_t>(n);
           for (int s = 0; s < scatterers; ++s)
             std::copy(p.scattered[static_cast<size_t>(s)].data(), p.scattered[static_cast<size_t>(s)].data() + n,
                       entry + static_cast<size_t>(s) * n);
           std::copy(p.phase_free.data(), p.phase_free.data() + n, entry + static_cast<size_t>(scatterers) * n);
           if (polarised_) {  // Q and U of the higher orders in the ray's polarisation_frame
-            float* q = (sky_side ? polarised_sky_ : polarised_ground_).data() + row * polarised_stride +
-                       static_cast<size_t>(column) * kPolarisedParts * static_cast<size_t>(n);
+            float* q = (sky_side ? entries_->polarised_sky : entries_->polarised_ground).data() +
+                       row * polarised_stride + static_cast<size_t>(column) * kPolarisedParts * static_cast<size_t>(n);
             std::copy(p.polarised_q.data(), p.polarised_q.data() + n, q);
             std::copy(p.polarised_u.data(), p.polarised_u.data() + n, q + n);
           }
@@ -383,7 +385,7 @@ bool SkyViewTable::weights(double theta, double phi, Weights& w) const {
 
 void SkyViewTable::mix(const Weights& w, float* const* parts) const {
   const int m = res_.azimuths;
-  const float* rows_at = (w.sky_side ? sky_ : ground_).data() +
+  const float* rows_at = (w.sky_side ? entries_->sky : entries_->ground).data() +
                          static_cast<size_t>(w.first_row) * static_cast<size_t>(m) * parts_ * static_cast<size_t>(n_) +
                          static_cast<size_t>(w.c0) * parts_ * static_cast<size_t>(n_);
   if (n_ == 3)  // the RGB-fast path's three wavelengths: loops of known length, unrolled
@@ -417,7 +419,7 @@ bool SkyViewTable::lookup_polarised(const Vec3& dir, RadianceParts& out) const {
   mix(w, out);
   const int m = res_.azimuths;
   const float* rows_at =
-      (w.sky_side ? polarised_sky_ : polarised_ground_).data() +
+      (w.sky_side ? entries_->polarised_sky : entries_->polarised_ground).data() +
       static_cast<size_t>(w.first_row) * static_cast<size_t>(m) * kPolarisedParts * static_cast<size_t>(n) +
       static_cast<size_t>(w.c0) * kPolarisedParts * static_cast<size_t>(n);
   float* const parts[kPolarisedParts] = {out.polarised_q.data(), out.polarised_u.data()};

@@ -19,6 +19,7 @@
 #pragma once
 
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 #include "skyspec/geometry.hpp"
@@ -50,8 +51,8 @@ class SkyViewTable {
   /// The sun's direction in the table's own frame for a camera at origin_m: (sin z, 0, cos z), z
   /// the sun's zenith angle there.
   static Vec3 own_frame_sun(const Vec3& origin_m, const Vec3& sun_dir);
-  /// A copy of this table for a camera at origin_m with the sun along sun_dir: the same entries,
-  /// looked up in that camera's frame. Throws Error unless the camera's radius and own_frame_sun
+  /// This table for a camera at origin_m with the sun along sun_dir: the same entries (shared, not
+  /// copied), looked up in that camera's frame. Throws Error unless the camera's radius and own_frame_sun
   /// are exactly this table's (the same entries would be marched).
   SkyViewTable reoriented(const Vec3& origin_m, const Vec3& sun_dir) const;
 
@@ -121,11 +122,15 @@ class SkyViewTable {
   double r_m_ = 0.0, R_m_ = 0.0, rho_m_ = 0.0;  // camera and planet radii, distance to the horizon
   std::vector<double> sky_theta_, ground_theta_, sky_key_, ground_key_;  // per row: zenith angle, key
   std::vector<double> sky_inv_den_, ground_inv_den_;  // per row pair: its rows' Lagrange denominators (4 each)
-  // [side][row][column][part][lambda], part = each scattering medium's, then phase_free.
-  std::vector<float> sky_, ground_;
-  // With polarisation: [side][row][column][Q, U][lambda].
   bool polarised_ = false;
-  std::vector<float> polarised_sky_, polarised_ground_;
+  // The entries, written while the constructor marches the rays and shared by reoriented() copies.
+  struct Entries {
+    // [side][row][column][part][lambda], part = each scattering medium's, then phase_free.
+    std::vector<float> sky, ground;
+    // With polarisation: [side][row][column][Q, U][lambda].
+    std::vector<float> polarised_sky, polarised_ground;
+  };
+  std::shared_ptr<Entries> entries_ = std::make_shared<Entries>();
 };
 
 }  // namespace skyspec
