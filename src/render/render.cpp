@@ -20,6 +20,7 @@
 #include <tbb/task_arena.h>
 
 #include "base/cancellation.hpp"
+#include "base/recent_values.hpp"
 #include "physics/sun_disk.hpp"
 #include "render/scene_tables.hpp"
 #include "render/sun_irradiance.hpp"
@@ -77,32 +78,11 @@ std::unique_ptr<SkyViewTable> sky_view_table_for(const Scene& s, const Atmospher
       << ' ' << res.azimuths << ' ' << res.ground_side << std::hexfloat << "\nradius " << origin_m.norm();
   const Vec3 sun = SkyViewTable::own_frame_sun(origin_m, sun_dir);
   key << " sun " << sun[0] << ' ' << sun[1] << ' ' << sun[2];
-  struct Kept {
-    std::string key;
-    std::shared_ptr<const SkyViewTable> table;
-  };
-  static std::mutex mutex;
-  static std::vector<Kept> kept;  // oldest first
-  std::shared_ptr<const SkyViewTable> table;
-  {
-    std::lock_guard<std::mutex> lock(mutex);
-    for (const Kept& k : kept)
-      if (k.key == key.str()) table = k.table;
-  }
-  if (!table) {
-    table = std::make_shared<const SkyViewTable>(integrator, sources, origin_m, sun_dir, res, threads);
-    if (table->bytes() > kKeptSkyViewBytes) return std::make_unique<SkyViewTable>(table->reoriented(origin_m, sun_dir));
-    std::lock_guard<std::mutex> lock(mutex);
-    kept.push_back(Kept{key.str(), table});
-    size_t bytes = 0;
-    for (size_t i = kept.size() - 1; i-- > 0;) {  // the older ones, newest first
-      bytes += kept[i].table->bytes();
-      if (kept.size() - 1 - i > kKeptSkyViewTables || bytes > kKeptSkyViewBytes) {
-        kept.erase(kept.begin(), kept.begin() + static_cast<std::ptrdiff_t>(i) + 1);
-        break;
-      }
-    }
-  }
+  static RecentValues<SkyViewTable> kept(kKeptSkyViewTables, kKeptSkyViewBytes,
+                                         [](const SkyViewTable& t) { return t.bytes(); });
+  const auto table = kept.get(key.str(), [&] {
+    return std::make_shared<const SkyViewTable>(integrator, sources, origin_m, sun_dir, res, threads);
+  });
   return std::make_unique<SkyViewTable>(table->reoriented(origin_m, sun_dir));
 }
 }  // namespace

@@ -2,15 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <mutex>
 #include <sstream>
 #include <string>
-#include <utility>
 
 #include <tbb/parallel_for.h>
 #include <Eigen/Core>
 
 #include "base/cancellation.hpp"
+#include "base/recent_values.hpp"
 #include "skyspec/units.hpp"
 
 namespace skyspec {
@@ -251,20 +250,10 @@ std::shared_ptr<const SunColumnTable> SunColumnTable::shared(const AtmosphereMod
       << res.n_r << ' ' << res.n_mu << ' ' << res.segments << '\n'
       << band.lo << ' ' << band.hi << ' ' << band.camera_radius_m << ' ' << band.sun_zenith_rad << '\n';
   for (const Medium& m : atm.media()) key << m.profile.describe() << '\n';
-  static std::mutex mutex;
-  static std::vector<std::pair<std::string, std::shared_ptr<const SunColumnTable>>> recent;  // newest last
-  {
-    std::lock_guard<std::mutex> lock(mutex);
-    for (const auto& [k, table] : recent)
-      if (k == key.str()) return table;
-  }
-  // Built outside the lock (in parallel, and cancellable); two threads asking at once may both build it.
-  auto table = std::make_shared<const SunColumnTable>(atm, res, band);
-  if (table->data_.size() * sizeof(Columns) > kSharedBytes) return table;  // not kept: its render holds it
-  std::lock_guard<std::mutex> lock(mutex);
-  recent.emplace_back(key.str(), table);
-  if (recent.size() > 4) recent.erase(recent.begin());
-  return table;
+  // The newest and three more (of at most kSharedBytes in all; a larger table is not kept).
+  static RecentValues<SunColumnTable> recent(3, kSharedBytes,
+                                             [](const SunColumnTable& t) { return t.data_.size() * sizeof(Columns); });
+  return recent.get(key.str(), [&] { return std::make_shared<const SunColumnTable>(atm, res, band); });
 }
 
 // Written with selects on values rather than branches, and inline, so that lookup_many's loop

@@ -2,23 +2,22 @@
 
 #include "base/atomic_file.hpp"
 #include "base/disk_cache.hpp"
+#include "base/recent_values.hpp"
 #include "skyspec/error.hpp"
 
 #include <algorithm>
 #include <cstdlib>
 #include <iostream>
-#include <mutex>
+#include <limits>
 #include <string>
-#include <utility>
-#include <vector>
 
 namespace skyspec {
 
 namespace {
 
-std::mutex g_mutex;
-// The last few tables of this process, by their key's inputs.
-std::vector<std::pair<std::string, std::shared_ptr<const ScatteringOrders>>> g_recent;
+// The last four sets of tables of this process, by their key's inputs.
+RecentValues<ScatteringOrders> g_recent(3, std::numeric_limits<std::size_t>::max(),
+                                        [](const ScatteringOrders&) { return std::size_t{0}; });
 
 std::shared_ptr<const ScatteringOrders> load_or_build(const SingleScattering& integrator,
                                                       const ScatteringTablesKey& key,
@@ -50,24 +49,11 @@ std::shared_ptr<const ScatteringOrders> scattering_orders_for(const SingleScatte
                                                               const MultipleScatteringSettings& settings,
                                                               bool use_disk_cache) {
   const ScatteringTablesKey key = scattering_tables_key(integrator.atmosphere(), sun_table, settings);
-  {
-    std::lock_guard<std::mutex> lock(g_mutex);
-    for (const auto& [inputs, orders] : g_recent)
-      if (inputs == key.inputs) return orders;
-  }
-  auto orders = load_or_build(integrator, key, settings, use_disk_cache);
-  std::lock_guard<std::mutex> lock(g_mutex);
-  g_recent.emplace_back(key.inputs, orders);
-  if (g_recent.size() > 4) g_recent.erase(g_recent.begin());
-  return orders;
+  return g_recent.get(key.inputs, [&] { return load_or_build(integrator, key, settings, use_disk_cache); });
 }
 
 bool scattering_orders_cached(const ScatteringTablesKey& key, bool use_disk_cache) {
-  {
-    std::lock_guard<std::mutex> lock(g_mutex);
-    for (const auto& entry : g_recent)
-      if (entry.first == key.inputs) return true;
-  }
+  if (g_recent.find(key.inputs)) return true;
   const std::filesystem::path dir = use_disk_cache ? table_cache_directory() : std::filesystem::path();
   std::error_code ec;
   return !dir.empty() && std::filesystem::is_regular_file(dir / key.file_name(), ec);
