@@ -223,8 +223,8 @@ std::string png_display_in_memory(int width, int height, const std::vector<float
   FILE* out = open_memstream(&buffer, &size);
   if (!out) throw IoError(where + "cannot open a memory stream: " + std::strerror(errno));
   PngErrorMessage error;
-  const DisplayPngLayout layout{width,      height, bit_depth, tag, chunks.data(), static_cast<int>(chunks.size()),
-                                compression};
+  DisplayPngLayout layout{width, height, bit_depth, tag, chunks.data(), static_cast<int>(chunks.size())};
+  layout.compression = compression;
   const bool encoded = encode_display_png(out, layout, pixels.data(), &error);
   std::fclose(out);  // sets buffer and size
   std::string bytes(buffer ? buffer : "", buffer ? size : 0);
