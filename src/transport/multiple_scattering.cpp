@@ -24,6 +24,7 @@
 #include "skyspec/phase_function.hpp"
 #include "skyspec/units.hpp"
 #include "transport/spherical_harmonics.hpp"
+#include "transport/spin2_harmonics.hpp"
 
 namespace skyspec {
 
@@ -139,6 +140,7 @@ SourceTable::SourceTable(double planet_radius_m, double top_radius_m, int n_alti
       j_(static_cast<size_t>(n_altitude) * n_sun * n_c_ * n_l_ + kLookupSlack),
       g_(static_cast<size_t>(n_sun) * n_l_, 0.0f),
       polarised_(polarised),
+      n_p_(polarised ? 3 + spin2_harmonic_count(degree_) : 0),
       p_(p_size()) {
   if (n_c_ > kMaxHarmonics) throw Error("the scattering-order tables take harmonics up to degree 12");
 }
@@ -497,6 +499,25 @@ void SourceTable::mix(const Blend& w, size_t (SourceTable::*at)(int, int) const,
   }
 }
 
+void SourceTable::mix_rows(const Blend& w, size_t (SourceTable::*at)(int, int) const, const ZeroedFloats& data,
+                           int first_row, int rows, float* out) const {
+  const size_t offset = static_cast<size_t>(first_row) * n_l_, count = static_cast<size_t>(rows) * n_l_;
+  const float* a = &data[(this->*at)(w.ih, w.im) + offset];
+  const float* b = &data[(this->*at)(w.ih, w.im + 1) + offset];
+  const float* c = &data[(this->*at)(w.ih + 1, w.im) + offset];
+  const float* d = &data[(this->*at)(w.ih + 1, w.im + 1) + offset];
+  if (!w.lower && !w.upper) {
+    for (size_t k = 0; k < count; ++k) out[k] = w.sa * a[k] + w.sb * b[k] + w.sc * c[k] + w.sd * d[k];
+    return;
+  }
+  for (size_t r = 0; r < static_cast<size_t>(rows); ++r)
+    for (size_t i = 0; i < static_cast<size_t>(n_l_); ++i) {
+      const size_t k = r * n_l_ + i;
+      const float lower = w.lower ? w.lower[i] : 1.0f, upper = w.upper ? w.upper[i] : 1.0f;
+      out[k] = lower * (w.sa * a[k] + w.sb * b[k]) + upper * (w.sc * c[k] + w.sd * d[k]);
+    }
+}
+
 bool SourceTable::rayleigh_moments(double r_m, double mu, float* out) const {
   if (degree_ < 2) return false;
   const Blend w = blend(r_m, mu);
@@ -511,6 +532,13 @@ bool SourceTable::rayleigh_moments(double r_m, double mu, float* out) const {
   for (int j = 0; j < 3; ++j)
     mix(w, &SourceTable::p_index, p_, static_cast<size_t>(j) * n_l_, tensor + static_cast<size_t>(j) * n_l_);
   return true;
+}
+
+int SourceTable::polarisation_harmonics(double r_m, double mu, int max_degree, float* out) const {
+  const int degree = std::min(degree_, max_degree);
+  if (!polarised_ || degree < 2) return 0;
+  mix_rows(blend(r_m, mu), &SourceTable::p_index, p_, 3, spin2_harmonic_count(degree), out);
+  return degree;
 }
 
 bool SourceTable::irradiance_on(double r_m, double mu, const Vec3& normal, float* out) const {
@@ -569,8 +597,11 @@ void SourceTable::add(const SourceTable& o) {
   for (size_t e = 0; e < static_cast<size_t>(n_h_) * n_mu_; ++e)
     for (size_t i = 0; i < block; ++i) j_[e * n_c_ * n_l_ + i] += o.j_[e * block + i];
   for (size_t i = 0; i < g_.size(); ++i) g_[i] += o.g_[i];
-  if (polarised_ && o.polarised_)
-    for (size_t i = 0; i < p_size(); ++i) p_[i] += o.p_[i];
+  if (polarised_ && o.polarised_) {
+    const size_t rows = static_cast<size_t>(o.n_p_) * n_l_;  // the other's rows, a prefix of ours
+    for (size_t e = 0; e < static_cast<size_t>(n_h_) * n_mu_; ++e)
+      for (size_t i = 0; i < rows; ++i) p_[e * n_p_ * n_l_ + i] += o.p_[e * rows + i];
+  }
 }
 
 void SourceTable::add_geometric_tail(const SourceTable& last, const SourceTable& before) {
@@ -585,7 +616,8 @@ void SourceTable::add_geometric_tail(const SourceTable& last, const SourceTable&
       const float f = factor(last.j_[e * n_last * n_l_ + i], before.j_[e * n_before * n_l_ + i]);
       for (size_t c = 0; c < n_last; ++c) j_[(e * n_c_ + c) * n_l_ + i] += f * last.j_[(e * n_last + c) * n_l_ + i];
       if (polarised_ && last.polarised_)
-        for (size_t c = 0; c < 3; ++c) p_[(e * 3 + c) * n_l_ + i] += f * last.p_[(e * 3 + c) * n_l_ + i];
+        for (size_t c = 0; c < static_cast<size_t>(last.n_p_); ++c)
+          p_[(e * n_p_ + c) * n_l_ + i] += f * last.p_[(e * last.n_p_ + c) * n_l_ + i];
     }
   for (size_t i = 0; i < g_.size(); ++i) g_[i] += factor(last.g_[i], before.g_[i]) * last.g_[i];
 }
@@ -653,19 +685,33 @@ void integrate_order(const SingleScattering& integrator, const ScatteringSources
 
   const int n_c = table.harmonic_count(), degree = table.degree();
   const bool polarised = table.polarised();
+  const int n_p = table.polarisation_rows(), n_spin2 = spin2_harmonic_count(degree);
   struct Scratch {
     ScatteringWorkspace ws;
-    Spectrum radiance, g, q, u;
+    Spectrum radiance, g, q, u, q_local, u_local;
     Eigen::ArrayXXf a;  // [wavelength, harmonic]
-    Eigen::ArrayXXf p;  // [wavelength, xx yy xz]: the polarisation tensor (polarised tables)
+    // [wavelength, row]: the polarisation tensor's xx yy xz and the spin-2 harmonics (polarised tables)
+    Eigen::ArrayXXf p;
     RadianceParts parts;
-    std::vector<double> basis;
-    Scratch(int m, int c)
-        : ws(m), radiance(m), g(m), q(m), u(m), a(m, c), p(m, 3), parts(m), basis(static_cast<size_t>(c)) {}
+    std::vector<double> basis, spin2_q, spin2_u;
+    Scratch(int m, int c, int rows, int spin2)
+        : ws(m),
+          radiance(m),
+          g(m),
+          q(m),
+          u(m),
+          q_local(m),
+          u_local(m),
+          a(m, c),
+          p(m, rows),
+          parts(m),
+          basis(static_cast<size_t>(c)),
+          spin2_q(static_cast<size_t>(spin2)),
+          spin2_u(static_cast<size_t>(spin2)) {}
   };
   ScatteringSources ray_sources = sources;
   ray_sources.polarisation = polarised;
-  tbb::enumerable_thread_specific<Scratch> scratch([n, n_c] { return Scratch(n, n_c); });
+  tbb::enumerable_thread_specific<Scratch> scratch([n, n_c, n_p, n_spin2] { return Scratch(n, n_c, n_p, n_spin2); });
   const int entries = table.altitude_count() * table.sun_count();
   tbb::parallel_for(0, (entries + stride - 1) / stride, [&](int sample) {
     const int e = sample * stride;
@@ -704,6 +750,19 @@ void integrate_order(const SingleScattering& integrator, const ScatteringSources
             sc.p.col(0) += component(0, 0);
             sc.p.col(1) += component(1, 1);
             sc.p.col(2) += component(0, 2);
+            // The same polarisation relative to w's (e_theta, e_phi) (a turn of the frame in its
+            // plane), projected on the spin-2 harmonics: c_lm += weight (Q lambda_lm cos m phi +
+            // U lambda_lm sin m phi), even in phi like the tensor's terms.
+            const double cos_phi = std::cos(phi), sin_phi = std::sin(phi);
+            const Vec3 e_theta(mu * cos_phi, mu * sin_phi, -sin_t), e_phi(-sin_phi, cos_phi, 0.0);
+            const double ta = e1.dot(e_theta), tb = e1.dot(e_phi), sa = e2.dot(e_theta), sb = e2.dot(e_phi);
+            sc.q_local = static_cast<float>(0.5 * (ta * ta - sa * sa - tb * tb + sb * sb)) * sc.q +
+                         static_cast<float>(ta * sa - tb * sb) * sc.u;
+            sc.u_local = static_cast<float>(ta * tb - sa * sb) * sc.q + static_cast<float>(ta * sb + sa * tb) * sc.u;
+            spin2_harmonics(degree, mu, cos_phi, sin_phi, sc.spin2_q.data(), sc.spin2_u.data());
+            for (int c = 0; c < n_spin2; ++c)
+              sc.p.col(3 + c) += static_cast<float>(weight * sc.spin2_q[static_cast<size_t>(c)]) * sc.q_local +
+                                 static_cast<float>(weight * sc.spin2_u[static_cast<size_t>(c)]) * sc.u_local;
           } else {
             integrator.radiance(x, w, s, unit, sources, sc.ws, sc.radiance);
           }
@@ -721,7 +780,7 @@ void integrate_order(const SingleScattering& integrator, const ScatteringSources
       std::copy(sc.a.col(c).data(), sc.a.col(c).data() + n, out + static_cast<size_t>(c) * n);
     if (at_ground) std::copy(sc.g.data(), sc.g.data() + n, table.g_at(imu));
     if (polarised)
-      for (int c = 0; c < 3; ++c)
+      for (int c = 0; c < n_p; ++c)
         std::copy(sc.p.col(c).data(), sc.p.col(c).data() + n, table.p_at(ih, imu) + static_cast<size_t>(c) * n);
     if (count_progress) finish_preparation(q.rays());
   });
@@ -731,7 +790,8 @@ void integrate_order(const SingleScattering& integrator, const ScatteringSources
 // A table read only up to a given degree (ScatteringOrders: building order k from order k - 1).
 class SourceToDegree final : public InScatteringSource {
  public:
-  SourceToDegree(const SourceTable& table, int degree) : table_(table), degree_(degree) {}
+  SourceToDegree(const SourceTable& table, int degree, int polarisation_degree)
+      : table_(table), degree_(degree), polarisation_degree_(polarisation_degree) {}
   void source(double r_m, double mu_sun, double mu_view, double nu, float* const* out) const override {
     table_.source_to_degree(degree_, r_m, mu_sun, mu_view, nu, out);
   }
@@ -739,10 +799,13 @@ class SourceToDegree final : public InScatteringSource {
   bool rayleigh_moments(double r_m, double mu_sun, float* out) const override {
     return table_.rayleigh_moments(r_m, mu_sun, out);
   }
+  int polarisation_harmonics(double r_m, double mu_sun, int max_degree, float* out) const override {
+    return table_.polarisation_harmonics(r_m, mu_sun, std::min({max_degree, degree_, polarisation_degree_}), out);
+  }
 
  private:
   const SourceTable& table_;
-  int degree_;
+  int degree_, polarisation_degree_;
 };
 
 }  // namespace
@@ -775,7 +838,7 @@ ScatteringOrders::ScatteringOrders(const SingleScattering& integrator, const Mul
     auto table = std::make_unique<SourceTable>(atm.planet_radius_m(), atm.top_radius_m(), settings_.altitude_samples,
                                                settings_.sun_samples, moments, degree, settings_.polarisation);
     std::unique_ptr<SourceToDegree> source_of_previous;
-    if (k > 2) source_of_previous = std::make_unique<SourceToDegree>(*orders_.back(), degree);
+    if (k > 2) source_of_previous = std::make_unique<SourceToDegree>(*orders_.back(), degree, kBuildPolarisationDegree);
     ScatteringSources previous;
     previous.single = k == 2;
     previous.higher = source_of_previous.get();
@@ -797,10 +860,12 @@ std::uint64_t bytes_per_harmonic(const MultipleScatteringSettings& st, int wavel
 }  // namespace
 
 std::uint64_t ScatteringOrders::cache_bytes(const MultipleScatteringSettings& st, int wavelengths) {
-  // The sum and order 2's table, each with its polarisation tensor when polarised.
-  std::uint64_t harmonics = static_cast<std::uint64_t>(skyspec::harmonic_count(st.angular_degree)) +
-                            skyspec::harmonic_count(degree_of_order(st.angular_degree, 2));
-  if (st.polarisation) harmonics += 2 * 3;
+  // The sum and order 2's table, each with its polarisation tensor and spin-2 harmonics when polarised.
+  const int d2 = degree_of_order(st.angular_degree, 2);
+  std::uint64_t harmonics =
+      static_cast<std::uint64_t>(skyspec::harmonic_count(st.angular_degree)) + skyspec::harmonic_count(d2);
+  if (st.polarisation)
+    harmonics += 2 * 3 + static_cast<std::uint64_t>(spin2_harmonic_count(st.angular_degree) + spin2_harmonic_count(d2));
   return bytes_per_harmonic(st, wavelengths) * harmonics;
 }
 
@@ -819,7 +884,10 @@ std::uint64_t ScatteringOrders::table_bytes(const MultipleScatteringSettings& st
   const std::uint64_t entry = bytes_per_harmonic(st, wavelengths);
   std::uint64_t harmonics = static_cast<std::uint64_t>(skyspec::harmonic_count(st.angular_degree));  // the sum
   for (int k = 2; k <= st.orders; ++k) harmonics += skyspec::harmonic_count(degree_of_order(st.angular_degree, k));
-  if (st.polarisation) harmonics += 3 * static_cast<std::uint64_t>(st.orders);  // each table's polarisation tensor
+  if (st.polarisation) {  // each table's polarisation tensor and spin-2 harmonics
+    harmonics += 3 * static_cast<std::uint64_t>(st.orders) + spin2_harmonic_count(st.angular_degree);
+    for (int k = 2; k <= st.orders; ++k) harmonics += spin2_harmonic_count(degree_of_order(st.angular_degree, k));
+  }
   return entry * harmonics;
 }
 
@@ -891,7 +959,7 @@ namespace {
 // tables a render reads (order 2's, whose field is the light scattered once, and the sum of all
 // orders), and last a checksum of everything before it (SHA-256's first 64 bits), so that a file
 // that was truncated, damaged or edited is rebuilt rather than trusted.
-constexpr char kCacheMagic[] = "skyspec scattering orders v6\n";
+constexpr char kCacheMagic[] = "skyspec scattering orders v7\n";
 
 }  // namespace
 

@@ -47,7 +47,9 @@ struct MultipleScatteringSettings {
   int angular_degree = 0;  ///< spherical-harmonic degree of the tabulated fields (0: isotropic)
   /// Carry the fields' linear polarisation from order to order (vector transport for the air; needs
   /// angular_degree >= 2): each table also holds its field's polarisation tensor
-  /// (InScatteringSource::rayleigh_moments), and the intensity gets polarisation's share.
+  /// (InScatteringSource::rayleigh_moments) and the spin-2 harmonics of its polarisation to the
+  /// table's degree (InScatteringSource::polarisation_harmonics), and the intensity gets
+  /// polarisation's share.
   bool polarisation = false;
 };
 
@@ -103,7 +105,7 @@ class SourceTable : public InScatteringSource {
   /// reads are followed by this many spare floats, so that the last block needs no special case.
   static constexpr int kLookupSlack = 16;
   /// degree <= moments->degree (default: the moments' degree). A polarised table also holds the
-  /// field's polarisation tensor per entry (p_at).
+  /// field's polarisation tensor and the spin-2 harmonics of its polarisation per entry (p_at).
   SourceTable(double planet_radius_m, double top_radius_m, int n_altitude, int n_sun,
               std::shared_ptr<const PhaseMoments> moments, int degree = -1, bool polarised = false);
   /// Needs prepare() after the last change to the table.
@@ -123,6 +125,9 @@ class SourceTable : public InScatteringSource {
   /// The field's quadrupole and (polarised tables) its polarisation tensor at (r, mu_s), blended as
   /// source() blends (InScatteringSource::rayleigh_moments). False if the degree is below 2.
   bool rayleigh_moments(double r_m, double mu_sun, float* out) const override;
+  /// A polarised table's spin-2 harmonics of the polarisation to min(max_degree, degree()), blended
+  /// as source() blends (InScatteringSource::polarisation_harmonics); 0 for other tables.
+  int polarisation_harmonics(double r_m, double mu_sun, int max_degree, float* out) const override;
   /// The field's irradiance on a tilted surface (InScatteringSource::irradiance_on), blended as
   /// source() blends.
   bool irradiance_on(double r_m, double mu_sun, const Vec3& normal_local, float* out) const override;
@@ -156,8 +161,12 @@ class SourceTable : public InScatteringSource {
   /// builders write entries from many threads at once).
   float* j_at(int i_altitude, int i_sun) { return &j_[index(i_altitude, i_sun)]; }
   const float* j_at(int i_altitude, int i_sun) const { return &j_[index(i_altitude, i_sun)]; }
-  /// A polarised table's polarisation tensor at an entry: [xx, yy, xz][wavelength] (rayleigh_moments).
+  /// A polarised table's polarisation at an entry: [row][wavelength], rows xx, yy, xz of the
+  /// polarisation tensor (rayleigh_moments) and then the spin-2 harmonics c_lm at
+  /// 3 + spin2_harmonic_index(l, m), 2 <= l <= degree() (polarisation_harmonics).
   float* p_at(int i_altitude, int i_sun) { return &p_[p_index(i_altitude, i_sun)]; }
+  /// Rows of p_at per entry: 3 + spin2_harmonic_count(degree()) for a polarised table, else 0.
+  int polarisation_rows() const { return n_p_; }
   bool polarised() const { return polarised_; }
   float* g_at(int i_sun) { return &g_[static_cast<size_t>(i_sun) * n_l_]; }
   const float* g_at(int i_sun) const { return &g_[static_cast<size_t>(i_sun) * n_l_]; }
@@ -198,9 +207,12 @@ class SourceTable : public InScatteringSource {
   /// One row of n wavelengths blended as `w` says from `data` (laid out by `at`), from `offset` on.
   void mix(const Blend& w, size_t (SourceTable::*at)(int, int) const, const ZeroedFloats& data, size_t offset,
            float* out) const;
+  /// `rows` consecutive rows of n wavelengths from row first_row on, blended at once.
+  void mix_rows(const Blend& w, size_t (SourceTable::*at)(int, int) const, const ZeroedFloats& data, int first_row,
+                int rows, float* out) const;
   size_t index(int ih, int imu) const { return ((static_cast<size_t>(ih) * n_mu_ + imu) * n_c_) * n_l_; }
-  size_t p_index(int ih, int imu) const { return (static_cast<size_t>(ih) * n_mu_ + imu) * 3 * n_l_; }
-  size_t p_size() const { return polarised_ ? static_cast<size_t>(n_h_) * n_mu_ * 3 * n_l_ : 0; }
+  size_t p_index(int ih, int imu) const { return (static_cast<size_t>(ih) * n_mu_ + imu) * n_p_ * n_l_; }
+  size_t p_size() const { return static_cast<size_t>(n_h_) * n_mu_ * n_p_ * n_l_; }
   size_t j_size() const { return static_cast<size_t>(n_h_) * n_mu_ * n_c_ * n_l_; }
   /// Two neighbouring sun angles whose mean radiances differ by more than this factor are read
   /// in log space (source()). Below it the linear blend of an exponential errs by at most
@@ -216,6 +228,7 @@ class SourceTable : public InScatteringSource {
   ZeroedFloats j_;  // j_size() floats and kLookupSlack spare; large tables: zeroed pages on first use
   std::vector<float> g_;
   bool polarised_;
+  int n_p_;         // polarisation_rows()
   ZeroedFloats p_;  // polarised tables: p_size() floats
   // Filled by prepare(): steep_[ih * (n_mu_ - 1) + imu] and the logarithm of each entry's mean
   // radiance (the harmonic l = 0) per wavelength, [ih][imu][wavelength] (entries of steep pairs;
@@ -244,6 +257,9 @@ class ScatteringOrders : public InScatteringSource {
   bool rayleigh_moments(double r_m, double mu_sun, float* out) const override {
     return sum_->rayleigh_moments(r_m, mu_sun, out);
   }
+  int polarisation_harmonics(double r_m, double mu_sun, int max_degree, float* out) const override {
+    return sum_->polarisation_harmonics(r_m, mu_sun, max_degree, out);
+  }
   bool irradiance_on(double r_m, double mu_sun, const Vec3& normal_local, float* out) const override {
     return sum_->irradiance_on(r_m, mu_sun, normal_local, out);
   }
@@ -256,6 +272,10 @@ class ScatteringOrders : public InScatteringSource {
   /// The degree of order k's table: angular_degree for order 2, one less per order after it, but
   /// never below 2 (Rayleigh's degree) unless angular_degree is below 2.
   static int degree_of_order(int angular_degree, int k);
+  /// Building order k reads the polarisation's spin-2 harmonics of order k - 1 to this degree only
+  /// (each table holds them to its own degree, and renders read the sum's all): the polarisation
+  /// that light scattered once more keeps is smooth (docs/validation.md measures the effect).
+  static constexpr int kBuildPolarisationDegree = 4;
   /// The directions order k's table is integrated over, for a table of degree d: Gauss-Legendre
   /// nodes max(8, d + 4) above the horizon and half as many below, max(4, d) azimuths over [0, pi];
   /// order 2, whose source (single scattering) is cheap to evaluate and whose field has the

@@ -13,6 +13,7 @@
 #include "transport/multiple_scattering.hpp"  // gauss_legendre
 #include "transport/optical_depth.hpp"
 #include "transport/spherical_harmonics.hpp"
+#include "transport/spin2_harmonics.hpp"
 
 namespace skyspec {
 
@@ -63,6 +64,7 @@ SingleScattering::SingleScattering(const AtmosphereModel& atm, const SunColumns&
       n_(atm.grid().size()) {
   std::vector<double> mu, w;
   gauss_legendre(512, -1.0, 1.0, mu, w);
+  std::vector<double> d22;  // d^l_22(mu[k]) at k (kMaxSpin2Degree + 1) + l, once particles need it
   for (int j = 0; j < media_; ++j) {
     const Medium& medium = atm.media()[static_cast<size_t>(j)];
     ext_[j] = medium.extinction_per_m.cast<float>();
@@ -80,12 +82,22 @@ SingleScattering::SingleScattering(const AtmosphereModel& atm, const SunColumns&
       sc.phase_a = (scale * (1.0 + 3.0 * gamma)).cast<float>();
       sc.phase_b = (scale * (1.0 - gamma)).cast<float>();
     } else {
-      sc.spin2_moment.resize(n_);
-      for (int i = 0; i < n_; ++i) {
-        double sum = 0.0;
+      constexpr int L = kMaxSpin2Degree;
+      if (d22.empty()) {
+        d22.resize(mu.size() * (L + 1), 0.0);
         for (size_t k = 0; k < mu.size(); ++k)
-          sum += w[k] * medium.phase.at(i, mu[k]) * (1.0 + mu[k]) * (1.0 + mu[k]) / 4.0;
-        sc.spin2_moment[i] = static_cast<float>(2.0 * kPi * sum);
+          for (int l = 2; l <= L; ++l) d22[k * (L + 1) + static_cast<size_t>(l)] = wigner_d(l, 2, 2, mu[k]);
+      }
+      sc.spin2_moments.assign(L + 1, Spectrum::Zero(n_));
+      std::vector<double> beta(L + 1);
+      for (int i = 0; i < n_; ++i) {
+        std::fill(beta.begin(), beta.end(), 0.0);
+        for (size_t k = 0; k < mu.size(); ++k) {
+          const double pw = w[k] * medium.phase.at(i, mu[k]);
+          for (int l = 2; l <= L; ++l) beta[static_cast<size_t>(l)] += pw * d22[k * (L + 1) + static_cast<size_t>(l)];
+        }
+        for (int l = 2; l <= L; ++l)
+          sc.spin2_moments[static_cast<size_t>(l)][i] = static_cast<float>(2.0 * kPi * beta[static_cast<size_t>(l)]);
       }
     }
     scatterers_.push_back(std::move(sc));
@@ -729,9 +741,13 @@ struct SingleScattering::PieceScratch {
   Eigen::ArrayXXf source_t[kMaxMedia], source_q_t[kMaxMedia], source_u_t[kMaxMedia];
   // [wavelength, node]: SkylineCut's phase shares and the tables' light below the skyline
   Eigen::ArrayXXf hidden_share[kMaxMedia], hidden[kMaxMedia], hidden_multiple[kMaxMedia];
-  std::vector<float> shadowed_ahead;  // per node: SkylineCut::terrain_shadowed_ahead
-  std::vector<float> moments;         // InScatteringSource::rayleigh_moments at one node
-  Spectrum q, u, pq, pu;              // polarised_sources' sums at one node
+  std::vector<float> shadowed_ahead;     // per node: SkylineCut::terrain_shadowed_ahead
+  std::vector<float> moments;            // InScatteringSource::rayleigh_moments at one node
+  std::vector<float> spin2;              // InScatteringSource::polarisation_harmonics at one node
+  std::vector<double> spin2_q, spin2_u;  // the harmonics' Q and U parts in the node's view direction
+  Spectrum q, u, pq, pu;                 // polarised_sources' sums at one node
+  // polarised_sources' sums of one degree at one node, padded to whole blocks of 16 wavelengths
+  std::vector<float> degree_q, degree_u;
 };
 
 // tau = sum_j beta_ext,j(l) columns[k, j] (the optical depth), as [node k, wavelength l] or [l, k].
@@ -810,9 +826,12 @@ struct SingleScattering::RayFrame {
 // (tr T 1 - T) / 2 with T the field's second moments, whose traceless part is sum_m a_2m K_m
 // (spherical_harmonics.hpp); the scalar source J_R already holds its intensity, and the polarised
 // part D_pol (traceless) adds -2 B k^T D_pol k to it (SourceTable::source adds that for polarised
-// tables, so that the intensity is the vector one in every render). A particle's unit matrix acts
-// on the polarisation's degree-2 E-mode, rebuilt from D_pol (below). At each node the tables' local
-// frame (z up, x towards the sun's azimuth, y = z x x) is rebuilt and e1, e2 are expressed in it.
+// tables, so that the intensity is the vector one in every render). A particle's unit matrix
+// scales each degree of the field's spin-2 harmonics by its moment beta_l (spin2_harmonics.hpp):
+// P_s = sum_l beta_l,s sum_m c_lm (lambda_lm cos m phi, lambda_lm sin m phi) relative to the view
+// direction's (e_theta, e_phi), turned into (e1, e2). At each node the tables' local frame (z up, x
+// towards the sun's azimuth, y = z x x) is rebuilt and e1, e2 and the view direction are expressed
+// in it.
 // J + P is not negative for a real field (scattered light is at most fully polarised), which lets
 // the log-mean rule integrate it; P is the difference of two such integrals. (A particle's source,
 // from a truncated field, is not bound to that: where J_s + P_s would go below zero the rule's
@@ -831,10 +850,20 @@ bool SingleScattering::polarised_sources(const Node* nodes, int m, const RayFram
     return e;
   }();
   sc.moments.resize(6 * static_cast<size_t>(n));
+  bool particles = false;
   for (int s = 0; s < scatterer_count(); ++s) {
     sc.source_q_t[s].resize(n, m);
     sc.source_u_t[s].resize(n, m);
+    particles = particles || !scatterers_[static_cast<size_t>(s)].rayleigh();
   }
+  const int max_spin2 = particles ? kMaxSpin2Degree : 0;
+  // The harmonics' rows are read in whole blocks of 16 wavelengths: 16 spare floats after the last.
+  const Eigen::Index padded = (n + 15) / 16 * 16;
+  sc.spin2.resize(static_cast<size_t>(spin2_harmonic_count(max_spin2)) * static_cast<size_t>(n) + 16);
+  sc.degree_q.resize(static_cast<size_t>(padded));
+  sc.degree_u.resize(static_cast<size_t>(padded));
+  sc.spin2_q.resize(static_cast<size_t>(spin2_harmonic_count(max_spin2)));
+  sc.spin2_u.resize(static_cast<size_t>(spin2_harmonic_count(max_spin2)));
   for (int k = 0; k < m; ++k) {
     const Vec3 p = f.o + nodes[k].t * f.d;
     const Vec3 z = p / p.norm();
@@ -842,10 +871,7 @@ bool SingleScattering::polarised_sources(const Node* nodes, int m, const RayFram
     const Vec3 x = tables_frame_x(z, f.s), y = z.cross(x);
     const Vec3 e(f.e1.dot(x), f.e1.dot(y), f.e1.dot(z)), g(f.e2.dot(x), f.e2.dot(y), f.e2.dot(z));
     // The quadrupole's share, D's part -T / 2 with T = sum a_2m K_m (q, u), and the polarisation
-    // tensor's, which the aerosol's unit matrix sees too (pq, pu): the field's degree-2 E-mode,
-    // C_pol(w) = P M P - P tr(P M P) / 2 with M = 5 D_pol / (8 pi) (its integral over the sphere is
-    // 8 pi M / 5), scaled by the phase function's spin-2 moment and seen from k:
-    // Q = e1^T M e1 - e2^T M e2, U = 2 e1^T M e2.
+    // tensor's (pq, pu), which molecules see.
     Spectrum &q = sc.q, &u = sc.u, &pq = sc.pq, &pu = sc.pu;
     q.setZero(n);
     u.setZero(n);
@@ -861,15 +887,59 @@ bool SingleScattering::polarised_sources(const Node* nodes, int m, const RayFram
       pq += static_cast<float>(e.dot(ej * e) - g.dot(ej * g)) * d;
       pu += static_cast<float>(2.0 * e.dot(ej * g)) * d;
     }
-    constexpr float kEmode = static_cast<float>(5.0 / (8.0 * kPi));
+    // The particles' share: the field's spin-2 harmonics at the view direction (its (e_theta,
+    // e_phi) frame turned into (e1, e2): Q = A_qq Q_local + A_qu U_local, U = A_uq Q_local + A_uu
+    // U_local), summed per degree into degree_q, degree_u and weighted by each particle's beta_l.
+    const int degree =
+        particles ? higher.polarisation_harmonics(nodes[k].r, f.s.dot(z), max_spin2, sc.spin2.data()) : 0;
+    if (degree >= 2) {
+      const double dx = f.d.dot(x), dy = f.d.dot(y), dz = std::clamp(f.d.dot(z), -1.0, 1.0);
+      const double sin_t = std::sqrt(dx * dx + dy * dy);
+      const double cos_phi = sin_t > 1e-12 ? dx / sin_t : 1.0, sin_phi = sin_t > 1e-12 ? dy / sin_t : 0.0;
+      // e_theta, e_phi in the local frame; e and g are e1 and e2 there.
+      const Vec3 e_theta(dz * cos_phi, dz * sin_phi, -sin_t), e_phi(-sin_phi, cos_phi, 0.0);
+      const double ta = e_theta.dot(e), sa = e_theta.dot(g), tb = e_phi.dot(e), sb = e_phi.dot(g);
+      const double a_qq = 0.5 * (ta * ta - tb * tb - sa * sa + sb * sb), a_qu = ta * tb - sa * sb;
+      const double a_uq = ta * sa - tb * sb, a_uu = ta * sb + tb * sa;
+      spin2_harmonics(degree, dz, cos_phi, sin_phi, sc.spin2_q.data(), sc.spin2_u.data());
+      for (int s = 0; s < scatterer_count(); ++s) {
+        sc.source_q_t[s].col(k) = sc.source_t[s].col(k);
+        sc.source_u_t[s].col(k) = sc.source_t[s].col(k);
+      }
+      for (int l = 2; l <= degree; ++l) {
+        float* dq = sc.degree_q.data();
+        float* du = sc.degree_u.data();
+        std::fill(dq, dq + padded, 0.0f);
+        std::fill(du, du + padded, 0.0f);
+        // Whole blocks: the lanes past n read the next row (or the spare floats) and are not used.
+        for (int mm = -l; mm <= l; ++mm) {
+          const size_t c = static_cast<size_t>(spin2_harmonic_index(l, mm));
+          const float* coefficient = sc.spin2.data() + c * static_cast<size_t>(n);
+          const float gq = static_cast<float>(a_qq * sc.spin2_q[c] + a_qu * sc.spin2_u[c]);
+          const float gu = static_cast<float>(a_uq * sc.spin2_q[c] + a_uu * sc.spin2_u[c]);
+          for (Eigen::Index i = 0; i < padded; ++i) {
+            dq[i] += gq * coefficient[i];
+            du[i] += gu * coefficient[i];
+          }
+        }
+        const Eigen::Map<const Spectrum> degree_q(dq, n), degree_u(du, n);
+        for (int s = 0; s < scatterer_count(); ++s) {
+          const Scatterer& medium = scatterers_[static_cast<size_t>(s)];
+          if (medium.rayleigh()) continue;
+          const Spectrum& beta = medium.spin2_moments[static_cast<size_t>(l)];
+          sc.source_q_t[s].col(k) += beta * degree_q;
+          sc.source_u_t[s].col(k) += beta * degree_u;
+        }
+      }
+    }
     for (int s = 0; s < scatterer_count(); ++s) {
       const Scatterer& medium = scatterers_[static_cast<size_t>(s)];
       if (medium.rayleigh()) {
         sc.source_q_t[s].col(k) = sc.source_t[s].col(k) + 2.0f * medium.phase_b * (q + pq);
         sc.source_u_t[s].col(k) = sc.source_t[s].col(k) + 2.0f * medium.phase_b * (u + pu);
-      } else {
-        sc.source_q_t[s].col(k) = sc.source_t[s].col(k) + kEmode * medium.spin2_moment * pq;
-        sc.source_u_t[s].col(k) = sc.source_t[s].col(k) + kEmode * medium.spin2_moment * pu;
+      } else if (degree < 2) {
+        sc.source_q_t[s].col(k) = sc.source_t[s].col(k);
+        sc.source_u_t[s].col(k) = sc.source_t[s].col(k);
       }
     }
   }

@@ -140,6 +140,15 @@ class InScatteringSource {
   /// taken as unpolarised. False (out untouched) if the source does not resolve the quadrupole.
   /// RadianceParts::polarised_q says how the integrator uses them.
   virtual bool rayleigh_moments(double /*r_m*/, double /*mu_sun*/, float* /*out*/) const { return false; }
+  /// The polarisation of the same field in finer angular detail: its spin-2 harmonics c_lm
+  /// (spin2_harmonics.hpp: Q and U relative to each direction's (e_theta, e_phi) in the same local
+  /// frame) for 2 <= l <= the degree returned (at most max_degree), per unit solar irradiance, at
+  /// out[spin2_harmonic_index(l, m) n + i]. What a particle's unit scattering matrix scatters of the
+  /// polarised light (SingleScattering's polarised_sources). 0 (out untouched) where the field is
+  /// taken as unpolarised.
+  virtual int polarisation_harmonics(double /*r_m*/, double /*mu_sun*/, int /*max_degree*/, float* /*out*/) const {
+    return 0;
+  }
   /// The irradiance the field puts on a surface at (r, mu_s) whose unit normal is normal_local in
   /// the same local frame (z up, x towards the sun's azimuth), per unit solar irradiance: the
   /// integral of L(w) max(0, n . w) over the sphere, from the field's harmonics
@@ -271,10 +280,10 @@ class SingleScattering {
     const MediumPhase* phase = nullptr;
     /// Molecules: the phase function per wavelength as A + B mu^2.
     Spectrum phase_a, phase_b;
-    /// Particles: the phase function's degree-2 moment for spin-2 fields, 2 pi int p(mu) (1 + mu)^2 / 4 dmu
-    /// (the generalized spherical function P^2_22): what a unit scattering matrix keeps of the
-    /// quadrupole of the light's polarisation (polarised_sources).
-    Spectrum spin2_moment;
+    /// Particles: the phase function's moments for spin-2 fields, beta_l = 2 pi int p(mu) d^l_22(mu) dmu
+    /// for l = 0..kMaxSpin2Degree (spin2_harmonics.hpp; 0 below l = 2): what a unit scattering matrix
+    /// keeps of each degree of the light's polarisation (polarised_sources).
+    std::vector<Spectrum> spin2_moments;
     bool rayleigh() const { return phase->kind == MediumPhase::Kind::Rayleigh; }
   };
   std::vector<Scatterer> scatterers_;

@@ -6,10 +6,10 @@
 // bench/opac_aerosol.sh, with more paths, and docs/validation.md has its table).
 //
 // Except on the horizon across from and away from the sun: there the renderer's degree of
-// polarisation is known to fall short of the reference by up to 0.076 (here) because the
-// scattering-order tables carry the polarised field only to its quadrupole (the polarisation
-// issue's item 2; the default scene with its non-polarising aerosol misses by 0.056 there). Those
-// two probes are held to 0.08, which fails if that gap grows.
+// polarisation is known to exceed the reference's by up to 0.034 (here) because light scattered
+// more than once meets the aerosol's phase function times the unit matrix in the renderer, not the
+// sphere's matrix (its a3 differs from a1, and b1 polarises unpolarised light: the polarisation
+// issue's item 3). Those two probes are held to 0.05, which fails if that gap grows.
 
 #include <boost/test/unit_test.hpp>
 
@@ -24,6 +24,7 @@
 #include "skyspec/camera.hpp"
 #include "skyspec/monte_carlo_reference.hpp"
 #include "skyspec/render.hpp"
+#include "stokes_comparison.hpp"
 
 BOOST_AUTO_TEST_SUITE(test_microphysical_aerosol)
 
@@ -40,46 +41,26 @@ Scene opac_scene(double sun_elevation) {
 }
 
 struct Largest {
-  double intensity = 0.0, intensity_sigmas = 0.0, dolp = 0.0, dolp_quadrupole_limited = 0.0;
+  double intensity = 0.0, intensity_sigmas = 0.0, dolp = 0.0, dolp_unit_matrix_limited = 0.0;
 };
 
 // The comparison at one sun; prints every probe and returns the largest differences.
 Largest compare(double sun, std::int64_t paths) {
   Largest largest;
-  {
-    const Scene scene = opac_scene(sun);
-    const std::vector<ReferenceProbe> probes = standard_reference_probes(scene);
-    ReferenceSettings settings;
-    settings.paths = paths;
-    settings.seed = 2028;
-    settings.stokes = true;
-    const ReferenceResult mc = monte_carlo_reference(scene, probes, settings);
-    const SkyRenderer renderer(scene);
-    for (size_t k = 0; k < probes.size(); ++k) {
-      const Vec3 dir = direction_from_angles(probes[k].azimuth_deg, probes[k].elevation_deg);
-      Spectrum i, q, u;
-      renderer.stokes(dir, stokes_frame_axis(dir), i, q, u);
-      for (size_t w = 0; w < mc.wavelengths_nm.size(); ++w) {
-        const auto& v = mc.stokes[k][w];
-        const auto& e = mc.stokes_standard_error[k][w];
-        const Eigen::Index j = static_cast<Eigen::Index>(w);
-        const double dolp = std::hypot(q[j], u[j]) / i[j], dolp_mc = std::hypot(v[1], v[2]) / v[0];
-        std::printf("sun %g, %s, %g nm: I %.5g / %.5g +- %.2g (%+.2f %%), DoLP %.4f / %.4f (%+.4f)\n", sun,
-                    probes[k].label.c_str(), mc.wavelengths_nm[w], i[j], v[0], e[0], 100.0 * (i[j] / v[0] - 1.0), dolp,
-                    dolp_mc, dolp - dolp_mc);
-        BOOST_TEST(std::abs(i[j] - v[0]) <= 0.02 * v[0] + 3.0 * e[0]);
-        // The DoLP's standard error, from Q's and U's, propagated to first order.
-        const double dolp_se = std::hypot(e[1], e[2]) / v[0] + dolp_mc * e[0] / v[0];
-        const bool quadrupole_limited =
-            probes[k].label == "horizon across sun" || probes[k].label == "horizon away from sun";
-        BOOST_TEST(std::abs(dolp - dolp_mc) <= (quadrupole_limited ? 0.08 : 0.02) + 3.0 * dolp_se,
-                   probes[k].label << " " << mc.wavelengths_nm[w] << " nm: DoLP " << dolp << " vs " << dolp_mc);
-        largest.intensity = std::max(largest.intensity, std::abs(i[j] / v[0] - 1.0));
-        largest.intensity_sigmas = std::max(largest.intensity_sigmas, std::abs(i[j] - v[0]) / e[0]);
-        double& d = quadrupole_limited ? largest.dolp_quadrupole_limited : largest.dolp;
-        d = std::max(d, std::abs(dolp - dolp_mc));
-      }
-    }
+  const Scene scene = opac_scene(sun);
+  const SkyRenderer renderer(scene);
+  for (const test::StokesAtProbe& p : test::compare_with_vector_reference(scene, renderer, paths, 2028)) {
+    std::printf("sun %g, %s, %g nm: I %.5g / %.5g +- %.2g (%+.2f %%), DoLP %.4f / %.4f (%+.4f)\n", sun, p.label.c_str(),
+                p.nm, p.i, p.reference[0], p.se[0], 100.0 * (p.i / p.reference[0] - 1.0), p.dolp, p.dolp_reference,
+                p.dolp - p.dolp_reference);
+    BOOST_TEST(std::abs(p.i - p.reference[0]) <= 0.02 * p.reference[0] + 3.0 * p.se[0]);
+    const bool unit_matrix_limited = p.label == "horizon across sun" || p.label == "horizon away from sun";
+    BOOST_TEST(std::abs(p.dolp - p.dolp_reference) <= (unit_matrix_limited ? 0.05 : 0.02) + 3.0 * p.dolp_se,
+               p.label << " " << p.nm << " nm: DoLP " << p.dolp << " vs " << p.dolp_reference);
+    largest.intensity = std::max(largest.intensity, std::abs(p.i / p.reference[0] - 1.0));
+    largest.intensity_sigmas = std::max(largest.intensity_sigmas, std::abs(p.i - p.reference[0]) / p.se[0]);
+    double& d = unit_matrix_limited ? largest.dolp_unit_matrix_limited : largest.dolp;
+    d = std::max(d, std::abs(p.dolp - p.dolp_reference));
   }
   return largest;
 }
@@ -98,7 +79,7 @@ BOOST_AUTO_TEST_CASE(benchmark_table, *boost::unit_test::disabled() *
   for (double sun : {30.0, 10.0, 2.0}) {
     const Largest l = compare(sun, 100000);
     std::printf("| %g | %.2f %% | %.1f | %.4f | %.4f |\n", sun, 100.0 * l.intensity, l.intensity_sigmas, l.dolp,
-                l.dolp_quadrupole_limited);
+                l.dolp_unit_matrix_limited);
   }
 }
 

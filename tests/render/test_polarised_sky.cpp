@@ -2,9 +2,8 @@
 // fields' polarisation tensor) against the vector Monte Carlo reference, in Rayleigh air, where
 // the two solve the same vector equation: the intensity with polarisation's coupling (which the
 // scalar transport misses by up to 20 % at 400 nm on the horizon under a low sun) and Q, U in the
-// reference's frame. Aerosols are left out here: the renderer counts the light they scatter after
-// the first order as unpolarised, the reference carries it through their unit matrix
-// (docs/validation.md measures the difference).
+// reference's frame; and with the default scene's aerosol, whose unit matrix scatters the
+// polarisation's spin-2 harmonics, the degree of polarisation.
 
 #include <boost/test/unit_test.hpp>
 
@@ -21,6 +20,7 @@
 #include "skyspec/error.hpp"
 #include "skyspec/monte_carlo_reference.hpp"
 #include "skyspec/render.hpp"
+#include "stokes_comparison.hpp"
 
 BOOST_AUTO_TEST_SUITE(test_polarised_sky)
 
@@ -44,37 +44,47 @@ BOOST_AUTO_TEST_CASE(vector_tables_match_the_vector_reference_in_rayleigh_air,
                      *boost::unit_test::precondition(test::not_in_sanitizer_stage)) {
   for (double sun : {30.0, 2.0}) {
     const Scene scene = rayleigh_scene(sun, true);
-    const std::vector<ReferenceProbe> probes = standard_reference_probes(scene);
-    ReferenceSettings settings;
-    settings.paths = 20000;
-    settings.seed = 2027;
-    settings.stokes = true;
-    const ReferenceResult mc = monte_carlo_reference(scene, probes, settings);
     const SkyRenderer renderer(scene);
     const SkyRenderer scalar(rayleigh_scene(sun, false));
     double largest_coupling = 0.0;
-    for (size_t k = 0; k < probes.size(); ++k) {
-      const Vec3 dir = direction_from_angles(probes[k].azimuth_deg, probes[k].elevation_deg);
-      Spectrum i, q, u;
-      renderer.stokes(dir, stokes_frame_axis(dir), i, q, u);
-      const Spectrum from_image = renderer.radiance(dir), unpolarised = scalar.radiance(dir);
-      for (size_t w = 0; w < mc.wavelengths_nm.size(); ++w) {
-        const auto& v = mc.stokes[k][w];
-        const auto& e = mc.stokes_standard_error[k][w];
-        const Eigen::Index j = static_cast<Eigen::Index>(w);
-        const double dolp = std::hypot(q[j], u[j]) / i[j], dolp_mc = std::hypot(v[1], v[2]) / v[0];
-        std::printf("sun %g, %s, %g nm: I %.5g / %.5g +- %.2g (scalar renderer %.5g), DoLP %.4f / %.4f\n", sun,
-                    probes[k].label.c_str(), mc.wavelengths_nm[w], i[j], v[0], e[0], unpolarised[j], dolp, dolp_mc);
-        BOOST_TEST(std::abs(i[j] - v[0]) <= 0.015 * v[0] + 3.0 * e[0]);
-        BOOST_TEST(std::abs(q[j] - v[1]) <= 0.01 * v[0] + 3.0 * e[1]);
-        BOOST_TEST(std::abs(u[j] - v[2]) <= 0.01 * v[0] + 3.0 * e[2]);
-        // The image's intensity (through the sky-view table) is the vector one too.
-        BOOST_TEST(std::abs(from_image[j] / i[j] - 1.0) < 0.01);
-        largest_coupling = std::max(largest_coupling, std::abs(unpolarised[j] / v[0] - 1.0));
-      }
+    for (const test::StokesAtProbe& p : test::compare_with_vector_reference(scene, renderer, 20000, 2027)) {
+      const double from_image = renderer.radiance(p.direction)[p.wavelength];
+      const double unpolarised = scalar.radiance(p.direction)[p.wavelength];
+      std::printf("sun %g, %s, %g nm: I %.5g / %.5g +- %.2g (scalar renderer %.5g), DoLP %.4f / %.4f\n", sun,
+                  p.label.c_str(), p.nm, p.i, p.reference[0], p.se[0], unpolarised, p.dolp, p.dolp_reference);
+      BOOST_TEST(std::abs(p.i - p.reference[0]) <= 0.015 * p.reference[0] + 3.0 * p.se[0]);
+      BOOST_TEST(std::abs(p.q - p.reference[1]) <= 0.01 * p.reference[0] + 3.0 * p.se[1]);
+      BOOST_TEST(std::abs(p.u - p.reference[2]) <= 0.01 * p.reference[0] + 3.0 * p.se[2]);
+      // The image's intensity (through the sky-view table) is the vector one too.
+      BOOST_TEST(std::abs(from_image / p.i - 1.0) < 0.01);
+      largest_coupling = std::max(largest_coupling, std::abs(unpolarised / p.reference[0] - 1.0));
     }
     // Not a comparison that the scalar renderer would pass as well.
     if (sun == 2.0) BOOST_TEST(largest_coupling > 0.1);
+  }
+}
+
+// The default scene's aerosol (Henyey-Greenstein, the unit matrix) scatters the polarised light of
+// the higher orders with its forward peak: the tables carry the polarisation's spin-2 harmonics to
+// the intensity's degree, and the degree of polarisation is within 0.02 (+ 3 standard errors) of
+// the vector reference at every standard probe. 90 degrees from the sun on the horizon the
+// polarisation's quadrupole alone fell 0.05-0.07 short there (sun 10 degrees: 0.631 against 0.698
+// at 450 nm), which this fails.
+BOOST_AUTO_TEST_CASE(aerosol_scatters_the_polarisation_with_its_forward_peak,
+                     *boost::unit_test::precondition(test::not_in_sanitizer_stage)) {
+  const Scene scene = test::scene_with(
+      "[sun]\nelevation_deg = 10\n[spectrum]\nwavelengths_nm = [450, 650]\n[camera]\nwidth = 1\nheight = 1\n"
+      "[render]\ncache_tables = false\n[output]\npolarisation = true\n",
+      "default");
+  const SkyRenderer renderer(scene);
+  for (const test::StokesAtProbe& p : test::compare_with_vector_reference(scene, renderer, 10000, 2029)) {
+    std::printf("%s, %g nm: DoLP %.4f / %.4f +- %.4f\n", p.label.c_str(), p.nm, p.dolp, p.dolp_reference, p.dolp_se);
+    BOOST_TEST(std::abs(p.dolp - p.dolp_reference) <= 0.02 + 3.0 * p.dolp_se,
+               p.label << " " << p.nm << " nm: DoLP " << p.dolp << " vs " << p.dolp_reference);
+    // That standard error is a bound (StokesAtProbe::dolp_se): up to 0.02 at these probes, while
+    // the two differ by 0.006 at most. So that the test tells the full field from its quadrupole,
+    // the difference is also held to 0.03.
+    BOOST_TEST(std::abs(p.dolp - p.dolp_reference) <= 0.03);
   }
 }
 
