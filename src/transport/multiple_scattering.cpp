@@ -72,6 +72,13 @@ std::shared_ptr<const PhaseMoments> PhaseMoments::of(const AtmosphereModel& atm,
               ? piecewise_linear_legendre_moments(medium.phase.matrix->mu(),
                                                   medium.phase.matrix->a1()[static_cast<size_t>(i)], degree)
               : legendre_moments(phase, degree);
+      if (medium.phase.kind == MediumPhase::Kind::Tabulated && degree >= 2) {
+        of.polarising.resize(of.chi.size(), 0.0f);
+        const std::vector<double> gamma = piecewise_linear_spin_moments(
+            medium.phase.matrix->mu(), medium.phase.matrix->b1()[static_cast<size_t>(i)], degree, 2, 0);
+        for (int l = 2; l <= degree; ++l)
+          of.polarising[static_cast<size_t>(l) * n + i] = static_cast<float>(gamma[static_cast<size_t>(l)]);
+      }
       for (int l = 0; l <= degree; ++l) {
         of.chi[static_cast<size_t>(l) * n + i] = static_cast<float>(chi[static_cast<size_t>(l)]);
         // Zero to rounding beyond l = 2 for molecules (the quadrature is exact for a quadratic).
@@ -476,6 +483,8 @@ void SourceTable::harmonic_source(int degree, double r_m, double mu, double mu_v
                 cxz = static_cast<float>(2.0 * kx * kz);
     // The media's own sums only (source_above_skyline passes its part below the skyline after them).
     for (int s = 0; s < std::min(media, static_cast<int>(moments_->media.size())); ++s) {
+      if (!moments_->media[static_cast<size_t>(s)].polarising.empty())
+        add_polarising_share(w, degree, basis_d, moments_->media[static_cast<size_t>(s)].polarising.data(), out[s]);
       if (!moments_->media[static_cast<size_t>(s)].rayleigh) continue;
       const float* chi2 = &moments_->media[static_cast<size_t>(s)].chi[2 * static_cast<size_t>(n_l_)];
       float* j = out[s];
@@ -484,6 +493,33 @@ void SourceTable::harmonic_source(int degree, double r_m, double mu, double mu_v
         j[i] -= 2.0f * mu2_coefficient * (cxx * tensor[i] + cyy * tensor[n_l_ + i] + cxz * tensor[2 * n_l_ + i]);
       }
     }
+  }
+}
+
+void SourceTable::add_polarising_share(const Blend& w, int degree, const double* basis, const float* gamma,
+                                       float* out) const {
+  // The polarisation's spin-2 harmonics c_lm turned into the intensity's by b1 (the transpose of
+  // spin2_harmonics.hpp's b1 term): a_l0 = gamma_l c_l0, a_lm = gamma_l ((-1)^m c_lm + c_l,-m) / sqrt 2,
+  // summed with the view direction's Y_lm.
+  const int top = std::min(degree, degree_);
+  if (top < 2) return;
+  thread_local std::vector<float> c, sum;
+  c.resize(static_cast<size_t>(spin2_harmonic_count(top)) * n_l_);
+  sum.resize(static_cast<size_t>(n_l_));
+  mix_rows(w, &SourceTable::p_index, p_, 3, spin2_harmonic_count(top), c.data());
+  constexpr double kSqrtHalf = 0.70710678118654752440;
+  for (int l = 2; l <= top; ++l) {
+    std::fill(sum.begin(), sum.end(), 0.0f);
+    for (int m = -l; m <= l; ++m) {
+      const int a = std::abs(m);
+      const double y = basis[harmonic_index(l, a)];
+      const double weight = m == 0 ? y : kSqrtHalf * y * ((m > 0 && a % 2 == 1) ? -1.0 : 1.0);
+      const float* row = c.data() + static_cast<size_t>(spin2_harmonic_index(l, m)) * n_l_;
+      const float f = static_cast<float>(weight);
+      for (int i = 0; i < n_l_; ++i) sum[static_cast<size_t>(i)] += f * row[i];
+    }
+    const float* g = gamma + static_cast<size_t>(l) * n_l_;
+    for (int i = 0; i < n_l_; ++i) out[i] += g[i] * sum[static_cast<size_t>(i)];
   }
 }
 
@@ -538,6 +574,13 @@ int SourceTable::polarisation_harmonics(double r_m, double mu, int max_degree, f
   const int degree = std::min(degree_, max_degree);
   if (!polarised_ || degree < 2) return 0;
   mix_rows(blend(r_m, mu), &SourceTable::p_index, p_, 3, spin2_harmonic_count(degree), out);
+  return degree;
+}
+
+int SourceTable::field_harmonics(double r_m, double mu, int max_degree, float* out) const {
+  const int degree = std::min(degree_, max_degree);
+  if (degree < 0) return -1;
+  mix_rows(blend(r_m, mu), &SourceTable::index, j_, 0, skyspec::harmonic_count(degree), out);
   return degree;
 }
 
@@ -801,6 +844,9 @@ class SourceToDegree final : public InScatteringSource {
   }
   int polarisation_harmonics(double r_m, double mu_sun, int max_degree, float* out) const override {
     return table_.polarisation_harmonics(r_m, mu_sun, std::min({max_degree, degree_, polarisation_degree_}), out);
+  }
+  int field_harmonics(double r_m, double mu_sun, int max_degree, float* out) const override {
+    return table_.field_harmonics(r_m, mu_sun, std::min({max_degree, degree_, polarisation_degree_}), out);
   }
 
  private:

@@ -74,6 +74,10 @@ struct PhaseMoments {
     int nonzero_degree = 0;
     /// [l][wavelength], followed by kLookupSlack zeros (SourceTable::source reads whole blocks).
     std::vector<float> chi;
+    /// Tabulated (sphere) matrices: gamma_l = 2 pi int b1 d^l_{2,0} dmu, [l][wavelength] (zero for
+    /// l < 2), with which a polarised table's polarisation adds to the particle's intensity
+    /// (SourceTable::harmonic_source); empty for other media.
+    std::vector<float> polarising;
   };
   /// Skylines 0, 1, ..., 90 degrees above the view direction (SourceTable::source_above_skyline
   /// takes the nearest).
@@ -128,6 +132,8 @@ class SourceTable : public InScatteringSource {
   /// A polarised table's spin-2 harmonics of the polarisation to min(max_degree, degree()), blended
   /// as source() blends (InScatteringSource::polarisation_harmonics); 0 for other tables.
   int polarisation_harmonics(double r_m, double mu_sun, int max_degree, float* out) const override;
+  /// The harmonics to min(max_degree, degree()), blended as source() blends.
+  int field_harmonics(double r_m, double mu_sun, int max_degree, float* out) const override;
   /// The field's irradiance on a tilted surface (InScatteringSource::irradiance_on), blended as
   /// source() blends.
   bool irradiance_on(double r_m, double mu_sun, const Vec3& normal_local, float* out) const override;
@@ -207,6 +213,9 @@ class SourceTable : public InScatteringSource {
   /// One row of n wavelengths blended as `w` says from `data` (laid out by `at`), from `offset` on.
   void mix(const Blend& w, size_t (SourceTable::*at)(int, int) const, const ZeroedFloats& data, size_t offset,
            float* out) const;
+  /// out += a particle's intensity from the polarisation by its b1 (gamma: PhaseMoments::OfMedium::
+  /// polarising), the view direction's harmonics `basis` to `degree`.
+  void add_polarising_share(const Blend& w, int degree, const double* basis, const float* gamma, float* out) const;
   /// `rows` consecutive rows of n wavelengths from row first_row on, blended at once.
   void mix_rows(const Blend& w, size_t (SourceTable::*at)(int, int) const, const ZeroedFloats& data, int first_row,
                 int rows, float* out) const;
@@ -259,6 +268,9 @@ class ScatteringOrders : public InScatteringSource {
   }
   int polarisation_harmonics(double r_m, double mu_sun, int max_degree, float* out) const override {
     return sum_->polarisation_harmonics(r_m, mu_sun, max_degree, out);
+  }
+  int field_harmonics(double r_m, double mu_sun, int max_degree, float* out) const override {
+    return sum_->field_harmonics(r_m, mu_sun, max_degree, out);
   }
   bool irradiance_on(double r_m, double mu_sun, const Vec3& normal_local, float* out) const override {
     return sum_->irradiance_on(r_m, mu_sun, normal_local, out);

@@ -81,6 +81,31 @@ SingleScattering::SingleScattering(const AtmosphereModel& atm, const SunColumns&
       const SpectrumD scale = 3.0 / (16.0 * kPi * (1.0 + 2.0 * gamma));
       sc.phase_a = (scale * (1.0 + 3.0 * gamma)).cast<float>();
       sc.phase_b = (scale * (1.0 - gamma)).cast<float>();
+    } else if (medium.phase.kind == MediumPhase::Kind::Tabulated) {
+      // A sphere's matrix: alpha_+ = (a1 + a3) / 2 (a2 = a1), alpha_- = (a1 - a3) / 2 and b1
+      // (spin2_harmonics.hpp), exact for the table's interpolant.
+      constexpr int L = kMaxSpin2Degree;
+      const TabulatedScatteringMatrix& t = *medium.phase.matrix;
+      sc.spin2_moments.assign(L + 1, Spectrum::Zero(n_));
+      sc.spin2_cross_moments.assign(L + 1, Spectrum::Zero(n_));
+      sc.polarising_moments.assign(L + 1, Spectrum::Zero(n_));
+      std::vector<double> plus(t.mu().size()), minus(t.mu().size());
+      for (int i = 0; i < n_; ++i) {
+        const auto& a1 = t.a1()[static_cast<size_t>(i)];
+        const auto& a3 = t.a3()[static_cast<size_t>(i)];
+        for (size_t k = 0; k < plus.size(); ++k) {
+          plus[k] = 0.5 * (a1[k] + a3[k]);
+          minus[k] = 0.5 * (a1[k] - a3[k]);
+        }
+        const std::vector<double> bp = piecewise_linear_spin_moments(t.mu(), plus, L, 2, 2);
+        const std::vector<double> bm = piecewise_linear_spin_moments(t.mu(), minus, L, 2, -2);
+        const std::vector<double> g = piecewise_linear_spin_moments(t.mu(), t.b1()[static_cast<size_t>(i)], L, 2, 0);
+        for (int l = 2; l <= L; ++l) {
+          sc.spin2_moments[static_cast<size_t>(l)][i] = static_cast<float>(bp[static_cast<size_t>(l)]);
+          sc.spin2_cross_moments[static_cast<size_t>(l)][i] = static_cast<float>(bm[static_cast<size_t>(l)]);
+          sc.polarising_moments[static_cast<size_t>(l)][i] = static_cast<float>(g[static_cast<size_t>(l)]);
+        }
+      }
     } else {
       constexpr int L = kMaxSpin2Degree;
       if (d22.empty()) {
@@ -746,8 +771,10 @@ struct SingleScattering::PieceScratch {
   std::vector<float> spin2;              // InScatteringSource::polarisation_harmonics at one node
   std::vector<double> spin2_q, spin2_u;  // the harmonics' Q and U parts in the node's view direction
   Spectrum q, u, pq, pu;                 // polarised_sources' sums at one node
-  // polarised_sources' sums of one degree at one node, padded to whole blocks of 16 wavelengths
-  std::vector<float> degree_q, degree_u;
+  std::vector<float> field;              // InScatteringSource::field_harmonics at one node
+  // polarised_sources' sums of one degree at one node, padded to whole blocks of 16 wavelengths:
+  // the harmonics, their mirror images and the intensity's harmonics polarised
+  std::vector<float> degree_q, degree_u, mirror_q, mirror_u, polarised_q, polarised_u;
 };
 
 // tau = sum_j beta_ext,j(l) columns[k, j] (the optical depth), as [node k, wavelength l] or [l, k].
@@ -857,11 +884,20 @@ bool SingleScattering::polarised_sources(const Node* nodes, int m, const RayFram
     particles = particles || !scatterers_[static_cast<size_t>(s)].rayleigh();
   }
   const int max_spin2 = particles ? kMaxSpin2Degree : 0;
+  constexpr double kSqrtHalf = 0.70710678118654752440;
+  // Spheres: their mirrored polarisation (alpha_-) and their b1 on the intensity's harmonics.
+  bool mirroring = false, polarising = false;
+  for (const Scatterer& medium : scatterers_) {
+    mirroring = mirroring || !medium.spin2_cross_moments.empty();
+    polarising = polarising || !medium.polarising_moments.empty();
+  }
   // The harmonics' rows are read in whole blocks of 16 wavelengths: 16 spare floats after the last.
   const Eigen::Index padded = (n + 15) / 16 * 16;
   sc.spin2.resize(static_cast<size_t>(spin2_harmonic_count(max_spin2)) * static_cast<size_t>(n) + 16);
-  sc.degree_q.resize(static_cast<size_t>(padded));
-  sc.degree_u.resize(static_cast<size_t>(padded));
+  sc.field.resize(polarising ? static_cast<size_t>(harmonic_count(max_spin2)) * static_cast<size_t>(n) + 16 : 0);
+  for (std::vector<float>* v :
+       {&sc.degree_q, &sc.degree_u, &sc.mirror_q, &sc.mirror_u, &sc.polarised_q, &sc.polarised_u})
+    v->resize(static_cast<size_t>(padded));
   sc.spin2_q.resize(static_cast<size_t>(spin2_harmonic_count(max_spin2)));
   sc.spin2_u.resize(static_cast<size_t>(spin2_harmonic_count(max_spin2)));
   for (int k = 0; k < m; ++k) {
@@ -889,10 +925,15 @@ bool SingleScattering::polarised_sources(const Node* nodes, int m, const RayFram
     }
     // The particles' share: the field's spin-2 harmonics at the view direction (its (e_theta,
     // e_phi) frame turned into (e1, e2): Q = A_qq Q_local + A_qu U_local, U = A_uq Q_local + A_uu
-    // U_local), summed per degree into degree_q, degree_u and weighted by each particle's beta_l.
+    // U_local), summed per degree and weighted by each particle's moments: beta_l for the
+    // harmonics themselves, beta-_l for their mirror images and gamma_l for the intensity's
+    // harmonics that b1 polarises (spin2_harmonics.hpp).
     const int degree =
         particles ? higher.polarisation_harmonics(nodes[k].r, f.s.dot(z), max_spin2, sc.spin2.data()) : 0;
-    if (degree >= 2) {
+    const int field_degree =
+        polarising ? higher.field_harmonics(nodes[k].r, f.s.dot(z), max_spin2, sc.field.data()) : -1;
+    const int top = std::max(degree, field_degree);
+    if (top >= 2) {
       const double dx = f.d.dot(x), dy = f.d.dot(y), dz = std::clamp(f.d.dot(z), -1.0, 1.0);
       const double sin_t = std::sqrt(dx * dx + dy * dy);
       const double cos_phi = sin_t > 1e-12 ? dx / sin_t : 1.0, sin_phi = sin_t > 1e-12 ? dy / sin_t : 0.0;
@@ -901,34 +942,77 @@ bool SingleScattering::polarised_sources(const Node* nodes, int m, const RayFram
       const double ta = e_theta.dot(e), sa = e_theta.dot(g), tb = e_phi.dot(e), sb = e_phi.dot(g);
       const double a_qq = 0.5 * (ta * ta - tb * tb - sa * sa + sb * sb), a_qu = ta * tb - sa * sb;
       const double a_uq = ta * sa - tb * sb, a_uu = ta * sb + tb * sa;
-      spin2_harmonics(degree, dz, cos_phi, sin_phi, sc.spin2_q.data(), sc.spin2_u.data());
+      spin2_harmonics(top, dz, cos_phi, sin_phi, sc.spin2_q.data(), sc.spin2_u.data());
+      // The harmonics' Q and U in (e1, e2).
+      for (int c = 0; c < spin2_harmonic_count(top); ++c) {
+        const double hq = sc.spin2_q[static_cast<size_t>(c)], hu = sc.spin2_u[static_cast<size_t>(c)];
+        sc.spin2_q[static_cast<size_t>(c)] = a_qq * hq + a_qu * hu;
+        sc.spin2_u[static_cast<size_t>(c)] = a_uq * hq + a_uu * hu;
+      }
       for (int s = 0; s < scatterer_count(); ++s) {
         sc.source_q_t[s].col(k) = sc.source_t[s].col(k);
         sc.source_u_t[s].col(k) = sc.source_t[s].col(k);
       }
-      for (int l = 2; l <= degree; ++l) {
-        float* dq = sc.degree_q.data();
-        float* du = sc.degree_u.data();
+      // out_q, out_u = sum of rows (n wavelengths each, from `base`) times (wq, wu); whole blocks
+      // of 16 (the lanes past n read the next row or the spare floats and are not used).
+      const auto sum_rows = [&](std::vector<float>& out_q, std::vector<float>& out_u, const auto& terms) {
+        float* dq = out_q.data();
+        float* du = out_u.data();
         std::fill(dq, dq + padded, 0.0f);
         std::fill(du, du + padded, 0.0f);
-        // Whole blocks: the lanes past n read the next row (or the spare floats) and are not used.
-        for (int mm = -l; mm <= l; ++mm) {
-          const size_t c = static_cast<size_t>(spin2_harmonic_index(l, mm));
-          const float* coefficient = sc.spin2.data() + c * static_cast<size_t>(n);
-          const float gq = static_cast<float>(a_qq * sc.spin2_q[c] + a_qu * sc.spin2_u[c]);
-          const float gu = static_cast<float>(a_uq * sc.spin2_q[c] + a_uu * sc.spin2_u[c]);
+        terms([&](const float* row, double wq, double wu) {
+          const float fq = static_cast<float>(wq), fu = static_cast<float>(wu);
           for (Eigen::Index i = 0; i < padded; ++i) {
-            dq[i] += gq * coefficient[i];
-            du[i] += gu * coefficient[i];
+            dq[i] += fq * row[i];
+            du[i] += fu * row[i];
           }
+        });
+      };
+      const auto spin2_row = [&](int l, int mm) {
+        return sc.spin2.data() + static_cast<size_t>(spin2_harmonic_index(l, mm)) * static_cast<size_t>(n);
+      };
+      const auto hq = [&](int l, int mm) { return sc.spin2_q[static_cast<size_t>(spin2_harmonic_index(l, mm))]; };
+      const auto hu = [&](int l, int mm) { return sc.spin2_u[static_cast<size_t>(spin2_harmonic_index(l, mm))]; };
+      for (int l = 2; l <= top; ++l) {
+        if (l <= degree) {
+          sum_rows(sc.degree_q, sc.degree_u, [&](const auto& row) {
+            for (int mm = -l; mm <= l; ++mm) row(spin2_row(l, mm), hq(l, mm), hu(l, mm));
+          });
+          if (mirroring)
+            sum_rows(sc.mirror_q, sc.mirror_u, [&](const auto& row) {
+              for (int mm = -l; mm <= l; ++mm) {
+                const double sign = (mm % 2 == 0) ? 1.0 : -1.0;
+                row(spin2_row(l, mm), sign * hq(l, -mm), sign * hu(l, -mm));
+              }
+            });
         }
-        const Eigen::Map<const Spectrum> degree_q(dq, n), degree_u(du, n);
+        if (l <= field_degree)
+          sum_rows(sc.polarised_q, sc.polarised_u, [&](const auto& row) {
+            const float* a = sc.field.data() + static_cast<size_t>(harmonic_index(l, 0)) * static_cast<size_t>(n);
+            row(a, hq(l, 0), hu(l, 0));
+            for (int mm = 1; mm <= l; ++mm) {
+              const double sign = (mm % 2 == 0) ? 1.0 : -1.0;
+              const float* am = sc.field.data() + static_cast<size_t>(harmonic_index(l, mm)) * static_cast<size_t>(n);
+              row(am, kSqrtHalf * (sign * hq(l, mm) + hq(l, -mm)), kSqrtHalf * (sign * hu(l, mm) + hu(l, -mm)));
+            }
+          });
         for (int s = 0; s < scatterer_count(); ++s) {
           const Scatterer& medium = scatterers_[static_cast<size_t>(s)];
           if (medium.rayleigh()) continue;
-          const Spectrum& beta = medium.spin2_moments[static_cast<size_t>(l)];
-          sc.source_q_t[s].col(k) += beta * degree_q;
-          sc.source_u_t[s].col(k) += beta * degree_u;
+          const size_t li = static_cast<size_t>(l);
+          using Map = Eigen::Map<const Spectrum>;
+          if (l <= degree) {
+            sc.source_q_t[s].col(k) += medium.spin2_moments[li] * Map(sc.degree_q.data(), n);
+            sc.source_u_t[s].col(k) += medium.spin2_moments[li] * Map(sc.degree_u.data(), n);
+            if (!medium.spin2_cross_moments.empty()) {
+              sc.source_q_t[s].col(k) += medium.spin2_cross_moments[li] * Map(sc.mirror_q.data(), n);
+              sc.source_u_t[s].col(k) += medium.spin2_cross_moments[li] * Map(sc.mirror_u.data(), n);
+            }
+          }
+          if (l <= field_degree && !medium.polarising_moments.empty()) {
+            sc.source_q_t[s].col(k) += medium.polarising_moments[li] * Map(sc.polarised_q.data(), n);
+            sc.source_u_t[s].col(k) += medium.polarising_moments[li] * Map(sc.polarised_u.data(), n);
+          }
         }
       }
     }
@@ -937,7 +1021,7 @@ bool SingleScattering::polarised_sources(const Node* nodes, int m, const RayFram
       if (medium.rayleigh()) {
         sc.source_q_t[s].col(k) = sc.source_t[s].col(k) + 2.0f * medium.phase_b * (q + pq);
         sc.source_u_t[s].col(k) = sc.source_t[s].col(k) + 2.0f * medium.phase_b * (u + pu);
-      } else if (degree < 2) {
+      } else if (top < 2) {
         sc.source_q_t[s].col(k) = sc.source_t[s].col(k);
         sc.source_u_t[s].col(k) = sc.source_t[s].col(k);
       }

@@ -149,6 +149,13 @@ class InScatteringSource {
   virtual int polarisation_harmonics(double /*r_m*/, double /*mu_sun*/, int /*max_degree*/, float* /*out*/) const {
     return 0;
   }
+  /// The field's (intensity's) real spherical harmonics a_lm (spherical_harmonics.hpp) at (r, mu_s)
+  /// for l <= the degree returned (at most max_degree), per unit solar irradiance, at
+  /// out[harmonic_index(l, m) n + i]: what a particle's b1 polarises (polarised_sources). -1 (out
+  /// untouched) if the source has no angular field.
+  virtual int field_harmonics(double /*r_m*/, double /*mu_sun*/, int /*max_degree*/, float* /*out*/) const {
+    return -1;
+  }
   /// The irradiance the field puts on a surface at (r, mu_s) whose unit normal is normal_local in
   /// the same local frame (z up, x towards the sun's azimuth), per unit solar irradiance: the
   /// integral of L(w) max(0, n . w) over the sphere, from the field's harmonics
@@ -284,6 +291,10 @@ class SingleScattering {
     /// for l = 0..kMaxSpin2Degree (spin2_harmonics.hpp; 0 below l = 2): what a unit scattering matrix
     /// keeps of each degree of the light's polarisation (polarised_sources).
     std::vector<Spectrum> spin2_moments;
+    /// Tabulated (sphere) matrices, else empty: the moments of alpha_- = (a1 - a3) / 2 with
+    /// d^l_{2,-2} (the polarisation mirrored in the scattering plane) and of b1 with d^l_{2,0}
+    /// (unpolarised light polarised), per l as spin2_moments (spin2_harmonics.hpp).
+    std::vector<Spectrum> spin2_cross_moments, polarising_moments;
     bool rayleigh() const { return phase->kind == MediumPhase::Kind::Rayleigh; }
   };
   std::vector<Scatterer> scatterers_;

@@ -130,4 +130,34 @@ std::vector<double> spin2_moments(const std::function<double(double)>& phase, in
   return beta;
 }
 
+std::vector<double> piecewise_linear_spin_moments(const std::vector<double>& mu, const std::vector<double>& values,
+                                                  int degree, int m1, int m2) {
+  check_degree(degree, "piecewise_linear_spin_moments");
+  if (mu.size() != values.size() || mu.size() < 2)
+    throw std::invalid_argument("piecewise_linear_spin_moments: need as many values as cosines, two or more");
+  for (size_t k = 0; k + 1 < mu.size(); ++k)
+    if (!(mu[k + 1] > mu[k])) throw std::invalid_argument("piecewise_linear_spin_moments: the cosines must ascend");
+  std::vector<std::vector<Term>> d(static_cast<size_t>(degree + 1));
+  for (int l = std::max(std::abs(m1), std::abs(m2)); l <= degree; ++l)
+    d[static_cast<size_t>(l)] = wigner_terms(l, m1, m2);
+  // d^l_{m1,m2} is a polynomial of degree l in mu when m1 and m2 are even; times a linear function,
+  // degree + 1 at most: (degree + 2) / 2 + 1 Gauss-Legendre nodes per interval are exact.
+  std::vector<double> x, w;
+  gauss_legendre((degree + 2) / 2 + 1, 0.0, 1.0, x, w);
+  std::vector<double> moments(static_cast<size_t>(degree + 1), 0.0);
+  for (size_t k = 0; k + 1 < mu.size(); ++k) {
+    const double width = mu[k + 1] - mu[k];
+    for (size_t j = 0; j < x.size(); ++j) {
+      const double m = mu[k] + x[j] * width;
+      const double f = values[k] + x[j] * (values[k + 1] - values[k]);
+      const HalfAnglePowers p(m);
+      for (int l = 0; l <= degree; ++l)
+        if (!d[static_cast<size_t>(l)].empty())
+          moments[static_cast<size_t>(l)] += w[j] * width * f * sum_terms(d[static_cast<size_t>(l)], p.c, p.s);
+    }
+  }
+  for (double& v : moments) v *= 2.0 * kPi;
+  return moments;
+}
+
 }  // namespace skyspec

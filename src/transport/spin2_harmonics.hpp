@@ -50,4 +50,25 @@ void spin2_harmonics(int degree, double mu, double cos_phi, double sin_phi, doub
 /// Gauss-Legendre quadrature with `nodes` nodes (p normalised to 1 over the sphere).
 std::vector<double> spin2_moments(const std::function<double(double)>& phase, int degree, int nodes = 512);
 
+/// 2 pi integral f(mu) d^l_{m1,m2}(mu) dmu for l = 0..degree (0 where l < |m1| or |m2|), f linear
+/// between ascending cosines mu[k] (values[k] there, from -1 to 1), as tabulated scattering
+/// matrices are: exact for that interpolant (Gauss-Legendre on each interval), so that a forward
+/// peak narrower than any fixed set of nodes keeps its weight.
+std::vector<double> piecewise_linear_spin_moments(const std::vector<double>& mu, const std::vector<double>& values,
+                                                  int degree, int m1, int m2);
+
+// A sphere's matrix beyond the unit matrix. Relative to the scattering plane a particle with
+// elements a1 = a2, a3, b1 (Hovenier et al. 2004, eq. 2.133; circular polarisation left out) turns
+// the arriving I and P = Q + i U into
+//   P_out = b1 I + alpha_+ P + alpha_- conj(P),   alpha_+- = (a2 +- a3) / 2,
+// and each term is diagonal in the degree (the addition theorem again):
+//  - alpha_+ P: c_lm -> beta_l c_lm with beta_l from alpha_+ (spin2_moments; alpha_+ = p for the
+//    unit matrix);
+//  - alpha_- conj(P) (the polarisation mirrored in the scattering plane, then carried to w):
+//    c_l,-m -> (-1)^m beta-_l c_lm, beta-_l = 2 pi int alpha_- d^l_{2,-2} dmu;
+//  - b1 I, from the field's real harmonics a_lm (spherical_harmonics.hpp, m >= 0):
+//    c_l0 -> gamma_l a_l0 and, for m > 0, c_lm -> (-1)^m gamma_l a_lm / sqrt 2,
+//    c_l,-m -> gamma_l a_lm / sqrt 2, with gamma_l = 2 pi int b1 d^l_{2,0} dmu.
+// test_spin2_harmonics checks the three against brute-force integrals over the sphere.
+
 }  // namespace skyspec

@@ -3,13 +3,12 @@
 // which uses the same tabulated scattering matrix: intensity within 2 % + 3 standard errors and
 // the degree of linear polarisation within 0.02 (the water-and-aerosols issue's criteria), at the
 // standard probes and two wavelengths, 10 000 paths each, for a sun 10 degrees up (the sun at 30 degrees is in
-// bench/opac_aerosol.sh, with more paths, and docs/validation.md has its table).
-//
-// Except on the horizon across from and away from the sun: there the renderer's degree of
-// polarisation is known to exceed the reference's by up to 0.034 (here) because light scattered
-// more than once meets the aerosol's phase function times the unit matrix in the renderer, not the
-// sphere's matrix (its a3 differs from a1, and b1 polarises unpolarised light: the polarisation
-// issue's item 3). Those two probes are held to 0.05, which fails if that gap grows.
+// bench/opac_aerosol.sh, with more paths, and docs/validation.md has its table). Light scattered
+// more than once meets the sphere's whole matrix in the renderer too (spin2_harmonics.hpp: a3 and
+// b1 as well as a1): with the unit matrix instead, the degree of polarisation on the horizon across
+// from the sun was 0.028-0.034 above the reference's here, with the field's quadrupole alone 0.076
+// below. The DoLP's standard error is a bound (StokesAtProbe::dolp_se, up to 0.02 here), so the
+// difference is also held to 0.015 absolute, which both of those fail.
 
 #include <boost/test/unit_test.hpp>
 
@@ -41,7 +40,7 @@ Scene opac_scene(double sun_elevation) {
 }
 
 struct Largest {
-  double intensity = 0.0, intensity_sigmas = 0.0, dolp = 0.0, dolp_unit_matrix_limited = 0.0;
+  double intensity = 0.0, intensity_sigmas = 0.0, dolp = 0.0, dolp_horizon_aside = 0.0;
 };
 
 // The comparison at one sun; prints every probe and returns the largest differences.
@@ -54,12 +53,13 @@ Largest compare(double sun, std::int64_t paths) {
                 p.nm, p.i, p.reference[0], p.se[0], 100.0 * (p.i / p.reference[0] - 1.0), p.dolp, p.dolp_reference,
                 p.dolp - p.dolp_reference);
     BOOST_TEST(std::abs(p.i - p.reference[0]) <= 0.02 * p.reference[0] + 3.0 * p.se[0]);
-    const bool unit_matrix_limited = p.label == "horizon across sun" || p.label == "horizon away from sun";
-    BOOST_TEST(std::abs(p.dolp - p.dolp_reference) <= (unit_matrix_limited ? 0.05 : 0.02) + 3.0 * p.dolp_se,
+    const bool horizon_aside = p.label == "horizon across sun" || p.label == "horizon away from sun";
+    BOOST_TEST(std::abs(p.dolp - p.dolp_reference) <= 0.02 + 3.0 * p.dolp_se,
                p.label << " " << p.nm << " nm: DoLP " << p.dolp << " vs " << p.dolp_reference);
+    BOOST_TEST(std::abs(p.dolp - p.dolp_reference) <= 0.015);
     largest.intensity = std::max(largest.intensity, std::abs(p.i / p.reference[0] - 1.0));
     largest.intensity_sigmas = std::max(largest.intensity_sigmas, std::abs(p.i - p.reference[0]) / p.se[0]);
-    double& d = unit_matrix_limited ? largest.dolp_unit_matrix_limited : largest.dolp;
+    double& d = horizon_aside ? largest.dolp_horizon_aside : largest.dolp;
     d = std::max(d, std::abs(p.dolp - p.dolp_reference));
   }
   return largest;
@@ -79,7 +79,7 @@ BOOST_AUTO_TEST_CASE(benchmark_table, *boost::unit_test::disabled() *
   for (double sun : {30.0, 10.0, 2.0}) {
     const Largest l = compare(sun, 100000);
     std::printf("| %g | %.2f %% | %.1f | %.4f | %.4f |\n", sun, 100.0 * l.intensity, l.intensity_sigmas, l.dolp,
-                l.dolp_unit_matrix_limited);
+                l.dolp_horizon_aside);
   }
 }
 
