@@ -61,6 +61,7 @@ std::shared_ptr<const PhaseMoments> PhaseMoments::of(const AtmosphereModel& atm,
     if (!medium.scatters()) continue;
     OfMedium of;
     of.rayleigh = medium.phase.kind == MediumPhase::Kind::Rayleigh;
+    of.sphere_matrix = medium.phase.kind == MediumPhase::Kind::Tabulated && degree >= 2;
     of.chi.assign(static_cast<size_t>(degree + 1) * n + SourceTable::kLookupSlack, 0.0f);
     m->phases_.push_back(medium.phase);
     for (int i = 0; i < n; ++i) {
@@ -72,13 +73,6 @@ std::shared_ptr<const PhaseMoments> PhaseMoments::of(const AtmosphereModel& atm,
               ? piecewise_linear_legendre_moments(medium.phase.matrix->mu(),
                                                   medium.phase.matrix->a1()[static_cast<size_t>(i)], degree)
               : legendre_moments(phase, degree);
-      if (medium.phase.kind == MediumPhase::Kind::Tabulated && degree >= 2) {
-        of.polarising.resize(of.chi.size(), 0.0f);
-        const std::vector<double> gamma = piecewise_linear_spin_moments(
-            medium.phase.matrix->mu(), medium.phase.matrix->b1()[static_cast<size_t>(i)], degree, 2, 0);
-        for (int l = 2; l <= degree; ++l)
-          of.polarising[static_cast<size_t>(l) * n + i] = static_cast<float>(gamma[static_cast<size_t>(l)]);
-      }
       for (int l = 0; l <= degree; ++l) {
         of.chi[static_cast<size_t>(l) * n + i] = static_cast<float>(chi[static_cast<size_t>(l)]);
         // Zero to rounding beyond l = 2 for molecules (the quadrature is exact for a quadratic).
@@ -89,6 +83,25 @@ std::shared_ptr<const PhaseMoments> PhaseMoments::of(const AtmosphereModel& atm,
     m->media.push_back(std::move(of));
   }
   return m;
+}
+
+const std::vector<float>& PhaseMoments::polarising(int s) const {
+  std::call_once(polarising_once_, [this] {
+    polarising_.resize(media.size());
+    for (size_t k = 0; k < media.size(); ++k) {
+      if (!media[k].sphere_matrix) continue;
+      const TabulatedScatteringMatrix& t = *phases_[k].matrix;
+      std::vector<float>& out = polarising_[k];
+      out.assign(static_cast<size_t>(degree + 1) * wavelengths + SourceTable::kLookupSlack, 0.0f);
+      for (int i = 0; i < wavelengths; ++i) {
+        const std::vector<double> gamma =
+            piecewise_linear_spin_moments(t.mu(), t.b1()[static_cast<size_t>(i)], degree, 2, 0);
+        for (int l = 2; l <= degree; ++l)
+          out[static_cast<size_t>(l) * wavelengths + i] = static_cast<float>(gamma[static_cast<size_t>(l)]);
+      }
+    }
+  });
+  return polarising_.at(static_cast<size_t>(s));
 }
 
 void PhaseMoments::compute_skyline_moments() const {
@@ -483,8 +496,8 @@ void SourceTable::harmonic_source(int degree, double r_m, double mu, double mu_v
                 cxz = static_cast<float>(2.0 * kx * kz);
     // The media's own sums only (source_above_skyline passes its part below the skyline after them).
     for (int s = 0; s < std::min(media, static_cast<int>(moments_->media.size())); ++s) {
-      if (!moments_->media[static_cast<size_t>(s)].polarising.empty())
-        add_polarising_share(w, degree, basis_d, moments_->media[static_cast<size_t>(s)].polarising.data(), out[s]);
+      if (moments_->media[static_cast<size_t>(s)].sphere_matrix)
+        add_polarising_share(w, degree, basis_d, moments_->polarising(s).data(), out[s]);
       if (!moments_->media[static_cast<size_t>(s)].rayleigh) continue;
       const float* chi2 = &moments_->media[static_cast<size_t>(s)].chi[2 * static_cast<size_t>(n_l_)];
       float* j = out[s];

@@ -74,10 +74,8 @@ struct PhaseMoments {
     int nonzero_degree = 0;
     /// [l][wavelength], followed by kLookupSlack zeros (SourceTable::source reads whole blocks).
     std::vector<float> chi;
-    /// Tabulated (sphere) matrices: gamma_l = 2 pi int b1 d^l_{2,0} dmu, [l][wavelength] (zero for
-    /// l < 2), with which a polarised table's polarisation adds to the particle's intensity
-    /// (SourceTable::harmonic_source); empty for other media.
-    std::vector<float> polarising;
+    /// A tabulated (sphere) matrix, whose b1 turns polarisation into intensity (polarising()).
+    bool sphere_matrix = false;
   };
   /// Skylines 0, 1, ..., 90 degrees above the view direction (SourceTable::source_above_skyline
   /// takes the nearest).
@@ -91,12 +89,17 @@ struct PhaseMoments {
   static int nearest_skyline(double skyline_rad);
   /// The moments of its first-order correction (skyline_gradient_moments), laid out the same way.
   const std::vector<float>& skyline_gradient_chi(int s) const;
+  /// Medium s's gamma_l = 2 pi int b1 d^l_{2,0} dmu (spin2_harmonics.hpp), [l][wavelength] (zero for
+  /// l < 2), with which a polarised table's polarisation adds to a sphere's intensity
+  /// (SourceTable::harmonic_source); empty unless OfMedium::sphere_matrix. Computed on first use.
+  const std::vector<float>& polarising(int s) const;
   std::vector<OfMedium> media;
   static std::shared_ptr<const PhaseMoments> of(const AtmosphereModel& atm, int degree);
 
  private:
   std::vector<MediumPhase> phases_;  // the media's phase functions, for skyline_chi
-  mutable std::once_flag skyline_once_;
+  mutable std::once_flag skyline_once_, polarising_once_;
+  mutable std::vector<std::vector<float>> polarising_;
   mutable std::vector<std::vector<float>> skyline_chi_, skyline_gradient_chi_;
   void compute_skyline_moments() const;
 };

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <mutex>
 
 #include "base/quadrature.hpp"
 #include "skyspec/atmosphere.hpp"
@@ -61,10 +62,8 @@ SingleScattering::SingleScattering(const AtmosphereModel& atm, const SunColumns&
       settings_(s),
       media_(static_cast<int>(atm.media().size())),
       albedo_over_pi_((atm.ground_albedo() / kPi).cast<float>()),
-      n_(atm.grid().size()) {
-  std::vector<double> mu, w;
-  gauss_legendre(512, -1.0, 1.0, mu, w);
-  std::vector<double> d22;  // d^l_22(mu[k]) at k (kMaxSpin2Degree + 1) + l, once particles need it
+      n_(atm.grid().size()),
+      spin_moments_(std::make_shared<LazySpinMoments>()) {
   for (int j = 0; j < media_; ++j) {
     const Medium& medium = atm.media()[static_cast<size_t>(j)];
     ext_[j] = medium.extinction_per_m.cast<float>();
@@ -81,52 +80,75 @@ SingleScattering::SingleScattering(const AtmosphereModel& atm, const SunColumns&
       const SpectrumD scale = 3.0 / (16.0 * kPi * (1.0 + 2.0 * gamma));
       sc.phase_a = (scale * (1.0 + 3.0 * gamma)).cast<float>();
       sc.phase_b = (scale * (1.0 - gamma)).cast<float>();
-    } else if (medium.phase.kind == MediumPhase::Kind::Tabulated) {
-      // A sphere's matrix: alpha_+ = (a1 + a3) / 2 (a2 = a1), alpha_- = (a1 - a3) / 2 and b1
-      // (spin2_harmonics.hpp), exact for the table's interpolant.
-      constexpr int L = kMaxSpin2Degree;
-      const TabulatedScatteringMatrix& t = *medium.phase.matrix;
-      sc.spin2_moments.assign(L + 1, Spectrum::Zero(n_));
-      sc.spin2_cross_moments.assign(L + 1, Spectrum::Zero(n_));
-      sc.polarising_moments.assign(L + 1, Spectrum::Zero(n_));
-      std::vector<double> plus(t.mu().size()), minus(t.mu().size());
-      for (int i = 0; i < n_; ++i) {
-        const auto& a1 = t.a1()[static_cast<size_t>(i)];
-        const auto& a3 = t.a3()[static_cast<size_t>(i)];
-        for (size_t k = 0; k < plus.size(); ++k) {
-          plus[k] = 0.5 * (a1[k] + a3[k]);
-          minus[k] = 0.5 * (a1[k] - a3[k]);
-        }
-        const std::vector<double> bp = piecewise_linear_spin_moments(t.mu(), plus, L, 2, 2);
-        const std::vector<double> bm = piecewise_linear_spin_moments(t.mu(), minus, L, 2, -2);
-        const std::vector<double> g = piecewise_linear_spin_moments(t.mu(), t.b1()[static_cast<size_t>(i)], L, 2, 0);
-        for (int l = 2; l <= L; ++l) {
-          sc.spin2_moments[static_cast<size_t>(l)][i] = static_cast<float>(bp[static_cast<size_t>(l)]);
-          sc.spin2_cross_moments[static_cast<size_t>(l)][i] = static_cast<float>(bm[static_cast<size_t>(l)]);
-          sc.polarising_moments[static_cast<size_t>(l)][i] = static_cast<float>(g[static_cast<size_t>(l)]);
-        }
-      }
-    } else {
-      constexpr int L = kMaxSpin2Degree;
-      if (d22.empty()) {
-        d22.resize(mu.size() * (L + 1), 0.0);
-        for (size_t k = 0; k < mu.size(); ++k)
-          for (int l = 2; l <= L; ++l) d22[k * (L + 1) + static_cast<size_t>(l)] = wigner_d(l, 2, 2, mu[k]);
-      }
-      sc.spin2_moments.assign(L + 1, Spectrum::Zero(n_));
-      std::vector<double> beta(L + 1);
-      for (int i = 0; i < n_; ++i) {
-        std::fill(beta.begin(), beta.end(), 0.0);
-        for (size_t k = 0; k < mu.size(); ++k) {
-          const double pw = w[k] * medium.phase.at(i, mu[k]);
-          for (int l = 2; l <= L; ++l) beta[static_cast<size_t>(l)] += pw * d22[k * (L + 1) + static_cast<size_t>(l)];
-        }
-        for (int l = 2; l <= L; ++l)
-          sc.spin2_moments[static_cast<size_t>(l)][i] = static_cast<float>(2.0 * kPi * beta[static_cast<size_t>(l)]);
-      }
     }
     scatterers_.push_back(std::move(sc));
   }
+}
+
+struct SingleScattering::LazySpinMoments {
+  std::once_flag once;
+  std::vector<SpinMoments> moments;
+};
+
+const std::vector<SingleScattering::SpinMoments>& SingleScattering::spin_moments() const {
+  LazySpinMoments& lazy = *spin_moments_;
+  std::call_once(lazy.once, [&] {
+    constexpr int L = kMaxSpin2Degree;
+    std::vector<double> mu, w;
+    gauss_legendre(512, -1.0, 1.0, mu, w);
+    std::vector<double> d22;  // d^l_22(mu[k]) at k (L + 1) + l, once an analytic phase function needs it
+    for (const Scatterer& sc : scatterers_) {
+      SpinMoments out;
+      const MediumPhase& phase = *sc.phase;
+      if (sc.rayleigh()) {
+        lazy.moments.push_back(std::move(out));
+        continue;
+      }
+      out.plus.assign(L + 1, Spectrum::Zero(n_));
+      if (phase.kind == MediumPhase::Kind::Tabulated) {
+        // A sphere's matrix: alpha_+ = (a1 + a3) / 2 (a2 = a1), alpha_- = (a1 - a3) / 2 and b1,
+        // exact for the table's interpolant.
+        const TabulatedScatteringMatrix& t = *phase.matrix;
+        out.mirrored.assign(L + 1, Spectrum::Zero(n_));
+        out.polarising.assign(L + 1, Spectrum::Zero(n_));
+        std::vector<double> plus(t.mu().size()), minus(t.mu().size());
+        for (int i = 0; i < n_; ++i) {
+          const auto& a1 = t.a1()[static_cast<size_t>(i)];
+          const auto& a3 = t.a3()[static_cast<size_t>(i)];
+          for (size_t k = 0; k < plus.size(); ++k) {
+            plus[k] = 0.5 * (a1[k] + a3[k]);
+            minus[k] = 0.5 * (a1[k] - a3[k]);
+          }
+          const std::vector<double> bp = piecewise_linear_spin_moments(t.mu(), plus, L, 2, 2);
+          const std::vector<double> bm = piecewise_linear_spin_moments(t.mu(), minus, L, 2, -2);
+          const std::vector<double> g = piecewise_linear_spin_moments(t.mu(), t.b1()[static_cast<size_t>(i)], L, 2, 0);
+          for (int l = 2; l <= L; ++l) {
+            out.plus[static_cast<size_t>(l)][i] = static_cast<float>(bp[static_cast<size_t>(l)]);
+            out.mirrored[static_cast<size_t>(l)][i] = static_cast<float>(bm[static_cast<size_t>(l)]);
+            out.polarising[static_cast<size_t>(l)][i] = static_cast<float>(g[static_cast<size_t>(l)]);
+          }
+        }
+      } else {
+        if (d22.empty()) {
+          d22.resize(mu.size() * (L + 1), 0.0);
+          for (size_t k = 0; k < mu.size(); ++k)
+            for (int l = 2; l <= L; ++l) d22[k * (L + 1) + static_cast<size_t>(l)] = wigner_d(l, 2, 2, mu[k]);
+        }
+        std::vector<double> beta(L + 1);
+        for (int i = 0; i < n_; ++i) {
+          std::fill(beta.begin(), beta.end(), 0.0);
+          for (size_t k = 0; k < mu.size(); ++k) {
+            const double pw = w[k] * phase.at(i, mu[k]);
+            for (int l = 2; l <= L; ++l) beta[static_cast<size_t>(l)] += pw * d22[k * (L + 1) + static_cast<size_t>(l)];
+          }
+          for (int l = 2; l <= L; ++l)
+            out.plus[static_cast<size_t>(l)][i] = static_cast<float>(2.0 * kPi * beta[static_cast<size_t>(l)]);
+        }
+      }
+      lazy.moments.push_back(std::move(out));
+    }
+  });
+  return lazy.moments;
 }
 
 void SingleScattering::optical_depth(const double* columns, Spectrum& tau) const {
@@ -886,10 +908,11 @@ bool SingleScattering::polarised_sources(const Node* nodes, int m, const RayFram
   const int max_spin2 = particles ? kMaxSpin2Degree : 0;
   constexpr double kSqrtHalf = 0.70710678118654752440;
   // Spheres: their mirrored polarisation (alpha_-) and their b1 on the intensity's harmonics.
+  const std::vector<SpinMoments>& spin = particles ? spin_moments() : std::vector<SpinMoments>{};
   bool mirroring = false, polarising = false;
-  for (const Scatterer& medium : scatterers_) {
-    mirroring = mirroring || !medium.spin2_cross_moments.empty();
-    polarising = polarising || !medium.polarising_moments.empty();
+  for (const SpinMoments& medium : spin) {
+    mirroring = mirroring || !medium.mirrored.empty();
+    polarising = polarising || !medium.polarising.empty();
   }
   // The harmonics' rows are read in whole blocks of 16 wavelengths: 16 spare floats after the last.
   const Eigen::Index padded = (n + 15) / 16 * 16;
@@ -999,19 +1022,20 @@ bool SingleScattering::polarised_sources(const Node* nodes, int m, const RayFram
         for (int s = 0; s < scatterer_count(); ++s) {
           const Scatterer& medium = scatterers_[static_cast<size_t>(s)];
           if (medium.rayleigh()) continue;
+          const SpinMoments& moments = spin[static_cast<size_t>(s)];
           const size_t li = static_cast<size_t>(l);
           using Map = Eigen::Map<const Spectrum>;
           if (l <= degree) {
-            sc.source_q_t[s].col(k) += medium.spin2_moments[li] * Map(sc.degree_q.data(), n);
-            sc.source_u_t[s].col(k) += medium.spin2_moments[li] * Map(sc.degree_u.data(), n);
-            if (!medium.spin2_cross_moments.empty()) {
-              sc.source_q_t[s].col(k) += medium.spin2_cross_moments[li] * Map(sc.mirror_q.data(), n);
-              sc.source_u_t[s].col(k) += medium.spin2_cross_moments[li] * Map(sc.mirror_u.data(), n);
+            sc.source_q_t[s].col(k) += moments.plus[li] * Map(sc.degree_q.data(), n);
+            sc.source_u_t[s].col(k) += moments.plus[li] * Map(sc.degree_u.data(), n);
+            if (!moments.mirrored.empty()) {
+              sc.source_q_t[s].col(k) += moments.mirrored[li] * Map(sc.mirror_q.data(), n);
+              sc.source_u_t[s].col(k) += moments.mirrored[li] * Map(sc.mirror_u.data(), n);
             }
           }
-          if (l <= field_degree && !medium.polarising_moments.empty()) {
-            sc.source_q_t[s].col(k) += medium.polarising_moments[li] * Map(sc.polarised_q.data(), n);
-            sc.source_u_t[s].col(k) += medium.polarising_moments[li] * Map(sc.polarised_u.data(), n);
+          if (l <= field_degree && !moments.polarising.empty()) {
+            sc.source_q_t[s].col(k) += moments.polarising[li] * Map(sc.polarised_q.data(), n);
+            sc.source_u_t[s].col(k) += moments.polarising[li] * Map(sc.polarised_u.data(), n);
           }
         }
       }

@@ -25,6 +25,7 @@
 #pragma once
 
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "skyspec/geometry.hpp"
@@ -287,17 +288,21 @@ class SingleScattering {
     const MediumPhase* phase = nullptr;
     /// Molecules: the phase function per wavelength as A + B mu^2.
     Spectrum phase_a, phase_b;
-    /// Particles: the phase function's moments for spin-2 fields, beta_l = 2 pi int p(mu) d^l_22(mu) dmu
-    /// for l = 0..kMaxSpin2Degree (spin2_harmonics.hpp; 0 below l = 2): what a unit scattering matrix
-    /// keeps of each degree of the light's polarisation (polarised_sources).
-    std::vector<Spectrum> spin2_moments;
-    /// Tabulated (sphere) matrices, else empty: the moments of alpha_- = (a1 - a3) / 2 with
-    /// d^l_{2,-2} (the polarisation mirrored in the scattering plane) and of b1 with d^l_{2,0}
-    /// (unpolarised light polarised), per l as spin2_moments (spin2_harmonics.hpp).
-    std::vector<Spectrum> spin2_cross_moments, polarising_moments;
     bool rayleigh() const { return phase->kind == MediumPhase::Kind::Rayleigh; }
   };
   std::vector<Scatterer> scatterers_;
+  /// A particle's moments for the polarisation's spin-2 harmonics (spin2_harmonics.hpp), per l =
+  /// 0..kMaxSpin2Degree (0 below l = 2): beta_l of alpha_+ (the phase function for the unit matrix)
+  /// with d^l_22; for tabulated (sphere) matrices also beta-_l of alpha_- = (a1 - a3) / 2 with
+  /// d^l_{2,-2} (the polarisation mirrored in the scattering plane) and gamma_l of b1 with d^l_{2,0}
+  /// (unpolarised light polarised), else those two empty. Empty for molecules.
+  struct SpinMoments {
+    std::vector<Spectrum> plus, mirrored, polarising;
+  };
+  /// Computed on the first polarised render (polarised_sources), once per integrator and its copies.
+  const std::vector<SpinMoments>& spin_moments() const;
+  struct LazySpinMoments;
+  std::shared_ptr<LazySpinMoments> spin_moments_;
   /// Each scatterer's phase function at mu into ws.phase[s]; one scatterer's into p.
   void phases_at(double mu, ScatteringWorkspace& ws) const;
   void phase_of(int s, double mu, Spectrum& p) const;
