@@ -75,10 +75,10 @@ class SkyRenderer {
   /// The sky's Stokes vector in that direction, in the frame (e1, k x e1) of the light arriving
   /// along k = -dir, e1 a unit vector perpendicular to dir; V = 0. i is radiance(dir), integrated
   /// along the ray (not read from the sky-view table). With output.polarisation the higher orders
-  /// carry polarisation (vector tables for the air; aerosols keep the polarisation's quadrupole
-  /// through their unit matrix, docs/polarisation.md); without it only single scattering by air
-  /// is polarised. The ground depolarises. docs/validation.md measures both against the vector
-  /// Monte Carlo.
+  /// carry polarisation (vector tables: the air scatters it by Rayleigh's matrix, particles by
+  /// their unit matrix or a sphere's matrix through its spin-2 harmonics, docs/polarisation.md);
+  /// without it only single scattering is polarised. The ground depolarises. docs/validation.md
+  /// measures both against the vector Monte Carlo.
   void stokes(const Vec3& dir, const Vec3& e1, Spectrum& i, Spectrum& q, Spectrum& u) const;
 
   /// Aerial perspective for rows [y0, y0 + rows): for each pixel, the spectral transmittance from
