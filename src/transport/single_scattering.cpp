@@ -976,7 +976,7 @@ bool SingleScattering::polarised_sources(const Node* nodes, int m, const RayFram
         sc.source_q_t[s].col(k) = sc.source_t[s].col(k);
         sc.source_u_t[s].col(k) = sc.source_t[s].col(k);
       }
-      // out_q, out_u = sum of rows (n wavelengths each, from `base`) times (wq, wu); whole blocks
+      // out_q, out_u = the sum of the rows `terms` passes (n wavelengths each) times (wq, wu); whole blocks
       // of 16 (the lanes past n read the next row or the spare floats and are not used).
       const auto sum_rows = [&](std::vector<float>& out_q, std::vector<float>& out_u, const auto& terms) {
         float* dq = out_q.data();

@@ -8,8 +8,8 @@
 // The plane-parallel limit, as skyspec is configured for it (docs/validation.md): a planet of
 // radius 1e9 m (the largest allowed) under a homogeneous layer 100 m thick (atmosphere.rayleigh.profile
 // = "constant"), so that a ray 1.15 degrees from the horizontal (mu = 0.02) crosses it along a
-// path within 0.013 % of the plane-parallel one (a 1 km layer, 0.13 %, left I up to 1.7 % off at
-// such grazing views under a sun 84 degrees from the zenith, optical thickness 1, these tables); typed-in Rayleigh
+// path within 0.013 % of the plane-parallel one (a 1 km layer's curvature showed at such grazing
+// views under a low sun: docs/validation.md, "The published Rayleigh tables"); typed-in Rayleigh
 // coefficients (no depolarisation: gamma = 0) giving the optical thickness; no aerosol, no ozone; a flat solar spectrum
 // of 1 W m^-2 nm^-1, so that pi I / F0 is pi times the radiance. Tables finer than the default: here 128 sun angles, 32
 // altitudes and 10 orders, in the bench 192, 64 and 20; the limits are the issue's: I within 0.5 % (or 1e-4 where it is
