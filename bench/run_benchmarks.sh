@@ -237,8 +237,13 @@ printf 'refcheck\tref2-c1-2\treference check\t2\n' >> "$manifest"
 echo "viewer (skyspec view over HTTP: frames with the sun moved, the atmosphere changed) ..."
 /usr/bin/python3 "$here/viewer_frames.py" "$skyspec" > "$out/viewer.txt"
 
+echo "docs figures (bench/docs_figures.sh: figures of docs/ too slow for the test command) ..."
+"$here/docs_figures.sh" "$skyspec" > "$out/docs_figures.txt" || true
+
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo
 /usr/bin/python3 "$here/bench_stats.py" "$out"
 echo
 cat "$out/viewer.txt"
+echo
+cat "$out/docs_figures.txt"

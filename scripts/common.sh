@@ -43,10 +43,11 @@ werror_flag() {
   if [ "${CI:-}" = true ]; then echo -DSKYSPEC_WERROR=ON; else echo -DSKYSPEC_WERROR=OFF; fi
 }
 
-# build [TARGET...]: configures build/ (Release) if needed, then builds the targets (all without any).
+# build [TARGET...]: configures build/ (Release, a unity build: SKYSPEC_UNITY in CMakeLists.txt) if
+# needed, then builds the targets (all without any). A build/ configured by hand keeps its settings.
 build() {
   if [ ! -f build/CMakeCache.txt ] || [ "${CI:-}" = true ]; then
-    cmake -S . -B build -DCMAKE_BUILD_TYPE=Release "$(werror_flag)" >&2
+    cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DSKYSPEC_UNITY=ON "$(werror_flag)" >&2
   fi
   local targets=()
   for t in "$@"; do targets+=(--target "$t"); done

@@ -162,20 +162,7 @@ PY
 else
   bad "broadband irradiance failed"; cat "$work/stderr"
 fi
-# docs/jobs.md's table of the default scene's broadband irradiance is this command's (release stage).
-if [ -z "${SKYSPEC_SANITIZER_STAGE:-}" ]; then
-  "$skyspec" irradiance --sun-elevations 20,41.81,60,90 --set irradiance.broadband=true --set render.ms_angular_degree=4 \
-    --format csv >"$work/bb-docs.csv" 2>"$work/stderr" || bad "the docs' broadband irradiance failed: $(cat "$work/stderr")"
-  /usr/bin/python3 - "$work/bb-docs.csv" "$(dirname "${BASH_SOURCE[0]}")/../../docs/jobs.md" <<'PY' && ok || bad "docs/jobs.md does not quote the broadband irradiance skyspec gives"
-import csv, sys
-docs = open(sys.argv[2]).read()
-for r in csv.DictReader(open(sys.argv[1])):
-    el = float(r["sun_elevation_deg"])
-    row = "| %g deg%s | %.1f W/m2 | %.1f W/m2 |" % (el, " (air mass 1.5)" if el == 41.81 else "",
-                                                 float(r["global_horizontal_W_m2"]), float(r["broadband_global_horizontal_W_m2"]))
-    assert row in docs, row
-PY
-fi
+# docs/jobs.md's table of the default scene's broadband irradiance: bench/docs_figures.sh checks it.
 "$skyspec" irradiance --format csv --set render.scattering_orders=1 | head -1 | grep -q broadband && bad "broadband columns without irradiance.broadband" || ok
 run_expecting_error water_vapour_without_broadband 2 "atmosphere.water_vapour.column_cm = 3 is not allowed: only with irradiance.broadband = true" \
   "$work/none" "$skyspec" irradiance --set atmosphere.water_vapour.column_cm=3
