@@ -5,9 +5,18 @@
 # configuration of tests/render/test_natraj_tables.cpp with finer tables (192 sun angles, 64
 # altitudes, 20 orders). Prints one Markdown row per case (docs/validation.md): I's largest relative
 # difference, I's largest difference as a fraction of the limit (0.5 % or 1e-4), Q's and U's largest
-# absolute differences (limit 0.002), and the values outside the limits. About 40 minutes on 2 cores.
-# Usage: bench/natraj_tables.sh [BUILD_DIR] [TABLES_DIR]
+# absolute differences (limit 0.002), and the values outside the limits. About 22 minutes on 2 cores.
+# Usage: bench/natraj_tables.sh [--taus 0.02,0.1] [BUILD_DIR] [TABLES_DIR]
+# --taus: only these optical thicknesses (of 0.02, 0.05, 0.1, 0.25, 0.5, 1).
 set -euo pipefail
+if [ "${1:-}" = --taus ]; then
+  [ -n "${2:-}" ] || { echo "--taus needs a comma-separated list of optical thicknesses" >&2; exit 2; }
+  for t in ${2//,/ }; do
+    case $t in 0.02 | 0.05 | 0.1 | 0.25 | 0.5 | 1) ;; *) echo "--taus: $t is not one of 0.02, 0.05, 0.1, 0.25, 0.5, 1" >&2; exit 2 ;; esac
+  done
+  export SKYSPEC_NATRAJ_TAUS=$2
+  shift 2
+fi
 build=${1:-build}
 tables=${2:-$(dirname "$0")/../../shared/reference/natraj2009}
 [ -f "$tables/I_UP_TAU_1" ] || { echo "no tables in $tables (give their folder as the second argument)" >&2; exit 2; }

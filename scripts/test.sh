@@ -36,7 +36,8 @@ stage "sanitizer build"
 # scattering-order tables (docs/performance.md, "Build and test times").
 # SKYSPEC_SANITIZER_STAGE also leaves a test's longest parts to the release stage where it says so
 # (cli_hostile, cli_tiles, cli_budget's job, cli's progress bar, cache cap and broadband irradiance,
-# cli_job's broadband job, test_polarised_sky, test_natraj_tables, test_sphere_ensemble's convergence,
+# cli_job's broadband job, cli_terrain's docs scenes, cli_opac's report bars, test_polarised_sky,
+# test_natraj_tables, test_sphere_ensemble's convergence,
 # test_microphysical_aerosol's Monte Carlo comparison, test_media's split aerosol and fog optics)
 # and makes cli's renders use small tables. cli_files_not_ours (links, devices, FIFOs planted as
 # outputs: system calls and their errors) runs in the release stage only.

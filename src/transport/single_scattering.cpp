@@ -908,7 +908,9 @@ bool SingleScattering::polarised_sources(const Node* nodes, int m, const RayFram
   const int max_spin2 = particles ? kMaxSpin2Degree : 0;
   constexpr double kSqrtHalf = 0.70710678118654752440;
   // Spheres: their mirrored polarisation (alpha_-) and their b1 on the intensity's harmonics.
-  const std::vector<SpinMoments>& spin = particles ? spin_moments() : std::vector<SpinMoments>{};
+  // (Both branches lvalues: a temporary in one of them would make the operator copy the other.)
+  static const std::vector<SpinMoments> kNoParticles;
+  const std::vector<SpinMoments>& spin = particles ? spin_moments() : kNoParticles;
   bool mirroring = false, polarising = false;
   for (const SpinMoments& medium : spin) {
     mirroring = mirroring || !medium.mirrored.empty();

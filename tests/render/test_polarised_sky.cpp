@@ -139,11 +139,11 @@ BOOST_AUTO_TEST_CASE(pixel_frames_follow_the_image_axes) {
 // spectral EXR.
 BOOST_AUTO_TEST_CASE(stokes_rows_agree_with_the_image_and_the_probe) {
   const Scene scene = test::scene_with(
-      "[spectrum]\nwavelengths_nm = [450, 550, 650]\n[camera]\ntype = \"equirectangular\"\nwidth = 24\nheight = 12\n"
+      "[spectrum]\nwavelengths_nm = [450, 550, 650]\n[camera]\ntype = \"equirectangular\"\nwidth = 16\nheight = 8\n"
       "[render]\ncache_tables = false\nms_altitude_samples = 8\nms_sun_samples = 24\nms_angular_degree = 4\n"
       "[output]\npolarisation = true\n");
   const SkyRenderer renderer(scene);  // small tables: the test compares three ways of reading the same ones
-  const int w = 24, h = 12, n = 3;
+  const int w = 16, h = 8, n = 3;
   std::vector<float> stokes(static_cast<size_t>(w * h * 4 * n)), spectral(static_cast<size_t>(w * h * n)),
       rgb(static_cast<size_t>(w * h * 3)), rgb_stokes(rgb.size());
   renderer.render_rows(0, h, spectral.data(), rgb.data());
@@ -167,7 +167,7 @@ BOOST_AUTO_TEST_CASE(stokes_rows_agree_with_the_image_and_the_probe) {
   // polarises too.
   test::ScratchFolder dir;
   const SpectralImageBuffer image = render_to_memory(test::scene_with(
-      "[spectrum]\nwavelengths_nm = [450, 550, 650]\n[camera]\ntype = \"equirectangular\"\nwidth = 24\nheight = 12\n"
+      "[spectrum]\nwavelengths_nm = [450, 550, 650]\n[camera]\ntype = \"equirectangular\"\nwidth = 16\nheight = 8\n"
       "[render]\nscattering_orders = 1\n[output]\npolarisation = true\n"));
   BOOST_TEST(image.stokes.size() == image.spectral.size() * 3);
   write_spectral_exr(image, dir.path / "sky.exr");
