@@ -44,7 +44,7 @@ grep -qaE "rendering computing the aerosol's optics \(Lorenz-Mie\) \[#*\.*\] +[0
   || bad "no bar while the aerosol's optics were computed: $(tr '\r' '\n' <"$work/bar.txt" | head -5)"
 
 # ... and so does the coefficient report's while it computes them, ending at 100 %; none with --quiet
-# (the release stage only: under the sanitizers the two runs of the Lorenz-Mie optics take 10 s, and
+# (the release stage only: under the sanitizers two more runs of the Lorenz-Mie optics are slow, and
 # the render's bar above and the report below run under them).
 [ -n "${SKYSPEC_SANITIZER_STAGE:-}" ] || for q in "" -q; do
   SKYSPEC_CACHE_DIR="$work/cache-tty$q" script -qc "'$skyspec' coefficients $q --wavelengths 400,500,600,700 \

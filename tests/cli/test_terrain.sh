@@ -127,8 +127,8 @@ awk -v a="$ridge_mc" -v b="$open_mc" 'BEGIN { exit !(a == 0 && b > 0) }' && ok \
   || bad "Monte Carlo single scattering towards the ridge: $ridge_mc (open: $open_mc; column $col of $(head -1 "$work/mc-ridge.csv"))"
 
 # The scenes of docs/terrain.md's pictures load and plan (their renders take 10-15 s each); in the
-# release stage only: a file's keys are what is checked, and under the sanitizers each plan takes
-# 6-7 s (reading its height map and building the terrain), which the renders above run under them.
+# release stage only: a file's keys are what is checked, and under the sanitizers each plan is slow
+# (reading its height map and building the terrain), which the renders above run under them.
 if [ -z "${SKYSPEC_SANITIZER_STAGE:-}" ]; then
   for scene in "$(dirname "${BASH_SOURCE[0]}")"/../../docs/images/terrain-*.toml; do
     "$skyspec" render --scene "$scene" --dry-run --out "$work/docs" >"$work/stdout" 2>&1 && ok \

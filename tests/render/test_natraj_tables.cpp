@@ -161,8 +161,10 @@ BOOST_AUTO_TEST_CASE(all_published_tables,
   // SKYSPEC_NATRAJ_TAUS (bench/natraj_tables.sh --taus): a comma-separated subset of the thicknesses.
   const char* only = std::getenv("SKYSPEC_NATRAJ_TAUS");
   const std::string subset = only ? "," + std::string(only) + "," : "";
+  int compared = 0;
   for (const char* tau : {"0.02", "0.05", "0.1", "0.25", "0.5", "1"}) {
     if (only && subset.find("," + std::string(tau) + ",") == std::string::npos) continue;
+    ++compared;
     for (int albedo = 0; albedo < 3; ++albedo)
       for (const bool up : {false, true}) {
         const Worst w = compare(folder, tau, albedo, up, kBenchTables);
@@ -171,6 +173,8 @@ BOOST_AUTO_TEST_CASE(all_published_tables,
         BOOST_TEST(w.failures == 0);
       }
   }
+  BOOST_TEST(compared > 0,
+             "SKYSPEC_NATRAJ_TAUS = \"" << (only ? only : "") << "\" names none of 0.02, 0.05, 0.1, 0.25, 0.5, 1");
 }
 
 BOOST_AUTO_TEST_SUITE_END()

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 
 #include "io/spectral_exr.hpp"
 #include "release_stage.hpp"
@@ -138,8 +139,10 @@ BOOST_AUTO_TEST_CASE(pixel_frames_follow_the_image_axes) {
 // interpolation, S3 is 0, the degree at most 1; and an image in memory keeps S1-S3 through its
 // spectral EXR.
 BOOST_AUTO_TEST_CASE(stokes_rows_agree_with_the_image_and_the_probe) {
+  const std::string view =
+      "[spectrum]\nwavelengths_nm = [450, 550, 650]\n[camera]\ntype = \"equirectangular\"\nwidth = 16\nheight = 8\n";
   const Scene scene = test::scene_with(
-      "[spectrum]\nwavelengths_nm = [450, 550, 650]\n[camera]\ntype = \"equirectangular\"\nwidth = 16\nheight = 8\n"
+      view +
       "[render]\ncache_tables = false\nms_altitude_samples = 8\nms_sun_samples = 24\nms_angular_degree = 4\n"
       "[output]\npolarisation = true\n");
   const SkyRenderer renderer(scene);  // small tables: the test compares three ways of reading the same ones
@@ -166,9 +169,8 @@ BOOST_AUTO_TEST_CASE(stokes_rows_agree_with_the_image_and_the_probe) {
   // The file's round trip needs Stokes rows, not these tables again: single scattering, which
   // polarises too.
   test::ScratchFolder dir;
-  const SpectralImageBuffer image = render_to_memory(test::scene_with(
-      "[spectrum]\nwavelengths_nm = [450, 550, 650]\n[camera]\ntype = \"equirectangular\"\nwidth = 16\nheight = 8\n"
-      "[render]\nscattering_orders = 1\n[output]\npolarisation = true\n"));
+  const SpectralImageBuffer image =
+      render_to_memory(test::scene_with(view + "[render]\nscattering_orders = 1\n[output]\npolarisation = true\n"));
   BOOST_TEST(image.stokes.size() == image.spectral.size() * 3);
   write_spectral_exr(image, dir.path / "sky.exr");
   const SpectralImage back = read_spectral_exr(dir.path / "sky.exr");
