@@ -64,6 +64,23 @@ void gauss_legendre(int n, double a, double b, std::vector<double>& nodes, std::
   }
 }
 
+void graded_gauss_legendre(int n, int n_panel, double width, PanelEnd end, double a, double b,
+                           std::vector<double>& nodes, std::vector<double>& weights) {
+  if (n_panel <= 0 || width <= 0.0) {
+    gauss_legendre(n, a, b, nodes, weights);
+    return;
+  }
+  const double w = std::min(width, 0.5 * (b - a));
+  // The upper interval's nodes first (each rule is descending): together they descend from b.
+  const double split = end == PanelEnd::lower ? a + w : b - w;
+  const int n_upper = end == PanelEnd::lower ? n : n_panel, n_lower = end == PanelEnd::lower ? n_panel : n;
+  std::vector<double> lower_x, lower_w;
+  gauss_legendre(n_upper, split, b, nodes, weights);
+  gauss_legendre(n_lower, a, split, lower_x, lower_w);
+  nodes.insert(nodes.end(), lower_x.begin(), lower_x.end());
+  weights.insert(weights.end(), lower_w.begin(), lower_w.end());
+}
+
 double trapezoid(const double* x, const double* y, std::size_t n) {
   double sum = 0.0;
   for (std::size_t i = 1; i < n; ++i) sum += 0.5 * (x[i] - x[i - 1]) * (y[i] + y[i - 1]);

@@ -774,14 +774,21 @@ void integrate_order(const SingleScattering& integrator, const ScatteringSources
     throw_if_cancelled();  // an entry is a few hundred rays: a request stops the tables within a second
     Scratch& sc = scratch.local();
     const int ih = e / table.sun_count(), imu = e % table.sun_count();
-    // Stay half a metre inside the shell so that rays from the table's end points are unambiguous.
-    const double r = std::clamp(R + table.altitude_m(ih), R + 0.5, atm.top_radius_m() - 0.5);
+    // A centimetre inside the shell, so that rays from the table's end rows start strictly inside
+    // the air (no tangent ambiguity at the ground or the top), and close enough that the end rows
+    // stand for the shell's own altitudes also in a layer only metres thick (the plane-parallel
+    // test layer is 100 m: an inset of half a metre there moved J by tenths of a percent).
+    constexpr double kInset = 0.01;
+    const double r = std::clamp(R + table.altitude_m(ih), R + kInset, atm.top_radius_m() - kInset);
     const double mu_s = table.mu_sun(imu);
     const Vec3 x(0, 0, r), s(std::sqrt(std::max(0.0, 1 - mu_s * mu_s)), 0, mu_s);
     const double mu_horizon = -std::sqrt(std::max(0.0, 1 - (R / r) * (R / r)));
     std::vector<double> nodes, weights, gn, gw;
-    gauss_legendre(q.sky_zenith_nodes, mu_horizon, 1.0, nodes, weights);
-    gauss_legendre(q.ground_zenith_nodes, -1.0, mu_horizon, gn, gw);
+    const double panel = DirectionQuadrature::kHorizonPanelWidth;
+    graded_gauss_legendre(q.sky_zenith_nodes, q.sky_horizon_nodes, panel, PanelEnd::lower, mu_horizon, 1.0, nodes,
+                          weights);
+    graded_gauss_legendre(q.ground_zenith_nodes, q.ground_horizon_nodes, panel, PanelEnd::upper, -1.0, mu_horizon, gn,
+                          gw);
     const bool at_ground = ih == 0;
     sc.a.setZero();
     sc.g.setZero();
@@ -960,6 +967,8 @@ DirectionQuadrature ScatteringOrders::quadrature_of_order(int angular_degree, in
   DirectionQuadrature q;
   q.sky_zenith_nodes = (std::max(8, d + 4) + extra) * refinement;
   q.ground_zenith_nodes = q.sky_zenith_nodes / 2;
+  q.sky_horizon_nodes = 4 * refinement;
+  q.ground_horizon_nodes = 2 * refinement;
   q.azimuth_nodes = (std::max(4, d) + extra) * refinement;
   return q;
 }
@@ -1018,7 +1027,7 @@ namespace {
 // tables a render reads (order 2's, whose field is the light scattered once, and the sum of all
 // orders), and last a checksum of everything before it (SHA-256's first 64 bits), so that a file
 // that was truncated, damaged or edited is rebuilt rather than trusted.
-constexpr char kCacheMagic[] = "skyspec scattering orders v7\n";
+constexpr char kCacheMagic[] = "skyspec scattering orders v8\n";
 
 }  // namespace
 

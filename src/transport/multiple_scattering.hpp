@@ -54,11 +54,20 @@ struct MultipleScatteringSettings {
 };
 
 /// The directions over which an order's radiance field is integrated at each table entry.
+/// In the zenith cosine each side of the horizon is a graded Gauss-Legendre rule
+/// (graded_gauss_legendre): a panel of kHorizonPanelWidth next to the horizon with its own nodes,
+/// where the light of a thin layer peaks within a few hundredths of the horizontal (the line of
+/// sight's path through the layer grows as 1 / |mu|), and the bulk's nodes on the rest.
 struct DirectionQuadrature {
-  int sky_zenith_nodes = 0;     ///< Gauss-Legendre nodes in the zenith cosine above the horizon
-  int ground_zenith_nodes = 0;  ///< Gauss-Legendre nodes below the horizon
-  int azimuth_nodes = 0;        ///< midpoint nodes over [0, pi]
-  int rays() const { return (sky_zenith_nodes + ground_zenith_nodes) * azimuth_nodes; }
+  static constexpr double kHorizonPanelWidth = 0.05;  ///< in the zenith cosine, each side of the horizon
+  int sky_zenith_nodes = 0;                           ///< nodes above the horizon panel, up to the zenith
+  int sky_horizon_nodes = 0;                          ///< nodes in the panel just above the horizon
+  int ground_zenith_nodes = 0;                        ///< nodes below the horizon panel, down to the nadir
+  int ground_horizon_nodes = 0;                       ///< nodes in the panel just below the horizon
+  int azimuth_nodes = 0;                              ///< midpoint nodes over [0, pi]
+  int rays() const {
+    return (sky_zenith_nodes + sky_horizon_nodes + ground_zenith_nodes + ground_horizon_nodes) * azimuth_nodes;
+  }
 };
 
 /// The Legendre moments chi_l (l <= degree) of each scattering medium's phase function per
