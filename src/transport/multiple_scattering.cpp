@@ -776,8 +776,8 @@ void integrate_order(const SingleScattering& integrator, const ScatteringSources
     const int ih = e / table.sun_count(), imu = e % table.sun_count();
     // A centimetre inside the shell, so that rays from the table's end rows start strictly inside
     // the air (no tangent ambiguity at the ground or the top), and close enough that the end rows
-    // stand for the shell's own altitudes also in a layer only metres thick (the plane-parallel
-    // test layer is 100 m: an inset of half a metre there moved J by tenths of a percent).
+    // stand for the shell's own altitudes also in a thin layer (the plane-parallel test layer of
+    // docs/validation.md, "The published Rayleigh tables", says what a larger inset cost).
     constexpr double kInset = 0.01;
     const double r = std::clamp(R + table.altitude_m(ih), R + kInset, atm.top_radius_m() - kInset);
     const double mu_s = table.mu_sun(imu);
