@@ -1,12 +1,17 @@
 #include "base/disk_cache.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <iostream>
 #include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include "base/cancellation.hpp"
+#include "base/output_lock.hpp"
+#include "base/preparation_progress.hpp"
 #include "skyspec/error.hpp"
 
 namespace skyspec {
@@ -67,6 +72,9 @@ std::uint64_t evict_table_cache(const std::filesystem::path& dir, std::uint64_t 
     if (f.path == keep) continue;
     std::error_code e;
     if (std::filesystem::remove(f.path, e)) {
+      std::filesystem::path lock = f.path;
+      lock += ".lock";
+      std::filesystem::remove(lock, e);  // a claim's leftover (a process killed while computing it)
       total -= f.bytes;
       removed += f.bytes;
     }
@@ -102,5 +110,25 @@ void mark_cache_file_used(const std::filesystem::path& path) {
   std::error_code ec;
   std::filesystem::last_write_time(path, std::filesystem::file_time_type::clock::now(), ec);
 }
+
+CacheFileClaim::CacheFileClaim(const std::filesystem::path& file) {
+  if (file.empty()) return;
+  std::filesystem::path lock_path = file;
+  lock_path += ".lock";
+  constexpr auto kPoll = std::chrono::milliseconds(20);
+  try {
+    while (!(lock_ = LockFile::try_lock(lock_path))) {
+      if (!waited_) plan_preparation(1, "waiting for another skyspec process to finish the same tables");
+      waited_ = true;
+      throw_if_cancelled();
+      std::this_thread::sleep_for(kPoll);
+    }
+  } catch (const IoError& e) {  // computed without a claim
+    warn_cache_unusable(file.parent_path(), e.what());
+  }
+  if (waited_) finish_preparation(1);
+}
+
+CacheFileClaim::~CacheFileClaim() = default;
 
 }  // namespace skyspec

@@ -6,9 +6,12 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <string>
 
 namespace skyspec {
+
+class LockFile;  // base/output_lock.hpp
 
 /// The disk cache's folder: $SKYSPEC_CACHE_DIR, else $XDG_CACHE_HOME/skyspec, else
 /// ~/.cache/skyspec; empty when none can be named.
@@ -35,5 +38,31 @@ void warn_cache_unusable(const std::filesystem::path& dir, const std::string& wh
 /// Marks a cache file as used now (its modification time), so that it is the last to be evicted;
 /// a read-only cache keeps its times.
 void mark_cache_file_used(const std::filesystem::path& path);
+
+/// The right to compute one cache file, shared by every process that uses the folder: an exclusive
+/// lock on "<file>.lock" (base/output_lock.hpp's LockFile). A process that finds the file missing
+/// takes the claim before computing it; a second process that wants the same file meanwhile (two
+/// renders of one atmosphere, a job's tasks on one machine, the viewer and a render) waits for the
+/// first, then reads the file it wrote instead of computing it too. Waiting polls for cancellation
+/// (base/cancellation.hpp) and shows as the preparation phase "waiting for another skyspec process
+/// to finish the same tables". A lock that cannot be made (a read-only folder, a file system without
+/// flock, a link planted under the lock's name) gives no claim: the process computes the file
+/// itself, which costs only time (a link is reported once, as warn_cache_unusable does).
+class CacheFileClaim {
+ public:
+  /// Takes the claim on `file` (no claim for an empty path), waiting while another process holds it.
+  explicit CacheFileClaim(const std::filesystem::path& file);
+  ~CacheFileClaim();
+  CacheFileClaim(const CacheFileClaim&) = delete;
+  CacheFileClaim& operator=(const CacheFileClaim&) = delete;
+  /// Whether another process held the claim when this one asked: the file may be there now.
+  bool waited() const { return waited_; }
+  /// Whether this process holds the claim (false without a lock, see above).
+  bool held() const { return lock_ != nullptr; }
+
+ private:
+  std::unique_ptr<LockFile> lock_;
+  bool waited_ = false;
+};
 
 }  // namespace skyspec

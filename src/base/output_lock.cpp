@@ -17,9 +17,14 @@
 namespace skyspec {
 namespace fs = std::filesystem;
 
+fs::path OutputLock::lock_path(const fs::path& folder, const std::string& name) {
+  return (folder.empty() ? fs::path(".") : folder) / ("." + name + ".lock");
+}
+
 OutputLock::OutputLock(const fs::path& folder, const std::string& name, const std::string& setting) {
   std::string holder;
-  if (!acquire(folder, name, holder))
+  lock_ = LockFile::try_lock(lock_path(folder, name), &holder);
+  if (!lock_)
     throw InputError::refused(setting, "another skyspec run" +
                                            (holder.empty() ? std::string() : " (process " + holder + ")") +
                                            " is writing the outputs named \"" + name + "\" in " + folder.string() +
@@ -27,58 +32,52 @@ OutputLock::OutputLock(const fs::path& folder, const std::string& name, const st
 }
 
 std::unique_ptr<OutputLock> OutputLock::try_lock(const fs::path& folder, const std::string& name) {
-  std::unique_ptr<OutputLock> lock(new OutputLock());
-  std::string holder;
-  if (!lock->acquire(folder, name, holder)) return nullptr;
-  return lock;
+  std::unique_ptr<LockFile> lock = LockFile::try_lock(lock_path(folder, name));
+  if (!lock) return nullptr;
+  return std::unique_ptr<OutputLock>(new OutputLock(std::move(lock)));
 }
 
-bool OutputLock::acquire(const fs::path& folder, const std::string& name, std::string& holder) {
-  path_ = (folder.empty() ? fs::path(".") : folder) / ("." + name + ".lock");
+std::unique_ptr<LockFile> LockFile::try_lock(const fs::path& path, std::string* holder) {
   for (int attempt = 0; attempt < 100; ++attempt) {
     // Never through a symbolic link (O_NOFOLLOW: ELOOP), never anything but a regular file: a
     // link planted in the output folder would otherwise have its target truncated.
-    fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK, 0644);
-    if (fd_ < 0 && errno == ELOOP)
-      throw IoError("refusing to use the lock file '" + path_.string() +
+    const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK, 0644);
+    if (fd < 0 && errno == ELOOP)
+      throw IoError("refusing to use the lock file '" + path.string() +
                     "': it is a symbolic link; skyspec creates and replaces only regular files");
-    if (fd_ < 0) throw IoError("cannot create the lock file '" + path_.string() + "': " + std::strerror(errno));
+    if (fd < 0) throw IoError("cannot create the lock file '" + path.string() + "': " + std::strerror(errno));
     struct stat kind {};
-    if (::fstat(fd_, &kind) != 0 || !S_ISREG(kind.st_mode)) {
-      ::close(fd_);
-      fd_ = -1;
-      throw IoError("refusing to use the lock file '" + path_.string() + "': it is " + file_kind(path_) +
+    if (::fstat(fd, &kind) != 0 || !S_ISREG(kind.st_mode)) {
+      ::close(fd);
+      throw IoError("refusing to use the lock file '" + path.string() + "': it is " + file_kind(path) +
                     ", not a regular file");
     }
-    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
       const int error_number = errno;
-      if (error_number == EWOULDBLOCK) std::getline(std::ifstream(path_), holder);
-      ::close(fd_);
-      fd_ = -1;
+      if (error_number == EWOULDBLOCK && holder) std::getline(std::ifstream(path), *holder);
+      ::close(fd);
       if (error_number != EWOULDBLOCK)
-        throw IoError("cannot lock '" + path_.string() + "': " + std::strerror(error_number));
-      return false;
+        throw IoError("cannot lock '" + path.string() + "': " + std::strerror(error_number));
+      return nullptr;
     }
     // Locked: but if the holder before us removed the file meanwhile, ours is no longer the file
     // at that path and a third run could lock a new one. Then start again.
     struct stat held {
     }, named{};
-    if (::fstat(fd_, &held) == 0 && ::stat(path_.c_str(), &named) == 0 && held.st_dev == named.st_dev &&
+    if (::fstat(fd, &held) == 0 && ::stat(path.c_str(), &named) == 0 && held.st_dev == named.st_dev &&
         held.st_ino == named.st_ino) {
       // The process id, for the message of a run that finds the lock taken; not writing it is harmless.
       const std::string pid = std::to_string(::getpid()) + "\n";
-      if (::ftruncate(fd_, 0) == 0) static_cast<void>(::write(fd_, pid.data(), pid.size()) > 0);
-      return true;
+      if (::ftruncate(fd, 0) == 0) static_cast<void>(::write(fd, pid.data(), pid.size()) > 0);
+      return std::unique_ptr<LockFile>(new LockFile(path, fd));
     }
-    ::close(fd_);
-    fd_ = -1;
+    ::close(fd);
   }
-  throw IoError("cannot lock '" + path_.string() + "': it keeps being replaced");
+  throw IoError("cannot lock '" + path.string() + "': it keeps being replaced");
 }
 
-OutputLock::~OutputLock() {
-  if (fd_ < 0) return;
-  ::unlink(path_.c_str());  // while still locked: the next run creates (and locks) a new file
+LockFile::~LockFile() {
+  ::unlink(path_.c_str());  // while still locked: the next holder creates (and locks) a new file
   ::close(fd_);
 }
 

@@ -15,6 +15,24 @@
 
 namespace skyspec {
 
+/// An exclusive flock(2) on a lock file of its own, for as long as the object lives: the file is
+/// created if missing (a regular file only, never through a symbolic link), holds the holder's
+/// process id, and is removed on release while still locked (the race this closes: above).
+class LockFile {
+ public:
+  /// The lock on `path`, or null when another process holds it (its process id, when it wrote one,
+  /// in *holder). IoError when the file cannot be made or is not a regular file.
+  static std::unique_ptr<LockFile> try_lock(const std::filesystem::path& path, std::string* holder = nullptr);
+  ~LockFile();
+  LockFile(const LockFile&) = delete;
+  LockFile& operator=(const LockFile&) = delete;
+
+ private:
+  LockFile(std::filesystem::path path, int fd) : path_(std::move(path)), fd_(fd) {}
+  std::filesystem::path path_;
+  int fd_ = -1;
+};
+
 class OutputLock {
  public:
   /// Locks the outputs `name` in `folder`; throws InputError naming `setting` (e.g.
@@ -22,17 +40,13 @@ class OutputLock {
   OutputLock(const std::filesystem::path& folder, const std::string& name, const std::string& setting);
   /// The same lock, or null when another process holds it (IoError when it cannot be made).
   static std::unique_ptr<OutputLock> try_lock(const std::filesystem::path& folder, const std::string& name);
-  ~OutputLock();
   OutputLock(const OutputLock&) = delete;
   OutputLock& operator=(const OutputLock&) = delete;
 
  private:
-  OutputLock() = default;
-  /// Takes the lock; false when another process holds it (the holder's process id in `holder`).
-  bool acquire(const std::filesystem::path& folder, const std::string& name, std::string& holder);
-
-  std::filesystem::path path_;
-  int fd_ = -1;
+  explicit OutputLock(std::unique_ptr<LockFile> lock) : lock_(std::move(lock)) {}
+  static std::filesystem::path lock_path(const std::filesystem::path& folder, const std::string& name);
+  std::unique_ptr<LockFile> lock_;
 };
 
 /// Removes the temporary files ("<file>.tmp-<pid>-<hex>", base/atomic_file.hpp) that processes

@@ -115,18 +115,22 @@ AerosolMixtureOptics load_or_compute(const std::string& key, int wavelengths, co
   const size_t values = static_cast<size_t>(wavelengths) * (2 + 4 * mu.size());
   const std::uintmax_t expected = sizeof(kMagic) - 1 + sizeof(kByteOrder) + sizeof(std::uint64_t) + key.size() +
                                   2 * sizeof(std::uint32_t) + values * sizeof(double) + sizeof(std::uint64_t);
-  std::error_code size_error;
-  if (!path.empty() && is_regular_input(path) && std::filesystem::file_size(path, size_error) == expected &&
-      !size_error) {
+  const auto load = [&](RawParticleOptics& raw) {
+    std::error_code size_error;
+    if (path.empty() || !is_regular_input(path) || std::filesystem::file_size(path, size_error) != expected ||
+        size_error)
+      return false;
     std::ifstream in(path, std::ios::binary);
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    RawParticleOptics raw;
-    if (in.good() || in.eof())
-      if (deserialise(bytes, key, static_cast<size_t>(wavelengths), mu.size(), raw)) {
-        mark_cache_file_used(path);
-        return from_raw(std::move(raw), mu);
-      }
-  }
+    if (!(in.good() || in.eof()) || !deserialise(bytes, key, static_cast<size_t>(wavelengths), mu.size(), raw))
+      return false;
+    mark_cache_file_used(path);
+    return true;
+  };
+  if (RawParticleOptics raw; load(raw)) return from_raw(std::move(raw), mu);
+  // Computed by one process at a time: another that is computing these optics now is waited for.
+  const CacheFileClaim claim(path.empty() || !usable_cache_directory(dir) ? std::filesystem::path() : path);
+  if (RawParticleOptics raw; claim.waited() && load(raw)) return from_raw(std::move(raw), mu);
   RawParticleOptics raw = compute();
   if (!path.empty() && usable_cache_directory(dir)) {
     try {

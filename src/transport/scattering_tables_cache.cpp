@@ -27,11 +27,18 @@ std::shared_ptr<const ScatteringOrders> load_or_build(const SingleScattering& in
   // Only a regular file is read: a FIFO or a device under the cache file's name would block the
   // reader or feed it anything (it is then rebuilt, and replacing it is refused with a message).
   const std::uint64_t cap = path.empty() ? 0 : table_cache_cap_bytes();  // a bad value: refused before any work
-  if (!path.empty() && is_regular_input(path))
-    if (auto loaded = ScatteringOrders::load(path, key.inputs, integrator.atmosphere(), settings)) {
-      mark_cache_file_used(path);
-      return loaded;
-    }
+  const auto load = [&]() -> std::unique_ptr<ScatteringOrders> {
+    if (path.empty() || !is_regular_input(path)) return nullptr;
+    auto loaded = ScatteringOrders::load(path, key.inputs, integrator.atmosphere(), settings);
+    if (loaded) mark_cache_file_used(path);
+    return loaded;
+  };
+  if (auto loaded = load()) return loaded;
+  // Built by one process at a time: another that is building these tables now is waited for.
+  const CacheFileClaim claim(path.empty() || !usable_cache_directory(dir) ? std::filesystem::path()
+                                                                          : std::filesystem::path(path));
+  if (claim.waited())
+    if (auto loaded = load()) return loaded;
   auto built = std::make_shared<const ScatteringOrders>(integrator, settings);
   if (!path.empty() && usable_cache_directory(dir)) {
     if (built->save(path, key.inputs))
