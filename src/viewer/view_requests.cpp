@@ -93,29 +93,52 @@ bool scattering_tables_ready(const Scene& scene) {
   return scattering_orders_cached(skyspec::scattering_tables_key(scene), scene.render.cache_tables);
 }
 
-void build_scattering_tables(const Scene& scene) {
-  // A renderer of one pixel without a sky-view table: its construction is the tables' build (a
-  // polarised scene's are vector tables, so output.polarisation stays as asked).
+Scene with_preview_tables(const Scene& scene) {
   Scene s = scene;
-  s.camera.width = s.camera.height = 1;
-  s.render.sky_view_table = false;
-  const SkyRenderer renderer(s);
+  RenderSpec& r = s.render;
+  r.ms_altitude_samples = std::min(r.ms_altitude_samples, kPreviewTableAltitudes);
+  r.ms_sun_samples = std::min(r.ms_sun_samples, kPreviewTableSuns);
+  r.ms_angular_degree = std::min(r.ms_angular_degree, kPreviewTableDegree);
+  r.scattering_orders = std::min(r.scattering_orders, kPreviewTableOrders);
+  return s;
 }
 
-Frame render_frame(const ViewRequest& request, bool tables_ready) {
+TablesAtHand tables_at_hand(const Scene& scene) {
+  if (scattering_tables_ready(scene)) return TablesAtHand::exact;
+  return scattering_tables_ready(with_preview_tables(scene)) ? TablesAtHand::preview : TablesAtHand::none;
+}
+
+void build_scattering_tables(const Scene& scene) {
+  // A renderer of one pixel without a sky-view table: its construction is the tables' build (a
+  // polarised scene's are vector tables, so output.polarisation stays as asked). The preview's
+  // small tables first, for the frames shown while the scene's own are built.
+  const auto build = [](Scene s) {
+    s.camera.width = s.camera.height = 1;
+    s.render.sky_view_table = false;
+    const SkyRenderer renderer(s);
+  };
+  const Scene preview = with_preview_tables(scene);
+  if (!scattering_tables_ready(preview)) build(preview);
+  if (!scattering_tables_ready(scene)) build(scene);
+}
+
+Frame render_frame(const ViewRequest& request, TablesAtHand tables) {
   const CameraSpec& camera = request.scene.camera;
   if (static_cast<std::int64_t>(camera.width) * camera.height > kMaxFramePixels)
     throw InputError("camera.width", std::to_string(camera.width) + " x " + std::to_string(camera.height),
                      "a frame of at most " + std::to_string(kMaxFramePixels) + " pixels (Export renders any size)");
   Frame frame;
   Scene scene = request.scene;
-  if (request.preview || !tables_ready) {
+  if (request.preview || tables != TablesAtHand::exact) {
     scene.render.sky_view_zenith_samples = std::min(scene.render.sky_view_zenith_samples, kPreviewZenithSamples);
     scene.render.sky_view_azimuth_samples = std::min(scene.render.sky_view_azimuth_samples, kPreviewAzimuthSamples);
     scene.render.view_segments = std::min(scene.render.view_segments, kPreviewViewSegments);
     frame.preview = "coarse sky-view table";
   }
-  if (!tables_ready) {
+  if (tables == TablesAtHand::preview) {
+    scene = with_preview_tables(scene);
+    frame.preview = "small scattering tables (the scene's are being built)";
+  } else if (tables == TablesAtHand::none) {
     scene.render.scattering_orders = 1;
     frame.preview = "single scattering (the scattering tables are being built)";
   }

@@ -17,8 +17,12 @@
 //   coarse sky-view table   the sky-view table at kPreviewZenithSamples x kPreviewAzimuthSamples,
 //                           its rays marched in kPreviewViewSegments segments (everything else as
 //                           asked; docs/viewer.md measures the difference)
-//   single scattering       the tables are being built (the server starts that): the orders
-//                           above the first are missing until they are ready
+//   small scattering tables the scene's tables are being built (the server starts that) and the
+//                           preview's are at hand: all orders from tables of kPreviewTableAltitudes
+//                           x kPreviewTableSuns entries, harmonics to kPreviewTableDegree and
+//                           kPreviewTableOrders orders (with_preview_tables), which the server builds
+//                           first, in a fraction of the scene's time; the coarse sky-view table too
+//   single scattering       neither is at hand yet: the orders above the first are missing
 #pragma once
 
 #include <cstdint>
@@ -53,6 +57,9 @@ inline const std::vector<std::string> kViewerOwnedKeys = {"output.directory", "o
 /// The sky-view table of a preview: rows from the horizon to the zenith, azimuths, and the
 /// segments of its rays (render.view_segments).
 constexpr int kPreviewZenithSamples = 32, kPreviewAzimuthSamples = 16, kPreviewViewSegments = 32;
+/// The scattering-order tables of a preview while the scene's are built (with_preview_tables):
+/// altitudes, sun angles, the harmonics' degree and the highest order, each at most these.
+constexpr int kPreviewTableAltitudes = 12, kPreviewTableSuns = 24, kPreviewTableDegree = 6, kPreviewTableOrders = 4;
 /// The largest frame the page may ask for, in pixels (an export is held to the render budget).
 constexpr std::int64_t kMaxFramePixels = std::int64_t{2048} * 2048;
 
@@ -85,14 +92,22 @@ struct Frame {
   std::string exposure;  ///< how the exposure was chosen, in words
   std::string preview;   ///< "" for an exact frame, else what the preview leaves out (see above)
 };
-/// `tables_ready`: whether the scene's scattering-order tables are at hand (scattering_tables_ready).
-Frame render_frame(const ViewRequest& request, bool tables_ready = true);
+/// Which of a scene's scattering-order tables are in memory or in the disk cache: its own, the
+/// preview's (with_preview_tables) or none (a single-scattering scene's are always at hand).
+enum class TablesAtHand { exact, preview, none };
+TablesAtHand tables_at_hand(const Scene& scene);
+/// The frame of a request with the tables at hand: exact with the scene's own, else a preview
+/// (see above).
+Frame render_frame(const ViewRequest& request, TablesAtHand tables = TablesAtHand::exact);
 
 /// Whether the scene's scattering-order tables are in memory or in the disk cache (true for single
 /// scattering): a frame of it is then exact without a table build.
 bool scattering_tables_ready(const Scene& scene);
-/// Builds (and caches) the scene's scattering-order tables; what the server runs in the background
-/// while previews are shown.
+/// The scene with the preview's smaller scattering-order tables (its render.ms_altitude_samples,
+/// ms_sun_samples, ms_angular_degree and scattering_orders at most kPreviewTable*).
+Scene with_preview_tables(const Scene& scene);
+/// Builds (and caches) the preview's tables and then the scene's; what the server runs in the
+/// background while previews are shown.
 void build_scattering_tables(const Scene& scene);
 
 /// The sky's spectral radiance through the centre of pixel (x, y), all the orders the scene asks

@@ -131,9 +131,9 @@ struct ViewerServer::Impl {
       answer(res, [&] {
         const ViewRequest request = parse_view_request(base, query_of(req));
         std::lock_guard<std::mutex> lock(rendering);
-        const bool ready = scattering_tables_ready(request.scene);
-        if (!ready) start_build(request.scene);
-        const Frame frame = render_frame(request, ready);
+        const TablesAtHand tables = tables_at_hand(request.scene);
+        if (tables != TablesAtHand::exact) start_build(request.scene);
+        const Frame frame = render_frame(request, tables);
         char seconds[64];
         std::snprintf(seconds, sizeof seconds, "%.4f", frame.render_seconds);
         res.set_header("X-Skyspec-Render-Seconds", seconds);

@@ -129,7 +129,7 @@ BOOST_AUTO_TEST_CASE(frames_are_the_display_png_and_too_large_ones_are_refused) 
   coarse.render.view_segments = viewer::kPreviewViewSegments;
   BOOST_TEST(preview.png == display_png_bytes(render_to_memory(coarse), {}, PngCompression::Fastest));
   BOOST_TEST(preview.png != viewer::render_frame(viewer::parse_view_request(base, {{"sun.elevation_deg", "20"}})).png);
-  BOOST_TEST(viewer::render_frame(request, false).preview.rfind("single scattering", 0) == 0);
+  BOOST_TEST(viewer::render_frame(request, viewer::TablesAtHand::none).preview.rfind("single scattering", 0) == 0);
   BOOST_TEST(viewer::scattering_tables_ready(request.scene));  // single scattering needs none
   BOOST_CHECK_EXCEPTION(viewer::parse_view_request(base, {{"preview", "yes"}}), InputError,
                         [](const InputError& e) { return e.setting() == "preview"; });
@@ -184,11 +184,54 @@ BOOST_AUTO_TEST_CASE(the_background_build_makes_the_tables_of_the_scene_asked_fo
   scalar.output.polarisation = false;
   BOOST_TEST(!viewer::scattering_tables_ready(polarised));
   BOOST_TEST(!viewer::scattering_tables_ready(scalar));
+  BOOST_TEST((viewer::tables_at_hand(polarised) == viewer::TablesAtHand::none));
+  // Tables no larger than the preview's are their own preview: one build.
+  BOOST_TEST(scene_to_toml(viewer::with_preview_tables(polarised)) == scene_to_toml(polarised));
   viewer::build_scattering_tables(polarised);
   BOOST_TEST(viewer::scattering_tables_ready(polarised));
+  BOOST_TEST((viewer::tables_at_hand(polarised) == viewer::TablesAtHand::exact));
   BOOST_TEST(!viewer::scattering_tables_ready(scalar));
   viewer::build_scattering_tables(scalar);
   BOOST_TEST(viewer::scattering_tables_ready(scalar));
+}
+
+BOOST_AUTO_TEST_CASE(the_preview_tables_come_first_and_frames_show_them_until_the_scenes_are_built) {
+  // Tables larger than the preview's in every dimension, of an aerosol load no other test uses,
+  // in memory only.
+  SceneLoader l("default");
+  l.apply_toml(
+      "[camera]\ntype = \"equirectangular\"\nwidth = 16\nheight = 8\n[render]\nscattering_orders = 5\n"
+      "ms_altitude_samples = 13\nms_sun_samples = 26\nms_angular_degree = 7\ncache_tables = false\n"
+      "[atmosphere.mie]\nscattering_per_m = 1.8341e-05\n",
+      "test");
+  const Scene scene = l.finish();
+  const Scene preview = viewer::with_preview_tables(scene);
+  BOOST_TEST(preview.render.ms_altitude_samples == viewer::kPreviewTableAltitudes);
+  BOOST_TEST(preview.render.ms_sun_samples == viewer::kPreviewTableSuns);
+  BOOST_TEST(preview.render.ms_angular_degree == viewer::kPreviewTableDegree);
+  BOOST_TEST(preview.render.scattering_orders == viewer::kPreviewTableOrders);
+  BOOST_TEST((viewer::tables_at_hand(scene) == viewer::TablesAtHand::none));
+  // The preview's tables alone (as the server has them while the scene's are built): frames are
+  // the scene rendered with them and the coarse sky-view table, and say so.
+  {
+    Scene only_preview = preview;
+    only_preview.camera.width = only_preview.camera.height = 1;
+    const SkyRenderer build(only_preview);
+  }
+  BOOST_TEST((viewer::tables_at_hand(scene) == viewer::TablesAtHand::preview));
+  viewer::ViewRequest request;
+  request.scene = scene;
+  const viewer::Frame frame = viewer::render_frame(request, viewer::tables_at_hand(scene));
+  BOOST_TEST(frame.preview.rfind("small scattering tables", 0) == 0);
+  Scene expected = preview;
+  expected.render.sky_view_zenith_samples = viewer::kPreviewZenithSamples;
+  expected.render.sky_view_azimuth_samples = viewer::kPreviewAzimuthSamples;
+  expected.render.view_segments = viewer::kPreviewViewSegments;
+  BOOST_TEST(frame.png == display_png_bytes(render_to_memory(expected), {}, PngCompression::Fastest));
+  // The background build then makes the scene's own; frames are exact.
+  viewer::build_scattering_tables(scene);
+  BOOST_TEST((viewer::tables_at_hand(scene) == viewer::TablesAtHand::exact));
+  BOOST_TEST(viewer::render_frame(request, viewer::tables_at_hand(scene)).preview == "");
 }
 
 BOOST_AUTO_TEST_CASE(an_export_never_replaces_a_file_and_its_toml_renders_the_same_files) {
