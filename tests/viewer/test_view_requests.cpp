@@ -196,20 +196,25 @@ BOOST_AUTO_TEST_CASE(the_background_build_makes_the_tables_of_the_scene_asked_fo
 }
 
 BOOST_AUTO_TEST_CASE(the_preview_tables_come_first_and_frames_show_them_until_the_scenes_are_built) {
-  // Tables larger than the preview's in every dimension, of an aerosol load no other test uses,
-  // in memory only.
+  // The default scene's tables are larger than the preview's in every dimension.
+  const Scene preview_of_default = viewer::with_preview_tables(SceneLoader("default").finish());
+  BOOST_TEST(preview_of_default.render.ms_altitude_samples == viewer::kPreviewTableAltitudes);
+  BOOST_TEST(preview_of_default.render.ms_sun_samples == viewer::kPreviewTableSuns);
+  BOOST_TEST(preview_of_default.render.ms_angular_degree == viewer::kPreviewTableDegree);
+  BOOST_TEST(preview_of_default.render.scattering_orders == viewer::kPreviewTableOrders);
+  // Small tables (quick under the sanitizers too) one altitude larger than the preview's, of an
+  // aerosol load no other test uses, in memory only.
   SceneLoader l("default");
   l.apply_toml(
-      "[camera]\ntype = \"equirectangular\"\nwidth = 16\nheight = 8\n[render]\nscattering_orders = 5\n"
-      "ms_altitude_samples = 13\nms_sun_samples = 26\nms_angular_degree = 7\ncache_tables = false\n"
-      "[atmosphere.mie]\nscattering_per_m = 1.8341e-05\n",
+      "[camera]\ntype = \"equirectangular\"\nwidth = 16\nheight = 8\n[render]\nscattering_orders = 2\n"
+      "ms_altitude_samples = " +
+          std::to_string(viewer::kPreviewTableAltitudes + 1) +
+          "\nms_sun_samples = 24\nms_angular_degree = 2\ncache_tables = false\n"
+          "[atmosphere.mie]\nscattering_per_m = 1.8341e-05\n",
       "test");
   const Scene scene = l.finish();
   const Scene preview = viewer::with_preview_tables(scene);
   BOOST_TEST(preview.render.ms_altitude_samples == viewer::kPreviewTableAltitudes);
-  BOOST_TEST(preview.render.ms_sun_samples == viewer::kPreviewTableSuns);
-  BOOST_TEST(preview.render.ms_angular_degree == viewer::kPreviewTableDegree);
-  BOOST_TEST(preview.render.scattering_orders == viewer::kPreviewTableOrders);
   BOOST_TEST((viewer::tables_at_hand(scene) == viewer::TablesAtHand::none));
   // The preview's tables alone (as the server has them while the scene's are built): frames are
   // the scene rendered with them and the coarse sky-view table, and say so.
