@@ -24,6 +24,8 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+const char* const kSmallTablesPreview = "small scattering tables (the scene's are being built)";
+
 const std::string kWords = "a scene key (skyspec render --help-keys), preset, view, mode, preview, x or y";
 
 bool viewer_word(const std::string& name) {
@@ -137,7 +139,7 @@ Frame render_frame(const ViewRequest& request, TablesAtHand tables) {
   }
   if (tables == TablesAtHand::preview) {
     scene = with_preview_tables(scene);
-    frame.preview = "small scattering tables (the scene's are being built)";
+    frame.preview = kSmallTablesPreview;
   } else if (tables == TablesAtHand::none) {
     scene.render.scattering_orders = 1;
     frame.preview = "single scattering (the scattering tables are being built)";
@@ -157,7 +159,8 @@ Frame render_frame(const ViewRequest& request, TablesAtHand tables) {
   return frame;
 }
 
-nlohmann::json spectrum_at(const ViewRequest& request, const Query& query) {
+nlohmann::json spectrum_at(const ViewRequest& request, const Query& query, TablesAtHand tables) {
+  if (tables == TablesAtHand::none) throw Error("a spectrum needs the scene's scattering tables or the preview's");
   const int x = pixel_coordinate(query, "x", request.scene.camera.width);
   const int y = pixel_coordinate(query, "y", request.scene.camera.height);
   const std::unique_ptr<Camera> camera = make_camera(request.scene);
@@ -166,7 +169,7 @@ nlohmann::json spectrum_at(const ViewRequest& request, const Query& query) {
     throw InputError("x", std::to_string(x) + ", y = " + std::to_string(y), "a pixel the camera has a ray for");
   // Both integrated along the ray: no sky-view table to build or read. The scene's own tables (a
   // polarised scene's vector tables: the ones scattering_tables_ready speaks of).
-  Scene all = request.scene;
+  Scene all = tables == TablesAtHand::preview ? with_preview_tables(request.scene) : request.scene;
   all.render.sky_view_table = false;
   Scene single = all;
   single.render.scattering_orders = 1;
@@ -184,8 +187,9 @@ nlohmann::json spectrum_at(const ViewRequest& request, const Query& query) {
           {"wavelengths_nm", wavelengths},
           {"radiance", to_vector(radiance)},
           {"single_scattering", to_vector(first)},
-          {"orders", request.scene.render.scattering_orders},
-          {"units", "W m^-2 sr^-1 nm^-1"}};
+          {"orders", all.render.scattering_orders},
+          {"units", "W m^-2 sr^-1 nm^-1"},
+          {"preview", tables == TablesAtHand::preview ? kSmallTablesPreview : ""}};
 }
 
 nlohmann::json export_view(const ViewRequest& request, const std::filesystem::path& folder) {

@@ -113,9 +113,11 @@ void build_scattering_tables(const Scene& scene);
 /// The sky's spectral radiance through the centre of pixel (x, y), all the orders the scene asks
 /// for and single scattering alone, both integrated along the ray (not read from the sky-view
 /// table): {"x", "y", "azimuth_deg", "elevation_deg", "wavelengths_nm", "radiance",
-/// "single_scattering", "units"}. InputError naming "x" or "y" for a pixel outside the image or
-/// one the camera has no ray for.
-nlohmann::json spectrum_at(const ViewRequest& request, const Query& query);
+/// "single_scattering", "orders", "units", "preview"}. With the preview's tables at hand (not the
+/// scene's: TablesAtHand::preview) the orders come from them and "preview" says so; it is "" for
+/// the scene's own. InputError naming "x" or "y" for a pixel outside the image or one the camera
+/// has no ray for; Error for TablesAtHand::none (a spectrum waits for tables).
+nlohmann::json spectrum_at(const ViewRequest& request, const Query& query, TablesAtHand tables = TablesAtHand::exact);
 
 /// Writes the request's scene as `<folder>/view-NNNN.toml` and renders it to view-NNNN.exr and
 /// .png with render_scene_to_files (the files `skyspec render --scene view-NNNN.toml` writes),

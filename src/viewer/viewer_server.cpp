@@ -150,14 +150,15 @@ struct ViewerServer::Impl {
         const Query query = query_of(req);
         const ViewRequest request = parse_view_request(base, query);
         std::lock_guard<std::mutex> lock(rendering);
-        if (!scattering_tables_ready(request.scene)) {  // all orders need them: ask again once they are built
-          start_build(request.scene);
+        const TablesAtHand tables = tables_at_hand(request.scene);
+        if (tables != TablesAtHand::exact) start_build(request.scene);
+        if (tables == TablesAtHand::none) {  // all orders need tables: ask again once the preview's are built
           res.set_header("Retry-After", "2");
           send_json(res, 503,
                     {{"error", "the scattering tables of this atmosphere are being built: click again in a moment"}});
           return;
         }
-        send_json(res, 200, spectrum_at(request, query));
+        send_json(res, 200, spectrum_at(request, query, tables));
       });
     });
     server.Post("/api/export", [this](const httplib::Request& req, httplib::Response& res) {

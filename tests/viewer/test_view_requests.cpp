@@ -233,10 +233,23 @@ BOOST_AUTO_TEST_CASE(the_preview_tables_come_first_and_frames_show_them_until_th
   expected.render.sky_view_azimuth_samples = viewer::kPreviewAzimuthSamples;
   expected.render.view_segments = viewer::kPreviewViewSegments;
   BOOST_TEST(frame.png == display_png_bytes(render_to_memory(expected), {}, PngCompression::Fastest));
-  // The background build then makes the scene's own; frames are exact.
+  // A spectrum then: all orders from the preview's tables, marched along the pixel's ray, and says so.
+  const viewer::Query pixel = {{"x", "3"}, {"y", "2"}};
+  const auto s = viewer::spectrum_at(request, pixel, viewer::TablesAtHand::preview);
+  BOOST_TEST(s.at("preview").get<std::string>().rfind("small scattering tables", 0) == 0);
+  BOOST_TEST(int(s.at("orders")) == preview.render.scattering_orders);
+  Scene marched = preview;
+  marched.render.sky_view_table = false;
+  Vec3 dir;
+  BOOST_TEST(make_camera(scene)->direction(3.5, 2.5, dir));
+  BOOST_TEST(double(s.at("radiance")[20]) == SkyRenderer(marched).radiance(dir)[20],
+             boost::test_tools::tolerance(1e-6));
+  BOOST_CHECK_THROW(viewer::spectrum_at(request, pixel, viewer::TablesAtHand::none), Error);
+  // The background build then makes the scene's own; frames and spectra are exact.
   viewer::build_scattering_tables(scene);
   BOOST_TEST((viewer::tables_at_hand(scene) == viewer::TablesAtHand::exact));
   BOOST_TEST(viewer::render_frame(request, viewer::tables_at_hand(scene)).preview == "");
+  BOOST_TEST(viewer::spectrum_at(request, pixel).at("preview").get<std::string>() == "");
 }
 
 BOOST_AUTO_TEST_CASE(an_export_never_replaces_a_file_and_its_toml_renders_the_same_files) {
