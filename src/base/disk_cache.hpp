@@ -47,7 +47,7 @@ void mark_cache_file_used(const std::filesystem::path& path);
 /// (base/cancellation.hpp) and shows as the preparation phase "waiting for another skyspec process
 /// to finish the same tables". A lock that cannot be made (a read-only folder, a file system without
 /// flock, a link planted under the lock's name) gives no claim: the process computes the file
-/// itself, which costs only time (a link is reported once, as warn_cache_unusable does).
+/// itself, which costs only time; the reason is reported once (warn_cache_unusable).
 class CacheFileClaim {
  public:
   /// Takes the claim on `file` (no claim for an empty path), waiting while another process holds it.
