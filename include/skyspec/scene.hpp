@@ -113,6 +113,11 @@ struct RenderSpec {
   /// scattered more than once as isotropic (the draft quality); 2 makes Rayleigh exact; more
   /// resolves the aerosol's forward scattering (multiple_scattering.hpp).
   int ms_angular_degree = 10;
+  /// Quadrature segments along each ray of the multiple-scattering tables: order 2's (its source,
+  /// the light scattered once, has the sun's shadow and the aerosol's peak) and the orders after it
+  /// (smoother sources, fewer segments).
+  int ms_view_segments = 24;
+  int ms_higher_order_segments = 16;
   /// Keep the multiple-scattering tables on disk and reuse them for the same atmosphere.
   bool cache_tables = true;
   /// Interpolate images from a table of the sky over view directions (sky_view_table.hpp) rather

@@ -15,7 +15,7 @@ namespace {
 
 // What a build's time depends on besides the atmosphere's values: the tables' settings, the sun
 // table's resolution, the wavelengths, the view segments and the threads.
-using BuildCost = std::tuple<int, int, int, int, int, bool, int, int, int, int, int, int>;
+using BuildCost = std::tuple<int, int, int, int, int, int, bool, int, int, int, int, int, int>;
 
 BuildCost build_cost(const Scene& scene) {
   const auto ms = multiple_scattering_settings(scene);
@@ -24,6 +24,7 @@ BuildCost build_cost(const Scene& scene) {
           ms.altitude_samples,
           ms.sun_samples,
           ms.view_segments,
+          ms.higher_order_segments,
           ms.angular_degree,
           ms.polarisation,
           sun.n_r,

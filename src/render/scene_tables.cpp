@@ -12,6 +12,8 @@ MultipleScatteringSettings multiple_scattering_settings(const Scene& s) {
   ms.altitude_samples = s.render.ms_altitude_samples;
   ms.sun_samples = s.render.ms_sun_samples;
   ms.angular_degree = s.render.ms_angular_degree;
+  ms.view_segments = s.render.ms_view_segments;
+  ms.higher_order_segments = s.render.ms_higher_order_segments;
   ms.polarisation = s.output.polarisation && ms.orders >= 2;
   return ms;
 }

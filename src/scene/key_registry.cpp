@@ -571,6 +571,13 @@ const std::vector<KeyDef>& registry() {
                             "multiple-scattering tables: spherical-harmonic degree of the scattered light "
                             "(0: isotropic; 2: Rayleigh exact; more: the aerosol's forward scattering)",
                             [](Scene& s) -> int& { return s.render.ms_angular_degree; }));
+    r.push_back(integer_key("render.ms_view_segments", 4, 1024,
+                            "multiple-scattering tables: quadrature segments along each ray of order 2's table",
+                            [](Scene& s) -> int& { return s.render.ms_view_segments; }));
+    r.push_back(integer_key("render.ms_higher_order_segments", 4, 1024,
+                            "multiple-scattering tables: quadrature segments along each ray of the tables of "
+                            "orders 3 and up (their sources are smoother than order 2's)",
+                            [](Scene& s) -> int& { return s.render.ms_higher_order_segments; }));
     r.push_back(bool_key("render.cache_tables",
                          "keep multiple-scattering tables (and a microphysical aerosol's optics) on disk "
                          "($SKYSPEC_CACHE_DIR, $XDG_CACHE_HOME/skyspec or ~/.cache/skyspec) and reuse them for the "

@@ -888,8 +888,11 @@ ScatteringOrders::ScatteringOrders(const SingleScattering& integrator, const Mul
     return std::make_unique<SourceTable>(atm.planet_radius_m(), atm.top_radius_m(), settings_.altitude_samples,
                                          settings_.sun_samples, moments, -1, settings_.polarisation);
   };
-  // The tables are built with their own, coarser ray quadrature.
-  const SingleScattering builder(atm, integrator.sun_columns(), IntegratorSettings{settings_.view_segments});
+  // The tables are built with their own, coarser ray quadrature, coarser still after order 2.
+  const SingleScattering second_builder(atm, integrator.sun_columns(),
+                                        IntegratorSettings{segments_of_order(settings_, 2)});
+  const SingleScattering higher_builder(atm, integrator.sun_columns(),
+                                        IntegratorSettings{segments_of_order(settings_, 3)});
   throw_if_cancelled();  // each table may be large: a request stops before the next is allocated
   // The work, in rays traced (each order's entries x its directions), for the progress a host shows.
   const long long entries = static_cast<long long>(settings_.altitude_samples) * settings_.sun_samples;
@@ -908,7 +911,7 @@ ScatteringOrders::ScatteringOrders(const SingleScattering& integrator, const Mul
     ScatteringSources previous;
     previous.single = k == 2;
     previous.higher = source_of_previous.get();
-    integrate_order(builder, previous,
+    integrate_order(k == 2 ? second_builder : higher_builder, previous,
                     quadrature_of_order(settings_.angular_degree, k, settings_.quadrature_refinement), *table, 1, true);
     sum_->add(*table);
     orders_.push_back(std::move(table));
@@ -962,6 +965,10 @@ int ScatteringOrders::degree_of_order(int angular_degree, int k) {
   return std::max(2, angular_degree - (k - 2));
 }
 
+int ScatteringOrders::segments_of_order(const MultipleScatteringSettings& settings, int k) {
+  return k <= 2 ? settings.view_segments : settings.higher_order_segments;
+}
+
 DirectionQuadrature ScatteringOrders::quadrature_of_order(int angular_degree, int k, int refinement) {
   const int d = degree_of_order(angular_degree, k), extra = k == 2 ? 2 : 0;
   DirectionQuadrature q;
@@ -977,7 +984,10 @@ double ScatteringOrders::estimate_build_seconds(const SingleScattering& integrat
                                                 const MultipleScatteringSettings& settings) {
   if (settings.orders < 2) return 0.0;
   const AtmosphereModel& atm = integrator.atmosphere();
-  const SingleScattering builder(atm, integrator.sun_columns(), IntegratorSettings{settings.view_segments});
+  const SingleScattering second_builder(atm, integrator.sun_columns(),
+                                        IntegratorSettings{segments_of_order(settings, 2)});
+  const SingleScattering higher_builder(atm, integrator.sun_columns(),
+                                        IntegratorSettings{segments_of_order(settings, 3)});
   // A table of the real shape holding only the sampled entries (J is alt x sun x wavelengths
   // floats; at the largest settings that is too much to allocate for an estimate, so the entries
   // are sampled from a table of at most 64 x 64 spread the same way).
@@ -988,7 +998,7 @@ double ScatteringOrders::estimate_build_seconds(const SingleScattering& integrat
   SourceTable table(atm.planet_radius_m(), atm.top_radius_m(), n_alt, n_sun, moments, -1, settings.polarisation);
   const auto seconds_per_entry = [&](const ScatteringSources& sources, const DirectionQuadrature& q) {
     const auto t0 = std::chrono::steady_clock::now();
-    integrate_order(builder, sources, q, table, stride);
+    integrate_order(sources.single ? second_builder : higher_builder, sources, q, table, stride);
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / sampled;
   };
   // Order 2 integrates single scattering along its rays; order k > 2 looks order k - 1's table up

@@ -40,7 +40,11 @@ struct MultipleScatteringSettings {
   int orders = 4;             ///< highest scattering order counted (1: single scattering only)
   int altitude_samples = 16;  ///< table rows, denser near the ground (SourceTable::altitude_m)
   int sun_samples = 72;       ///< table columns over mu_s in [-1, 1], denser near the horizon
-  int view_segments = 24;     ///< quadrature segments of each ray while building the tables
+  int view_segments = 24;     ///< quadrature segments of each ray while building order 2's table
+  /// Quadrature segments of each ray while building the tables of orders 3 and up, whose sources
+  /// (the previous order's field) vary more smoothly along a ray than single scattering does
+  /// (segments_of_order; their error: docs/performance.md and docs/validation.md).
+  int higher_order_segments = 16;
   /// Every order's direction nodes (quadrature_of_order) times this in each of the three
   /// dimensions: 1 for renders; more to check that the tables have converged.
   int quadrature_refinement = 1;
@@ -305,6 +309,9 @@ class ScatteringOrders : public InScatteringSource {
   /// order 2, whose source (single scattering) is cheap to evaluate and whose field has the
   /// sharpest features (the aerosol's forward peak around the sun), two more of each.
   static DirectionQuadrature quadrature_of_order(int angular_degree, int k, int refinement = 1);
+  /// The quadrature segments of each ray while building order k's table: view_segments for
+  /// order 2, higher_order_segments after it.
+  static int segments_of_order(const MultipleScatteringSettings& settings, int k);
   /// The table of order k, 2 <= k <= highest_order(). Tables read from the cache hold order 2's
   /// and the sum only (what renders read); asking one of them for a higher order throws Error.
   const SourceTable& order(int k) const;

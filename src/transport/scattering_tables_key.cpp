@@ -68,10 +68,10 @@ ScatteringTablesKey scattering_tables_key(const AtmosphereModel& atm, const SunC
   if (ms.polarisation) out << "polarisation 1\n";  // absent for scalar tables (their keys stay as they were)
   for (int k = 2; k <= ms.orders; ++k) {
     const DirectionQuadrature q = ScatteringOrders::quadrature_of_order(ms.angular_degree, k, ms.quadrature_refinement);
-    out << "order " << k << " degree " << ScatteringOrders::degree_of_order(ms.angular_degree, k) << " directions "
-        << q.sky_zenith_nodes << ' ' << q.ground_zenith_nodes << ' ' << q.azimuth_nodes << " horizon panels "
-        << q.sky_horizon_nodes << ' ' << q.ground_horizon_nodes << ' ' << DirectionQuadrature::kHorizonPanelWidth
-        << '\n';
+    out << "order " << k << " degree " << ScatteringOrders::degree_of_order(ms.angular_degree, k) << " segments "
+        << ScatteringOrders::segments_of_order(ms, k) << " directions " << q.sky_zenith_nodes << ' '
+        << q.ground_zenith_nodes << ' ' << q.azimuth_nodes << " horizon panels " << q.sky_horizon_nodes << ' '
+        << q.ground_horizon_nodes << ' ' << DirectionQuadrature::kHorizonPanelWidth << '\n';
   }
   ScatteringTablesKey key;
   key.inputs = out.str();

@@ -50,6 +50,8 @@ BOOST_AUTO_TEST_CASE(every_physical_input_changes_the_key) {
       "render.ms_altitude_samples = 24",
       "render.ms_angular_degree = 6",
       "render.ms_sun_samples = 32",
+      "render.ms_view_segments = 32",
+      "render.ms_higher_order_segments = 24",
       "render.table_altitude_samples = 64",
       "render.table_zenith_samples = 128",
   };

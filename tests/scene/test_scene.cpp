@@ -332,6 +332,8 @@ BOOST_AUTO_TEST_CASE(quality_levels) {
                                                        {lo.table_zenith_samples, hi.table_zenith_samples},
                                                        {lo.ms_altitude_samples, hi.ms_altitude_samples},
                                                        {lo.ms_sun_samples, hi.ms_sun_samples},
+                                                       {lo.ms_view_segments, hi.ms_view_segments},
+                                                       {lo.ms_higher_order_segments, hi.ms_higher_order_segments},
                                                        {lo.scattering_orders, hi.scattering_orders}};
       bool rises = false;
       for (const auto& [a, b] : counts) {
