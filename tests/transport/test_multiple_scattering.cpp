@@ -35,6 +35,14 @@ MultipleScatteringSettings small_tables(int orders, int altitudes, int sun_angle
   return ms;
 }
 
+// The hazy test atmosphere of the convergence checks: the seed's air and an aerosol of 60e-6 m^-1
+// at the ground over a ground of albedo 0.3.
+AtmosphereSpec hazy_air() {
+  AtmosphereSpec spec = test::simple_atmosphere(ProfileKind::Exponential, 60e3, kNm, kBetaR, 60e-6);
+  spec.ground.albedo = 0.3;
+  return spec;
+}
+
 // Upward flux leaving the top of the atmosphere at the sub-solar point:
 // F_up = integral over downward directions of L |mu| d omega (Gauss-Legendre in mu, azimuth
 // symmetric for a sun at the zenith).
@@ -434,9 +442,7 @@ BOOST_AUTO_TEST_CASE(source_to_a_lower_degree_drops_the_higher_harmonics) {
 // scattering is validated to, in a hazy atmosphere (three times the seed's aerosol) over a grey
 // ground, at the default degree.
 BOOST_AUTO_TEST_CASE(direction_quadrature_of_the_orders_has_converged) {
-  AtmosphereSpec spec = test::simple_atmosphere(ProfileKind::Exponential, 60e3, kNm, kBetaR, 60e-6);
-  spec.ground.albedo = 0.3;
-  const test::IntegratorChain chain(spec, kNm, {64, 128, 64}, 64);
+  const test::IntegratorChain chain(hazy_air(), kNm, {64, 128, 64}, 64);
   const SingleScattering& ss = chain.integrator;
   MultipleScatteringSettings ms = small_tables(4, 8, 16, 10);
   const ScatteringOrders coarse(ss, ms);
@@ -461,6 +467,34 @@ BOOST_AUTO_TEST_CASE(direction_quadrature_of_the_orders_has_converged) {
     }
   BOOST_TEST_MESSAGE("largest change of the radiance with twice the direction nodes: " << worst);
   BOOST_TEST(worst < 0.0075);
+}
+
+// The tables' rays: 24 segments for order 2 and 16 for the orders after it (the defaults) against
+// 48 for every order, in the same hazy air, with the sun up and 4 degrees below the horizon
+// (where the higher orders are most of the light).
+BOOST_AUTO_TEST_CASE(segments_along_the_tables_rays_have_converged) {
+  const test::IntegratorChain chain(hazy_air(), kNm, {64, 128, 64}, 64);
+  const SingleScattering& ss = chain.integrator;
+  MultipleScatteringSettings ms = small_tables(4, 8, 16, 4);
+  BOOST_TEST(ScatteringOrders::segments_of_order(ms, 2) == 24);
+  BOOST_TEST(ScatteringOrders::segments_of_order(ms, 3) == 16);
+  const ScatteringOrders coarse(ss, ms);
+  ms.view_segments = ms.higher_order_segments = 48;
+  const ScatteringOrders fine(ss, ms);
+  ScatteringWorkspace ws(3);
+  Spectrum a(3), b(3);
+  const Vec3 o(0, 0, 6360e3 + 2);
+  double worst = 0.0;
+  for (double sun : {10.0, -4.0})
+    for (double az : {0.0, 90.0, 180.0})
+      for (double el : {1.0, 45.0, 90.0}) {
+        const Vec3 d = direction_from_angles(az, el), s = direction_from_angles(0, sun);
+        ss.radiance(o, d, s, Spectrum::Ones(3), ScatteringSources{true, &coarse}, ws, a);
+        ss.radiance(o, d, s, Spectrum::Ones(3), ScatteringSources{true, &fine}, ws, b);
+        for (int i = 0; i < 3; ++i) worst = std::max(worst, std::abs(static_cast<double>(a[i] / b[i]) - 1.0));
+      }
+  BOOST_TEST_MESSAGE("largest change of the radiance with 48 segments along every table ray: " << worst);
+  BOOST_TEST(worst < 0.005);
 }
 
 BOOST_AUTO_TEST_SUITE_END()
