@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <memory>
+#include <optional>
 
 #include "skyspec/aerosol_components.hpp"
 #include "skyspec/density_profile.hpp"
@@ -182,6 +183,15 @@ class AtmosphereModel {
   /// |g| >= 1, a scatterer whose density is not positive everywhere, more than kMaxMedia media.
   /// Call it before building anything on the atmosphere (tables and integrators keep references).
   void add_medium(Medium medium);
+
+  /// The same atmosphere with the forward peak of every medium whose scattering matrix is tabulated
+  /// cut off inside the cone of scattering angles below cone_rad (truncate_forward_peak): its
+  /// scattering coefficient becomes (1 - f) beta_sca and its extinction beta_ext - f beta_sca, f
+  /// the cut share per wavelength, its phase function the cut matrix. The light of the peak, which
+  /// leaves within a few degrees of its way in, then travels on with the unscattered light: the
+  /// "delta-M" scaling of radiative transfer (Wiscombe 1977; Nakajima & Tanaka 1988). Other media
+  /// are unchanged. Empty when no medium has a tabulated matrix (nothing to cut).
+  std::optional<AtmosphereModel> with_forward_peaks_truncated(double cone_rad) const;
 
   /// Lambertian albedo of the ground on the grid.
   const SpectrumD& ground_albedo() const { return ground_albedo_; }

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 namespace skyspec {
@@ -67,5 +68,24 @@ class TabulatedScatteringMatrix {
   std::vector<std::vector<double>> cdf_;  // [wavelength][node]: probability of mu below the node
   std::vector<double> g_;
 };
+
+/// A matrix with its forward peak cut off, and the share of scattered light the cut took away.
+struct TruncatedScatteringMatrix {
+  std::shared_ptr<const TabulatedScatteringMatrix> matrix;
+  /// Per wavelength: f = the share of the phase function's integral inside the cone that the cut
+  /// removed (0 <= f < 1).
+  std::vector<double> removed;
+};
+
+/// The forward peak of `m` cut flat inside the cone of scattering angles below cone_rad (Potter
+/// 1970's truncation, the delta-M idea of Wiscombe 1977 with the peak taken out of the table rather
+/// than out of its Legendre series): inside the cone a1 takes its value at the cone's edge, and b1,
+/// a3 and b2 keep their ratio to a1 at each angle (the light's polarisation is unchanged); the
+/// cone's edge becomes a node of the table (the function is unchanged outside the cone). The cut
+/// share f of each wavelength is what radiative transfer then treats as unscattered light: the
+/// scattering coefficient becomes (1 - f) beta_sca, the extinction beta_ext - f beta_sca, and the
+/// phase function the returned matrix, renormalised. Throws std::invalid_argument unless
+/// 0 < cone_rad < pi.
+TruncatedScatteringMatrix truncate_forward_peak(const TabulatedScatteringMatrix& m, double cone_rad);
 
 }  // namespace skyspec

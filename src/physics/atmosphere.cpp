@@ -84,6 +84,25 @@ void check_spectrum(const std::string& key, const SpectrumD& v, int n) {
 }
 }  // namespace
 
+std::optional<AtmosphereModel> AtmosphereModel::with_forward_peaks_truncated(double cone_rad) const {
+  std::optional<AtmosphereModel> out;
+  for (size_t j = 0; j < media_.size(); ++j) {
+    const Medium& m = media_[j];
+    if (m.phase.kind != MediumPhase::Kind::Tabulated || !m.scatters()) continue;
+    if (!out) out = *this;
+    Medium& cut = out->media_[j];
+    TruncatedScatteringMatrix t = truncate_forward_peak(*m.phase.matrix, cone_rad);
+    for (int i = 0; i < grid_.size(); ++i) {
+      const double f = t.removed[static_cast<size_t>(i)];
+      cut.extinction_per_m[i] = m.extinction_per_m[i] - f * m.scattering_per_m[i];
+      cut.scattering_per_m[i] = (1.0 - f) * m.scattering_per_m[i];
+      cut.phase.g[i] = t.matrix->asymmetry(i);
+    }
+    cut.phase.matrix = std::move(t.matrix);
+  }
+  return out;
+}
+
 void AtmosphereModel::add_medium(Medium m) {
   const int n = grid_.size();
   const std::string key = "medium." + (m.name.empty() ? std::string("?") : m.name);

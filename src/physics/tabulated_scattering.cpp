@@ -84,4 +84,51 @@ double TabulatedScatteringMatrix::sample_mu(int i, double u) const {
   return std::clamp(mu_[k] + std::clamp(t, 0.0, h), -1.0, 1.0);
 }
 
+TruncatedScatteringMatrix truncate_forward_peak(const TabulatedScatteringMatrix& m, double cone_rad) {
+  if (!(cone_rad > 0.0 && cone_rad < kPi))
+    throw std::invalid_argument("forward-peak truncation: the cone must be between 0 and pi radians");
+  const double mu_c = std::cos(cone_rad);
+  const std::vector<double>& mu = m.mu();
+  const TabulatedScatteringMatrix::Position edge = m.locate(mu_c);
+  // The new cosines: the old ones up to the edge, the edge itself (unless it is a node), the old
+  // ones after it.
+  const size_t inside = static_cast<size_t>(edge.k) + 1;  // nodes at or below the edge's interval start
+  std::vector<double> cut_mu(mu.begin(), mu.begin() + static_cast<long>(inside));
+  if (cut_mu.back() < mu_c) cut_mu.push_back(mu_c);
+  const size_t edge_node = cut_mu.size() - 1;
+  cut_mu.insert(cut_mu.end(), std::upper_bound(mu.begin(), mu.end(), mu_c), mu.end());
+  if (cut_mu.back() != 1.0) cut_mu.push_back(1.0);
+  TruncatedScatteringMatrix out;
+  const int n = m.wavelengths();
+  std::vector<std::vector<double>> a1(n), b1(n), a3(n), b2(n);
+  out.removed.resize(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    const size_t w = static_cast<size_t>(i);
+    for (const double c : cut_mu) {
+      const SphereMatrixElements e = m.elements(i, c);
+      a1[w].push_back(e.a1);
+      b1[w].push_back(e.b1);
+      a3[w].push_back(e.a3);
+      b2[w].push_back(e.b2);
+    }
+    const double a1_edge = a1[w][edge_node];
+    for (size_t k = edge_node + 1; k < cut_mu.size(); ++k) {
+      const double ratio = a1[w][k] > 0.0 ? a1_edge / a1[w][k] : 0.0;
+      a1[w][k] = a1_edge;
+      b1[w][k] *= ratio;
+      a3[w][k] *= ratio;
+      b2[w][k] *= ratio;
+    }
+    // What is left of the normalised phase function's integral (trapezoidal: exact for the
+    // piecewise-linear interpolant).
+    double kept = 0.0;
+    for (size_t k = 0; k + 1 < cut_mu.size(); ++k)
+      kept += 0.5 * (cut_mu[k + 1] - cut_mu[k]) * (a1[w][k] + a1[w][k + 1]);
+    out.removed[w] = std::clamp(1.0 - 2.0 * kPi * kept, 0.0, 1.0 - 1e-12);
+  }
+  out.matrix = std::make_shared<const TabulatedScatteringMatrix>(std::move(cut_mu), std::move(a1), std::move(b1),
+                                                                 std::move(a3), std::move(b2));
+  return out;
+}
+
 }  // namespace skyspec
