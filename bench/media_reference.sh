@@ -5,12 +5,14 @@
 # largest difference 20 degrees and more above the horizon (per cent, and in standard errors) and
 # the probes 3 degrees above the northern and southern horizon
 # (test_bows_reference/benchmark_table; about ten minutes on 2 cores, most of it fog's paths).
-# Usage: bench/media_reference.sh [BUILD_DIR [RENDER_KEYS]]
+# Usage: bench/media_reference.sh [BUILD_DIR [RENDER_KEYS [MEDIUM]]]
 #   RENDER_KEYS: [render] keys for the renderer alone, the Monte Carlo unchanged, e.g.
 #   'ms_angular_degree = 12' or 'ms_altitude_samples = 48' (how the tables' resolution moves it).
+#   MEDIUM: only the rows whose medium's name contains it, e.g. fog.
 set -euo pipefail
 build=${1:-build}
 export SKYSPEC_BENCH_MEDIA_RENDER=${2:-}
+export SKYSPEC_BENCH_MEDIA_ONLY=${3:-}
 cmake --build "$build" --target skyspec_tests >/dev/null
 echo "| medium | largest difference, 20 degrees and up (standard errors) | 3 degrees up, north: 450 / 650 nm | 3 degrees up, south: 450 / 650 nm |"
 echo "| --- | --- | --- | --- |"

@@ -118,6 +118,9 @@ struct RenderSpec {
   /// (smoother sources, fewer segments).
   int ms_view_segments = 24;
   int ms_higher_order_segments = 16;
+  /// The tables cut a tabulated scattering matrix's forward peak within this angle (degrees) and
+  /// carry its light with the unscattered light (delta-M); 0: nothing cut.
+  double ms_forward_cone_deg = 5.0;
   /// Keep the multiple-scattering tables on disk and reuse them for the same atmosphere.
   bool cache_tables = true;
   /// Interpolate images from a table of the sky over view directions (sky_view_table.hpp) rather

@@ -14,6 +14,7 @@ MultipleScatteringSettings multiple_scattering_settings(const Scene& s) {
   ms.angular_degree = s.render.ms_angular_degree;
   ms.view_segments = s.render.ms_view_segments;
   ms.higher_order_segments = s.render.ms_higher_order_segments;
+  ms.forward_cone_deg = s.render.ms_forward_cone_deg;
   ms.polarisation = s.output.polarisation && ms.orders >= 2;
   return ms;
 }

@@ -578,6 +578,11 @@ const std::vector<KeyDef>& registry() {
                             "multiple-scattering tables: quadrature segments along each ray of the tables of "
                             "orders 3 and up (their sources are smoother than order 2's)",
                             [](Scene& s) -> int& { return s.render.ms_higher_order_segments; }));
+    r.push_back(number_key("render.ms_forward_cone_deg", "degrees", {0.0, 90.0},
+                           "multiple-scattering tables: a tabulated scattering matrix's forward peak within this "
+                           "angle is cut off and travels with the unscattered light (delta-M; single scattering "
+                           "stays exact; 0: nothing cut)",
+                           [](Scene& s) -> double& { return s.render.ms_forward_cone_deg; }));
     r.push_back(bool_key("render.cache_tables",
                          "keep multiple-scattering tables (and a microphysical aerosol's optics) on disk "
                          "($SKYSPEC_CACHE_DIR, $XDG_CACHE_HOME/skyspec or ~/.cache/skyspec) and reuse them for the "

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <fstream>
 #include <istream>
+#include <optional>
 #include <ostream>
 #include <stdexcept>
 #include <streambuf>
@@ -876,10 +877,18 @@ class SourceToDegree final : public InScatteringSource {
 
 }  // namespace
 
+std::shared_ptr<const AtmosphereModel> ScatteringOrders::field_atmosphere_of(
+    const AtmosphereModel& atm, const MultipleScatteringSettings& settings) {
+  if (!(settings.forward_cone_deg > 0.0) || settings.orders < 2) return nullptr;
+  std::optional<AtmosphereModel> cut = atm.with_forward_peaks_truncated(settings.forward_cone_deg * kPi / 180.0);
+  if (!cut) return nullptr;
+  return std::make_shared<const AtmosphereModel>(std::move(*cut));
+}
+
 ScatteringOrders::ScatteringOrders(const SingleScattering& integrator, const MultipleScatteringSettings& settings)
-    : settings_(settings) {
+    : settings_(settings), field_atmosphere_(field_atmosphere_of(integrator.atmosphere(), settings)) {
   const auto t0 = std::chrono::steady_clock::now();
-  const AtmosphereModel& atm = integrator.atmosphere();
+  const AtmosphereModel& atm = field_atmosphere_ ? *field_atmosphere_ : integrator.atmosphere();
   const auto moments = PhaseMoments::of(atm, settings_.angular_degree);
   if (settings_.polarisation && settings_.angular_degree < 2 && settings_.orders >= 2)
     throw Error("polarised scattering-order tables need an angular degree of 2 or more (got " +
@@ -1067,7 +1076,7 @@ bool ScatteringOrders::save(const std::string& path, const std::string& key) con
 }
 
 std::unique_ptr<ScatteringOrders> ScatteringOrders::load(const std::string& path, const std::string& key,
-                                                         const AtmosphereModel& atm,
+                                                         const AtmosphereModel& own_atm,
                                                          const MultipleScatteringSettings& settings) {
   // Read straight into the tables (no copy of the file), hashing on the way; the tables are
   // trusted only if the checksum that follows them matches and nothing follows it.
@@ -1085,6 +1094,8 @@ std::unique_ptr<ScatteringOrders> ScatteringOrders::load(const std::string& path
   if (!in.read(reinterpret_cast<char*>(&count), sizeof count) || count != (settings.orders >= 2 ? 1 : 0))
     return nullptr;
   std::unique_ptr<ScatteringOrders> o(new ScatteringOrders(settings));
+  o->field_atmosphere_ = field_atmosphere_of(own_atm, settings);
+  const AtmosphereModel& atm = o->field_atmosphere_ ? *o->field_atmosphere_ : own_atm;
   const auto moments = PhaseMoments::of(atm, settings.angular_degree);
   auto make_table = [&] {
     return std::make_unique<SourceTable>(atm.planet_radius_m(), atm.top_radius_m(), settings.altitude_samples,

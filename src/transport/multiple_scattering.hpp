@@ -49,6 +49,10 @@ struct MultipleScatteringSettings {
   /// dimensions: 1 for renders; more to check that the tables have converged.
   int quadrature_refinement = 1;
   int angular_degree = 0;  ///< spherical-harmonic degree of the tabulated fields (0: isotropic)
+  /// The tables solve the problem scaled by delta-M: the forward peak of every tabulated scattering
+  /// matrix cut off within this many degrees of forward (AtmosphereModel::with_forward_peaks_truncated;
+  /// 0: nothing cut). Renders keep their single scattering exact (InScatteringSource::field_atmosphere).
+  double forward_cone_deg = 0.0;
   /// Carry the fields' linear polarisation from order to order (vector transport for the air; needs
   /// angular_degree >= 2): each table also holds its field's polarisation tensor
   /// (InScatteringSource::rayleigh_moments) and the spin-2 harmonics of its polarisation to the
@@ -327,6 +331,13 @@ class ScatteringOrders : public InScatteringSource {
   /// Bytes of the tables save() writes (order 2's and the sum) for n wavelengths.
   static std::uint64_t cache_bytes(const MultipleScatteringSettings& settings, int wavelengths);
 
+  /// The scaled atmosphere the tables solved (forward_cone_deg), null when nothing was cut.
+  std::shared_ptr<const AtmosphereModel> field_atmosphere() const override { return field_atmosphere_; }
+  /// The atmosphere the tables for these settings solve: `atm` with its forward peaks cut
+  /// (forward_cone_deg), or null when there is nothing to cut.
+  static std::shared_ptr<const AtmosphereModel> field_atmosphere_of(const AtmosphereModel& atm,
+                                                                    const MultipleScatteringSettings& settings);
+
   /// Saves the tables a render reads (order 2's and the sum) to `path` atomically, tagged with
   /// `key` (the scene keys they depend on). Returns false (and leaves no file) if it cannot.
   bool save(const std::string& path, const std::string& key) const;
@@ -340,6 +351,7 @@ class ScatteringOrders : public InScatteringSource {
   MultipleScatteringSettings settings_;
   std::vector<std::unique_ptr<SourceTable>> orders_;
   std::unique_ptr<SourceTable> sum_;
+  std::shared_ptr<const AtmosphereModel> field_atmosphere_;  // null: the integrator's own
   double build_seconds_ = 0.0;
 };
 

@@ -63,7 +63,8 @@ SingleScattering::SingleScattering(const AtmosphereModel& atm, const SunColumns&
       media_(static_cast<int>(atm.media().size())),
       albedo_over_pi_((atm.ground_albedo() / kPi).cast<float>()),
       n_(atm.grid().size()),
-      spin_moments_(std::make_shared<LazySpinMoments>()) {
+      spin_moments_(std::make_shared<LazySpinMoments>()),
+      field_integrators_(std::make_shared<FieldIntegrators>()) {
   for (int j = 0; j < media_; ++j) {
     const Medium& medium = atm.media()[static_cast<size_t>(j)];
     ext_[j] = medium.extinction_per_m.cast<float>();
@@ -83,6 +84,29 @@ SingleScattering::SingleScattering(const AtmosphereModel& atm, const SunColumns&
     }
     scatterers_.push_back(std::move(sc));
   }
+}
+
+// The integrators of the field atmospheres a render's sources have shown, with the atmospheres
+// (kept alive so that their addresses are not reused while they are listed).
+struct SingleScattering::FieldIntegrators {
+  std::mutex mutex;
+  std::vector<std::pair<std::shared_ptr<const AtmosphereModel>, std::unique_ptr<SingleScattering>>> list;
+};
+
+const SingleScattering& SingleScattering::field_integrator(const ScatteringSources& sources) const {
+  if (!sources.higher) return *this;
+  std::shared_ptr<const AtmosphereModel> field = sources.higher->field_atmosphere();
+  if (!field || field.get() == &atm_) return *this;
+  FieldIntegrators& f = *field_integrators_;
+  const std::lock_guard<std::mutex> lock(f.mutex);
+  for (const auto& [a, integrator] : f.list)
+    if (a == field) return *integrator;
+  if (field->media().size() != atm_.media().size())
+    throw Error("a source's field atmosphere has " + std::to_string(field->media().size()) +
+                " media, the integrator's " + std::to_string(atm_.media().size()));
+  auto integrator = std::make_unique<SingleScattering>(*field, sun_, settings_);
+  f.list.emplace_back(field, std::move(integrator));
+  return *f.list.back().second;
 }
 
 struct SingleScattering::LazySpinMoments {
@@ -824,8 +848,12 @@ void SingleScattering::optical_depths(const Eigen::ArrayXXf& columns, PieceScrat
 }
 
 // Single scattering on one lit piece: the integrand of medium s is rho_s exp(-tau_view - tau_sun);
-// its fine and coarse log-mean sums are added to ws.sums[s].single.
-void SingleScattering::single_scattering_piece(const Node* nodes, int m, double os, double ds, PieceScratch& sc,
+// its fine and coarse log-mean sums are added to ws.sums[s].single. The optical depths are the
+// field atmosphere's (InScatteringSource::field_atmosphere: the light of the forward peaks goes on
+// with the sun's and the view's unscattered light, Nakajima & Tanaka's single scattering), the
+// phase functions and scattering coefficients the integrator's own.
+void SingleScattering::single_scattering_piece(const Node* nodes, int m, double os, double ds,
+                                               const SingleScattering& field, PieceScratch& sc,
                                                ScatteringWorkspace& ws) const {
   sc.columns.resize(m, media_);
   sc.node_r.resize(static_cast<size_t>(m));
@@ -839,7 +867,7 @@ void SingleScattering::single_scattering_piece(const Node* nodes, int m, double 
   for (int k = 0; k < m; ++k)
     for (int j = 0; j < media_; ++j)
       sc.columns(k, j) = static_cast<float>(nodes[k].col[j] + sc.sun[static_cast<size_t>(k)][static_cast<size_t>(j)]);
-  optical_depths(sc.columns, sc, sc.tau);
+  field.optical_depths(sc.columns, sc, sc.tau);
   sc.trans = (-sc.tau).exp();
   // Two media at a time: their integrands share the optical depth and transmittance.
   int s = 0;
@@ -1098,8 +1126,9 @@ struct SingleScattering::SkylineCut {
 };
 
 bool SingleScattering::higher_orders_piece(const Node* nodes, int m, double os, double ds, double od,
-                                           const InScatteringSource& higher, const RayFrame* polarisation,
-                                           const SkylineCut* cut, PieceScratch& sc, ScatteringWorkspace& ws) const {
+                                           const InScatteringSource& higher, const SingleScattering& field,
+                                           const RayFrame* polarisation, const SkylineCut* cut, PieceScratch& sc,
+                                           ScatteringWorkspace& ws) const {
   const Eigen::Index n = n_;
   const int count = scatterer_count();
   sc.view_columns.resize(m, media_);
@@ -1144,7 +1173,8 @@ bool SingleScattering::higher_orders_piece(const Node* nodes, int m, double os, 
     }
     higher.source(r, mu_sun, mu_view, ds, out);
   }
-  optical_depths(sc.view_columns, sc, sc.view_tau);
+  // The field's light travels to the camera through the field's atmosphere (field_atmosphere()).
+  field.optical_depths(sc.view_columns, sc, sc.view_tau);
   sc.view_trans = (-sc.view_tau).exp();
   if (were_cut) {
     // Below the skyline: the surface's light in the place of the tables', by the share that comes
@@ -1166,7 +1196,7 @@ bool SingleScattering::higher_orders_piece(const Node* nodes, int m, double os, 
     }
   }
   // Each medium's sums with J_s; then, for polarisation, with J_s + P_Q,s and J_s + P_U,s.
-  const bool polarised = polarisation && polarised_sources(nodes, m, *polarisation, higher, sc);
+  const bool polarised = polarisation && field.polarised_sources(nodes, m, *polarisation, higher, sc);
   for (int s = 0; s < count; ++s) {
     ScatteringWorkspace::Sums& sums = ws.sums[s];
     const Eigen::ArrayXXf* pass_sources[3] = {&sc.source_t[s], &sc.source_q_t[s], &sc.source_u_t[s]};
@@ -1193,12 +1223,15 @@ void SingleScattering::accumulate(PieceScratch& sc, int s, Spectrum* sums) const
 }
 
 // The ground at the ray's end: Lambertian reflection of the direct sun (order 1) and of the sky
-// (higher orders), seen through the whole view ray; added to the phase-free part.
+// (higher orders), seen through the whole view ray; added to the phase-free part. With higher
+// orders from a field atmosphere (InScatteringSource::field_atmosphere) the sun's light reaches
+// the ground, and the ground's light the camera, through that atmosphere: the light of the forward
+// peaks goes with them, as in the tables' own ground.
 void SingleScattering::ground_reflection(const Node& ground, const Vec3& ground_point, const Vec3& s, double mu_sun,
                                          const ScatteringSources& sources, ScatteringWorkspace& ws,
                                          RadianceParts& parts) const {
   ground_irradiance_at(ground_point, s, mu_sun, sources, ws);
-  view_optical_depth(ground, ws.view_tau);
+  field_integrator(sources).view_optical_depth(ground, ws.view_tau);
   ws.view_trans = (-ws.view_tau).exp();
   parts.phase_free += ws.view_trans * albedo_over_pi_at(ground_point, sources.terrain, ws) * ws.source;
 }
@@ -1212,7 +1245,7 @@ void SingleScattering::ground_irradiance_at(const Vec3& ground_point, const Vec3
       !(sources.terrain && sources.terrain->shadowed(ground_point + 1e-3 * ground_point.normalized(), s))) {
     Spectrum& tau_sun = ws.ground_sun;
     const Columns sun = sun_.at(R, mu_sun);
-    optical_depth(sun.data(), tau_sun);
+    field_integrator(sources).optical_depth(sun.data(), tau_sun);
     ws.source = (-tau_sun).exp() * static_cast<float>(mu_sun);
   }
   if (sources.higher) {
@@ -1231,7 +1264,7 @@ void SingleScattering::terrain_reflection(const Node& ground, const Vec3& p, con
                                           const ScatteringSources& sources, ScatteringWorkspace& ws,
                                           RadianceParts& parts) const {
   terrain_irradiance(ground, p, s, sources, ws);
-  view_optical_depth(ground, ws.view_tau);
+  field_integrator(sources).view_optical_depth(ground, ws.view_tau);
   ws.view_trans = (-ws.view_tau).exp();
   parts.phase_free += ws.view_trans * albedo_over_pi_at(p, sources.terrain, ws) * ws.source;
 }
@@ -1263,7 +1296,7 @@ void SingleScattering::terrain_irradiance(const Node& ground, const Vec3& p, con
         !terrain.shadowed(start, s)) {
       Spectrum& tau_sun = ws.ground_sun;
       const Columns sun = sun_.at(ground.r, mu_sun);
-      optical_depth(sun.data(), tau_sun);
+      field_integrator(sources).optical_depth(sun.data(), tau_sun);
       ws.source = (-tau_sun).exp() * static_cast<float>(incidence);
     }
   }
@@ -1303,6 +1336,7 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
     frame.e2 = (-d).cross(frame.e1);
   }
 
+  const SingleScattering& field = field_integrator(sources);
   thread_local PieceScratch sc;
   sc.by_node = n_ < kWavelengthsForWavelengthLoops;
   for (int j = 0; j < count; ++j) sc.medium_of[j] = medium_of_scatterer(j);
@@ -1319,7 +1353,7 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
     else
       ground_irradiance_at(o + last.t * d, s, (os + last.t * ds) / last.r, sources, ws);
     skyline.radiance = albedo_over_pi_at(o + last.t * d, sources.terrain, ws) * ws.source;
-    view_optical_depth(last, skyline.tau_end);
+    field.view_optical_depth(last, skyline.tau_end);
   }
   for (int i = 0; i < ray.n_pieces; ++i) {
     const Piece& pc = ray.pieces[i];
@@ -1327,20 +1361,21 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
     if (!single_here && !higher) continue;  // nothing to collect: its nodes only carried the columns
     const Node* nodes = ray.nodes.data() + pc.first_node;
     fill_piece_segments(nodes, pc.segments, count, sc.medium_of, sc.seg);
-    if (single_here) single_scattering_piece(nodes, pc.segments + 1, os, ds, sc, ws);
+    if (single_here) single_scattering_piece(nodes, pc.segments + 1, os, ds, field, sc, ws);
     if (higher)
-      polarised |= higher_orders_piece(nodes, pc.segments + 1, os, ds, od, *sources.higher,
+      polarised |= higher_orders_piece(nodes, pc.segments + 1, os, ds, od, *sources.higher, field,
                                        sources.polarisation ? &frame : nullptr, cut ? &skyline : nullptr, sc, ws);
   }
 
-  // beta_sca,s times each medium's integrals, summed over the media where their phase functions
-  // are already inside (the higher orders).
+  // beta_sca,s (the field atmosphere's) times each medium's integrals, summed over the media where
+  // their phase functions are already inside (the higher orders).
+  const std::vector<Scatterer>& field_scatterers = field.scatterers_;
   const auto sum_over_media = [&](auto&& term, Spectrum& out) {
     if (count >= 2)
-      out = scatterers_[0].sca * term(0) + scatterers_[1].sca * term(1);
+      out = field_scatterers[0].sca * term(0) + field_scatterers[1].sca * term(1);
     else
-      out = scatterers_[0].sca * term(0);
-    for (int j = 2; j < count; ++j) out += scatterers_[static_cast<size_t>(j)].sca * term(j);
+      out = field_scatterers[0].sca * term(0);
+    for (int j = 2; j < count; ++j) out += field_scatterers[static_cast<size_t>(j)].sca * term(j);
   };
   const auto ms = [&](int j) { return richardson(ws.sums[j].higher[0], ws.sums[j].higher[1]); };
   if (sources.single)

@@ -182,6 +182,15 @@ class InScatteringSource {
                                     float* const* /*hidden_share*/, float* const* /*hidden_multiple*/) const {
     return false;
   }
+  /// The atmosphere whose radiance field the source holds, when that is not the integrator's own:
+  /// the scaled problem of delta-M (AtmosphereModel::with_forward_peaks_truncated), in which the
+  /// light of the particles' forward peaks travels with the unscattered light. The integrator then
+  /// weights the sources with that atmosphere's scattering coefficients and carries them, the
+  /// light reflected by the ground and the light scattered once along the view ray and the sun's
+  /// with its extinction; single scattering keeps the uncut phase functions and scattering
+  /// coefficients (Nakajima & Tanaka 1988's correction of single scattering, "TMS"). Null: the
+  /// integrator's own atmosphere.
+  virtual std::shared_ptr<const AtmosphereModel> field_atmosphere() const { return nullptr; }
 };
 
 /// What a radiance evaluation includes.
@@ -303,6 +312,12 @@ class SingleScattering {
   const std::vector<SpinMoments>& spin_moments() const;
   struct LazySpinMoments;
   std::shared_ptr<LazySpinMoments> spin_moments_;
+  /// The integrator of the atmosphere whose field `sources.higher` holds (its field_atmosphere()),
+  /// on the same sun columns, built on first use and kept; *this for its own atmosphere or without
+  /// higher orders.
+  const SingleScattering& field_integrator(const ScatteringSources& sources) const;
+  struct FieldIntegrators;
+  std::shared_ptr<FieldIntegrators> field_integrators_;
   /// Each scatterer's phase function at mu into ws.phase[s]; one scatterer's into p.
   void phases_at(double mu, ScatteringWorkspace& ws) const;
   void phase_of(int s, double mu, Spectrum& p) const;
@@ -323,15 +338,15 @@ class SingleScattering {
   // integrate's steps, one piece of a ray at a time (PieceScratch: per-thread arrays).
   struct PieceScratch;
   void optical_depths(const Eigen::ArrayXXf& columns, PieceScratch& sc, Eigen::ArrayXXf& tau) const;
-  void single_scattering_piece(const Node* nodes, int m, double os, double ds, PieceScratch& sc,
-                               ScatteringWorkspace& ws) const;
+  void single_scattering_piece(const Node* nodes, int m, double os, double ds, const SingleScattering& field,
+                               PieceScratch& sc, ScatteringWorkspace& ws) const;
   struct RayFrame;
   struct SkylineCut;
   /// True if it integrated the polarised sources too. With `cut`, the sky the terrain at the
   /// ray's end hides is the surface's light (SkylineCut).
   bool higher_orders_piece(const Node* nodes, int m, double os, double ds, double od, const InScatteringSource& higher,
-                           const RayFrame* polarisation, const SkylineCut* cut, PieceScratch& sc,
-                           ScatteringWorkspace& ws) const;
+                           const SingleScattering& field, const RayFrame* polarisation, const SkylineCut* cut,
+                           PieceScratch& sc, ScatteringWorkspace& ws) const;
   bool polarised_sources(const Node* nodes, int m, const RayFrame& frame, const InScatteringSource& higher,
                          PieceScratch& sc) const;
   /// Adds scatterer s's fine and coarse sums over the piece (sc.tau, sc.trans) to sums[0], sums[1].
