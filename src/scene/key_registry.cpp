@@ -581,7 +581,7 @@ const std::vector<KeyDef>& registry() {
     r.push_back(number_key("render.ms_forward_cone_deg", "degrees", {0.0, 90.0},
                            "multiple-scattering tables: a tabulated scattering matrix's forward peak within this "
                            "angle is cut off and travels with the unscattered light (delta-M; single scattering "
-                           "stays exact; 0: nothing cut)",
+                           "keeps the uncut phase function; 0: nothing cut)",
                            [](Scene& s) -> double& { return s.render.ms_forward_cone_deg; }));
     r.push_back(bool_key("render.cache_tables",
                          "keep multiple-scattering tables (and a microphysical aerosol's optics) on disk "

@@ -877,9 +877,16 @@ class SourceToDegree final : public InScatteringSource {
 
 }  // namespace
 
+bool ScatteringOrders::cuts_forward_peaks(const AtmosphereModel& atm, const MultipleScatteringSettings& settings) {
+  if (!(settings.forward_cone_deg > 0.0) || settings.orders < 2) return false;
+  for (const Medium& m : atm.media())
+    if (m.phase.kind == MediumPhase::Kind::Tabulated && m.scatters()) return true;
+  return false;
+}
+
 std::shared_ptr<const AtmosphereModel> ScatteringOrders::field_atmosphere_of(
     const AtmosphereModel& atm, const MultipleScatteringSettings& settings) {
-  if (!(settings.forward_cone_deg > 0.0) || settings.orders < 2) return nullptr;
+  if (!cuts_forward_peaks(atm, settings)) return nullptr;
   std::optional<AtmosphereModel> cut = atm.with_forward_peaks_truncated(settings.forward_cone_deg * kPi / 180.0);
   if (!cut) return nullptr;
   return std::make_shared<const AtmosphereModel>(std::move(*cut));

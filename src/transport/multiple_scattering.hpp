@@ -51,7 +51,8 @@ struct MultipleScatteringSettings {
   int angular_degree = 0;  ///< spherical-harmonic degree of the tabulated fields (0: isotropic)
   /// The tables solve the problem scaled by delta-M: the forward peak of every tabulated scattering
   /// matrix cut off within this many degrees of forward (AtmosphereModel::with_forward_peaks_truncated;
-  /// 0: nothing cut). Renders keep their single scattering exact (InScatteringSource::field_atmosphere).
+  /// 0: nothing cut). Renders keep single scattering's uncut phase functions and march it, like the
+  /// tables' light, through the cut atmosphere's extinction (InScatteringSource::field_atmosphere).
   double forward_cone_deg = 0.0;
   /// Carry the fields' linear polarisation from order to order (vector transport for the air; needs
   /// angular_degree >= 2): each table also holds its field's polarisation tensor
@@ -337,6 +338,8 @@ class ScatteringOrders : public InScatteringSource {
   /// (forward_cone_deg), or null when there is nothing to cut.
   static std::shared_ptr<const AtmosphereModel> field_atmosphere_of(const AtmosphereModel& atm,
                                                                     const MultipleScatteringSettings& settings);
+  /// Whether field_atmosphere_of cuts anything (without building the cut atmosphere).
+  static bool cuts_forward_peaks(const AtmosphereModel& atm, const MultipleScatteringSettings& settings);
 
   /// Saves the tables a render reads (order 2's and the sum) to `path` atomically, tagged with
   /// `key` (the scene keys they depend on). Returns false (and leaves no file) if it cannot.

@@ -67,7 +67,7 @@ ScatteringTablesKey scattering_tables_key(const AtmosphereModel& atm, const SunC
       << "\nview_segments " << ms.view_segments << "\nangular_degree " << ms.angular_degree << '\n';
   if (ms.polarisation) out << "polarisation 1\n";  // absent for scalar tables (their keys stay as they were)
   // Absent where nothing is cut (the keys of tables without a tabulated matrix stay as they were).
-  if (ScatteringOrders::field_atmosphere_of(atm, ms)) out << "forward_cone_deg " << ms.forward_cone_deg << '\n';
+  if (ScatteringOrders::cuts_forward_peaks(atm, ms)) out << "forward_cone_deg " << ms.forward_cone_deg << '\n';
   for (int k = 2; k <= ms.orders; ++k) {
     const DirectionQuadrature q = ScatteringOrders::quadrature_of_order(ms.angular_degree, k, ms.quadrature_refinement);
     out << "order " << k << " degree " << ScatteringOrders::degree_of_order(ms.angular_degree, k) << " segments "
