@@ -114,13 +114,19 @@ struct IceSpec {
   double aspect_ratio = 2.0;  ///< the prisms' length over their width (columns > 1, plates < 1)
 };
 
-/// Rain: water drops of Marshall & Palmer's sizes for a rain rate, by geometric optics
-/// (drop_optics.hpp: the primary and secondary rainbows), falling through the air near the ground;
-/// off by default.
+/// Rain: water drops falling through the air near the ground; off by default. Either Marshall &
+/// Palmer's sizes for a rain rate, by geometric optics (drop_optics.hpp: the primary and secondary
+/// rainbows, no supernumeraries), or drops of about one size (a narrow lognormal distribution) by
+/// Lorenz-Mie theory (sphere_ensemble.hpp: the bows with their supernumeraries), as many as carry
+/// the rain rate at their fall speed (media/rain.cpp).
 struct RainSpec {
   bool enabled = false;
-  double rate_mm_per_h = 2.0;      ///< Marshall-Palmer's R: the drops' number and sizes
+  enum class Drops { MarshallPalmer, Lognormal };
+  Drops drops = Drops::MarshallPalmer;
+  double rate_mm_per_h = 2.0;      ///< R: the drops' number (and, Marshall-Palmer, their sizes)
   double scale_height_m = 1500.0;  ///< density exp(-z / H) above the ground
+  double median_radius_mm = 0.25;  ///< lognormal: the number distribution's median radius
+  double radius_spread = 1.1;      ///< lognormal: its geometric standard deviation
 };
 
 /// The planet's surface: Lambertian, with a constant or a spectral albedo.

@@ -40,6 +40,9 @@ struct MieSeries {
 /// Wiscombe's number of terms for size parameter x.
 int mie_term_count(double x);
 
+/// The largest size parameter the series here are computed for (Wiscombe 1980's tested range).
+constexpr double kMaxMieSizeParameter = 2e4;
+
 /// The coefficients of a sphere of relative refractive index m (imag(m) >= 0) and size parameter
 /// x (> 0). Throws std::invalid_argument for x <= 0, x > 2e4, real(m) <= 0 or imag(m) < 0.
 MieSeries lorenz_mie(std::complex<double> m, double x);

@@ -48,7 +48,7 @@ std::vector<complex> log_derivatives(complex z, int count) {
 }
 
 void check_size_parameter(double x) {
-  if (!(x > 0.0) || !(x <= 2e4))
+  if (!(x > 0.0) || !(x <= kMaxMieSizeParameter))
     throw std::invalid_argument("Lorenz-Mie: size parameter " + std::to_string(x) + " outside (0, 2e4]");
 }
 

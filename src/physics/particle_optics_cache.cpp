@@ -177,6 +177,22 @@ std::vector<double> node_densities(const std::vector<double>& share, const std::
   return at_nodes;
 }
 
+void append_sphere_optics(RawParticleOptics& o, double sca, double ext, const std::vector<SphereScatteringMatrix>& p) {
+  o.sca.push_back(sca);
+  o.ext.push_back(ext);
+  std::vector<double> a1(p.size()), b1(p.size()), a3(p.size()), b2(p.size());
+  for (size_t k = 0; k < p.size(); ++k) {
+    a1[k] = sca * p[k].s11;
+    b1[k] = sca * p[k].s12;
+    a3[k] = sca * p[k].s33;
+    b2[k] = sca * p[k].s34;
+  }
+  o.a1.push_back(std::move(a1));
+  o.b1.push_back(std::move(b1));
+  o.a3.push_back(std::move(a3));
+  o.b2.push_back(std::move(b2));
+}
+
 RawParticleOptics optics_from_shares(const std::vector<std::vector<double>>& shares, const std::vector<double>& mu) {
   RawParticleOptics o;
   o.sca.assign(shares.size(), 1.0);

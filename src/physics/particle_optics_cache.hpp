@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "skyspec/aerosol_components.hpp"
+#include "skyspec/lorenz_mie.hpp"
 
 namespace skyspec {
 
@@ -30,6 +31,9 @@ std::vector<double> cosines_of_degrees(const std::vector<double>& degrees);
 /// phase function's rows, each interval's share over its solid angle, a node the mean of the two
 /// intervals beside it; intensity only (b1 = b2 = 0, a3 = a1).
 RawParticleOptics optics_from_shares(const std::vector<std::vector<double>>& shares, const std::vector<double>& mu);
+/// Appends one wavelength of spheres' optics: the coefficients and the rows sca * P_ij at the nodes
+/// (P the normalised matrix, sphere_ensemble.hpp).
+void append_sphere_optics(RawParticleOptics& o, double sca, double ext, const std::vector<SphereScatteringMatrix>& p);
 /// One row of those: an element's shares in each interval of mu as values at the nodes.
 std::vector<double> node_densities(const std::vector<double>& share, const std::vector<double>& mu);
 

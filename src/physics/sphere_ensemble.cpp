@@ -35,11 +35,11 @@ SphereEnsembleOptics sphere_ensemble_optics(const SizeDistribution& sizes, std::
     if (!(c >= -1.0 && c <= 1.0)) throw std::invalid_argument("sphere ensemble: a scattering cosine outside [-1, 1]");
   const double k = 2.0 * kPi * medium_index / wavelength_m;
   const double x_max = k * sizes.max_radius_m();
-  if (x_max > 2e4) {
+  if (x_max > kMaxMieSizeParameter) {
     std::ostringstream s;
     s << "sphere ensemble: " << sizes.description() << " reaches radius " << sizes.max_radius_m() * 1e6
       << " um, size parameter " << x_max << " at " << wavelength_m * 1e9 << " nm; Lorenz-Mie here goes to 2e4 (radius "
-      << 2e4 / k * 1e6 << " um): truncate the distribution";
+      << kMaxMieSizeParameter / k * 1e6 << " um): truncate the distribution";
     throw std::invalid_argument(s.str());
   }
   const std::vector<RadiusNode> nodes = sizes.quadrature(settings.panel_ln_radius, settings.panel_size_parameter / k);

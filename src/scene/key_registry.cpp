@@ -77,9 +77,14 @@ void add_conditions(std::vector<KeyDef>& r) {
       {{"atmosphere.water_vapour.column_cm", "atmosphere.water_vapour.scale_height_m"},
        [](const Scene& s) { return s.irradiance.broadband; },
        "irradiance.broadband = true"},
-      {{"atmosphere.rain.rate_mm_per_h", "atmosphere.rain.scale_height_m"},
+      {{"atmosphere.rain.drops", "atmosphere.rain.rate_mm_per_h", "atmosphere.rain.scale_height_m"},
        [](const Scene& s) { return s.atmosphere.rain.enabled; },
        "atmosphere.rain.enabled = true"},
+      {{"atmosphere.rain.median_radius_mm", "atmosphere.rain.radius_spread"},
+       [](const Scene& s) {
+         return s.atmosphere.rain.enabled && s.atmosphere.rain.drops == RainSpec::Drops::Lognormal;
+       },
+       "atmosphere.rain.enabled = true and atmosphere.rain.drops = \"lognormal\""},
       {{"atmosphere.ice.layer", "atmosphere.ice.aspect_ratio"},
        [](const Scene& s) { return s.atmosphere.ice.enabled; },
        "atmosphere.ice.enabled = true"},
@@ -308,12 +313,35 @@ const std::vector<KeyDef>& registry() {
                            [](Scene& s) -> double& { return s.atmosphere.ice.aspect_ratio; }));
     // rain
     r.push_back(bool_key("atmosphere.rain.enabled",
-                         "rain: water drops of Marshall-Palmer sizes by geometric optics (primary and secondary "
-                         "rainbows, Alexander's dark band, their polarisation; no supernumeraries) on or off",
+                         "rain: water drops (primary and secondary rainbows, Alexander's dark band, their "
+                         "polarisation; atmosphere.rain.drops says which drops and how their light is computed) "
+                         "on or off",
                          [](Scene& s) -> bool& { return s.atmosphere.rain.enabled; }));
+    r.push_back(choice_key(
+        "atmosphere.rain.drops", {"marshall-palmer", "lognormal"},
+        "rain: marshall-palmer: the sizes of a rain of rate_mm_per_h by geometric optics (no supernumeraries); "
+        "lognormal: drops of about median_radius_mm (geometric standard deviation radius_spread) by Lorenz-Mie "
+        "theory, the bows with their supernumeraries (computed once per wavelength grid and kept in the cache of "
+        "tables: docs/bows-and-halos.md gives the time)",
+        [](Scene& s, const std::string& v) {
+          s.atmosphere.rain.drops = v == "lognormal" ? RainSpec::Drops::Lognormal : RainSpec::Drops::MarshallPalmer;
+        },
+        [](const Scene& s) {
+          return std::string(s.atmosphere.rain.drops == RainSpec::Drops::Lognormal ? "lognormal" : "marshall-palmer");
+        }));
     r.push_back(number_key("atmosphere.rain.rate_mm_per_h", "mm/h", {0.01, 500.0},
-                           "rain: rain rate R (Marshall-Palmer: the drops' number and sizes, hence its extinction)",
+                           "rain: rain rate R (marshall-palmer: the drops' number and sizes; lognormal: their "
+                           "number, R over each drop's volume times its fall speed), hence its extinction",
                            [](Scene& s) -> double& { return s.atmosphere.rain.rate_mm_per_h; }));
+    r.push_back(number_key("atmosphere.rain.median_radius_mm", "mm", {0.15, 0.5},
+                           "rain, drops = lognormal: the drops' median radius (supernumeraries are widest and "
+                           "clearest for small drops; below 0.15 mm the fall-speed law does not hold)",
+                           [](Scene& s) -> double& { return s.atmosphere.rain.median_radius_mm; }));
+    r.push_back(number_key("atmosphere.rain.radius_spread", "", {1.01, 1.2},
+                           "rain, drops = lognormal: the geometric standard deviation of the drops' radii (the "
+                           "distribution is cut at 3 of them either side); the wider, the fainter the "
+                           "supernumeraries and the longer the drops' optics take",
+                           [](Scene& s) -> double& { return s.atmosphere.rain.radius_spread; }));
     r.push_back(number_key("atmosphere.rain.scale_height_m", "m", {1.0, 1e5},
                            "rain: its density falls as exp(-z / H) above the ground",
                            [](Scene& s) -> double& { return s.atmosphere.rain.scale_height_m; }));

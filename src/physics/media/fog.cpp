@@ -44,20 +44,7 @@ RawParticleOptics compute(const WavelengthGrid& grid) {
   plan_preparation(n, "computing the fog's optics (Lorenz-Mie)");
   for (int i = 0; i < n; ++i) {
     const SphereEnsembleOptics e = sphere_ensemble_optics(sizes, water_index(grid.nm(i)), grid.nm(i) * 1e-9, 1.0, mu);
-    const double sca = e.scattering_cross_section_m2;
-    o.sca.push_back(sca);
-    o.ext.push_back(e.extinction_cross_section_m2);
-    std::vector<double> a1(mu.size()), b1(mu.size()), a3(mu.size()), b2(mu.size());
-    for (size_t k = 0; k < mu.size(); ++k) {
-      a1[k] = sca * e.phase_matrix[k].s11;
-      b1[k] = sca * e.phase_matrix[k].s12;
-      a3[k] = sca * e.phase_matrix[k].s33;
-      b2[k] = sca * e.phase_matrix[k].s34;
-    }
-    o.a1.push_back(std::move(a1));
-    o.b1.push_back(std::move(b1));
-    o.a3.push_back(std::move(a3));
-    o.b2.push_back(std::move(b2));
+    append_sphere_optics(o, e.scattering_cross_section_m2, e.extinction_cross_section_m2, e.phase_matrix);
     finish_preparation(1);
   }
   return o;

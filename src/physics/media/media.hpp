@@ -48,7 +48,7 @@ std::optional<Medium> build_aerosol(const MediumContext& c);       // aerosol.cp
 std::optional<Medium> build_ozone(const MediumContext& c);         // ozone.cpp: absorption by the ozone layer
 std::optional<Medium> build_fog(const MediumContext& c);           // fog.cpp: water droplets by Lorenz-Mie
 std::optional<Medium> build_ice(const MediumContext& c);           // ice.cpp: ice prisms by ray tracing (halos)
-std::optional<Medium> build_rain(const MediumContext& c);          // rain.cpp: drops by geometric optics (rainbows)
+std::optional<Medium> build_rain(const MediumContext& c);          // rain.cpp: drops by geometric optics or Lorenz-Mie
 std::optional<Medium> build_water_vapour(const MediumContext& c);  // water_vapour.cpp: its bands (broadband runs)
 
 /// Air's number density at altitude 0 and how it was obtained (air.cpp; for the derivation report).
