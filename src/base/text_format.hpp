@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdio>
+#include <cstdlib>
 #include <iomanip>
 #include <sstream>
 #include <string>
@@ -20,6 +21,20 @@ inline std::string format_number(double v) {
 inline std::string format_exact(double v) {
   char text[40];
   std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
+}
+
+/// A number as format_number writes it when that reads back as the same double, else with the
+/// fewest more digits that do (0.1, not 0.10000000000000001; 6360000, not 6.36e+06): a value
+/// echoed to the person who typed it. "nan" and "inf" as such.
+inline std::string format_shortest(double v) {
+  std::string text;
+  for (int digits = 10; digits <= 17; ++digits) {
+    std::ostringstream s;
+    s << std::setprecision(digits) << v;
+    text = s.str();
+    if (!(v == v) || std::strtod(text.c_str(), nullptr) == v) break;
+  }
   return text;
 }
 

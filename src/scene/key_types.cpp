@@ -44,6 +44,8 @@ std::string node_text(const toml::node& n) {
     s << *arr;
   } else if (n.is_table()) {
     s << "(a table)";
+  } else if (auto f = n.as_floating_point()) {
+    s << format_shortest(f->get());
   } else {
     n.visit([&](auto&& v) { s << v; });
   }

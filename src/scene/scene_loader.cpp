@@ -159,12 +159,9 @@ void SceneLoader::apply_file(const std::string& path) {
 
 namespace {
 
-// TOML value text of typed C++ values, for SceneLoader::set.
-std::string toml_number(double v) {
-  std::ostringstream s;
-  s << std::setprecision(17) << v;  // "nan" and "inf" are TOML too: the key's own check refuses them
-  return s.str();
-}
+// TOML value text of typed C++ values, for SceneLoader::set ("nan" and "inf" are TOML too: the
+// key's own check refuses them).
+std::string toml_number(double v) { return format_shortest(v); }
 
 // A spectral albedo's lists (<prefix>.albedo_wavelengths_nm, <prefix>.albedo_values): as long as
 // each other, wavelengths strictly increasing.
