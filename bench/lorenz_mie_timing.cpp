@@ -1,6 +1,10 @@
 // How long Lorenz-Mie takes: one sphere at size parameters 10 .. 2e4, and size distributions at
 // one wavelength (a water-soluble aerosol, a fog, drizzle) with the scattering matrix at 181 and
-// 1801 angles (1 and 0.1 degree), on all cores. Built and run by bench/lorenz_mie_timing.sh.
+// 1801 angles (1 and 0.1 degree), on all cores; then the rain of atmosphere.rain.drops =
+// "lognormal" (media/rain.cpp) with its coarser quadrature in size parameter against the default
+// one: time and the largest difference of the phase function over the bows (120-150 degrees, every
+// 0.1). Built and run by bench/lorenz_mie_timing.sh.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <complex>
@@ -62,6 +66,30 @@ int main() {
     const double t1801 = seconds([&] { o = sphere_ensemble_optics(c.sizes, c.m, 550e-9, 1.0, angles(1801)); });
     std::printf("%-46s %8.0f %10d %16.3f %16.3f\n", c.name, 2 * M_PI * c.sizes.max_radius_m() / 550e-9, o.radius_nodes,
                 t181, t1801);
+  }
+  std::printf("\nrain drops (lognormal, truncated at 3 spreads) at 550 nm, 120-150 degrees every 0.1, all cores\n");
+  std::printf("%-28s %8s %18s %18s %20s\n", "", "x_max", "panel 1 (s, nodes)", "panel 4 (s, nodes)",
+              "largest difference");
+  std::vector<double> bows;
+  for (int k = 300; k >= 0; --k) bows.push_back(std::cos((120.0 + 0.1 * k) * M_PI / 180.0));
+  for (const auto& [median_mm, spread] : {std::pair{0.25, 1.1}, std::pair{0.5, 1.1}, std::pair{0.25, 1.2}}) {
+    const double cut = std::pow(spread, 3.0), median_m = median_mm * 1e-3;
+    const SizeDistribution drops =
+        SizeDistribution::lognormal(median_m, spread).truncated(median_m / cut, median_m * cut);
+    SphereEnsembleSettings coarse;
+    coarse.panel_size_parameter = 4.0;
+    SphereEnsembleOptics fine_o, coarse_o;
+    const double t_fine = seconds([&] { fine_o = sphere_ensemble_optics(drops, {water, 0.0}, 550e-9, 1.0, bows); });
+    const double t_coarse = seconds([&] {
+      coarse_o = sphere_ensemble_optics(drops, {water, 0.0}, 550e-9, 1.0, bows, coarse);
+    });
+    double largest = 0.0;
+    for (size_t j = 0; j < bows.size(); ++j)
+      largest = std::max(largest, std::abs(coarse_o.phase_matrix[j].s11 / fine_o.phase_matrix[j].s11 - 1.0));
+    char name[64];
+    std::snprintf(name, sizeof name, "%.2f mm, spread %.1f", median_mm, spread);
+    std::printf("%-28s %8.0f %10.2f %7d %10.2f %7d %19.2f%%\n", name, 2 * M_PI * drops.max_radius_m() / 550e-9, t_fine,
+                fine_o.radius_nodes, t_coarse, coarse_o.radius_nodes, 100.0 * largest);
   }
   return 0;
 }

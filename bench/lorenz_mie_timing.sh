@@ -5,5 +5,5 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-g++ -std=c++17 -O2 -Iinclude bench/lorenz_mie_timing.cpp build/libskyspec.a -ltbb -o "$work/lorenz_mie_timing"
+g++ -std=c++17 -O2 -Iinclude bench/lorenz_mie_timing.cpp build/libskyspec.a -ltbb -lcrypto -o "$work/lorenz_mie_timing"
 "$work/lorenz_mie_timing"

@@ -231,7 +231,7 @@ fi
 expect_error polarisation_png_alone 2 "output.polarisation_png = true is not allowed" --set output.polarisation_png=true
 # The scenes of docs/bows-and-halos.md's pictures load (--print-scene: a plan would compute the
 # media's optics, seconds to a minute each; test_bows_reference renders such media).
-for scene in ice-halo cirrostratus-halo fogbow-and-glory glory rainbow rainbow-polarised; do
+for scene in ice-halo cirrostratus-halo fogbow-and-glory glory rainbow rainbow-polarised rainbow-supernumeraries; do
   "$skyspec" render --scene "$(dirname "${BASH_SOURCE[0]}")/../../docs/images/$scene.toml" --print-scene \
     >"$work/stdout" 2>&1 && ok || bad "$scene.toml: $(cat "$work/stdout")"
 done
@@ -250,6 +250,14 @@ expect_error unread_fog_key 2 "--set atmosphere.fog.visibility_m: atmosphere.fog
   --set atmosphere.fog.visibility_m=300
 expect_error unread_ice_key 2 "atmosphere.ice.optical_depth = 0.1 is not allowed: only with atmosphere.ice.enabled = true and atmosphere.ice.layer = \"cloud\"" \
   --set atmosphere.ice.enabled=true --set atmosphere.ice.optical_depth=0.1
+expect_error unread_drop_radius 2 "atmosphere.rain.median_radius_mm = 0.3 is not allowed: only with atmosphere.rain.enabled = true and atmosphere.rain.drops = \"lognormal\"" \
+  --set atmosphere.rain.enabled=true --set atmosphere.rain.median_radius_mm=0.3
+expect_error drops_too_small 2 "atmosphere.rain.median_radius_mm = 0.1 is not allowed" \
+  --set atmosphere.rain.enabled=true --set atmosphere.rain.drops=lognormal --set atmosphere.rain.median_radius_mm=0.1
+expect_error drops_unknown 2 "atmosphere.rain.drops" --set atmosphere.rain.enabled=true --set atmosphere.rain.drops=hail
+expect_error drops_beyond_the_series 2 "atmosphere.rain.median_radius_mm = 0.5 is not allowed: at most 0.46" \
+  --set atmosphere.rain.enabled=true --set atmosphere.rain.drops=lognormal --set atmosphere.rain.median_radius_mm=0.5 \
+  --set atmosphere.rain.radius_spread=1.2 --wavelengths 250,550 --set sun.spectrum=flat --set atmosphere.ozone.enabled=false
 expect_error unread_ridge_key 2 "terrain.ridge.height_m = 900 is not allowed: only with terrain.model = \"ridge\"" \
   --set terrain.ridge.height_m=900
 "$skyspec" render --help-keys | grep -q 'atmosphere.ice.base_m  .*; read only with atmosphere.ice.enabled = true and atmosphere.ice.layer = "cloud"' \

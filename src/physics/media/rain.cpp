@@ -171,8 +171,9 @@ std::optional<Medium> build_lognormal_rain(const MediumContext& c) {
   if (2.0 * kPi * largest_m / (shortest_nm * 1e-9) > kMaxMieSizeParameter)
     throw InputError("atmosphere.rain.median_radius_mm", format_number(rain.median_radius_mm),
                      "at most " +
-                         format_number(kMaxMieSizeParameter * shortest_nm * 1e-9 / (2.0 * kPi) * 1e3 /
-                                       std::pow(rain.radius_spread, kCutSpreads)) +
+                         format_number(std::floor(kMaxMieSizeParameter * shortest_nm * 1e-9 / (2.0 * kPi) * 1e6 /
+                                                  std::pow(rain.radius_spread, kCutSpreads)) /
+                                       1e3) +
                          " mm with radius_spread " + format_number(rain.radius_spread) + " and spectrum.min_nm " +
                          format_number(shortest_nm) +
                          " (the largest drops, median * spread^3, within Lorenz-Mie's size parameter 2e4)");
