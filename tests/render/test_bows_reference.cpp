@@ -234,6 +234,8 @@ BOOST_AUTO_TEST_CASE(benchmark_table,
                         {"diamond dust (visibility 5 km, scale height 200 m)", kDiamondDust, 40000},
                         {"cirrostratus (8-10 km, optical depth 0.3)", kCirrostratus, 40000},
                         {"rain (2 mm/h)", "[atmosphere.rain]\nenabled = true\nrate_mm_per_h = 2\n", 40000},
+                        {"rain of 0.25 mm drops (Lorenz-Mie, 0.5 mm/h)",
+                         "[atmosphere.rain]\nenabled = true\ndrops = \"lognormal\"\nrate_mm_per_h = 0.5\n", 40000},
                         {"fog (visibility 2 km, scale height 100 m)", kFog, 10000}};
   const char* only = std::getenv("SKYSPEC_BENCH_MEDIA_ONLY");
   for (const Case& c : cases) {
