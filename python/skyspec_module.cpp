@@ -427,6 +427,15 @@ py::dict derive(const py::object& wavelengths_nm, const std::string& preset,
       r.levels, n, [](const ReportLevel& l) -> const auto& { return l.ozone_absorption_per_m; });
   d["ozone_optical_depth"] = array2(
       r.levels, n, [](const ReportLevel& l) -> const auto& { return l.ozone_optical_depth; });
+  for (size_t k = 0; k < r.media.size(); ++k) {
+    const std::string& name = r.media[k].name;
+    d[py::str(name + "_scattering_per_m")] = array2(
+        r.levels, n, [k](const ReportLevel& l) -> const auto& { return l.media[k].scattering_per_m; });
+    d[py::str(name + "_extinction_per_m")] = array2(
+        r.levels, n, [k](const ReportLevel& l) -> const auto& { return l.media[k].extinction_per_m; });
+    d[py::str(name + "_optical_depth")] = array2(
+        r.levels, n, [k](const ReportLevel& l) -> const auto& { return l.media[k].optical_depth; });
+  }
   d["total_optical_depth"] = array2(
       r.levels, n, [](const ReportLevel& l) -> const auto& { return l.total_optical_depth; });
   if (r.conditions) {
@@ -1221,7 +1230,8 @@ Returns a dict of NumPy arrays, for n wavelengths and k altitudes (shapes (n,), 
   altitude_m (k); number_density_per_m3 (k); rayleigh_scattering_per_m, rayleigh_optical_depth,
   mie_scattering_per_m, mie_extinction_per_m, mie_optical_depth, ozone_absorption_per_m,
   ozone_optical_depth, total_optical_depth ((k, n): a row per altitude; optical depths are vertical, from the altitude to
-  the top of the atmosphere). With pressure_Pa and temperature_K also: conditions_number_density_per_m3,
+  the top of the atmosphere); with fog, ice or rain in the atmosphere also <name>_scattering_per_m,
+  <name>_extinction_per_m and <name>_optical_depth for each ((k, n), in the total). With pressure_Pa and temperature_K also: conditions_number_density_per_m3,
   conditions_refractivity, conditions_rayleigh_scattering_per_m (sigma N) and
   conditions_rayleigh_optical_depth_above (hydrostatic column above that pressure level).
 Also the strings refractive_index, rayleigh_source and the float co2_ppm.

@@ -35,6 +35,14 @@ struct CoefficientReportRequest {
   int column_segments = 256;                ///< quadrature pieces of the vertical columns
 };
 
+/// A medium of the scene other than the air, the aerosol and ozone (fog, ice, rain:
+/// docs/bows-and-halos.md) at one altitude.
+struct ReportMediumLevel {
+  std::string name;  ///< the medium's name in the list ("fog", "ice", "rain")
+  std::vector<double> scattering_per_m, extinction_per_m;
+  std::vector<double> optical_depth;  ///< vertical, z -> top of the atmosphere
+};
+
 /// One altitude of the scene's atmosphere.
 struct ReportLevel {
   double altitude_m = 0.0;
@@ -45,6 +53,7 @@ struct ReportLevel {
   std::vector<double> rayleigh_optical_depth;     ///< vertical, z -> top of the atmosphere
   std::vector<double> mie_scattering_per_m, mie_extinction_per_m, mie_optical_depth;
   std::vector<double> ozone_absorption_per_m, ozone_optical_depth;  ///< zeros without ozone
+  std::vector<ReportMediumLevel> media;                             ///< CoefficientReport::media's, in order
   std::vector<double> total_optical_depth;                          ///< extinction of every species, z -> top
 };
 
@@ -118,6 +127,13 @@ struct CoefficientReport {
   double ozone_peak_number_density_per_m3 = 0.0;
   std::vector<double> ozone_cross_section_m2;  ///< absorption cross-section per molecule
   std::string ozone_profile_description;
+
+  // Water and ice (fog, ice, rain), when the atmosphere has them: name and density profile, in the
+  // list's order; their coefficients at each level are in ReportLevel::media.
+  struct Medium {
+    std::string name, profile_description;
+  };
+  std::vector<Medium> media;
 
   std::vector<ReportLevel> levels;
   std::optional<ReportConditions> conditions;

@@ -472,6 +472,14 @@ CoefficientReport make_coefficient_report(const CoefficientReportRequest& req) {
     r.ozone_enabled = false;  // no requested wavelength has ozone data: reported in the notes
   }
 
+  // The other media of the list (fog, ice, rain), as the renderer sees them.
+  std::vector<const Medium*> others;
+  for (const Medium& m : model.media())
+    if (m.name != "air" && m.name != "aerosol" && m.name != "ozone" && m.enabled()) {
+      others.push_back(&m);
+      r.media.push_back({m.name, m.profile.describe()});
+    }
+
   const double R = model.planet_radius_m(), Rt = model.top_radius_m();
   for (double z : req.altitudes_m) {
     if (!std::isfinite(z) || z < 0.0 || z >= spec.top_altitude_m)
@@ -499,10 +507,18 @@ CoefficientReport make_coefficient_report(const CoefficientReportRequest& req) {
       level.ozone_absorption_per_m.assign(r.wavelengths_nm.size(), 0.0);
       level.ozone_optical_depth.assign(r.wavelengths_nm.size(), 0.0);
     }
+    for (const Medium* m : others) {
+      const double rho = m->profile.relative(z);
+      const double column_m = column_to_top_m(m->profile, R, Rt, R + z, 1.0, req.column_segments);
+      level.media.push_back({m->name, scaled(m->scattering_per_m, rho), scaled(m->extinction_per_m, rho),
+                             scaled(m->extinction_per_m, column_m)});
+    }
     level.total_optical_depth.resize(level.rayleigh_optical_depth.size());
-    for (size_t i = 0; i < level.total_optical_depth.size(); ++i)
+    for (size_t i = 0; i < level.total_optical_depth.size(); ++i) {
       level.total_optical_depth[i] = level.rayleigh_optical_depth[i] + level.mie_optical_depth[i] +
                                      (std::isnan(level.ozone_optical_depth[i]) ? 0.0 : level.ozone_optical_depth[i]);
+      for (const ReportMediumLevel& m : level.media) level.total_optical_depth[i] += m.optical_depth[i];
+    }
 
     std::ostringstream origin;
     if (!r.rayleigh_derived) {

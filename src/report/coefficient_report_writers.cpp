@@ -125,6 +125,8 @@ Document build_document(const CoefficientReport& r) {
     inputs.push_back("Ozone: " + sig(r.ozone_column_DU) + " DU, peak number density " +
                      sci(r.ozone_peak_number_density_per_m3, 5) + " m^-3; profile: " + r.ozone_profile_description +
                      ".");
+  for (const auto& m : r.media)
+    inputs.push_back("Water and ice: " + m.name + " (docs/bows-and-halos.md); profile: " + m.profile_description + ".");
   std::string alts;
   for (const auto& l : r.levels) alts += (alts.empty() ? "" : ", ") + altitude_label(l.altitude_m);
   inputs.push_back("Altitudes: " + alts + ".");
@@ -177,6 +179,9 @@ Document build_document(const CoefficientReport& r) {
       for (const char* h : {"beta_M sca (m^-1)", "beta_M ext (m^-1)", "tau_M"}) headers.push_back(h);
     if (r.ozone_enabled)
       for (const char* h : {"sigma_O3 (m^2)", "beta_O3 abs (m^-1)", "tau_O3"}) headers.push_back(h);
+    for (const auto& m : r.media)
+      for (const std::string& h : {"beta_" + m.name + " sca (m^-1)", "beta_" + m.name + " ext (m^-1)", "tau_" + m.name})
+        headers.push_back(h);
     headers.push_back("tau total");
     std::vector<std::vector<std::string>> rows;
     for (size_t i = 0; i < r.wavelengths_nm.size(); ++i) {
@@ -188,6 +193,8 @@ Document build_document(const CoefficientReport& r) {
       if (r.ozone_enabled)
         for (double v : {r.ozone_cross_section_m2[i], l.ozone_absorption_per_m[i], l.ozone_optical_depth[i]})
           row.push_back(sci(v));
+      for (const auto& m : l.media)
+        for (double v : {m.scattering_per_m[i], m.extinction_per_m[i], m.optical_depth[i]}) row.push_back(sci(v));
       row.push_back(sci(l.total_optical_depth[i]));
       rows.push_back(row);
     }
@@ -438,6 +445,9 @@ std::string report_to_csv(const CoefficientReport& r) {
     if (r.mie_enabled)
       s << ",mie_scattering_per_m_at_" << z << ",mie_extinction_per_m_at_" << z << ",mie_optical_depth_from_" << z;
     if (r.ozone_enabled) s << ",ozone_absorption_per_m_at_" << z << ",ozone_optical_depth_from_" << z;
+    for (const auto& m : r.media)
+      s << ',' << m.name << "_scattering_per_m_at_" << z << ',' << m.name << "_extinction_per_m_at_" << z << ','
+        << m.name << "_optical_depth_from_" << z;
     s << ",total_optical_depth_from_" << z;
   }
   if (r.ozone_enabled) s << ",ozone_cross_section_m2";
@@ -455,6 +465,9 @@ std::string report_to_csv(const CoefficientReport& r) {
         s << ',' << exact(l.mie_scattering_per_m[i]) << ',' << exact(l.mie_extinction_per_m[i]) << ','
           << exact(l.mie_optical_depth[i]);
       if (r.ozone_enabled) s << ',' << exact(l.ozone_absorption_per_m[i]) << ',' << exact(l.ozone_optical_depth[i]);
+      for (const auto& m : l.media)
+        s << ',' << exact(m.scattering_per_m[i]) << ',' << exact(m.extinction_per_m[i]) << ','
+          << exact(m.optical_depth[i]);
       s << ',' << exact(l.total_optical_depth[i]);
     }
     if (r.ozone_enabled) s << ',' << exact(r.ozone_cross_section_m2[i]);
@@ -518,6 +531,9 @@ std::string report_to_json(const CoefficientReport& r) {
                   {"profile", r.ozone_profile_description}};
   else
     j["ozone"] = nullptr;
+  json media = json::array();
+  for (const auto& m : r.media) media.push_back({{"name", m.name}, {"profile", m.profile_description}});
+  j["media"] = media;
   json levels = json::array();
   for (const auto& l : r.levels) {
     json lj;
@@ -533,6 +549,12 @@ std::string report_to_json(const CoefficientReport& r) {
     lj["mie_optical_depth"] = l.mie_optical_depth;
     lj["ozone_absorption_per_m"] = l.ozone_absorption_per_m;
     lj["ozone_optical_depth"] = l.ozone_optical_depth;
+    json level_media = json::object();
+    for (const auto& m : l.media)
+      level_media[m.name] = {{"scattering_per_m", m.scattering_per_m},
+                             {"extinction_per_m", m.extinction_per_m},
+                             {"optical_depth", m.optical_depth}};
+    lj["media"] = level_media;
     lj["total_optical_depth"] = l.total_optical_depth;
     levels.push_back(lj);
   }

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "release_stage.hpp"
 #include "skyspec/atmosphere.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/spectrum.hpp"
@@ -49,8 +50,10 @@ std::vector<double> airy_maxima_deg(double n, double x) {
 // beyond Descartes' angle, the bow and two supernumeraries, within 0.1 degree (the table's step
 // there) of Airy's at the median radius; each supernumerary a distinct band (the dip before it
 // under 0.2 of it for the first, 0.4 for the second); the bow more than 90 % polarised
-// perpendicular to the scattering plane.
-BOOST_AUTO_TEST_CASE(supernumeraries_where_airy_puts_them) {
+// perpendicular to the scattering plane. This case and the next take 40 s under the sanitizers:
+// left to the release stage (Lorenz-Mie runs under them in test_lorenz_mie and test_sphere_ensemble).
+BOOST_AUTO_TEST_CASE(supernumeraries_where_airy_puts_them,
+                     *boost::unit_test::precondition(test::not_in_sanitizer_stage)) {
   const std::vector<double> nm = {450.0, 550.0, 650.0};
   const AtmosphereModel model(lognormal_rain(0.25, 1.05, 1.0), WavelengthGrid::from_list(nm));
   const Medium* rain = model.medium("rain");
@@ -97,7 +100,8 @@ BOOST_AUTO_TEST_CASE(supernumeraries_where_airy_puts_them) {
 // at the ground is N pi r^2 times the drops' efficiency without the light diffracted within half a
 // degree (Q_ext = 2 less nearly all of diffraction's 1: between 1 and 1.05), proportional to R;
 // the drops absorb nothing.
-BOOST_AUTO_TEST_CASE(rain_rate_sets_the_number_of_drops) {
+BOOST_AUTO_TEST_CASE(rain_rate_sets_the_number_of_drops,
+                     *boost::unit_test::precondition(test::not_in_sanitizer_stage)) {
   const WavelengthGrid grid = WavelengthGrid::from_list({550.0});
   const AtmosphereModel one(lognormal_rain(0.25, 1.01, 1.0), grid), two(lognormal_rain(0.25, 1.01, 2.0), grid);
   const double r = 0.25e-3, v = 9.65 - 10.3 * std::exp(-0.6 * 0.5);

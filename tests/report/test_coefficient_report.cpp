@@ -300,6 +300,45 @@ BOOST_AUTO_TEST_CASE(ozone_rows_when_present) {
   BOOST_TEST(report_to_markdown(plain).find("tau_O3") == std::string::npos);
 }
 
+// Water and ice in the atmosphere are in the report and its total (fog here): at the ground its
+// extinction at 550 nm is ln 20 / visibility (how the medium is defined), its vertical optical
+// depth the closed form of an exponential profile, beta H (exp(-z / H) - exp(-top / H)); every
+// writer carries its columns.
+BOOST_AUTO_TEST_CASE(water_and_ice_rows_when_present) {
+  auto req = default_request({450.0, 550.0});
+  req.atmosphere.fog.enabled = true;
+  req.atmosphere.fog.visibility_m = 2000.0;
+  req.atmosphere.fog.scale_height_m = 100.0;
+  req.altitudes_m = {0.0, 50.0};
+  const CoefficientReport r = make_coefficient_report(req);
+  BOOST_REQUIRE(r.media.size() == 1u);
+  BOOST_TEST(r.media[0].name == "fog");
+  const double h_m = 100.0, top_m = req.atmosphere.top_altitude_m;
+  const ReportMediumLevel& ground = r.levels[0].media.at(0);
+  BOOST_TEST(ground.extinction_per_m[1] == std::log(20.0) / 2000.0, boost::test_tools::tolerance(1e-9));
+  for (const ReportLevel& l : r.levels) {
+    BOOST_REQUIRE(l.media.size() == 1u);
+    const double decay = std::exp(-l.altitude_m / h_m);
+    for (size_t i = 0; i < 2; ++i) {
+      BOOST_TEST(l.media[0].extinction_per_m[i] == ground.extinction_per_m[i] * decay,
+                 boost::test_tools::tolerance(1e-12));
+      BOOST_TEST(l.media[0].scattering_per_m[i] <= l.media[0].extinction_per_m[i]);
+      BOOST_TEST(l.media[0].optical_depth[i] == ground.extinction_per_m[i] * h_m * (decay - std::exp(-top_m / h_m)),
+                 boost::test_tools::tolerance(1e-8));
+      BOOST_TEST(l.total_optical_depth[i] == l.rayleigh_optical_depth[i] + l.mie_optical_depth[i] +
+                                                 l.ozone_optical_depth[i] + l.media[0].optical_depth[i],
+                 boost::test_tools::tolerance(1e-12));
+    }
+  }
+  BOOST_TEST(report_to_markdown(r).find("tau_fog") != std::string::npos);
+  BOOST_TEST(report_to_csv(r).find("fog_optical_depth_from_50m") != std::string::npos);
+  const auto j = nlohmann::json::parse(report_to_json(r));
+  BOOST_TEST(j["media"][0]["name"] == "fog");
+  BOOST_TEST(j["levels"][1]["media"]["fog"]["optical_depth"].size() == 2u);
+  // Without them, no such columns.
+  BOOST_TEST(make_coefficient_report(default_request({550.0})).media.empty());
+}
+
 // The report works across the refractive index's range (230-1690 nm): ozone where its table has
 // data (230-1060 nm), n/a beyond, and tau total then of air and aerosols; beyond the range, a clear
 // error naming it and why.
