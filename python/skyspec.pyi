@@ -178,6 +178,7 @@ def monte_carlo(
     orders: int = 0,
     irradiance: bool = False,
     stokes: bool = False,
+    sun_peak_share: float = 0.0,
     progress: _Progress = None,
 ) -> Dict[str, Any]:
     """The Monte Carlo reference (all scattering orders) at (azimuth_deg, elevation_deg) probes:

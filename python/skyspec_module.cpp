@@ -824,7 +824,7 @@ py::dict irradiance_py(const std::string& preset, const std::optional<std::files
 py::dict monte_carlo(const std::string& preset, const std::optional<std::filesystem::path>& scene_file,
                      const std::optional<std::string>& scene_toml, const std::optional<py::dict>& overrides,
                      const py::object& probes, long long paths, unsigned long long seed, int orders, bool irradiance,
-                     bool stokes, const py::object& progress) {
+                     bool stokes, double sun_peak_share, const py::object& progress) {
   const Scene scene = load_scene(preset, scene_file, scene_toml, overrides);
   std::vector<ReferenceProbe> list;
   if (probes.is_none()) {
@@ -842,6 +842,7 @@ py::dict monte_carlo(const std::string& preset, const std::optional<std::filesys
   settings.paths = paths;
   settings.seed = seed;
   settings.max_orders = orders;
+  settings.sun_peak_share = sun_peak_share;
   settings.diffuse_irradiance = irradiance;
   settings.stokes = stokes;
   const ReferenceResult r = run_interruptible(
@@ -1407,14 +1408,15 @@ broadband_*_W_m2 (300-4000 nm with the gases' absorption bands, what a pyranomet
   m.def("monte_carlo", &monte_carlo, py::arg("preset") = "default", py::kw_only(), py::arg("scene_file") = py::none(),
         py::arg("scene_toml") = py::none(), py::arg("overrides") = py::none(), py::arg("probes") = py::none(),
         py::arg("paths") = 100000, py::arg("seed") = 1, py::arg("orders") = 0, py::arg("irradiance") = false,
-        py::arg("stokes") = false, py::arg("progress") = py::none(),
+        py::arg("stokes") = false, py::arg("sun_peak_share") = 0.0, py::arg("progress") = py::none(),
         R"(The Monte Carlo reference of a scene (`skyspec reference`): sky radiance with every scattering order
 at the camera's position, by backward path tracing independent of the renderer (docs/validation.md).
 
 probes: (azimuth_deg, elevation_deg) pairs (default: zenith, 45 deg up towards the sun, 1 deg above the
 horizon towards, across and away from it); paths per probe and wavelength; seed; orders: 0 for all,
 1 for single scattering; irradiance: also the diffuse horizontal irradiance; stokes: also the Stokes
-vectors (vector transport, as many paths again).
+vectors (vector transport, as many paths again); sun_peak_share: the share (0 to 0.5) of scatterings
+whose direction is drawn about the sun (unbiased; for forward-peaked media such as fog).
 Returns a dict: wavelength_nm (n), labels, azimuth_deg, elevation_deg (k), radiance and standard_error
 ((k, n), W m^-2 sr^-1 nm^-1), with irradiance diffuse_horizontal and its standard error (n,
 W m^-2 nm^-1), with stokes `stokes` and `stokes_standard_error` ((k, n, 4): I, Q, U, V in the frame of

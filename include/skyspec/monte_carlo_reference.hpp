@@ -31,6 +31,10 @@ struct ReferenceSettings {
   std::uint64_t seed = 1;
   int max_orders = 0;               ///< 0: all orders; 1: single scattering (air and ground); k: up to k events
   bool diffuse_irradiance = false;  ///< also the diffuse horizontal irradiance at the camera
+  /// The share of scatterings whose direction is drawn about the sun rather than the path (0 to
+  /// 0.5; unbiased either way): for media with forward peaks (fog), whose paths otherwise score
+  /// rarely and hugely when they turn towards the sun.
+  double sun_peak_share = 0.0;
   /// Also the Stokes vector of each probe (vector transport; as many paths again): see
   /// ReferenceResult::stokes.
   bool stokes = false;

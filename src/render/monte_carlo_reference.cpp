@@ -79,6 +79,8 @@ ReferenceResult monte_carlo_reference(const Scene& scene, const std::vector<Refe
                                       const ReferenceSettings& settings, const ProgressFn& progress) {
   if (settings.paths < 2 || settings.paths > 1000000000000LL)
     throw InputError("paths", std::to_string(settings.paths), "2 to 1e12 paths per estimate");
+  if (!(settings.sun_peak_share >= 0.0 && settings.sun_peak_share <= 0.5))
+    throw InputError("sun_peak_share", format_shortest(settings.sun_peak_share), "a share from 0 to 0.5");
   if (settings.max_orders < 0)
     throw InputError("orders", std::to_string(settings.max_orders), "0 (all orders) or a positive number of orders");
   const auto start = std::chrono::steady_clock::now();
@@ -107,6 +109,7 @@ ReferenceResult monte_carlo_reference(const Scene& scene, const std::vector<Refe
   mc.paths = settings.paths;
   mc.seed = settings.seed;
   mc.max_orders = settings.max_orders;
+  mc.sun_peak_share = settings.sun_peak_share;
   mc.threads = scene.render.threads;
   const int total =
       static_cast<int>(probes.size()) * n * (settings.stokes ? 2 : 1) + (settings.diffuse_irradiance ? n : 0);

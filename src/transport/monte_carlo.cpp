@@ -370,7 +370,7 @@ Vec3 MonteCarloIntegrator::sample_scattering(const double* scattering, double to
 // So every segment scores, even where most paths leave the medium without a collision.
 template <int N>
 Eigen::Matrix<double, N, 1> MonteCarloIntegrator::path(Vec3 p, Vec3 d, const Vec3& reference, int max_orders,
-                                                       Rng& rng) const {
+                                                       double sun_peak_share, Rng& rng) const {
   constexpr bool kStokes = N == 4;
   using Result = Eigen::Matrix<double, N, 1>;
   constexpr double kPointsPerSegment = 8.0;
@@ -434,7 +434,16 @@ Eigen::Matrix<double, N, 1> MonteCarloIntegrator::path(Vec3 p, Vec3 d, const Vec
           t_real = t;
           albedo_real = sigma_s / sigma_t;
           if (order != max_orders && sigma_s > 0.0) {
-            d_real = sample_scattering(scattering, sigma_s, d, rng);
+            if (sun_peak_share > 0.0) {
+              // A mixture of the phase function about d and about the sun: the weight is the
+              // phase function over the mixture's density (MonteCarloSettings::sun_peak_share).
+              d_real = sample_scattering(scattering, sigma_s, rng.uniform() < sun_peak_share ? sun_ : d, rng);
+              const double p_path = phase_to_sun(scattering, sigma_s, d_real.dot(d));
+              const double p_sun = phase_to_sun(scattering, sigma_s, d_real.dot(sun_));
+              albedo_real *= p_path / ((1.0 - sun_peak_share) * p_path + sun_peak_share * p_sun);
+            } else {
+              d_real = sample_scattering(scattering, sigma_s, d, rng);
+            }
             if constexpr (kStokes) {
               std::copy(scattering, scattering + kMaxComponents, scattering_real);
               sigma_s_real = sigma_s;
@@ -515,6 +524,8 @@ std::array<MonteCarloValue, N> MonteCarloIntegrator::estimate(ProbeKind kind, co
                                                               std::uint64_t stream) const {
   using Sum = Eigen::Matrix<double, N, 1>;
   if (s.paths < 2) throw Error("the Monte Carlo estimate needs at least 2 paths");
+  if (!(s.sun_peak_share >= 0.0 && s.sun_peak_share <= 0.5))
+    throw Error("the Monte Carlo's share of scatterings drawn about the sun must be within 0 to 0.5");
   const std::int64_t batches = (s.paths + kBatchPaths - 1) / kBatchPaths;
   std::vector<Sum> sum(static_cast<size_t>(batches)), sum_sq(static_cast<size_t>(batches));
   // An observer outside the medium starts where its line of sight enters it.
@@ -546,7 +557,7 @@ std::array<MonteCarloValue, N> MonteCarloIntegrator::estimate(ProbeKind kind, co
         for (std::int64_t k = 0; k < n; ++k) {
           Sum x = Sum::Zero();
           if (kind == ProbeKind::Radiance) {
-            if (!outside) x = path<N>(origin, dir, reference, s.max_orders, rng);
+            if (!outside) x = path<N>(origin, dir, reference, s.max_orders, s.sun_peak_share, rng);
           } else {
             // E = integral of L cos over the hemisphere = pi x mean of L over cosine-distributed
             // directions; the observer looks along -(arrival direction), i.e. into the hemisphere.
@@ -554,7 +565,7 @@ std::array<MonteCarloValue, N> MonteCarloIntegrator::estimate(ProbeKind kind, co
             do mu = std::sqrt(rng.uniform());
             while (mu <= 1e-9);
             const Vec3 look = rotate_about(dir, mu, 2.0 * kPi * rng.uniform());
-            x = kPi * path<N>(origin, look, reference, s.max_orders, rng);
+            x = kPi * path<N>(origin, look, reference, s.max_orders, s.sun_peak_share, rng);
           }
           acc += x;
           acc_sq += x.cwiseProduct(x);

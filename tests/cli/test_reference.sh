@@ -104,6 +104,8 @@ run_expecting_error "bad probe text" 2 "azimuth,elevation" "$work/empty" "$skysp
 run_expecting_error "too few paths" 2 "--paths" "$work/empty" "$skyspec" reference --paths 1
 run_expecting_error "bad format" 2 "--format" "$work/empty" "$skyspec" reference --format xml
 run_expecting_error "orders with compare" 2 "--orders" "$work/empty" "$skyspec" reference --orders 2 --compare
+run_expecting_error "sun peak share" 2 "--sun-peak-share = 0.7 is not allowed: a share from 0 to 0.5" "$work/empty" \
+  "$skyspec" reference --sun-peak-share 0.7 --paths 10
 : >"$work/a-file"
 run_expecting_error "out under a file" 2 "--out" "$work/empty" "$skyspec" reference --paths 10 \
   --out "$work/a-file/t.md"
