@@ -1232,7 +1232,8 @@ Returns a dict of NumPy arrays, for n wavelengths and k altitudes (shapes (n,), 
   mie_scattering_per_m, mie_extinction_per_m, mie_optical_depth, ozone_absorption_per_m,
   ozone_optical_depth, total_optical_depth ((k, n): a row per altitude; optical depths are vertical, from the altitude to
   the top of the atmosphere); with fog, ice or rain in the atmosphere also <name>_scattering_per_m,
-  <name>_extinction_per_m and <name>_optical_depth for each ((k, n), in the total). With pressure_Pa and temperature_K also: conditions_number_density_per_m3,
+  <name>_extinction_per_m and <name>_optical_depth for each ((k, n), in the total). With pressure_Pa
+  and temperature_K also: conditions_number_density_per_m3,
   conditions_refractivity, conditions_rayleigh_scattering_per_m (sigma N) and
   conditions_rayleigh_optical_depth_above (hydrostatic column above that pressure level).
 Also the strings refractive_index, rayleigh_source and the float co2_ppm.

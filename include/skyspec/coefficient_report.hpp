@@ -35,8 +35,8 @@ struct CoefficientReportRequest {
   int column_segments = 256;                ///< quadrature pieces of the vertical columns
 };
 
-/// A medium of the scene other than the air, the aerosol and ozone (fog, ice, rain:
-/// docs/bows-and-halos.md) at one altitude.
+/// A medium of the atmosphere other than the air, the aerosol and ozone (fog, ice, rain:
+/// docs/bows-and-halos.md; or one a caller added) at one altitude.
 struct ReportMediumLevel {
   std::string name;  ///< the medium's name in the list ("fog", "ice", "rain")
   std::vector<double> scattering_per_m, extinction_per_m;
@@ -128,8 +128,8 @@ struct CoefficientReport {
   std::vector<double> ozone_cross_section_m2;  ///< absorption cross-section per molecule
   std::string ozone_profile_description;
 
-  // Water and ice (fog, ice, rain), when the atmosphere has them: name and density profile, in the
-  // list's order; their coefficients at each level are in ReportLevel::media.
+  // The other media (fog, ice, rain, or one a caller added), when the atmosphere has them: name and
+  // density profile, in the list's order; their coefficients at each level are in ReportLevel::media.
   struct Medium {
     std::string name, profile_description;
   };

@@ -126,7 +126,7 @@ Document build_document(const CoefficientReport& r) {
                      sci(r.ozone_peak_number_density_per_m3, 5) + " m^-3; profile: " + r.ozone_profile_description +
                      ".");
   for (const auto& m : r.media)
-    inputs.push_back("Water and ice: " + m.name + " (docs/bows-and-halos.md); profile: " + m.profile_description + ".");
+    inputs.push_back("Also in the air: " + m.name + "; profile: " + m.profile_description + ".");
   std::string alts;
   for (const auto& l : r.levels) alts += (alts.empty() ? "" : ", ") + altitude_label(l.altitude_m);
   inputs.push_back("Altitudes: " + alts + ".");
