@@ -11,7 +11,7 @@
 set(SKYSPEC_LAYERS base physics transport colour io scene render report job)
 
 set(SKYSPEC_PUBLIC_HEADERS_base error.hpp units.hpp spectrum.hpp version.hpp vec3.hpp cancellation.hpp preparation_progress.hpp)
-set(SKYSPEC_PUBLIC_HEADERS_physics aerosol_components.hpp atmosphere.hpp density_profile.hpp medium.hpp lorenz_mie.hpp phase_function.hpp rayleigh.hpp size_distribution.hpp sphere_ensemble.hpp tabulated_scattering.hpp water.hpp ice_crystals.hpp drop_optics.hpp
+set(SKYSPEC_PUBLIC_HEADERS_physics aerosol_components.hpp atmosphere.hpp density_profile.hpp medium.hpp lorenz_mie.hpp phase_function.hpp rayleigh.hpp size_distribution.hpp sphere_ensemble.hpp tabulated_scattering.hpp vertical_cylinder.hpp water.hpp ice_crystals.hpp drop_optics.hpp
     refractive_index.hpp king_factor.hpp standard_atmosphere.hpp)
 set(SKYSPEC_PUBLIC_HEADERS_transport geometry.hpp terrain.hpp)
 set(SKYSPEC_PUBLIC_HEADERS_colour colour.hpp display.hpp)

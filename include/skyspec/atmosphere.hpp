@@ -127,6 +127,14 @@ struct RainSpec {
   double scale_height_m = 1500.0;  ///< density exp(-z / H) above the ground
   double median_radius_mm = 0.25;  ///< lognormal: the number distribution's median radius
   double radius_spread = 1.1;      ///< lognormal: its geometric standard deviation
+  /// Everywhere: a layer over the whole planet. Shower: only in a vertical cylinder (Medium::region)
+  /// of radius shower_radius_m whose axis stands shower_distance_m from the reference point (east =
+  /// north = 0) towards shower_azimuth_deg (clockwise from north).
+  enum class Extent { Everywhere, Shower };
+  Extent extent = Extent::Everywhere;
+  double shower_distance_m = 8000.0;
+  double shower_azimuth_deg = 0.0;
+  double shower_radius_m = 3000.0;
 };
 
 /// The planet's surface: Lambertian, with a constant or a spectral albedo.
@@ -198,6 +206,18 @@ class AtmosphereModel {
   /// "delta-M" scaling of radiative transfer (Wiscombe 1977; Nakajima & Tanaka 1988). Other media
   /// are unchanged. Empty when no medium has a tabulated matrix (nothing to cut).
   std::optional<AtmosphereModel> with_forward_peaks_truncated(double cone_rad) const;
+
+  /// Whether a medium is confined to a region (Medium::region).
+  bool has_regional_media() const;
+  /// The atmosphere whose light field the scattering-order tables hold when some medium is confined
+  /// to a region: each such medium spread everywhere again but vanishingly thin (its coefficients
+  /// times kProbeDensity), so that it takes no part in the field while the tables still give its
+  /// in-scattering source J_s (a source per unit scattering coefficient: the light of the rest of
+  /// the atmosphere, all orders, scattered once by it). Light scattered twice or more by a regional
+  /// medium is left out of the renderer's higher orders (docs/bows-and-halos.md measures what that
+  /// misses). Empty when no medium is regional.
+  std::optional<AtmosphereModel> with_regional_media_as_probes() const;
+  static constexpr double kProbeDensity = 1e-12;
 
   /// Lambertian albedo of the ground on the grid.
   const SpectrumD& ground_albedo() const { return ground_albedo_; }

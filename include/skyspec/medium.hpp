@@ -14,12 +14,14 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "skyspec/density_profile.hpp"
 #include "skyspec/phase_function.hpp"
 #include "skyspec/spectrum.hpp"
 #include "skyspec/tabulated_scattering.hpp"
+#include "skyspec/vertical_cylinder.hpp"
 
 namespace skyspec {
 
@@ -66,6 +68,12 @@ struct Medium {
   SpectrumD scattering_per_m;  ///< at relative density 1, per wavelength
   SpectrumD extinction_per_m;  ///< at relative density 1, per wavelength (>= scattering)
   MediumPhase phase;
+  /// Where it is: everywhere (empty: a spherical shell, rho(z) at every point of altitude z), or
+  /// only inside a vertical cylinder (a rain shower: rho(z) inside, 0 outside). The integrator cuts
+  /// its rays at the walls and takes the sun's light through the cylinder by its chord; the Monte
+  /// Carlo tracks it in three dimensions; the scattering-order tables hold the light field of the
+  /// atmosphere without it, which it scatters (AtmosphereModel::with_regional_media_as_probes).
+  std::optional<VerticalCylinder> region;
 
   /// Extinguishes light at some wavelength.
   bool enabled() const { return extinction_per_m.size() > 0 && extinction_per_m.maxCoeff() > 0.0; }

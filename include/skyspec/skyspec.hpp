@@ -39,4 +39,5 @@
 #include "skyspec/units.hpp"
 #include "skyspec/vec3.hpp"
 #include "skyspec/version.hpp"
+#include "skyspec/vertical_cylinder.hpp"
 #include "skyspec/water.hpp"

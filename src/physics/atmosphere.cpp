@@ -103,6 +103,24 @@ std::optional<AtmosphereModel> AtmosphereModel::with_forward_peaks_truncated(dou
   return out;
 }
 
+bool AtmosphereModel::has_regional_media() const {
+  for (const Medium& m : media_)
+    if (m.region) return true;
+  return false;
+}
+
+std::optional<AtmosphereModel> AtmosphereModel::with_regional_media_as_probes() const {
+  if (!has_regional_media()) return std::nullopt;
+  AtmosphereModel out = *this;
+  for (Medium& m : out.media_) {
+    if (!m.region) continue;
+    m.region.reset();
+    m.scattering_per_m *= kProbeDensity;
+    m.extinction_per_m *= kProbeDensity;
+  }
+  return out;
+}
+
 void AtmosphereModel::add_medium(Medium m) {
   const int n = grid_.size();
   const std::string key = "medium." + (m.name.empty() ? std::string("?") : m.name);
@@ -149,6 +167,12 @@ void AtmosphereModel::add_medium(Medium m) {
     throw InputError(key + ".profile", m.profile.describe(),
                      "a density profile that is positive everywhere for a medium that scatters (exponential, "
                      "us1976, constant); a layer (tent) only for an absorber");
+  if (m.region) {
+    if (!(m.region->radius_m > 0.0) || !std::isfinite(m.region->radius_m))
+      throw InputError(key + ".region.radius_m", format_value(m.region->radius_m), "a positive radius in metres");
+    if (!(std::abs(m.region->axis.norm() - 1.0) < 1e-9))
+      throw InputError(key + ".region.axis", format_value(m.region->axis.norm()), "a unit vector (its length)");
+  }
   media_.push_back(std::move(m));
 }
 

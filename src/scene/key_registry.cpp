@@ -77,7 +77,8 @@ void add_conditions(std::vector<KeyDef>& r) {
       {{"atmosphere.water_vapour.column_cm", "atmosphere.water_vapour.scale_height_m"},
        [](const Scene& s) { return s.irradiance.broadband; },
        "irradiance.broadband = true"},
-      {{"atmosphere.rain.drops", "atmosphere.rain.rate_mm_per_h", "atmosphere.rain.scale_height_m"},
+      {{"atmosphere.rain.drops", "atmosphere.rain.rate_mm_per_h", "atmosphere.rain.scale_height_m",
+        "atmosphere.rain.extent"},
        [](const Scene& s) { return s.atmosphere.rain.enabled; },
        "atmosphere.rain.enabled = true"},
       {{"atmosphere.rain.median_radius_mm", "atmosphere.rain.radius_spread"},
@@ -85,6 +86,9 @@ void add_conditions(std::vector<KeyDef>& r) {
          return s.atmosphere.rain.enabled && s.atmosphere.rain.drops == RainSpec::Drops::Lognormal;
        },
        "atmosphere.rain.enabled = true and atmosphere.rain.drops = \"lognormal\""},
+      {{"atmosphere.rain.shower_distance_m", "atmosphere.rain.shower_azimuth_deg", "atmosphere.rain.shower_radius_m"},
+       [](const Scene& s) { return s.atmosphere.rain.enabled && s.atmosphere.rain.extent == RainSpec::Extent::Shower; },
+       "atmosphere.rain.enabled = true and atmosphere.rain.extent = \"shower\""},
       {{"atmosphere.ice.layer", "atmosphere.ice.aspect_ratio"},
        [](const Scene& s) { return s.atmosphere.ice.enabled; },
        "atmosphere.ice.enabled = true"},
@@ -345,6 +349,29 @@ const std::vector<KeyDef>& registry() {
     r.push_back(number_key("atmosphere.rain.scale_height_m", "m", {1.0, 1e5},
                            "rain: its density falls as exp(-z / H) above the ground",
                            [](Scene& s) -> double& { return s.atmosphere.rain.scale_height_m; }));
+    r.push_back(choice_key(
+        "atmosphere.rain.extent", {"everywhere", "shower"},
+        "rain: everywhere: a layer over the whole planet; shower: only inside a vertical cylinder (radius "
+        "shower_radius_m, its axis shower_distance_m from the reference point towards shower_azimuth_deg), so that "
+        "the bows stand where the shower does, over clear sky. Its light scattered more than once by the drops is "
+        "left out of the renderer's higher orders (docs/bows-and-halos.md measures what that misses)",
+        [](Scene& s, const std::string& v) {
+          s.atmosphere.rain.extent = v == "shower" ? RainSpec::Extent::Shower : RainSpec::Extent::Everywhere;
+        },
+        [](const Scene& s) {
+          return std::string(s.atmosphere.rain.extent == RainSpec::Extent::Shower ? "shower" : "everywhere");
+        }));
+    r.push_back(number_key("atmosphere.rain.shower_distance_m", "m", {0.0, 2e5},
+                           "rain, extent = shower: distance from the reference point to the shower's axis (less than "
+                           "its radius: the camera stands in the rain)",
+                           [](Scene& s) -> double& { return s.atmosphere.rain.shower_distance_m; }));
+    r.push_back(number_key("atmosphere.rain.shower_azimuth_deg", "degrees", {0.0, 360.0},
+                           "rain, extent = shower: direction from the reference point to the shower's axis, clockwise "
+                           "from north (a rainbow needs it opposite the sun)",
+                           [](Scene& s) -> double& { return s.atmosphere.rain.shower_azimuth_deg; }));
+    r.push_back(number_key("atmosphere.rain.shower_radius_m", "m", {100.0, 1e5},
+                           "rain, extent = shower: the shower's radius (its walls are vertical and sharp)",
+                           [](Scene& s) -> double& { return s.atmosphere.rain.shower_radius_m; }));
     // water vapour (the broadband irradiance's gas bands)
     r.push_back(
         number_key("atmosphere.water_vapour.column_cm", "cm", {0.0, 15.0},

@@ -107,6 +107,7 @@ MonteCarloMedium MonteCarloMedium::from_atmosphere(const AtmosphereModel& atm, i
     if (!medium.enabled()) continue;
     MonteCarloComponent c;
     c.profile = medium.profile;
+    c.region = medium.region;
     c.scattering_per_m = medium.scattering_per_m[i];
     c.extinction_per_m = medium.extinction_per_m[i];
     const MediumPhase& p = medium.phase;
@@ -214,17 +215,19 @@ double MonteCarloIntegrator::distance_to_shell_boundary(const Vec3& p, const Vec
   return t;
 }
 
-double MonteCarloIntegrator::extinction_at(double z) const {
+double MonteCarloIntegrator::extinction_at(const Vec3& p) const {
+  const double z = altitude(p);
   double sigma = 0.0;
-  for (const auto& c : medium_.components) sigma += c.extinction_per_m * c.profile.relative(z);
+  for (const auto& c : medium_.components) sigma += c.extinction_per_m * density_of(c, p, z);
   return sigma;
 }
 
-double MonteCarloIntegrator::scattering_at(double z, double* per_component) const {
+double MonteCarloIntegrator::scattering_at(const Vec3& p, double* per_component) const {
+  const double z = altitude(p);
   double sigma = 0.0;
   for (size_t k = 0; k < medium_.components.size(); ++k) {
     const auto& c = medium_.components[k];
-    per_component[k] = c.scattering_per_m > 0.0 ? c.scattering_per_m * c.profile.relative(z) : 0.0;
+    per_component[k] = c.scattering_per_m > 0.0 ? c.scattering_per_m * density_of(c, p, z) : 0.0;
     sigma += per_component[k];
   }
   return sigma;
@@ -240,7 +243,7 @@ double MonteCarloIntegrator::transmittance_to_sun(const Vec3& p, Rng& rng) const
   while (true) {
     t += rng.exponential() / majorant_;
     if (t >= t_max) return T;
-    T = roulette(T * (1.0 - extinction_at(altitude(p + t * sun_)) / majorant_), rng);
+    T = roulette(T * (1.0 - extinction_at(p + t * sun_) / majorant_), rng);
     if (T == 0.0) return 0.0;
   }
 }
@@ -416,9 +419,8 @@ Eigen::Matrix<double, N, 1> MonteCarloIntegrator::path(Vec3 p, Vec3 d, const Vec
         t += rng.exponential() / rate;
         if (t >= t_max) break;
         const Vec3 x = p + t * d;
-        const double z = altitude(x);
-        const double sigma_t = extinction_at(z);
-        const double sigma_s = scattering_at(z, scattering);
+        const double sigma_t = extinction_at(x);
+        const double sigma_s = scattering_at(x, scattering);
         if (T > 0.0 && sigma_s > 0.0) {
           const double k = w * T * sigma_s / rate * E * transmittance_to_sun(x, rng);
           if constexpr (kStokes) {

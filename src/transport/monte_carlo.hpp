@@ -60,6 +60,9 @@ struct MonteCarloComponent {
   /// Tabulated: the scattering matrix (polarising) and the wavelength's row in it.
   std::shared_ptr<const TabulatedScatteringMatrix> table;
   int table_row = 0;
+  /// Shell geometry: only inside this vertical cylinder (Medium::region), tracked in three
+  /// dimensions like every other component (the majorant bounds it everywhere). Empty: everywhere.
+  std::optional<VerticalCylinder> region;
 };
 
 /// The medium at one wavelength.
@@ -161,8 +164,13 @@ class MonteCarloIntegrator {
   /// The Lambertian albedo of the surface at g: the terrain's over its grid (Terrain::covers), else
   /// the ground's.
   double surface_albedo(const Vec3& g) const;
-  double extinction_at(double altitude_m) const;
-  double scattering_at(double altitude_m, double* per_component) const;
+  /// Coefficients at a point (a regional component's only inside its region).
+  double extinction_at(const Vec3& p) const;
+  double scattering_at(const Vec3& p, double* per_component) const;
+  /// Component k's density relative to altitude 0 at p, whose altitude is z.
+  double density_of(const MonteCarloComponent& c, const Vec3& p, double z) const {
+    return c.region && !c.region->contains(p) ? 0.0 : c.profile.relative(z);
+  }
   double transmittance_to_sun(const Vec3& p, Rng& rng) const;
   static double roulette(double transmittance, Rng& rng);
   double phase_to_sun(const double* scattering, double total_scattering, double mu) const;

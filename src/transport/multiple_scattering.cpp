@@ -895,7 +895,10 @@ std::shared_ptr<const AtmosphereModel> ScatteringOrders::field_atmosphere_of(
 ScatteringOrders::ScatteringOrders(const SingleScattering& integrator, const MultipleScatteringSettings& settings)
     : settings_(settings), field_atmosphere_(field_atmosphere_of(integrator.atmosphere(), settings)) {
   const auto t0 = std::chrono::steady_clock::now();
-  const AtmosphereModel& atm = field_atmosphere_ ? *field_atmosphere_ : integrator.atmosphere();
+  const AtmosphereModel& field = field_atmosphere_ ? *field_atmosphere_ : integrator.atmosphere();
+  // A medium confined to a region takes no part in the field (with_regional_media_as_probes).
+  const std::optional<AtmosphereModel> probes = field.with_regional_media_as_probes();
+  const AtmosphereModel& atm = probes ? *probes : field;
   const auto moments = PhaseMoments::of(atm, settings_.angular_degree);
   if (settings_.polarisation && settings_.angular_degree < 2 && settings_.orders >= 2)
     throw Error("polarised scattering-order tables need an angular degree of 2 or more (got " +
@@ -999,7 +1002,8 @@ DirectionQuadrature ScatteringOrders::quadrature_of_order(int angular_degree, in
 double ScatteringOrders::estimate_build_seconds(const SingleScattering& integrator,
                                                 const MultipleScatteringSettings& settings) {
   if (settings.orders < 2) return 0.0;
-  const AtmosphereModel& atm = integrator.atmosphere();
+  const std::optional<AtmosphereModel> probes = integrator.atmosphere().with_regional_media_as_probes();
+  const AtmosphereModel& atm = probes ? *probes : integrator.atmosphere();
   const SingleScattering second_builder(atm, integrator.sun_columns(),
                                         IntegratorSettings{segments_of_order(settings, 2)});
   const SingleScattering higher_builder(atm, integrator.sun_columns(),

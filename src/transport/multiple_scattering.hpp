@@ -53,6 +53,8 @@ struct MultipleScatteringSettings {
   /// matrix cut off within this many degrees of forward (AtmosphereModel::with_forward_peaks_truncated;
   /// 0: nothing cut). Renders keep single scattering's uncut phase functions and march it, like the
   /// tables' light, through the cut atmosphere's extinction (InScatteringSource::field_atmosphere).
+  /// A medium confined to a region takes no part in the tables' field, which it scatters
+  /// (AtmosphereModel::with_regional_media_as_probes).
   double forward_cone_deg = 0.0;
   /// Carry the fields' linear polarisation from order to order (vector transport for the air; needs
   /// angular_degree >= 2): each table also holds its field's polarisation tensor

@@ -21,6 +21,9 @@ void write_array(std::ostream& out, const char* name, const Array& a) {
 void write_medium(std::ostream& out, const Medium& m) {
   const std::string& name = m.name;
   out << name << ".profile " << m.profile.describe() << '\n';
+  // Confined to a region, it is left out of the field (with_regional_media_as_probes), wherever the
+  // region stands.
+  if (m.region) out << name << ".region: a probe of the field\n";
   write_array(out, (name + ".scattering_per_m").c_str(), m.scattering_per_m);
   write_array(out, (name + ".extinction_per_m").c_str(), m.extinction_per_m);
   const MediumPhase& p = m.phase;

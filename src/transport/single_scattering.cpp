@@ -70,6 +70,10 @@ SingleScattering::SingleScattering(const AtmosphereModel& atm, const SunColumns&
     ext_[j] = medium.extinction_per_m.cast<float>();
     layer_[j] = !medium.profile.positive_everywhere();
     for (double h : medium.profile.breakpoints_m()) breakpoint_radii_m_.push_back(atm.planet_radius_m() + h);
+    if (medium.region) {
+      region_[j] = &*medium.region;
+      has_regions_ = true;
+    }
     if (!medium.scatters()) continue;
     Scatterer sc;
     sc.medium = j;
@@ -355,10 +359,36 @@ void SingleScattering::transmittance_to_space(const Vec3& o, const Vec3& d, Spec
   // Columns from the entry point (or the origin, inside) to the exit.
   const Vec3 start = o + std::max(0.0, top.t_near_m) * d;
   const double r = std::min(start.norm(), Rt);
-  const Columns c = columns_to_top_m(atm_, r, start.dot(d) / start.norm(), 256);
+  Columns c = columns_to_top_m(atm_, r, start.dot(d) / start.norm(), 256);
+  for (int j = 0; j < media_; ++j)
+    if (region_[j]) c[static_cast<size_t>(j)] = regional_column(j, start, d);
   Spectrum tau;
   optical_depth(c.data(), tau);
   out = (-tau).exp();
+}
+
+double SingleScattering::regional_column(int j, const Vec3& p, const Vec3& dir) const {
+  double in0 = 0.0, in1 = 0.0;
+  if (!region_[j]->crossing(p, dir, in0, in1)) return 0.0;
+  const double r = p.norm(), Rt = atm_.top_radius_m(), R = atm_.planet_radius_m();
+  const double t0 = std::max(0.0, in0), t1 = std::min(in1, distance_to_top_m(r, p.dot(dir) / r, Rt));
+  if (!(t1 > t0)) return 0.0;
+  const DensityProfile& profile = atm_.media()[static_cast<size_t>(j)].profile;
+  const double dt = (t1 - t0) / kRegionChordSegments;
+  double column = 0.0, log_a = profile.log_relative((p + t0 * dir).norm() - R);
+  for (int k = 1; k <= kRegionChordSegments; ++k) {
+    const double log_b = profile.log_relative((p + (t0 + k * dt) * dir).norm() - R);
+    column += dt * log_mean(std::exp(log_a), std::exp(log_b), log_a - log_b);
+    log_a = log_b;
+  }
+  return column;
+}
+
+Columns SingleScattering::sun_columns_at(const Vec3& p, double r, double mu_sun, const Vec3& s) const {
+  Columns c = sun_.at(r, mu_sun);
+  for (int j = 0; j < media_; ++j)
+    if (region_[j]) c[static_cast<size_t>(j)] = regional_column(j, p, s);
+  return c;
 }
 
 void SingleScattering::radiance(const Vec3& o, const Vec3& d, const Vec3& s, const Spectrum& sun_irradiance,
@@ -604,6 +634,14 @@ bool SingleScattering::trace(const Vec3& o, const Vec3& d, const Vec3& s, const 
       cuts.push_back(crossing.t_far_m);
     }
   }
+  // ... and where it passes a regional medium's walls.
+  for (int j = 0; j < media_ && has_regions_; ++j) {
+    double in0 = 0.0, in1 = 0.0;
+    if (region_[j] && region_[j]->crossing(o, d, in0, in1)) {
+      cuts.push_back(in0);
+      cuts.push_back(in1);
+    }
+  }
   std::sort(cuts.begin(), cuts.end());
   double a = t_begin;
   auto add = [&](double b, bool is_lit) {  // [a, b], cut where cuts fall inside it
@@ -661,10 +699,18 @@ void SingleScattering::place_nodes(const Vec3& o, const Vec3& d, const Scatterin
   const double R = atm_.planet_radius_m();
   const std::vector<Medium>& media = atm_.media();
   const bool higher = sources.higher != nullptr;
-  auto make_node = [&](double t) {
-    Node n;
-    n.t = t;
-    n.r = (o + t * d).norm();
+  // Regional media: which are inside their region on the piece being placed (bit j). Outside,
+  // a node's density is 0 and its log density the profile's (finite: the log-mean rule of 0 and 0
+  // is 0); a node where a piece with other bits begins is repeated with that piece's densities.
+  unsigned inside = 0;
+  auto inside_on = [&](const Piece& pc) {
+    unsigned bits = 0;
+    const Vec3 mid = o + 0.5 * (pc.t0 + pc.t1) * d;
+    for (int j = 0; j < media_; ++j)
+      if (region_[j] && region_[j]->contains(mid)) bits |= 1u << j;
+    return bits;
+  };
+  auto set_densities = [&](Node& n) {
     const double alt = n.r - R;
     for (int j = 0; j < media_; ++j) {
       const DensityProfile& profile = media[static_cast<size_t>(j)].profile;
@@ -674,7 +720,14 @@ void SingleScattering::place_nodes(const Vec3& o, const Vec3& d, const Scatterin
         n.log_rho[j] = profile.log_relative(alt);
         n.rho[j] = std::exp(n.log_rho[j]);
       }
+      if (region_[j] && !(inside & (1u << j))) n.rho[j] = 0.0;
     }
+  };
+  auto make_node = [&](double t) {
+    Node n;
+    n.t = t;
+    n.r = (o + t * d).norm();
+    set_densities(n);
     return n;
   };
   auto append = [&](double t) {
@@ -692,11 +745,21 @@ void SingleScattering::place_nodes(const Vec3& o, const Vec3& d, const Scatterin
   for (int i = 0; i < ray.n_pieces; ++i)
     if (ray.pieces[i].lit || higher) total_len += ray.pieces[i].t1 - ray.pieces[i].t0;
   ray.nodes.clear();
+  if (has_regions_ && ray.n_pieces > 0) inside = inside_on(ray.pieces[0]);
   Node first = make_node(ray.t_begin);
   std::fill(first.col, first.col + kMaxMedia, 0.0);
   ray.nodes.push_back(first);
   for (int i = 0; i < ray.n_pieces; ++i) {
     Piece& pc = ray.pieces[i];
+    if (has_regions_) {
+      const unsigned bits = inside_on(pc);
+      if (bits != inside) {
+        inside = bits;
+        Node again = ray.nodes.back();
+        set_densities(again);
+        ray.nodes.push_back(again);
+      }
+    }
     const bool collect = (sources.single && pc.lit) || higher;
     int segs = 8;
     if (collect) {
@@ -708,7 +771,10 @@ void SingleScattering::place_nodes(const Vec3& o, const Vec3& d, const Scatterin
     thread_local std::vector<double> positions;
     positions.resize(static_cast<size_t>(segs) + 1);
     if (collect) {
-      piece_node_positions(o, d, pc.t0, pc.t1, segs, positions.data());
+      unsigned absent = 0;
+      for (int j = 0; j < media_ && has_regions_; ++j)
+        if (region_[j] && !(inside & (1u << j))) absent |= 1u << j;
+      piece_node_positions(o, d, pc.t0, pc.t1, segs, absent, positions.data());
     } else {
       for (int k = 0; k <= segs; ++k) positions[static_cast<size_t>(k)] = pc.t0 + (pc.t1 - pc.t0) * k / segs;
     }
@@ -725,7 +791,7 @@ void SingleScattering::place_nodes(const Vec3& o, const Vec3& d, const Scatterin
 // them. Nothing here depends on the wavelengths (adding one to the grid moves no node), and the
 // sun only through the piece's ends (the shadow's edges).
 void SingleScattering::piece_node_positions(const Vec3& o, const Vec3& d, double t0, double t1, int segments,
-                                            double* t) const {
+                                            unsigned absent, double* t) const {
   const double R = atm_.planet_radius_m();
   const int count = scatterer_count();
   const int pilots = kPilotsPerSegment * segments;
@@ -737,7 +803,9 @@ void SingleScattering::piece_node_positions(const Vec3& o, const Vec3& d, double
     const double alt = (o + (t0 + dt * k) * d).norm() - R;
     for (int sp = 0; sp < count; ++sp)
       rho[sp][static_cast<size_t>(k)] =
-          std::exp(atm_.media()[static_cast<size_t>(medium_of_scatterer(sp))].profile.log_relative(alt));
+          absent & (1u << medium_of_scatterer(sp))
+              ? 0.0
+              : std::exp(atm_.media()[static_cast<size_t>(medium_of_scatterer(sp))].profile.log_relative(alt));
   }
   // The columns by the trapezoid rule (they only place the nodes), then each medium's share.
   double total[kMaxMedia] = {};
@@ -852,9 +920,10 @@ void SingleScattering::optical_depths(const Eigen::ArrayXXf& columns, PieceScrat
 // field atmosphere's (InScatteringSource::field_atmosphere: the light of the forward peaks goes on
 // with the sun's and the view's unscattered light, Nakajima & Tanaka's single scattering), the
 // phase functions and scattering coefficients the integrator's own.
-void SingleScattering::single_scattering_piece(const Node* nodes, int m, double os, double ds,
+void SingleScattering::single_scattering_piece(const Node* nodes, int m, const Vec3& o, const Vec3& d, const Vec3& sun,
                                                const SingleScattering& field, PieceScratch& sc,
                                                ScatteringWorkspace& ws) const {
+  const double os = o.dot(sun), ds = d.dot(sun);
   sc.columns.resize(m, media_);
   sc.node_r.resize(static_cast<size_t>(m));
   sc.node_mu_sun.resize(static_cast<size_t>(m));
@@ -864,6 +933,11 @@ void SingleScattering::single_scattering_piece(const Node* nodes, int m, double 
     sc.node_mu_sun[static_cast<size_t>(k)] = (os + nodes[k].t * ds) / nodes[k].r;
   }
   sun_.at_many(m, sc.node_r.data(), sc.node_mu_sun.data(), sc.sun.data());
+  if (has_regions_)
+    for (int k = 0; k < m; ++k)
+      for (int j = 0; j < media_; ++j)
+        if (region_[j])
+          sc.sun[static_cast<size_t>(k)][static_cast<size_t>(j)] = regional_column(j, o + nodes[k].t * d, sun);
   for (int k = 0; k < m; ++k)
     for (int j = 0; j < media_; ++j)
       sc.columns(k, j) = static_cast<float>(nodes[k].col[j] + sc.sun[static_cast<size_t>(k)][static_cast<size_t>(j)]);
@@ -1244,7 +1318,7 @@ void SingleScattering::ground_irradiance_at(const Vec3& ground_point, const Vec3
   if (sources.single && mu_sun > 0.0 &&
       !(sources.terrain && sources.terrain->shadowed(ground_point + 1e-3 * ground_point.normalized(), s))) {
     Spectrum& tau_sun = ws.ground_sun;
-    const Columns sun = sun_.at(R, mu_sun);
+    const Columns sun = sun_columns_at(ground_point, R, mu_sun, s);
     field_integrator(sources).optical_depth(sun.data(), tau_sun);
     ws.source = (-tau_sun).exp() * static_cast<float>(mu_sun);
   }
@@ -1295,7 +1369,7 @@ void SingleScattering::terrain_irradiance(const Node& ground, const Vec3& p, con
     if (sphere_entry_distance(start, s, atm_.planet_radius_m()) == std::numeric_limits<double>::infinity() &&
         !terrain.shadowed(start, s)) {
       Spectrum& tau_sun = ws.ground_sun;
-      const Columns sun = sun_.at(ground.r, mu_sun);
+      const Columns sun = sun_columns_at(p, ground.r, mu_sun, s);
       field_integrator(sources).optical_depth(sun.data(), tau_sun);
       ws.source = (-tau_sun).exp() * static_cast<float>(incidence);
     }
@@ -1361,7 +1435,7 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
     if (!single_here && !higher) continue;  // nothing to collect: its nodes only carried the columns
     const Node* nodes = ray.nodes.data() + pc.first_node;
     fill_piece_segments(nodes, pc.segments, count, sc.medium_of, sc.seg);
-    if (single_here) single_scattering_piece(nodes, pc.segments + 1, os, ds, field, sc, ws);
+    if (single_here) single_scattering_piece(nodes, pc.segments + 1, o, d, s, field, sc, ws);
     if (higher)
       polarised |= higher_orders_piece(nodes, pc.segments + 1, os, ds, od, *sources.higher, field,
                                        sources.polarisation ? &frame : nullptr, cut ? &skyline : nullptr, sc, ws);
@@ -1431,7 +1505,8 @@ void SingleScattering::radiance_parts(const Vec3& o, const Vec3& d, const Vec3& 
 void SingleScattering::radiance_parts_same_zenith(const Vec3& o, const Vec3* dirs, int count, const Vec3& s,
                                                   const ScatteringSources& sources, ScatteringWorkspace& ws,
                                                   RadianceParts* parts) const {
-  if (sources.transmittance || sources.polarisation || sources.terrain || o.norm() < atm_.planet_radius_m()) {
+  if (sources.transmittance || sources.polarisation || sources.terrain || has_regions_ ||
+      o.norm() < atm_.planet_radius_m()) {
     for (int i = 0; i < count; ++i) radiance_parts(o, dirs[i], s, sources, ws, parts[i]);
     return;
   }

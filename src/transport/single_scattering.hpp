@@ -21,7 +21,9 @@
 // whose density is a layer (zero outside it, such as ozone's) use the trapezoid rule; a scattering
 // medium's density is positive everywhere (medium.hpp).
 // View-ray columns are accumulated along the way; columns towards the sun come from the
-// SunColumnTable.
+// SunColumnTable, except those of a medium confined to a region (Medium::region, a shower): rays
+// are also cut at its walls, its density is 0 on the pieces outside, and its column towards the
+// sun is the chord through it (regional_column).
 #pragma once
 
 #include <limits>
@@ -285,6 +287,19 @@ class SingleScattering {
   int media_ = 0;               ///< AtmosphereModel::media().size()
   Spectrum ext_[kMaxMedia];     ///< each medium's extinction at relative density 1
   bool layer_[kMaxMedia] = {};  ///< its density is a layer (trapezoid rule for its columns)
+  /// Where a medium is confined (Medium::region; null: everywhere). trace() cuts rays at the
+  /// walls, so that each piece lies wholly inside or outside; outside, the nodes' density is 0.
+  const VerticalCylinder* region_[kMaxMedia] = {};
+  bool has_regions_ = false;
+  /// The column of regional medium j from p along dir (unit) to the top of the atmosphere, inside
+  /// its region: the log-mean rule on kRegionChordSegments pieces of the chord (exact for an
+  /// exponential profile where the altitude is linear along each piece). Replaces the sun-column
+  /// table's value, which is the column of the medium everywhere.
+  double regional_column(int j, const Vec3& p, const Vec3& dir) const;
+  static constexpr int kRegionChordSegments = 8;
+  /// The sun's columns at p (radius r, sun zenith cosine mu_sun): the table's, with regional
+  /// media's chords.
+  Columns sun_columns_at(const Vec3& p, double r, double mu_sun, const Vec3& s) const;
   /// Radii of the media's density breakpoints (DensityProfile::breakpoints_m: a cloud layer's base
   /// and top), where trace() cuts rays into pieces so that nodes fall inside any layer, however thin.
   std::vector<double> breakpoint_radii_m_;
@@ -331,15 +346,17 @@ class SingleScattering {
   static void sunlit_past_terrain(const Vec3& o, const Vec3& d, const Vec3& s, const Terrain& terrain,
                                   std::vector<Interval>& lit);
   void place_nodes(const Vec3& o, const Vec3& d, const ScatteringSources& sources, Ray& ray) const;
-  void piece_node_positions(const Vec3& o, const Vec3& d, double t0, double t1, int segments, double* t) const;
+  /// `absent`: bit j set for a regional medium outside its region on the piece (no share).
+  void piece_node_positions(const Vec3& o, const Vec3& d, double t0, double t1, int segments, unsigned absent,
+                            double* t) const;
   static constexpr int kPilotsPerSegment = 2;  ///< density samples per segment that place the nodes
   void integrate(const Ray& ray, const Vec3& o, const Vec3& d, const Vec3& s, const ScatteringSources& sources,
                  ScatteringWorkspace& ws, RadianceParts& parts) const;
   // integrate's steps, one piece of a ray at a time (PieceScratch: per-thread arrays).
   struct PieceScratch;
   void optical_depths(const Eigen::ArrayXXf& columns, PieceScratch& sc, Eigen::ArrayXXf& tau) const;
-  void single_scattering_piece(const Node* nodes, int m, double os, double ds, const SingleScattering& field,
-                               PieceScratch& sc, ScatteringWorkspace& ws) const;
+  void single_scattering_piece(const Node* nodes, int m, const Vec3& o, const Vec3& d, const Vec3& s,
+                               const SingleScattering& field, PieceScratch& sc, ScatteringWorkspace& ws) const;
   struct RayFrame;
   struct SkylineCut;
   /// True if it integrated the polarised sources too. With `cut`, the sky the terrain at the

@@ -73,7 +73,7 @@ constexpr int kPolarisedParts = 2;
 
 bool SkyViewTable::applicable(const AtmosphereModel& atm, const Vec3& origin_m) {
   const double r = origin_m.norm();
-  return r >= atm.planet_radius_m() && r < atm.top_radius_m();
+  return r >= atm.planet_radius_m() && r < atm.top_radius_m() && !atm.has_regional_media();
 }
 
 // Placement of the rows. Sky side: by the square root of the angle above the horizon, so they
@@ -173,7 +173,9 @@ SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringS
                            const Vec3& sun_dir, SkyViewResolution resolution, int threads)
     : res_(resolution), n_(integrator.atmosphere().grid().size()) {
   const AtmosphereModel& atm = integrator.atmosphere();
-  if (!applicable(atm, origin_m)) throw Error("sky-view table: the camera is not inside the atmosphere");
+  if (!applicable(atm, origin_m))
+    throw Error(atm.has_regional_media() ? "sky-view table: a medium is confined to a region"
+                                         : "sky-view table: the camera is not inside the atmosphere");
   if (res_.sky_rows < 2 || res_.ground_rows < 2 || res_.azimuths < 2)
     throw Error("sky-view table: at least 2 rows and 2 azimuths on each side");
   // The rays are marched in the table's own frame (the camera on the z axis, the sun in the x-z

@@ -15,7 +15,8 @@
 // directions below it (the ground, or the air in front of it) only from rays below it, so the
 // step in radiance at the horizon is not smeared.
 //
-// It applies to cameras inside the atmosphere and above the ground (see applicable()).
+// It applies to cameras inside the atmosphere and above the ground, without a regional medium (see
+// applicable()).
 #pragma once
 
 #include <cstddef>
@@ -36,7 +37,9 @@ struct SkyViewResolution {
 
 class SkyViewTable {
  public:
-  /// Whether a table represents the sky seen from origin_m: inside the atmosphere, above ground.
+  /// Whether a table represents the sky seen from origin_m: inside the atmosphere, above ground,
+  /// in an atmosphere whose media are everywhere (a regional medium's sharp walls would be blurred
+  /// by the table's interpolation, and its rays are not alike in azimuth: every pixel is marched).
   static bool applicable(const AtmosphereModel& atm, const Vec3& origin_m);
 
   /// Marches every table ray with `integrator` (sources as for a pixel, without terrain) from

@@ -4,6 +4,7 @@
 #include <random>
 
 #include "skyspec/geometry.hpp"
+#include "skyspec/vertical_cylinder.hpp"
 
 BOOST_AUTO_TEST_SUITE(test_geometry)
 
@@ -125,6 +126,47 @@ BOOST_AUTO_TEST_CASE(shadow_matches_sun_ray_test_at_random_points) {
     }
   }
   BOOST_TEST(checked > 10000);
+}
+
+// A shower's cylinder (vertical_cylinder.hpp): 3 km wide, its axis 8 km north of the reference
+// point. Horizontal lines through it are cut at the walls; the points found lie on them; a line
+// along the axis runs inside for ever; the planet's far side is not inside.
+BOOST_AUTO_TEST_CASE(vertical_cylinder_walls) {
+  const VerticalCylinder c{Vec3(0.0, 8000.0, R).normalized(), 3000.0};
+  const Vec3 o(0.0, 0.0, R + 2.0);
+  BOOST_TEST(!c.contains(o));
+  BOOST_TEST(c.contains(Vec3(0.0, 8000.0, R + 5000.0)));
+  BOOST_TEST(!c.contains(-Vec3(0.0, 8000.0, R)));
+  double t0 = 0.0, t1 = 0.0;
+  const Vec3 north = Vec3(0.0, 1.0, 0.0);
+  BOOST_TEST_REQUIRE(c.crossing(o, north, t0, t1));
+  BOOST_TEST(t0 == 5000.0, boost::test_tools::tolerance(1e-6));  // to the wall's axis-perpendicular distance
+  BOOST_TEST(t1 == 11000.0, boost::test_tools::tolerance(1e-6));
+  // Every crossing's ends lie on the wall, its middle inside, for random lines near the shower.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int crossed = 0;
+  for (int k = 0; k < 2000; ++k) {
+    const Vec3 p = o + Vec3(4000.0 * u(rng), 4000.0 * u(rng), 3000.0 * (u(rng) + 1.0));
+    Vec3 d(u(rng), u(rng), u(rng));
+    if (d.norm() < 1e-3) continue;
+    d.normalize();
+    if (!c.crossing(p, d, t0, t1)) continue;
+    ++crossed;
+    for (double t : {t0, t1}) {
+      const Vec3 x = p + t * d;
+      const Vec3 perp = x - x.dot(c.axis) * c.axis;
+      BOOST_TEST(perp.norm() == 3000.0, boost::test_tools::tolerance(1e-7));
+    }
+    BOOST_TEST(c.contains(p + 0.5 * (t0 + t1) * d));
+    BOOST_TEST(!c.contains(p + (t1 + 1.0) * d));
+    BOOST_TEST(!c.contains(p + (t0 - 1.0) * d));
+  }
+  BOOST_TEST(crossed > 500);
+  BOOST_TEST_REQUIRE(c.crossing(Vec3(0.0, 8000.0, R + 100.0), c.axis, t0, t1));
+  BOOST_TEST(std::isinf(t0));
+  BOOST_TEST(std::isinf(t1));
+  BOOST_TEST(!c.crossing(o, Vec3(1.0, 0.0, 0.0), t0, t1));  // eastwards: 8 km from the axis
 }
 
 BOOST_AUTO_TEST_SUITE_END()  // test_geometry

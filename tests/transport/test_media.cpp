@@ -154,6 +154,66 @@ BOOST_AUTO_TEST_CASE(a_medium_of_ones_own_is_seen_by_the_integrator_and_the_mont
   BOOST_TEST(telling >= 5);
 }
 
+// A medium confined to a vertical cylinder (Medium::region, a shower): smoke of the test's own,
+// thick (optical depth 1.2 across the cylinder's 6 km), 3 km in radius with its axis 8 km north of
+// the observer, the sun low in the south (a rainbow's setting). The integrator's single scattering
+// (rays cut at the walls, the sun's light through the cylinder by its chord) against the Monte
+// Carlo's (its density tracked in three dimensions) on rays through the cylinder and its shadow
+// behind it, and along its edge; rays that meet neither see the sky without the smoke, in all
+// orders too (the tables hold the field without it: with_regional_media_as_probes).
+BOOST_AUTO_TEST_CASE(a_medium_confined_to_a_cylinder) {
+  const WavelengthGrid grid = WavelengthGrid::from_list(kNm);
+  const int n = grid.size();
+  AtmosphereModel model(earth(21e-6), grid);
+  Medium m = smoke(n);
+  m.scattering_per_m = SpectrumD::Constant(n, 1.6e-4);
+  m.extinction_per_m = SpectrumD::Constant(n, 2e-4);
+  m.profile = DensityProfile::exponential(1500.0);
+  m.region = VerticalCylinder{Vec3(0.0, 8000.0, model.planet_radius_m()).normalized(), 3000.0};
+  model.add_medium(m);
+  BOOST_TEST(model.has_regional_media());
+  const test::IntegratorChain chain(std::move(model), {128, 256, 64}, 64);
+  const test::IntegratorChain plain(AtmosphereModel(earth(21e-6), grid), {128, 256, 64}, 64);
+  ScatteringWorkspace ws(n);
+  Spectrum det(n), without(n);
+  MonteCarloSettings settings;
+  settings.paths = 5000;
+  settings.seed = 12;
+  settings.max_orders = 1;
+  const Vec3 origin(0, 0, chain.atm.planet_radius_m() + 2.0);
+  const Vec3 sun = direction_from_angles(180.0, 10.0);
+  std::uint64_t stream = 0;
+  int telling = 0;
+  // Through the cylinder (and its shadow beyond) low and high, and along its edge.
+  for (auto [az, el] : {std::pair{0.0, 3.0}, {0.0, 20.0}, {18.0, 5.0}}) {
+    const Vec3 dir = direction_from_angles(az, el);
+    chain.integrator.radiance(origin, dir, sun, Spectrum::Ones(n), ws, det);
+    plain.integrator.radiance(origin, dir, sun, Spectrum::Ones(n), ws, without);
+    for (int i = 0; i < n; ++i) {
+      const MonteCarloMedium medium = MonteCarloMedium::from_atmosphere(chain.atm, i);
+      const MonteCarloValue mc = MonteCarloIntegrator(medium, sun).radiance(origin, dir, settings, ++stream);
+      std::printf("  cylinder, view %g/%g, %g nm: mc %.6g +- %.2g, integrator %.6g (%+.2f sigma), without %.6g\n", az,
+                  el, kNm[static_cast<size_t>(i)], mc.mean, mc.standard_error, static_cast<double>(det[i]),
+                  (det[i] - mc.mean) / mc.standard_error, static_cast<double>(without[i]));
+      BOOST_TEST(std::abs(mc.mean - det[i]) <= 4.0 * mc.standard_error + 2e-3 * det[i]);
+      telling += std::abs(det[i] - without[i]) > 10.0 * mc.standard_error;
+    }
+  }
+  BOOST_TEST(telling >= 7);
+  // Beside the cylinder and out of its shadow: the sky without the smoke, order 1 and all orders.
+  const ScatteringOrders orders(chain.integrator, small_polarised_tables());
+  const ScatteringOrders plain_orders(plain.integrator, small_polarised_tables());
+  for (auto [az, el] : {std::pair{90.0, 5.0}, {180.0, 10.0}, {270.0, 40.0}, {200.0, 85.0}}) {
+    const Vec3 dir = direction_from_angles(az, el);
+    chain.integrator.radiance(origin, dir, sun, Spectrum::Ones(n), ws, det);
+    plain.integrator.radiance(origin, dir, sun, Spectrum::Ones(n), ws, without);
+    for (int i = 0; i < n; ++i) BOOST_TEST(relative(det[i], without[i]) < 1e-9);
+    chain.integrator.radiance(origin, dir, sun, Spectrum::Ones(n), ScatteringSources{true, &orders}, ws, det);
+    plain.integrator.radiance(origin, dir, sun, Spectrum::Ones(n), ScatteringSources{true, &plain_orders}, ws, without);
+    for (int i = 0; i < n; ++i) BOOST_TEST(relative(det[i], without[i]) < 2e-3);
+  }
+}
+
 // Fog (src/physics/media/fog.cpp): OPAC's fog droplets by Lorenz-Mie reproduce OPAC's own optics
 // (its output file fogr00: per droplet per cm^3, extinction 0.5570 / 0.5620 / 0.5650 km^-1 at 400 /
 // 550 / 700 nm, asymmetry 0.866 at 550 nm, single-scattering albedo 1.000); the visibility
@@ -222,6 +282,12 @@ BOOST_AUTO_TEST_CASE(a_medium_that_does_not_fit_is_refused_by_name) {
   Medium no_matrix = smoke(n);
   no_matrix.phase.kind = MediumPhase::Kind::Tabulated;
   BOOST_TEST(refused(no_matrix, "medium.smoke.phase.matrix"));
+  Medium no_width = smoke(n);
+  no_width.region = VerticalCylinder{Vec3(0, 0, 1), 0.0};
+  BOOST_TEST(refused(no_width, "medium.smoke.region.radius_m"));
+  Medium long_axis = smoke(n);
+  long_axis.region = VerticalCylinder{Vec3(0, 0, 2), 1000.0};
+  BOOST_TEST(refused(long_axis, "medium.smoke.region.axis"));
   BOOST_TEST(model.media().size() == 3u);  // nothing was added
   for (int k = 0; model.media().size() < static_cast<size_t>(kMaxMedia); ++k) {
     Medium more = smoke(n);

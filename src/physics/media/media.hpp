@@ -68,6 +68,8 @@ const std::vector<double>& ice_scattering_cosines();
 /// A cirrostratus layer's density profile (ice.cpp): 1 from base to top, edges falling by e every
 /// quarter of its thickness.
 DensityProfile cirrus_profile(const IceSpec& ice);
+/// The rain shower's cylinder (rain.cpp; atmosphere.rain.extent = "shower").
+VerticalCylinder shower_region(const AtmosphereSpec& spec);
 /// Ozone's number density at the layer's peak, m^-3 (ozone.cpp; 0 without ozone).
 double ozone_peak_number_density_per_m3(const OzoneSpec& o);
 

@@ -183,18 +183,33 @@ std::optional<Medium> build_lognormal_rain(const MediumContext& c) {
   return particle_medium("rain", DensityProfile::exponential(rain.scale_height_m), per_drop,
                          lognormal_drops_per_m3(rain));
 }
-}  // namespace
 
-std::optional<Medium> build_rain(const MediumContext& c) {
+std::optional<Medium> build_marshall_palmer_rain(const MediumContext& c) {
   const RainSpec& rain = c.spec.rain;
-  if (!rain.enabled) return std::nullopt;
-  if (rain.drops == RainSpec::Drops::Lognormal) return build_lognormal_rain(c);
   const AerosolMixtureOptics unit =
       cached_particle_optics(rain_optics_key(c.grid), c.grid.size(), rain_cosines(), c.cache_on_disk,
                              [&] { return compute_rain_optics(c.grid); });
   const SizeDistribution drops = SizeDistribution::marshall_palmer(rain.rate_mm_per_h);
   const double geometric_cross_section_per_m = kPi * drops.moment(2) * drops.number_per_m3();
   return particle_medium("rain", DensityProfile::exponential(rain.scale_height_m), unit, geometric_cross_section_per_m);
+}
+}  // namespace
+
+VerticalCylinder shower_region(const AtmosphereSpec& spec) {
+  const RainSpec& rain = spec.rain;
+  const double az = rain.shower_azimuth_deg * kPi / 180.0;
+  // The axis through the point shower_distance_m east-north of the reference point (0, 0, R).
+  const Vec3 centre(rain.shower_distance_m * std::sin(az), rain.shower_distance_m * std::cos(az), spec.planet_radius_m);
+  return VerticalCylinder{centre.normalized(), rain.shower_radius_m};
+}
+
+std::optional<Medium> build_rain(const MediumContext& c) {
+  const RainSpec& rain = c.spec.rain;
+  if (!rain.enabled) return std::nullopt;
+  std::optional<Medium> m =
+      rain.drops == RainSpec::Drops::Lognormal ? build_lognormal_rain(c) : build_marshall_palmer_rain(c);
+  if (m && rain.extent == RainSpec::Extent::Shower) m->region = shower_region(c.spec);
+  return m;
 }
 
 }  // namespace skyspec
