@@ -29,6 +29,7 @@
 #include "skyspec/error.hpp"
 #include "skyspec/units.hpp"
 #include "transport/multiple_scattering.hpp"
+#include "transport/regional_orders.hpp"
 #include "transport/scattering_tables_cache.hpp"
 #include "transport/single_scattering.hpp"
 #include "transport/sky_view_table.hpp"
@@ -97,6 +98,8 @@ struct SkyRenderer::Impl {
   std::shared_ptr<const ScatteringOrders> orders;  // null for single scattering
   std::shared_ptr<const Terrain> terrain;          // null without terrain
   ScatteringSources sources;                       // with the terrain: what marched rays see
+  // A medium confined to a region: the light it scatters twice, for this camera (null: none).
+  std::unique_ptr<RegionalSecondOrder> regional;
   std::unique_ptr<Camera> camera;
   std::unique_ptr<SkyViewTable> sky_view;  // null: every pixel is marched
   double sky_view_seconds = 0.0;           // its build time
@@ -259,6 +262,10 @@ struct SkyRenderer::Impl {
         rgb_fast(s.render.path == RenderSpec::Path::RgbFast),
         threads(thread_count(s)) {
     sources.terrain = terrain.get();
+    if (orders && atmosphere.has_regional_media()) {
+      regional = std::make_unique<RegionalSecondOrder>(integrator, sources, camera->origin_m(), sun_dir, threads);
+      sources.regional = regional.get();
+    }
     if (s.render.sky_view_table && SkyViewTable::applicable(atmosphere, camera->origin_m())) {
       const int rows = s.render.sky_view_zenith_samples;
       const bool below = image_sees_below_horizon();

@@ -1199,11 +1199,12 @@ struct SingleScattering::SkylineCut {
   }
 };
 
-bool SingleScattering::higher_orders_piece(const Node* nodes, int m, double os, double ds, double od,
-                                           const InScatteringSource& higher, const SingleScattering& field,
-                                           const RayFrame* polarisation, const SkylineCut* cut, PieceScratch& sc,
-                                           ScatteringWorkspace& ws) const {
+bool SingleScattering::higher_orders_piece(const Node* nodes, int m, const Vec3& o, const Vec3& d, double os, double ds,
+                                           const InScatteringSource& higher, const RegionalSource* regional,
+                                           const SingleScattering& field, const RayFrame* polarisation,
+                                           const SkylineCut* cut, PieceScratch& sc, ScatteringWorkspace& ws) const {
   const Eigen::Index n = n_;
+  const double od = o.dot(d);
   const int count = scatterer_count();
   sc.view_columns.resize(m, media_);
   float* out[kMaxMedia];
@@ -1246,6 +1247,14 @@ bool SingleScattering::higher_orders_piece(const Node* nodes, int m, double os, 
       }
     }
     higher.source(r, mu_sun, mu_view, ds, out);
+    if (regional) {  // inside a region, every scatterer's source gains what the tables leave out
+      bool inside = false;
+      for (int j = 0; j < media_; ++j) inside = inside || (region_[j] && nodes[k].rho[j] > 0.0);
+      if (inside) {
+        const Vec3 x = o + nodes[k].t * d;
+        for (int s = 0; s < count; ++s) regional->add(s, x, out[s]);
+      }
+    }
   }
   // The field's light travels to the camera through the field's atmosphere (field_atmosphere()).
   field.optical_depths(sc.view_columns, sc, sc.view_tau);
@@ -1398,7 +1407,7 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
   parts.resize(n_, scatterer_count());
   const int count = scatterer_count();
   const bool higher = sources.higher != nullptr;
-  const double os = o.dot(s), ds = d.dot(s), od = o.dot(d);
+  const double os = o.dot(s), ds = d.dot(s);
   for (int j = 0; j < count; ++j)
     for (Spectrum* sum : {&ws.sums[j].single[0], &ws.sums[j].single[1], &ws.sums[j].higher[0], &ws.sums[j].higher[1],
                           &ws.sums[j].q[0], &ws.sums[j].q[1], &ws.sums[j].u[0], &ws.sums[j].u[1]})
@@ -1437,7 +1446,7 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
     fill_piece_segments(nodes, pc.segments, count, sc.medium_of, sc.seg);
     if (single_here) single_scattering_piece(nodes, pc.segments + 1, o, d, s, field, sc, ws);
     if (higher)
-      polarised |= higher_orders_piece(nodes, pc.segments + 1, os, ds, od, *sources.higher, field,
+      polarised |= higher_orders_piece(nodes, pc.segments + 1, o, d, os, ds, *sources.higher, sources.regional, field,
                                        sources.polarisation ? &frame : nullptr, cut ? &skyline : nullptr, sc, ws);
   }
 

@@ -195,6 +195,16 @@ class InScatteringSource {
   virtual std::shared_ptr<const AtmosphereModel> field_atmosphere() const { return nullptr; }
 };
 
+/// What the scattering-order tables leave out of a regional medium's source (Medium::region: they
+/// hold the field without it): added to J_s at the integrator's nodes (regional_orders.hpp).
+class RegionalSource {
+ public:
+  virtual ~RegionalSource() = default;
+  /// Adds to out (n floats) scatterer s's source at x (a point inside a regional medium) towards
+  /// the camera the source was made for. False (out untouched) where it holds nothing.
+  virtual bool add(int scatterer, const Vec3& x, float* out) const = 0;
+};
+
 /// What a radiance evaluation includes.
 struct ScatteringSources {
   bool single = true;                          ///< order 1: air scattering + direct sun off the ground
@@ -217,6 +227,9 @@ struct ScatteringSources {
   /// normal n is the tables' field integrated about n (InScatteringSource::irradiance_on), or G
   /// times the sky's share it sees, (1 + n.up) / 2, from a source without an angular field.
   const Terrain* terrain = nullptr;
+  /// With `higher`: what the tables leave out of a regional medium's source, for rays from the
+  /// camera it was made for (RegionalSecondOrder). Null: the tables' source alone.
+  const RegionalSource* regional = nullptr;
 };
 
 class SingleScattering {
@@ -361,7 +374,8 @@ class SingleScattering {
   struct SkylineCut;
   /// True if it integrated the polarised sources too. With `cut`, the sky the terrain at the
   /// ray's end hides is the surface's light (SkylineCut).
-  bool higher_orders_piece(const Node* nodes, int m, double os, double ds, double od, const InScatteringSource& higher,
+  bool higher_orders_piece(const Node* nodes, int m, const Vec3& o, const Vec3& d, double os, double ds,
+                           const InScatteringSource& higher, const RegionalSource* regional,
                            const SingleScattering& field, const RayFrame* polarisation, const SkylineCut* cut,
                            PieceScratch& sc, ScatteringWorkspace& ws) const;
   bool polarised_sources(const Node* nodes, int m, const RayFrame& frame, const InScatteringSource& higher,
