@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # Water and ice in the air against the Monte Carlo, all orders (docs/bows-and-halos.md, "All
 # orders against the Monte Carlo"): the default scene's clear sky, diamond dust, a cirrostratus,
-# rain (Marshall-Palmer and 0.25 mm drops) and fog, the sun 25 degrees high, 450 and 650 nm,
-# 40 000 paths per probe (fog 10 000); the largest difference 20 degrees and more above the
-# horizon (per cent, and in standard errors) and the probes 3 degrees above the northern and
-# southern horizon (test_bows_reference/benchmark_table; about ten minutes on 2 cores, most of it
-# fog's paths).
+# rain (Marshall-Palmer and 0.25 mm drops), a rain shower 8 km north and fog, the sun 25 degrees
+# high, 450 and 650 nm, 40 000 paths per probe (fog 10 000); the largest difference 20 degrees and
+# more above the horizon (per cent, and in standard errors) and the probes 3 degrees above the
+# northern and southern horizon (test_bows_reference/benchmark_table; about ten minutes on 2
+# cores, most of it fog's paths).
 # Usage: bench/media_reference.sh [BUILD_DIR [RENDER_KEYS [MEDIUM]]]
 #   RENDER_KEYS: [render] keys for the renderer alone, the Monte Carlo unchanged, e.g.
 #   'ms_angular_degree = 12' or 'ms_altitude_samples = 48' (how the tables' resolution moves it).

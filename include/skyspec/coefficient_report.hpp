@@ -132,6 +132,7 @@ struct CoefficientReport {
   // density profile, in the list's order; their coefficients at each level are in ReportLevel::media.
   struct Medium {
     std::string name, profile_description;
+    std::string region_description;  ///< where it is, when only in a region (Medium::region); else empty
   };
   std::vector<Medium> media;
 

@@ -262,8 +262,11 @@ struct SkyRenderer::Impl {
         rgb_fast(s.render.path == RenderSpec::Path::RgbFast),
         threads(thread_count(s)) {
     sources.terrain = terrain.get();
-    if (orders && atmosphere.has_regional_media()) {
-      regional = std::make_unique<RegionalSecondOrder>(integrator, sources, camera->origin_m(), sun_dir, threads);
+    if (orders && atmosphere.has_regional_media() && s.render.shower_passes > 0) {
+      RegionalSecondOrder::Grid passes;
+      passes.passes = s.render.shower_passes;
+      regional =
+          std::make_unique<RegionalSecondOrder>(integrator, sources, camera->origin_m(), sun_dir, passes, threads);
       sources.regional = regional.get();
     }
     if (s.render.sky_view_table && SkyViewTable::applicable(atmosphere, camera->origin_m())) {

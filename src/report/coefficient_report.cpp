@@ -477,7 +477,19 @@ CoefficientReport make_coefficient_report(const CoefficientReportRequest& req) {
   for (const Medium& m : model.media())
     if (m.name != "air" && m.name != "aerosol" && m.name != "ozone" && m.enabled()) {
       others.push_back(&m);
-      r.media.push_back({m.name, m.profile.describe()});
+      std::string where;
+      if (m.region) {
+        // The axis's foot, R a, seen from the reference point (0, 0, R): its distance along the
+        // ground and its azimuth clockwise from north.
+        const Vec3& a = m.region->axis;
+        const double distance = model.planet_radius_m() * std::atan2(std::hypot(a.x(), a.y()), a.z());
+        const double azimuth = std::fmod(std::atan2(a.x(), a.y()) * 180.0 / kPi + 360.0, 360.0);
+        where = "only in a vertical cylinder " + format_number(m.region->radius_m) + " m in radius whose axis stands " +
+                format_number(std::round(distance)) + " m from the reference point at azimuth " +
+                format_number(std::round(azimuth * 10.0) / 10.0) +
+                " degrees (the levels give it inside; its optical depth is the column inside)";
+      }
+      r.media.push_back({m.name, m.profile.describe(), where});
     }
 
   const double R = model.planet_radius_m(), Rt = model.top_radius_m();

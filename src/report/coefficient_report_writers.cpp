@@ -126,7 +126,8 @@ Document build_document(const CoefficientReport& r) {
                      sci(r.ozone_peak_number_density_per_m3, 5) + " m^-3; profile: " + r.ozone_profile_description +
                      ".");
   for (const auto& m : r.media)
-    inputs.push_back("Also in the air: " + m.name + "; profile: " + m.profile_description + ".");
+    inputs.push_back("Also in the air: " + m.name + "; profile: " + m.profile_description +
+                     (m.region_description.empty() ? "" : "; " + m.region_description) + ".");
   std::string alts;
   for (const auto& l : r.levels) alts += (alts.empty() ? "" : ", ") + altitude_label(l.altitude_m);
   inputs.push_back("Altitudes: " + alts + ".");
@@ -532,7 +533,11 @@ std::string report_to_json(const CoefficientReport& r) {
   else
     j["ozone"] = nullptr;
   json media = json::array();
-  for (const auto& m : r.media) media.push_back({{"name", m.name}, {"profile", m.profile_description}});
+  for (const auto& m : r.media) {
+    json entry = {{"name", m.name}, {"profile", m.profile_description}};
+    if (!m.region_description.empty()) entry["region"] = m.region_description;
+    media.push_back(std::move(entry));
+  }
   j["media"] = media;
   json levels = json::array();
   for (const auto& l : r.levels) {

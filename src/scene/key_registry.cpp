@@ -353,8 +353,9 @@ const std::vector<KeyDef>& registry() {
         "atmosphere.rain.extent", {"everywhere", "shower"},
         "rain: everywhere: a layer over the whole planet; shower: only inside a vertical cylinder (radius "
         "shower_radius_m, its axis shower_distance_m from the reference point towards shower_azimuth_deg), so that "
-        "the bows stand where the shower does, over clear sky. Its light scattered more than once by the drops is "
-        "left out of the renderer's higher orders (docs/bows-and-halos.md measures what that misses)",
+        "the bows stand where the shower does, over clear sky. Every pixel is then marched (no sky-view table) and "
+        "the shower's own multiple scattering computed for the camera (a few seconds); docs/bows-and-halos.md, "
+        "\"A shower at a distance\", gives its accuracy",
         [](Scene& s, const std::string& v) {
           s.atmosphere.rain.extent = v == "shower" ? RainSpec::Extent::Shower : RainSpec::Extent::Everywhere;
         },
@@ -633,6 +634,11 @@ const std::vector<KeyDef>& registry() {
                             "multiple-scattering tables: quadrature segments along each ray of the tables of "
                             "orders 3 and up (their sources are smoother than order 2's)",
                             [](Scene& s) -> int& { return s.render.ms_higher_order_segments; }));
+    r.push_back(integer_key("render.shower_passes", 0, 4,
+                            "a rain shower (atmosphere.rain.extent = \"shower\"): passes that add the light its drops "
+                            "scatter more than once, computed for the camera (each about 3 s on 2 cores; 0: the "
+                            "drops scatter the clear sky's light once, 1: twice, 2: three times approximately)",
+                            [](Scene& s) -> int& { return s.render.shower_passes; }));
     r.push_back(number_key("render.ms_forward_cone_deg", "degrees", {0.0, 90.0},
                            "multiple-scattering tables: a tabulated scattering matrix's forward peak within this "
                            "angle is cut off and travels with the unscattered light (delta-M; single scattering "

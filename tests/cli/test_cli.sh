@@ -231,10 +231,16 @@ fi
 expect_error polarisation_png_alone 2 "output.polarisation_png = true is not allowed" --set output.polarisation_png=true
 # The scenes of docs/bows-and-halos.md's pictures load (--print-scene: a plan would compute the
 # media's optics, seconds to a minute each; test_bows_reference renders such media).
-for scene in ice-halo cirrostratus-halo fogbow-and-glory glory rainbow rainbow-polarised rainbow-supernumeraries; do
+for scene in ice-halo cirrostratus-halo fogbow-and-glory glory rainbow rainbow-polarised rainbow-supernumeraries \
+  rainbow-shower; do
   "$skyspec" render --scene "$(dirname "${BASH_SOURCE[0]}")/../../docs/images/$scene.toml" --print-scene \
     >"$work/stdout" 2>&1 && ok || bad "$scene.toml: $(cat "$work/stdout")"
 done
+# A shower's keys are read only with extent = "shower", and named with their range.
+expect_error shower_keys_unread 2 'atmosphere.rain.shower_radius_m = 2000 is not allowed: only with atmosphere.rain.enabled = true and atmosphere.rain.extent = "shower"' \
+  --set atmosphere.rain.enabled=true --set atmosphere.rain.shower_radius_m=2000
+expect_error shower_too_narrow 2 "atmosphere.rain.shower_radius_m = 50 is not allowed: a number in m, >= 100" \
+  --set atmosphere.rain.enabled=true --set atmosphere.rain.extent=shower --set atmosphere.rain.shower_radius_m=50
 # Ice crystals: intensity only; the index of ice is carried from 300 to 1100 nm.
 expect_error ice_polarised 2 "atmosphere.ice.enabled = true is not allowed: false with output.polarisation" \
   --set atmosphere.ice.enabled=true --set output.polarisation=true

@@ -337,6 +337,20 @@ BOOST_AUTO_TEST_CASE(water_and_ice_rows_when_present) {
   BOOST_TEST(j["levels"][1]["media"]["fog"]["optical_depth"].size() == 2u);
   // Without them, no such columns.
   BOOST_TEST(make_coefficient_report(default_request({550.0})).media.empty());
+  // Rain in a shower: the report says where it stands (its levels are those inside it).
+  auto shower = default_request({550.0, 650.0});
+  shower.atmosphere.rain.enabled = true;
+  shower.atmosphere.rain.extent = RainSpec::Extent::Shower;
+  shower.atmosphere.rain.shower_distance_m = 6000.0;
+  shower.atmosphere.rain.shower_azimuth_deg = 90.0;
+  shower.atmosphere.rain.shower_radius_m = 2500.0;
+  const CoefficientReport rs = make_coefficient_report(shower);
+  BOOST_REQUIRE(rs.media.size() == 1u);
+  BOOST_TEST(rs.media[0].region_description.find("2500 m in radius") != std::string::npos);
+  BOOST_TEST(rs.media[0].region_description.find("6000 m from the reference point at azimuth 90 degrees") !=
+             std::string::npos);
+  BOOST_TEST(nlohmann::json::parse(report_to_json(rs))["media"][0]["region"].is_string());
+  BOOST_TEST(r.media[0].region_description.empty());
 }
 
 // The report works across the refractive index's range (230-1690 nm): ozone where its table has
