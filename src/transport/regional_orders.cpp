@@ -8,6 +8,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "base/cancellation.hpp"
+#include "base/preparation_progress.hpp"
 #include "skyspec/units.hpp"
 
 namespace skyspec {
@@ -116,6 +118,7 @@ RegionalSecondOrder::RegionalSecondOrder(const SingleScattering& integrator, con
       std::vector<Spectrum> J(static_cast<size_t>(scatterers), Spectrum::Zero(n_)), tables = J;
       std::vector<float*> out(static_cast<size_t>(scatterers));
       for (int p = range.begin(); p != range.end(); ++p) {
+        throw_if_cancelled();
         const Vec3 x = grid_point(region, p);
         Vec3 w = x - camera;
         if (w.norm() < 1.0) w = region.cylinder.axis;  // the camera at the point: any direction
@@ -138,6 +141,7 @@ RegionalSecondOrder::RegionalSecondOrder(const SingleScattering& integrator, con
         const double r = x.norm();
         for (size_t q = 0; q < out.size(); ++q) out[q] = tables[q].data();
         sources.higher->source(r, x.dot(sun) / r, x.dot(w) / r, w.dot(sun), out.data());
+        finish_preparation(static_cast<long long>(cells) * grid_.phi);
         float* dest = values.data() + static_cast<size_t>(p) * per_point;
         for (int s = 0; s < scatterers; ++s) {
           const Spectrum delta = J[static_cast<size_t>(s)] - tables[static_cast<size_t>(s)];
@@ -151,6 +155,10 @@ RegionalSecondOrder::RegionalSecondOrder(const SingleScattering& integrator, con
   // Pass 1 marches the light without any Delta J; each later pass with the one before it, taken
   // for every direction at a point as it is for the camera's (the light scattered three times by
   // the region's medium, approximately).
+  // The work, in rays traced, for the progress a host shows (a bar on a terminal).
+  plan_preparation(
+      static_cast<long long>(grid_.passes) * static_cast<long long>(regions_.size()) * points * cells * grid_.phi,
+      "computing the shower's own multiple scattering");
   for (int pass = 0; pass < grid_.passes; ++pass) {
     own.regional = pass == 0 ? nullptr : this;
     std::vector<std::vector<float>> next(regions_.size());

@@ -177,7 +177,9 @@ BOOST_AUTO_TEST_CASE(a_medium_of_ones_own_is_seen_by_the_integrator_and_the_mont
 // Carlo's (its density tracked in three dimensions) on rays through the cylinder and its shadow
 // behind it, and along its edge; rays that meet neither see the sky without the smoke, in all
 // orders too (the tables hold the field without it: with_regional_media_as_probes).
-BOOST_AUTO_TEST_CASE(a_medium_confined_to_a_cylinder) {
+// Release stage only (release_stage.hpp): the regional code runs under the sanitizers in the next
+// case.
+BOOST_AUTO_TEST_CASE(a_medium_confined_to_a_cylinder, *boost::unit_test::precondition(test::not_in_sanitizer_stage)) {
   const WavelengthGrid grid = WavelengthGrid::from_list(kNm);
   const int n = grid.size();
   AtmosphereModel model = with_cylinder_of_smoke(grid, 1.0);
