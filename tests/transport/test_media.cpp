@@ -189,7 +189,7 @@ BOOST_AUTO_TEST_CASE(a_medium_confined_to_a_cylinder, *boost::unit_test::precond
   ScatteringWorkspace ws(n);
   Spectrum det(n), without(n);
   MonteCarloSettings settings;
-  settings.paths = 5000;
+  settings.paths = 2000;
   settings.seed = 12;
   settings.max_orders = 1;
   const Vec3 origin(0, 0, chain.atm.planet_radius_m() + 2.0);
@@ -245,7 +245,7 @@ BOOST_AUTO_TEST_CASE(a_thin_cylinder_adds_nothing_to_the_tables_source) {
   const Vec3 camera(0, 0, chain.atm.planet_radius_m() + 2.0);
   const Vec3 sun = direction_from_angles(180.0, 15.0);
   const RegionalSecondOrder pass(chain.integrator, ScatteringSources{true, &orders}, camera, sun,
-                                 RegionalSecondOrder::Grid{3, 3, 16}, 2);
+                                 RegionalSecondOrder::Grid{3, 3, 16, 1}, 2);
   const int smoke_scatterer = chain.integrator.scatterer_count() - 1;
   std::vector<Spectrum> tables(static_cast<size_t>(chain.integrator.scatterer_count()), Spectrum::Zero(n));
   std::vector<float*> out;
