@@ -2,25 +2,27 @@
 // scattered it already, which the scattering-order tables leave out (they hold the field of the
 // atmosphere without it: AtmosphereModel::with_regional_media_as_probes).
 //
-// The renderer's higher-order source of a regional scatterer s at a point x, towards a view
-// direction w, is J_s(x, w) = integral of p_s(w . w') L(x, w') dw' over the light L arriving at x
-// from every direction. The tables give it for the field without the region, L_bg. Here L is taken
+// The renderer's higher-order source of a scatterer s at a point x, towards the camera (view
+// direction w), is J_s(x, w) = integral of p_s(angle between w_in and -w) L(x, w_in) dw_in over the
+// light L arriving at x. The tables give it for the field without the region. Here L is taken
 // instead as the renderer's own radiance at x, which holds the region: the sun's light it scatters
 // once (with the chords of its shadow), the background's light it scatters once (the tables'
 // source) and the background seen through it. One such pass is the "successive orders" step that
 // adds the light scattered twice by the region's medium and dims the background's light inside it:
 //
-//   Delta J_s(x) = sum over cells c of W_c,s L(x, w'_c) - J_s,tables(x, w),
+//   Delta J_s(x) = sum over cells c of W_c,s L(x, w_in,c) - J_s,tables(x, w),
 //
-// on cells of scattering angle about w (finer where rain's phase function has its bows) and of
+// on cells of scattering angle about -w (finer where rain's phase function has its bows) and of
 // azimuth about it, W_c,s the integral of p_s over cell c (exact to the phase function's own
-// sampling) and L at the cell's centre. It is computed for the directions in which one camera sees
-// the region (w = the direction from the camera to x), on a grid over the region: points on a
-// square of side 2 r across the cylinder at heights that split its vertical column into equal
-// parts, interpolated trilinearly; added to the tables' source at the integrator's nodes
-// (SingleScattering, ScatteringSources::regional). Light scattered three or more times by the
-// region's medium is left out (docs/bows-and-halos.md measures what remains against the Monte
-// Carlo), and so is the polarisation of Delta J (its intensity only).
+// sampling) and L at the cell's centre, for every scatterer s (the air inside the shower scatters
+// its light too). It is computed for the directions in which one camera sees the region (w = the
+// direction from the camera to x), on a grid over the region: points on a square of side 2 r across
+// the cylinder at heights that split its vertical column into equal parts, interpolated
+// trilinearly; added to the tables' source at the integrator's nodes inside the region
+// (SingleScattering, ScatteringSources::regional). A second pass marches L with the first pass's
+// Delta J, taken at each point as the camera direction's for every direction: the light scattered
+// three times, approximately; more is left out (docs/bows-and-halos.md measures what remains
+// against the Monte Carlo), and so is the polarisation of Delta J (its intensity only).
 #pragma once
 
 #include <vector>
