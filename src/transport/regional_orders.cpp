@@ -5,7 +5,6 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 #include "base/cancellation.hpp"
@@ -56,7 +55,6 @@ const std::vector<double>& RegionalSecondOrder::angle_edges_deg() {
 RegionalSecondOrder::RegionalSecondOrder(const SingleScattering& integrator, const ScatteringSources& sources,
                                          const Vec3& camera, const Vec3& sun, Grid grid, int threads)
     : grid_(grid), n_(integrator.atmosphere().grid().size()) {
-  const auto start = std::chrono::steady_clock::now();
   const AtmosphereModel& atm = integrator.atmosphere();
   planet_radius_m_ = atm.planet_radius_m();
   if (!sources.higher || grid_.across < 2 || grid_.heights < 2 || grid_.phi < 1) return;
@@ -165,7 +163,6 @@ RegionalSecondOrder::RegionalSecondOrder(const SingleScattering& integrator, con
     for (size_t k = 0; k < regions_.size(); ++k) compute(regions_[k], next[k]);
     for (size_t k = 0; k < regions_.size(); ++k) regions_[k].values = std::move(next[k]);
   }
-  build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 Vec3 RegionalSecondOrder::grid_point(const Region& region, int p) const {

@@ -54,7 +54,6 @@ class RegionalSecondOrder : public RegionalSource {
 
   /// The edges of the cells of scattering angle, degrees (0 to 180).
   static const std::vector<double>& angle_edges_deg();
-  double build_seconds() const { return build_seconds_; }
 
  private:
   struct Region {
@@ -70,7 +69,6 @@ class RegionalSecondOrder : public RegionalSource {
   size_t values_per_point_ = 0;
   double planet_radius_m_ = 0.0;
   std::vector<Region> regions_;
-  double build_seconds_ = 0.0;
 };
 
 }  // namespace skyspec

@@ -277,7 +277,7 @@ BOOST_AUTO_TEST_CASE(rainbow_polarisation_agrees_with_the_reference) {
 // up, where most of the fog's light has turned in its forward peak: within 2 % + 3 standard errors
 // of the Monte Carlo, which draws a share 0.3 of its scatterings about the sun (unbiased; its
 // standard errors there 1.2-1.5 % at 10 000 paths instead of 4.7-5.3 %), 3000 paths. The side away
-// from the sun (3000 paths took 39 s here) is the benchmark's: its fog row below.
+// from the sun is the benchmark's: its fog row below.
 BOOST_AUTO_TEST_CASE(fog_all_orders_towards_the_sun) {
   compare(kFog, 180.0, {{"low in the south", 180.0, 3.0}}, true, 3000, 0.3);
 }
