@@ -48,6 +48,18 @@ class TabulatedScatteringMatrix {
   /// b1 (P12) of wavelength i at a located cosine.
   double b1(int i, Position p) const { return lerp(b1_[static_cast<std::size_t>(i)], p); }
   SphereMatrixElements elements(int i, double mu) const;
+  /// The means of a1 and of b1 of wavelength i over the cosines from lo to hi (lo <= hi; the value
+  /// at lo when they coincide), exact for the interpolant: what a direction of a coarse quadrature
+  /// stands for when the directions about it see scattering angles over that range.
+  double mean_phase(int i, Position lo, Position hi) const { return mean(a1_by_node_, a1_integral_, i, lo, hi); }
+  double mean_b1(int i, Position lo, Position hi) const { return mean(b1_by_node_, b1_integral_, i, lo, hi); }
+  /// The same for every wavelength at once, times `weight`, added to out[0 .. wavelengths()).
+  void add_mean_phases(Position lo, Position hi, double weight, float* out) const {
+    add_means(a1_by_node_, a1_integral_, lo, hi, weight, out);
+  }
+  void add_mean_b1s(Position lo, Position hi, double weight, float* out) const {
+    add_means(b1_by_node_, b1_integral_, lo, hi, weight, out);
+  }
   /// The asymmetry parameter g = 2 pi integral a1 mu dmu of wavelength i (exact for the interpolant).
   double asymmetry(int i) const { return g_[static_cast<std::size_t>(i)]; }
   /// A cosine drawn from a1 of wavelength i given u uniform in [0, 1): exact inversion of the
@@ -63,9 +75,19 @@ class TabulatedScatteringMatrix {
   double lerp(const std::vector<double>& row, Position p) const {
     return row[static_cast<std::size_t>(p.k)] * (1.0 - p.w) + row[static_cast<std::size_t>(p.k) + 1] * p.w;
   }
+  double cosine(Position p) const {
+    return mu_[static_cast<std::size_t>(p.k)] * (1.0 - p.w) + mu_[static_cast<std::size_t>(p.k) + 1] * p.w;
+  }
+  /// Means from an element by node ([node][wavelength]) and its integrals from -1 to each node.
+  double mean(const std::vector<double>& by_node, const std::vector<double>& integrals, int i, Position lo,
+              Position hi) const;
+  void add_means(const std::vector<double>& by_node, const std::vector<double>& integrals, Position lo, Position hi,
+                 double weight, float* out) const;
   std::vector<double> mu_;
   std::vector<std::vector<double>> a1_, b1_, a3_, b2_;
   std::vector<std::vector<double>> cdf_;  // [wavelength][node]: probability of mu below the node
+  // [node][wavelength] (contiguous in the wavelength): a1 and b1, and their integrals from -1 to the node
+  std::vector<double> a1_by_node_, b1_by_node_, a1_integral_, b1_integral_;
   std::vector<double> g_;
 };
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <tuple>
 
 #include "skyspec/units.hpp"
 
@@ -48,6 +49,60 @@ TabulatedScatteringMatrix::TabulatedScatteringMatrix(std::vector<double> mu, std
     for (double& v : c) v /= total;
     c.back() = 1.0;
     g_[i] = g / total;
+  }
+  // The rows by node, and their integrals by the trapezoidal rule again (on the normalised rows).
+  const size_t w = a1_.size();
+  for (auto [rows, by_node, integrals] :
+       {std::tuple{&a1_, &a1_by_node_, &a1_integral_}, std::tuple{&b1_, &b1_by_node_, &b1_integral_}}) {
+    by_node->assign(n * w, 0.0);
+    integrals->assign(n * w, 0.0);
+    for (size_t i = 0; i < w; ++i)
+      for (size_t k = 0; k < n; ++k) {
+        (*by_node)[k * w + i] = (*rows)[i][k];
+        if (k > 0)
+          (*integrals)[k * w + i] =
+              (*integrals)[(k - 1) * w + i] + 0.5 * (mu_[k] - mu_[k - 1]) * ((*rows)[i][k - 1] + (*rows)[i][k]);
+      }
+  }
+}
+
+// On [mu_k, mu_k+1] an element is r_k + (r_k+1 - r_k) t with t = (mu - mu_k) / h: its integral from
+// -1 to mu_k + t h is I_k + h t (r_k + t (r_k+1 - r_k) / 2).
+double TabulatedScatteringMatrix::mean(const std::vector<double>& by_node, const std::vector<double>& integrals, int i,
+                                       Position lo, Position hi) const {
+  const size_t w = a1_.size();
+  const auto below = [&](Position p) {
+    const size_t k = static_cast<size_t>(p.k) * w + static_cast<size_t>(i);
+    const double h = mu_[static_cast<size_t>(p.k) + 1] - mu_[static_cast<size_t>(p.k)];
+    return integrals[k] + h * p.w * (by_node[k] + 0.5 * p.w * (by_node[k + w] - by_node[k]));
+  };
+  const double width = cosine(hi) - cosine(lo);
+  if (!(width > 1e-12)) {
+    const size_t k = static_cast<size_t>(lo.k) * w + static_cast<size_t>(i);
+    return by_node[k] * (1.0 - lo.w) + by_node[k + w] * lo.w;
+  }
+  return (below(hi) - below(lo)) / width;
+}
+
+void TabulatedScatteringMatrix::add_means(const std::vector<double>& by_node, const std::vector<double>& integrals,
+                                          Position lo, Position hi, double weight, float* out) const {
+  const size_t w = a1_.size();
+  const double width = cosine(hi) - cosine(lo);
+  const double* r_lo = by_node.data() + static_cast<size_t>(lo.k) * w;
+  if (!(width > 1e-12)) {
+    for (size_t i = 0; i < w; ++i) out[i] += static_cast<float>(weight * (r_lo[i] * (1.0 - lo.w) + r_lo[i + w] * lo.w));
+    return;
+  }
+  const double* r_hi = by_node.data() + static_cast<size_t>(hi.k) * w;
+  const double* i_lo = integrals.data() + static_cast<size_t>(lo.k) * w;
+  const double* i_hi = integrals.data() + static_cast<size_t>(hi.k) * w;
+  const double h_lo = (mu_[static_cast<size_t>(lo.k) + 1] - mu_[static_cast<size_t>(lo.k)]) * lo.w,
+               h_hi = (mu_[static_cast<size_t>(hi.k) + 1] - mu_[static_cast<size_t>(hi.k)]) * hi.w;
+  const double s = weight / width, half_lo = 0.5 * lo.w, half_hi = 0.5 * hi.w;
+  for (size_t i = 0; i < w; ++i) {
+    const double below_hi = i_hi[i] + h_hi * (r_hi[i] + half_hi * (r_hi[i + w] - r_hi[i]));
+    const double below_lo = i_lo[i] + h_lo * (r_lo[i] + half_lo * (r_lo[i + w] - r_lo[i]));
+    out[i] += static_cast<float>(s * (below_hi - below_lo));
   }
 }
 

@@ -726,6 +726,97 @@ double SourceTable::mean_source() const {
 
 namespace {
 
+// The light scattered once, order 2's field, is as sharp in direction as the scatterers' matrices
+// (a rainbow, a halo, a forward lobe), far sharper than the quadrature's directions are apart (ten
+// degrees and more): sampled at one direction, a bow narrower than that counts fully or not at all,
+// depending on where it falls between the directions (its angle moves with the wavelength). So for
+// the tabulated matrices each direction of integrate_order stands for its patch of the quadrature
+// (between the cumulative Gauss weights in the zenith cosine, its midpoint cell in azimuth), split
+// into kPatchRows x kPatchColumns parts of equal solid angle (DirectionQuadrature): a part's light
+// is the matrix's mean over the part's range of scattering cosines (spanned by its corners and
+// centre; CosineRanges) times the direction's phase-free part (densities and transmittances, which
+// change smoothly across the patch), and it enters the harmonics at the part's centre. Molecules
+// and analytic phase functions, smooth, keep the direction's own value (the Gauss rule is exact
+// for them).
+constexpr int kPatchRows = DirectionQuadrature::kPatchRows, kPatchColumns = DirectionQuadrature::kPatchColumns,
+              kPatchParts = kPatchRows * kPatchColumns;
+
+struct Patch {
+  double lo[kPatchParts], hi[kPatchParts];   // the parts' ranges of scattering cosines
+  double mu[kPatchParts], phi[kPatchParts];  // their centres
+};
+
+// The parts of the patch mu in [mu_a, mu_b], phi in [phi_a, phi_b] (the zenith cosine and the
+// azimuth from the sun's vertical) for a sun at zenith cosine mu_s.
+void patch_parts(double mu_a, double mu_b, double phi_a, double phi_b, double mu_s, Patch& out) {
+  const double sin_s = std::sqrt(std::max(0.0, 1.0 - mu_s * mu_s));
+  const auto nu = [&](double mu, double phi) {
+    return std::clamp(mu * mu_s + std::sqrt(std::max(0.0, 1.0 - mu * mu)) * sin_s * std::cos(phi), -1.0, 1.0);
+  };
+  const double dmu = (mu_b - mu_a) / kPatchRows, dphi = (phi_b - phi_a) / kPatchColumns;
+  for (int a = 0; a < kPatchRows; ++a)
+    for (int b = 0; b < kPatchColumns; ++b) {
+      const double m0 = mu_a + a * dmu, p0 = phi_a + b * dphi;
+      const int k = a * kPatchColumns + b;
+      out.mu[k] = m0 + 0.5 * dmu;
+      out.phi[k] = p0 + 0.5 * dphi;
+      const double v[5] = {nu(m0, p0), nu(m0 + dmu, p0), nu(m0, p0 + dphi), nu(m0 + dmu, p0 + dphi),
+                           nu(out.mu[k], out.phi[k])};
+      out.lo[k] = *std::min_element(v, v + 5);
+      out.hi[k] = *std::max_element(v, v + 5);
+    }
+}
+
+// The tabulated scatterers' matrices (null for the others), in SingleScattering's order of scatterers.
+std::vector<const TabulatedScatteringMatrix*> tabulated_matrices(const SingleScattering& integrator) {
+  std::vector<const TabulatedScatteringMatrix*> out(static_cast<size_t>(integrator.scatterer_count()), nullptr);
+  for (int k = 0; k < integrator.scatterer_count(); ++k) {
+    const MediumPhase& phase =
+        integrator.atmosphere().media()[static_cast<size_t>(integrator.medium_of_scatterer(k))].phase;
+    if (phase.kind == MediumPhase::Kind::Tabulated) out[static_cast<size_t>(k)] = phase.matrix.get();
+  }
+  return out;
+}
+
+// Scratch memory of add_by_parts.
+struct PartsScratch {
+  PartsScratch(int wavelengths, int harmonics)
+      : basis(static_cast<size_t>(harmonics)),
+        part_basis(kPatchParts, harmonics + 1),
+        part_means(wavelengths, kPatchParts),
+        by_harmonic(wavelengths, harmonics + 1) {}
+  std::vector<double> basis;
+  Eigen::MatrixXf part_basis;   // [part, harmonic]: the harmonics (and last the zenith cosine) at the parts' centres
+  Eigen::MatrixXf part_means;   // [wavelength, part]: a tabulated matrix's means over the parts
+  Eigen::MatrixXf by_harmonic;  // [wavelength, harmonic]: part_means x part_basis
+};
+
+// Adds each tabulated scatterer's light of one direction by the parts of its patch (Patch) to the
+// harmonics a ([wavelength, harmonic], the direction's quadrature weight applied) and, with_g, its
+// light times the zenith cosine to g; the scatterer's phase-free part in `parts` is then zeroed,
+// leaving the rest of the light to the direction's own value.
+void add_by_parts(const std::vector<const TabulatedScatteringMatrix*>& tabulated, const Patch& patch, int degree,
+                  double weight, bool with_g, RadianceParts& parts, PartsScratch& sc, Eigen::ArrayXXf& a, Spectrum& g) {
+  const int n_c = static_cast<int>(sc.basis.size());
+  for (int p = 0; p < kPatchParts; ++p) {
+    symmetric_harmonics(degree, patch.mu[p], std::cos(patch.phi[p]), sc.basis.data());
+    for (int c = 0; c < n_c; ++c) sc.part_basis(p, c) = static_cast<float>(sc.basis[static_cast<size_t>(c)]);
+    sc.part_basis(p, n_c) = static_cast<float>(patch.mu[p]);
+  }
+  for (size_t k = 0; k < tabulated.size(); ++k) {
+    if (!tabulated[k]) continue;
+    const TabulatedScatteringMatrix& m = *tabulated[k];
+    sc.part_means.setZero();
+    for (int p = 0; p < kPatchParts; ++p)
+      m.add_mean_phases(m.locate(patch.lo[p]), m.locate(patch.hi[p]), 1.0 / kPatchParts, sc.part_means.col(p).data());
+    sc.by_harmonic.noalias() = sc.part_means * sc.part_basis;  // sum over the parts of mean x harmonic
+    const Spectrum& free = parts.scattered[k];
+    for (int c = 0; c < n_c; ++c) a.col(c) += static_cast<float>(weight) * free * sc.by_harmonic.col(c).array();
+    if (with_g) g += static_cast<float>(weight) * free * sc.by_harmonic.col(n_c).array();
+    parts.scattered[k].setZero();
+  }
+}
+
 // Fill `table` with J and G computed from the radiance field that `sources` describes, integrated
 // over the directions of `q`; with a stride > 1, only every stride-th entry (altitude x sun angle,
 // row-major) is computed. With count_progress, each entry adds its rays to the preparation's
@@ -739,6 +830,11 @@ void integrate_order(const SingleScattering& integrator, const ScatteringSources
   std::vector<double> az(static_cast<size_t>(q.azimuth_nodes));
   for (int j = 0; j < q.azimuth_nodes; ++j) az[static_cast<size_t>(j)] = (j + 0.5) * kPi / q.azimuth_nodes;
   const double w_az = 2.0 * kPi / q.azimuth_nodes;  // both halves of the symmetric field
+  const double d_az = kPi / q.azimuth_nodes;        // an azimuth node's cell
+  // Order 2 with a tabulated matrix: its light by the parts of each direction's patch (Patch).
+  const std::vector<const TabulatedScatteringMatrix*> tabulated = tabulated_matrices(integrator);
+  const bool patches = sources.single && !sources.higher &&
+                       std::any_of(tabulated.begin(), tabulated.end(), [](const auto* m) { return m != nullptr; });
 
   const int n_c = table.harmonic_count(), degree = table.degree();
   const bool polarised = table.polarised();
@@ -751,6 +847,9 @@ void integrate_order(const SingleScattering& integrator, const ScatteringSources
     Eigen::ArrayXXf p;
     RadianceParts parts;
     std::vector<double> basis, spin2_q, spin2_u;
+    Patch patch;
+    CosineRanges ranges;
+    PartsScratch by_parts;
     Scratch(int m, int c, int rows, int spin2)
         : ws(m),
           radiance(m),
@@ -763,6 +862,7 @@ void integrate_order(const SingleScattering& integrator, const ScatteringSources
           p(m, rows),
           parts(m),
           basis(static_cast<size_t>(c)),
+          by_parts(m, c),
           spin2_q(static_cast<size_t>(spin2)),
           spin2_u(static_cast<size_t>(spin2)) {}
   };
@@ -794,19 +894,27 @@ void integrate_order(const SingleScattering& integrator, const ScatteringSources
     sc.a.setZero();
     sc.g.setZero();
     sc.p.setZero();
-    auto integrate = [&](const std::vector<double>& mus, const std::vector<double>& ws_mu, bool sky) {
+    // mus descend from the top of their interval; each node's patch lies between the cumulative weights.
+    auto integrate = [&](const std::vector<double>& mus, const std::vector<double>& ws_mu, double top, bool sky) {
+      double patch_top = top;
       for (size_t i = 0; i < mus.size(); ++i) {
         const double mu = mus[i], sin_t = std::sqrt(std::max(0.0, 1 - mu * mu));
+        const double patch_bottom = patch_top - ws_mu[i];
         for (double phi : az) {
           const Vec3 w(sin_t * std::cos(phi), sin_t * std::sin(phi), mu);
           const double weight = ws_mu[i] * w_az;
+          if (patches) {
+            patch_parts(patch_bottom, patch_top, phi - 0.5 * d_az, phi + 0.5 * d_az, mu_s, sc.patch);
+            sc.ranges = CosineRanges{sc.patch.lo, sc.patch.hi, kPatchParts};
+          }
+          const CosineRanges* over = patches ? &sc.ranges : nullptr;
           if (polarised) {
             // The Stokes vector of the light arriving from w in its frame (e1, e2) and the polarised
             // part of its coherency matrix, C_pol = (Q (e1 e1^T - e2 e2^T) + U (e1 e2^T + e2 e1^T)) / 2,
             // summed into D_pol's xx, yy and xz (its xy and yz cancel between the two halves).
             integrator.radiance_parts(x, w, s, ray_sources, sc.ws, sc.parts);
             const Vec3 e1 = polarisation_frame(w, s), e2 = (-w).cross(e1);
-            integrator.stokes(sc.parts, w, s, e1, unit, sc.ws, sc.radiance, sc.q, sc.u);
+            integrator.stokes(sc.parts, w, s, e1, unit, sc.ws, sc.radiance, sc.q, sc.u, over);
             const auto component = [&](int a, int b) {
               return static_cast<float>(0.5 * weight * (e1[a] * e1[b] - e2[a] * e2[b])) * sc.q +
                      static_cast<float>(0.5 * weight * (e1[a] * e2[b] + e2[a] * e1[b])) * sc.u;
@@ -827,18 +935,25 @@ void integrate_order(const SingleScattering& integrator, const ScatteringSources
             for (int c = 0; c < n_spin2; ++c)
               sc.p.col(3 + c) += static_cast<float>(weight * sc.spin2_q[static_cast<size_t>(c)]) * sc.q_local +
                                  static_cast<float>(weight * sc.spin2_u[static_cast<size_t>(c)]) * sc.u_local;
+          } else if (patches) {
+            integrator.radiance_parts(x, w, s, sources, sc.ws, sc.parts);
           } else {
             integrator.radiance(x, w, s, unit, sources, sc.ws, sc.radiance);
+          }
+          if (patches) {  // the tabulated scatterers' light by parts, the rest at the direction
+            add_by_parts(tabulated, sc.patch, degree, weight, sky && at_ground, sc.parts, sc.by_parts, sc.a, sc.g);
+            integrator.combine(sc.parts, w.dot(s), unit, sc.ws, sc.radiance);
           }
           symmetric_harmonics(degree, mu, std::cos(phi), sc.basis.data());
           for (int c = 0; c < n_c; ++c)
             sc.a.col(c) += static_cast<float>(weight * sc.basis[static_cast<size_t>(c)]) * sc.radiance;
           if (sky && at_ground) sc.g += static_cast<float>(mu * weight) * sc.radiance;
         }
+        patch_top = patch_bottom;
       }
     };
-    integrate(nodes, weights, true);
-    integrate(gn, gw, false);
+    integrate(nodes, weights, 1.0, true);
+    integrate(gn, gw, mu_horizon, false);
     float* out = table.j_at(ih, imu);
     for (int c = 0; c < n_c; ++c)
       std::copy(sc.a.col(c).data(), sc.a.col(c).data() + n, out + static_cast<size_t>(c) * n);

@@ -71,11 +71,14 @@ struct MultipleScatteringSettings {
 /// sight's path through the layer grows as 1 / |mu|), and the bulk's nodes on the rest.
 struct DirectionQuadrature {
   static constexpr double kHorizonPanelWidth = 0.05;  ///< in the zenith cosine, each side of the horizon
-  int sky_zenith_nodes = 0;                           ///< nodes above the horizon panel, up to the zenith
-  int sky_horizon_nodes = 0;                          ///< nodes in the panel just above the horizon
-  int ground_zenith_nodes = 0;                        ///< nodes below the horizon panel, down to the nadir
-  int ground_horizon_nodes = 0;                       ///< nodes in the panel just below the horizon
-  int azimuth_nodes = 0;                              ///< midpoint nodes over [0, pi]
+  /// Order 2 with a tabulated matrix: each direction's patch in rows (zenith cosine) x columns
+  /// (azimuth) of parts, over which the matrix is averaged (integrate_order, docs/physics.md).
+  static constexpr int kPatchRows = 2, kPatchColumns = 4;
+  int sky_zenith_nodes = 0;      ///< nodes above the horizon panel, up to the zenith
+  int sky_horizon_nodes = 0;     ///< nodes in the panel just above the horizon
+  int ground_zenith_nodes = 0;   ///< nodes below the horizon panel, down to the nadir
+  int ground_horizon_nodes = 0;  ///< nodes in the panel just below the horizon
+  int azimuth_nodes = 0;         ///< midpoint nodes over [0, pi]
   int rays() const {
     return (sky_zenith_nodes + sky_horizon_nodes + ground_zenith_nodes + ground_horizon_nodes) * azimuth_nodes;
   }

@@ -39,6 +39,9 @@ void write_medium(std::ostream& out, const Medium& m) {
       break;
     case MediumPhase::Kind::Tabulated:
       out << name << ".moments exact for the interpolant\n";  // before: Gauss-Legendre, 512 nodes
+      // Absent before order 2 took the matrix by parts (the tables of that time are rebuilt).
+      out << name << ".order 2 by parts " << DirectionQuadrature::kPatchRows << " x "
+          << DirectionQuadrature::kPatchColumns << '\n';
       write_array(out, (name + ".matrix.mu").c_str(), p.matrix->mu());
       for (int i = 0; i < p.matrix->wavelengths(); ++i) {
         write_array(out, (name + ".matrix.a1").c_str(), p.matrix->a1()[static_cast<size_t>(i)]);

@@ -433,14 +433,33 @@ void SingleScattering::phase_of(int s, double mu, Spectrum& p) const {
   }
 }
 
-void SingleScattering::phases_at(double mu, ScatteringWorkspace& ws) const {
-  for (int s = 0; s < scatterer_count(); ++s) phase_of(s, mu, ws.phase[s]);
+namespace {
+// One element of a tabulated matrix per wavelength, averaged over the ranges of `over` (each range's
+// mean from the element's integral: exact for the interpolant).
+void mean_over(const TabulatedScatteringMatrix& m, const CosineRanges& over,
+               void (TabulatedScatteringMatrix::*add)(TabulatedScatteringMatrix::Position,
+                                                      TabulatedScatteringMatrix::Position, double, float*) const,
+               Spectrum& out) {
+  out.setZero();
+  const double weight = 1.0 / std::max(over.count, 1);
+  for (int r = 0; r < over.count; ++r) (m.*add)(m.locate(over.lo[r]), m.locate(over.hi[r]), weight, out.data());
+}
+}  // namespace
+
+void SingleScattering::phases_at(double mu, ScatteringWorkspace& ws, const CosineRanges* over) const {
+  for (int s = 0; s < scatterer_count(); ++s) {
+    const MediumPhase& ph = *scatterers_[static_cast<size_t>(s)].phase;
+    if (over && ph.kind == MediumPhase::Kind::Tabulated)
+      mean_over(*ph.matrix, *over, &TabulatedScatteringMatrix::add_mean_phases, ws.phase[s]);
+    else
+      phase_of(s, mu, ws.phase[s]);
+  }
 }
 
 void SingleScattering::combine(const RadianceParts& parts, double mu, const Spectrum& sun_irradiance,
-                               ScatteringWorkspace& ws, Spectrum& out) const {
+                               ScatteringWorkspace& ws, Spectrum& out, const CosineRanges* over) const {
   out.resize(n_);
-  phases_at(mu, ws);
+  phases_at(mu, ws, over);
   const float* p[kMaxMedia];
   for (int s = 0; s < scatterer_count(); ++s) p[s] = parts.scattered[static_cast<size_t>(s)].data();
   combine_parts(n_, scatterer_count(), p, ws.phase, parts.phase_free.data(), sun_irradiance, out.data());
@@ -448,9 +467,9 @@ void SingleScattering::combine(const RadianceParts& parts, double mu, const Spec
 
 void SingleScattering::stokes(const RadianceParts& parts, const Vec3& view, const Vec3& sun, const Vec3& e1,
                               const Spectrum& sun_irradiance, ScatteringWorkspace& ws, Spectrum& I, Spectrum& Q,
-                              Spectrum& U) const {
+                              Spectrum& U, const CosineRanges* over) const {
   const double mu = view.dot(sun);
-  combine(parts, mu, sun_irradiance, ws, I);
+  combine(parts, mu, sun_irradiance, ws, I, over);
   // From the parts' frame (e1p, k x e1p) into (e1, k x e1): turned by psi with cos psi = e1 . e1p,
   // sin psi = e1 . e2p (stokes_rotation): Q' = Q cos 2psi + U sin 2psi, U' = -Q sin 2psi + U cos 2psi.
   const Vec3 k = -view;
@@ -467,6 +486,12 @@ void SingleScattering::stokes(const RadianceParts& parts, const Vec3& view, cons
       q_plane += -(sc.phase_b * static_cast<float>(1.0 - mu * mu)) * part * sun_irradiance;
     } else if (sc.phase->kind == MediumPhase::Kind::Tabulated) {
       const TabulatedScatteringMatrix& table = *sc.phase->matrix;
+      if (over) {
+        Spectrum& b1 = ws.phase[j];  // the phase functions are in I already
+        mean_over(table, *over, &TabulatedScatteringMatrix::add_mean_b1s, b1);
+        q_plane += b1 * part * sun_irradiance;
+        continue;
+      }
       const TabulatedScatteringMatrix::Position at = table.locate(mu);
       for (Eigen::Index i = 0; i < n_; ++i)
         q_plane[i] += static_cast<float>(table.b1(static_cast<int>(i), at)) * part[i] * sun_irradiance[i];

@@ -75,6 +75,19 @@ struct RadianceParts {
   Spectrum polarised_q, polarised_u;
 };
 
+/// The scattering cosines a direction of a coarse quadrature stands for (the patch of directions
+/// about it), as `count` ranges [lo[i], hi[i]] of equal solid angle. combine() and stokes() then
+/// take each tabulated scatterer's matrix as its mean over them: a rainbow or a halo narrower than
+/// the quadrature's spacing counts with its share of the patch instead of being hit or missed by
+/// its one direction (the polarised scattering-order tables' order 2: integrate_order in
+/// multiple_scattering.cpp, which takes the intensity part by part). Analytic phase functions and
+/// molecules, smooth, keep their value at the direction's own cosine.
+struct CosineRanges {
+  const double* lo = nullptr;
+  const double* hi = nullptr;
+  int count = 0;
+};
+
 /// The Stokes frame of a view ray's polarised parts: e1 = the sun direction's component
 /// perpendicular to the view, normalised (any unit vector perpendicular to the view when the sun
 /// lies on its axis); e2 = k x e1 with k = -view, the direction the light travels. In this frame
@@ -261,9 +274,10 @@ class SingleScattering {
   void radiance_parts_same_zenith(const Vec3& origin_m, const Vec3* dirs, int count, const Vec3& sun_dir,
                                   const ScatteringSources& sources, ScatteringWorkspace& ws,
                                   RadianceParts* parts) const;
-  /// L = E_sun [sum_s p_s(mu) scattered_s + phase_free] for mu = cos(scattering angle).
+  /// L = E_sun [sum_s p_s(mu) scattered_s + phase_free] for mu = cos(scattering angle); with
+  /// `over`, the tabulated p_s are their means over its ranges.
   void combine(const RadianceParts& parts, double mu, const Spectrum& sun_irradiance, ScatteringWorkspace& ws,
-               Spectrum& out) const;
+               Spectrum& out, const CosineRanges* over = nullptr) const;
   /// The polarisation of combine()'s light: the Stokes vector [I, Q, U] (V = 0) of the light
   /// arriving along k = -view, in the frame (e1, k x e1) (e1 unit, perpendicular to view). I is
   /// combine()'s radiance. Q and U are order 1's light polarised by each medium's scattering
@@ -271,9 +285,11 @@ class SingleScattering {
   /// with B the phase function's mu^2 coefficient, physics/scattering_matrix.hpp; a tabulated
   /// matrix: its b1; an analytic phase function does not polarise), plus, if the parts hold them,
   /// the higher orders' polarised_q and polarised_u, all turned from polarisation_frame() into
-  /// (e1, k x e1). The ground depolarises.
+  /// (e1, k x e1). The ground depolarises. With `over`, the tabulated a1 and b1 are their means
+  /// over its ranges.
   void stokes(const RadianceParts& parts, const Vec3& view, const Vec3& sun, const Vec3& e1,
-              const Spectrum& sun_irradiance, ScatteringWorkspace& ws, Spectrum& I, Spectrum& Q, Spectrum& U) const;
+              const Spectrum& sun_irradiance, ScatteringWorkspace& ws, Spectrum& I, Spectrum& Q, Spectrum& U,
+              const CosineRanges* over = nullptr) const;
   /// combine() for `count` directions whose parts are packed as SkyViewTable::lookup_many gives
   /// them ((scatterer_count() + 1) n floats each: each medium's, then phase-free; n wavelengths): direction k, at
   /// cosine mu[k] to the sun, goes to out[k] (n floats) where use[k]. The phase functions of all of them are evaluated
@@ -346,8 +362,9 @@ class SingleScattering {
   const SingleScattering& field_integrator(const ScatteringSources& sources) const;
   struct FieldIntegrators;
   std::shared_ptr<FieldIntegrators> field_integrators_;
-  /// Each scatterer's phase function at mu into ws.phase[s]; one scatterer's into p.
-  void phases_at(double mu, ScatteringWorkspace& ws) const;
+  /// Each scatterer's phase function at mu (the tabulated ones' means over `over` if given) into
+  /// ws.phase[s]; one scatterer's into p.
+  void phases_at(double mu, ScatteringWorkspace& ws, const CosineRanges* over = nullptr) const;
   void phase_of(int s, double mu, Spectrum& p) const;
 
   // The quadrature along one ray (single_scattering.cpp): where the ray runs in the atmosphere,
