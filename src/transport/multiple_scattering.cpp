@@ -862,9 +862,9 @@ void integrate_order(const SingleScattering& integrator, const ScatteringSources
           p(m, rows),
           parts(m),
           basis(static_cast<size_t>(c)),
-          by_parts(m, c),
           spin2_q(static_cast<size_t>(spin2)),
-          spin2_u(static_cast<size_t>(spin2)) {}
+          spin2_u(static_cast<size_t>(spin2)),
+          by_parts(m, c) {}
   };
   ScatteringSources ray_sources = sources;
   ray_sources.polarisation = polarised;
