@@ -48,12 +48,10 @@ class TabulatedScatteringMatrix {
   /// b1 (P12) of wavelength i at a located cosine.
   double b1(int i, Position p) const { return lerp(b1_[static_cast<std::size_t>(i)], p); }
   SphereMatrixElements elements(int i, double mu) const;
-  /// The means of a1 and of b1 of wavelength i over the cosines from lo to hi (lo <= hi; the value
-  /// at lo when they coincide), exact for the interpolant: what a direction of a coarse quadrature
-  /// stands for when the directions about it see scattering angles over that range.
-  double mean_phase(int i, Position lo, Position hi) const { return mean(a1_by_node_, a1_integral_, i, lo, hi); }
-  double mean_b1(int i, Position lo, Position hi) const { return mean(b1_by_node_, b1_integral_, i, lo, hi); }
-  /// The same for every wavelength at once, times `weight`, added to out[0 .. wavelengths()).
+  /// The means of a1 and of b1 over the cosines from lo to hi (lo <= hi; the value at lo when they
+  /// coincide), exact for the interpolant, for every wavelength, times `weight`, added to
+  /// out[0 .. wavelengths()): what a direction of a coarse quadrature stands for when the
+  /// directions about it see scattering angles over that range.
   void add_mean_phases(Position lo, Position hi, double weight, float* out) const {
     add_means(a1_by_node_, a1_integral_, lo, hi, weight, out);
   }
@@ -79,8 +77,6 @@ class TabulatedScatteringMatrix {
     return mu_[static_cast<std::size_t>(p.k)] * (1.0 - p.w) + mu_[static_cast<std::size_t>(p.k) + 1] * p.w;
   }
   /// Means from an element by node ([node][wavelength]) and its integrals from -1 to each node.
-  double mean(const std::vector<double>& by_node, const std::vector<double>& integrals, int i, Position lo,
-              Position hi) const;
   void add_means(const std::vector<double>& by_node, const std::vector<double>& integrals, Position lo, Position hi,
                  double weight, float* out) const;
   std::vector<double> mu_;

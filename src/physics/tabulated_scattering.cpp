@@ -68,22 +68,6 @@ TabulatedScatteringMatrix::TabulatedScatteringMatrix(std::vector<double> mu, std
 
 // On [mu_k, mu_k+1] an element is r_k + (r_k+1 - r_k) t with t = (mu - mu_k) / h: its integral from
 // -1 to mu_k + t h is I_k + h t (r_k + t (r_k+1 - r_k) / 2).
-double TabulatedScatteringMatrix::mean(const std::vector<double>& by_node, const std::vector<double>& integrals, int i,
-                                       Position lo, Position hi) const {
-  const size_t w = a1_.size();
-  const auto below = [&](Position p) {
-    const size_t k = static_cast<size_t>(p.k) * w + static_cast<size_t>(i);
-    const double h = mu_[static_cast<size_t>(p.k) + 1] - mu_[static_cast<size_t>(p.k)];
-    return integrals[k] + h * p.w * (by_node[k] + 0.5 * p.w * (by_node[k + w] - by_node[k]));
-  };
-  const double width = cosine(hi) - cosine(lo);
-  if (!(width > 1e-12)) {
-    const size_t k = static_cast<size_t>(lo.k) * w + static_cast<size_t>(i);
-    return by_node[k] * (1.0 - lo.w) + by_node[k + w] * lo.w;
-  }
-  return (below(hi) - below(lo)) / width;
-}
-
 void TabulatedScatteringMatrix::add_means(const std::vector<double>& by_node, const std::vector<double>& integrals,
                                           Position lo, Position hi, double weight, float* out) const {
   const size_t w = a1_.size();

@@ -734,10 +734,11 @@ namespace {
 // (between the cumulative Gauss weights in the zenith cosine, its midpoint cell in azimuth), split
 // into kPatchRows x kPatchColumns parts of equal solid angle (DirectionQuadrature): a part's light
 // is the matrix's mean over the part's range of scattering cosines (spanned by its corners and
-// centre; CosineRanges) times the direction's phase-free part (densities and transmittances, which
-// change smoothly across the patch), and it enters the harmonics at the part's centre. Molecules
-// and analytic phase functions, smooth, keep the direction's own value (the Gauss rule is exact
-// for them).
+// centre) times the direction's phase-free part (densities and transmittances, which change
+// smoothly across the patch), and it enters the harmonics at the part's centre; the polarised
+// tables' Q and U take b1's mean over all the parts at the direction itself (CosineRanges).
+// Molecules and analytic phase functions, smooth, keep the direction's own value (the Gauss rule
+// is exact for them).
 constexpr int kPatchRows = DirectionQuadrature::kPatchRows, kPatchColumns = DirectionQuadrature::kPatchColumns,
               kPatchParts = kPatchRows * kPatchColumns;
 

@@ -1,5 +1,5 @@
 // A tabulated scattering matrix's means over ranges of the scattering cosine
-// (TabulatedScatteringMatrix::mean_phase, mean_b1): what a direction of the scattering-order
+// (TabulatedScatteringMatrix::add_mean_phases, add_mean_b1s): what a direction of the scattering-order
 // tables' coarse quadrature takes for a sharp matrix (integrate_order). Against the interpolant
 // integrated finely, over the whole sphere (the normalisation) and across a ring narrower than any
 // coarse sampling would see.
@@ -40,24 +40,36 @@ double fine_mean(const TabulatedScatteringMatrix& m, int i, double lo, double hi
   return sum / n;
 }
 
+// Wavelength i's mean of a1 (or b1) over [lo, hi], as the quadrature takes it (single precision).
+double mean(const TabulatedScatteringMatrix& m, int i, double lo, double hi, bool b1) {
+  std::vector<float> out(static_cast<size_t>(m.wavelengths()), 0.0f);
+  if (b1)
+    m.add_mean_b1s(m.locate(lo), m.locate(hi), 1.0, out.data());
+  else
+    m.add_mean_phases(m.locate(lo), m.locate(hi), 1.0, out.data());
+  return out[static_cast<size_t>(i)];
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(test_tabulated_scattering)
 
 BOOST_AUTO_TEST_CASE(means_are_the_interpolants_integrals) {
   const TabulatedScatteringMatrix m = ringed_table(0.2);
-  // Over the sphere: 2 pi integral a1 dmu = 1, a mean of 1 / (4 pi).
+  // Over the sphere: 2 pi integral a1 dmu = 1, a mean of 1 / (4 pi). The means are single precision.
   for (int i = 0; i < 2; ++i)
-    BOOST_TEST(m.mean_phase(i, m.locate(-1.0), m.locate(1.0)) == 1.0 / (4.0 * kPi),
-               boost::test_tools::tolerance(1e-12));
+    BOOST_TEST(mean(m, i, -1.0, 1.0, false) == 1.0 / (4.0 * kPi), boost::test_tools::tolerance(1e-6));
   for (const auto& [lo, hi] : {std::pair{-0.7, 0.25}, std::pair{0.21, 0.39}, std::pair{0.25, 0.3}, std::pair{0.0, 1.0}})
     for (int i = 0; i < 2; ++i) {
-      BOOST_TEST(m.mean_phase(i, m.locate(lo), m.locate(hi)) == fine_mean(m, i, lo, hi, false),
-                 boost::test_tools::tolerance(1e-7));
-      BOOST_TEST(std::abs(m.mean_b1(i, m.locate(lo), m.locate(hi)) - fine_mean(m, i, lo, hi, true)) < 1e-9);
+      BOOST_TEST(mean(m, i, lo, hi, false) == fine_mean(m, i, lo, hi, false), boost::test_tools::tolerance(1e-6));
+      BOOST_TEST(std::abs(mean(m, i, lo, hi, true) - fine_mean(m, i, lo, hi, true)) < 1e-8);
     }
   // A range of no width: the value there.
-  BOOST_TEST(m.mean_phase(0, m.locate(0.25), m.locate(0.25)) == m.phase(0, 0.25), boost::test_tools::tolerance(1e-15));
+  BOOST_TEST(mean(m, 0, 0.25, 0.25, false) == m.phase(0, 0.25), boost::test_tools::tolerance(1e-6));
+  // The weight scales what is added.
+  std::vector<float> out(2, 1.0f);
+  m.add_mean_phases(m.locate(-1.0), m.locate(1.0), 0.5, out.data());
+  BOOST_TEST(out[0] == 1.0 + 0.5 / (4.0 * kPi), boost::test_tools::tolerance(1e-6));
 }
 
 // A coarse sampling at mu = -0.5, 0, 0.5 and 1 sees no ring; the means over the ranges about those
@@ -69,11 +81,11 @@ BOOST_AUTO_TEST_CASE(a_ring_between_samples_counts_in_the_means) {
   for (int k = 0; k < 4; ++k) {
     const double width = edges[k + 1] - edges[k];
     sampled += width * m.phase(0, samples[k]);
-    averaged += width * m.mean_phase(0, m.locate(edges[k]), m.locate(edges[k + 1]));
-    without += width * m.mean_phase(1, m.locate(edges[k]), m.locate(edges[k + 1]));
+    averaged += width * mean(m, 0, edges[k], edges[k + 1], false);
+    without += width * mean(m, 1, edges[k], edges[k + 1], false);
   }
-  BOOST_TEST(2.0 * kPi * averaged == 1.0, boost::test_tools::tolerance(1e-12));
-  BOOST_TEST(2.0 * kPi * without == 1.0, boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(2.0 * kPi * averaged == 1.0, boost::test_tools::tolerance(1e-6));
+  BOOST_TEST(2.0 * kPi * without == 1.0, boost::test_tools::tolerance(1e-6));
   BOOST_TEST(2.0 * kPi * sampled == 2.0 / 2.2, boost::test_tools::tolerance(1e-12));  // the ring missed
 }
 
