@@ -122,7 +122,7 @@ struct RenderSpec {
   /// carry its light with the unscattered light (delta-M); 0: nothing cut.
   double ms_forward_cone_deg = 5.0;
   /// A shower's own multiple scattering (RegionalSecondOrder's passes; 0: the tables' source alone).
-  int shower_passes = 2;
+  int shower_passes = 3;
   /// Keep the multiple-scattering tables on disk and reuse them for the same atmosphere.
   bool cache_tables = true;
   /// Interpolate images from a table of the sky over view directions (sky_view_table.hpp) rather

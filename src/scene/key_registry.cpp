@@ -634,10 +634,11 @@ const std::vector<KeyDef>& registry() {
                             "multiple-scattering tables: quadrature segments along each ray of the tables of "
                             "orders 3 and up (their sources are smoother than order 2's)",
                             [](Scene& s) -> int& { return s.render.ms_higher_order_segments; }));
-    r.push_back(integer_key("render.shower_passes", 0, 4,
+    r.push_back(integer_key("render.shower_passes", 0, 8,
                             "a rain shower (atmosphere.rain.extent = \"shower\"): passes that add the light its drops "
-                            "scatter more than once, computed for the camera (each about 3 s on 2 cores; 0: the "
-                            "drops scatter the clear sky's light once, 1: twice, 2: three times approximately)",
+                            "scatter more than once, and the air about it and the ground below it its light, computed "
+                            "for the camera (each about 5 s on 2 cores; 0: the drops scatter the clear sky's light "
+                            "once, 1: twice, 2: three times, 3: four times, approximately; 6 and more change nothing)",
                             [](Scene& s) -> int& { return s.render.shower_passes; }));
     r.push_back(number_key("render.ms_forward_cone_deg", "degrees", {0.0, 90.0},
                            "multiple-scattering tables: a tabulated scattering matrix's forward peak within this "

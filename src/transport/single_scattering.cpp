@@ -1272,14 +1272,8 @@ bool SingleScattering::higher_orders_piece(const Node* nodes, int m, const Vec3&
       }
     }
     higher.source(r, mu_sun, mu_view, ds, out);
-    if (regional) {  // inside a region, every scatterer's source gains what the tables leave out
-      bool inside = false;
-      for (int j = 0; j < media_; ++j) inside = inside || (region_[j] && nodes[k].rho[j] > 0.0);
-      if (inside) {
-        const Vec3 x = o + nodes[k].t * d;
-        for (int s = 0; s < count; ++s) regional->add(s, x, out[s]);
-      }
-    }
+    // In and about a region, every scatterer's source gains what the tables leave out.
+    if (regional) regional->add(o + nodes[k].t * d, -d, out);
   }
   // The field's light travels to the camera through the field's atmosphere (field_atmosphere()).
   field.optical_depths(sc.view_columns, sc, sc.view_tau);
@@ -1358,6 +1352,7 @@ void SingleScattering::ground_irradiance_at(const Vec3& ground_point, const Vec3
   }
   if (sources.higher) {
     sources.higher->ground_irradiance(mu_sun, ws.ground_sky.data());
+    if (sources.regional) sources.regional->add_ground(ground_point, ws.ground_sky.data());
     ws.source += ws.ground_sky;
   }
 }

@@ -213,9 +213,14 @@ class InScatteringSource {
 class RegionalSource {
  public:
   virtual ~RegionalSource() = default;
-  /// Adds to out (n floats) scatterer s's source at x (a point inside a regional medium) towards
-  /// the camera the source was made for. False (out untouched) where it holds nothing.
-  virtual bool add(int scatterer, const Vec3& x, float* out) const = 0;
+  /// Adds to out[s] (n floats each, one per scatterer) every scatterer's source at x (a point
+  /// inside a regional medium) sent along `toward` (unit: from x towards the ray's origin). False
+  /// (out untouched) where it holds nothing.
+  virtual bool add(const Vec3& x, const Vec3& toward, float* const* out) const = 0;
+  /// Adds to `irradiance` (n floats, per unit solar irradiance) what the tables leave out of the
+  /// sky's light on a horizontal ground at `ground_point` (on the sphere) near a regional medium.
+  /// False (untouched) where it holds nothing.
+  virtual bool add_ground(const Vec3& ground_point, float* irradiance) const = 0;
 };
 
 /// What a radiance evaluation includes.
@@ -240,8 +245,8 @@ struct ScatteringSources {
   /// normal n is the tables' field integrated about n (InScatteringSource::irradiance_on), or G
   /// times the sky's share it sees, (1 + n.up) / 2, from a source without an angular field.
   const Terrain* terrain = nullptr;
-  /// With `higher`: what the tables leave out of a regional medium's source, for rays from the
-  /// camera it was made for (RegionalSecondOrder). Null: the tables' source alone.
+  /// With `higher`: what the tables leave out of a regional medium's source (RegionalSecondOrder:
+  /// for rays from the camera it was made for). Null: the tables' source alone.
   const RegionalSource* regional = nullptr;
 };
 

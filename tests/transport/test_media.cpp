@@ -257,21 +257,40 @@ BOOST_AUTO_TEST_CASE(a_thin_cylinder_adds_nothing_to_the_tables_source) {
     const Vec3 w = offset.normalized();
     const double r = x.norm();
     orders.source(r, x.dot(sun) / r, x.dot(w) / r, w.dot(sun), out.data());
-    Spectrum delta = Spectrum::Zero(n);
-    BOOST_TEST(pass.add(smoke_scatterer, x, delta.data()));
+    std::vector<Spectrum> deltas(tables.size(), Spectrum::Zero(n));
+    std::vector<float*> delta_out;
+    for (Spectrum& d : deltas) delta_out.push_back(d.data());
+    BOOST_TEST(pass.add(x, -w, delta_out.data()));
     for (int i = 0; i < n; ++i) {
-      const double relative_delta = delta[i] / tables[static_cast<size_t>(smoke_scatterer)][i];
+      const double relative_delta =
+          deltas[static_cast<size_t>(smoke_scatterer)][i] / tables[static_cast<size_t>(smoke_scatterer)][i];
       worst = std::max(worst, std::abs(relative_delta));
       mean += relative_delta;
       ++count;
     }
   }
-  BOOST_TEST(!pass.add(0, camera, tables[0].data()));  // outside the cylinder: nothing
+  // Beyond the grid's square (2 radii from the axis): nothing.
+  BOOST_TEST(!pass.add(camera + Vec3(0, -20000, 0), Vec3(0, 0, 1), out.data()));
   mean /= count;
   std::printf("regional second order of a vanishing cylinder: |Delta J| / J_tables at most %.3g, mean %.3g\n", worst,
               mean);
   BOOST_TEST(worst < 0.03);
   BOOST_TEST(std::abs(mean) < 0.01);
+  // The ground's light from the sky, integrated over the sky of points on the ground about the
+  // cylinder (8 x 16 directions), gives back the tables' irradiance of the ground.
+  const Vec3 axis = Vec3(0, 8000, chain.atm.planet_radius_m()).normalized();
+  for (const Vec3& offset : {Vec3(0, 0, 0), Vec3(2500, 1000, 0), Vec3(-4000, -4000, 0)}) {
+    const Vec3 ground = chain.atm.planet_radius_m() * (chain.atm.planet_radius_m() * axis + offset).normalized();
+    Spectrum tables_e(n), delta_e = Spectrum::Zero(n);
+    orders.ground_irradiance(ground.normalized().dot(sun), tables_e.data());
+    BOOST_TEST(pass.add_ground(ground, delta_e.data()));
+    for (int i = 0; i < n; ++i) {
+      std::printf("ground %.0f %.0f: Delta E / E_tables %.4f\n", offset.x(), offset.y(), delta_e[i] / tables_e[i]);
+      BOOST_TEST(std::abs(delta_e[i] / tables_e[i]) < 0.02);
+    }
+  }
+  Spectrum far_e = Spectrum::Zero(n);
+  BOOST_TEST(!pass.add_ground(chain.atm.planet_radius_m() * Vec3(0, -0.01, 1).normalized(), far_e.data()));
 }
 
 // Fog (src/physics/media/fog.cpp): OPAC's fog droplets by Lorenz-Mie reproduce OPAC's own optics
