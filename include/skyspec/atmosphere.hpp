@@ -90,6 +90,12 @@ struct FogSpec {
   /// so beta_ext(550 nm) = ln 20 / V at the ground. Fog by definition: V < 1 km.
   double visibility_m = 500.0;
   double scale_height_m = 100.0;  ///< density exp(-z / H) above the ground
+  /// OPAC: OPAC's fog droplets (a broad modified gamma distribution, mode radius 8 um).
+  /// Lognormal: droplets of about one size (a cloud's, whose corona shows coloured rings).
+  enum class Droplets { Opac, Lognormal };
+  Droplets droplets = Droplets::Opac;
+  double median_radius_um = 6.0;  ///< lognormal: the number distribution's median radius
+  double radius_spread = 1.1;     ///< lognormal: its geometric standard deviation
 };
 
 /// Ice crystals: randomly oriented hexagonal prisms of ice (ice_crystals.hpp), whose geometric

@@ -71,7 +71,7 @@ void add_conditions(std::vector<KeyDef>& r) {
     return [layer](const Scene& s) { return s.atmosphere.ice.enabled && s.atmosphere.ice.layer == layer; };
   };
   const std::vector<Condition> conditions = {
-      {{"atmosphere.fog.visibility_m", "atmosphere.fog.scale_height_m"},
+      {{"atmosphere.fog.visibility_m", "atmosphere.fog.scale_height_m", "atmosphere.fog.droplets"},
        [](const Scene& s) { return s.atmosphere.fog.enabled; },
        "atmosphere.fog.enabled = true"},
       {{"atmosphere.water_vapour.column_cm", "atmosphere.water_vapour.scale_height_m"},
@@ -81,6 +81,11 @@ void add_conditions(std::vector<KeyDef>& r) {
         "atmosphere.rain.extent"},
        [](const Scene& s) { return s.atmosphere.rain.enabled; },
        "atmosphere.rain.enabled = true"},
+      {{"atmosphere.fog.median_radius_um", "atmosphere.fog.radius_spread"},
+       [](const Scene& s) {
+         return s.atmosphere.fog.enabled && s.atmosphere.fog.droplets == FogSpec::Droplets::Lognormal;
+       },
+       "atmosphere.fog.enabled = true and atmosphere.fog.droplets = \"lognormal\""},
       {{"atmosphere.rain.median_radius_mm", "atmosphere.rain.radius_spread"},
        [](const Scene& s) {
          return s.atmosphere.rain.enabled && s.atmosphere.rain.drops == RainSpec::Drops::Lognormal;
@@ -270,7 +275,8 @@ const std::vector<KeyDef>& registry() {
     // fog
     r.push_back(
         bool_key("atmosphere.fog.enabled",
-                 "fog: water droplets near the ground (OPAC's fog, Lorenz-Mie: corona, fogbow, glory) on or off",
+                 "fog: water droplets near the ground (Lorenz-Mie: corona, fogbow, glory; atmosphere.fog.droplets says "
+                 "which) on or off",
                  [](Scene& s) -> bool& { return s.atmosphere.fog.enabled; }));
     r.push_back(
         number_key("atmosphere.fog.visibility_m", "m", {1.0, 1e5},
@@ -280,6 +286,27 @@ const std::vector<KeyDef>& registry() {
     r.push_back(number_key("atmosphere.fog.scale_height_m", "m", {1.0, 1e5},
                            "fog: its density falls as exp(-z / H) above the ground",
                            [](Scene& s) -> double& { return s.atmosphere.fog.scale_height_m; }));
+    r.push_back(choice_key(
+        "atmosphere.fog.droplets", {"opac", "lognormal"},
+        "fog: opac: OPAC's fog droplets (a broad distribution, mode radius 8 um: a white aureole about the sun); "
+        "lognormal: droplets of about median_radius_um (geometric standard deviation radius_spread), a cloud's, "
+        "whose corona shows coloured rings (both by Lorenz-Mie theory, computed once per wavelength grid and kept "
+        "in the cache of tables)",
+        [](Scene& s, const std::string& v) {
+          s.atmosphere.fog.droplets = v == "lognormal" ? FogSpec::Droplets::Lognormal : FogSpec::Droplets::Opac;
+        },
+        [](const Scene& s) {
+          return std::string(s.atmosphere.fog.droplets == FogSpec::Droplets::Lognormal ? "lognormal" : "opac");
+        }));
+    r.push_back(number_key("atmosphere.fog.median_radius_um", "um", {2.0, 25.0},
+                           "fog, droplets = lognormal: the droplets' median radius (the corona's first ring stands "
+                           "at about 5.14 / (2 pi r / wavelength) radians from the sun: 4.3 degrees for 6 um at "
+                           "550 nm)",
+                           [](Scene& s) -> double& { return s.atmosphere.fog.median_radius_um; }));
+    r.push_back(number_key("atmosphere.fog.radius_spread", "", {1.01, 1.5},
+                           "fog, droplets = lognormal: the geometric standard deviation of the droplets' radii (cut "
+                           "at 3 of them either side); the wider, the fewer and fainter the corona's rings",
+                           [](Scene& s) -> double& { return s.atmosphere.fog.radius_spread; }));
     // ice
     r.push_back(bool_key("atmosphere.ice.enabled",
                          "ice crystals near the ground (diamond dust) or in a cloud (cirrostratus): randomly oriented "

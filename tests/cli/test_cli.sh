@@ -231,11 +231,16 @@ fi
 expect_error polarisation_png_alone 2 "output.polarisation_png = true is not allowed" --set output.polarisation_png=true
 # The scenes of docs/bows-and-halos.md's pictures load (--print-scene: a plan would compute the
 # media's optics, seconds to a minute each; test_bows_reference renders such media).
-for scene in ice-halo cirrostratus-halo fogbow-and-glory glory rainbow rainbow-polarised rainbow-supernumeraries \
-  rainbow-shower; do
+for scene in ice-halo cirrostratus-halo fogbow-and-glory glory corona rainbow rainbow-polarised \
+  rainbow-supernumeraries rainbow-shower; do
   "$skyspec" render --scene "$(dirname "${BASH_SOURCE[0]}")/../../docs/images/$scene.toml" --print-scene \
     >"$work/stdout" 2>&1 && ok || bad "$scene.toml: $(cat "$work/stdout")"
 done
+# A cloud's droplets' keys are read only with droplets = "lognormal", and named with their range.
+expect_error fog_radius_unread 2 'atmosphere.fog.median_radius_um = 5 is not allowed: only with atmosphere.fog.enabled = true and atmosphere.fog.droplets = "lognormal"' \
+  --set atmosphere.fog.enabled=true --set atmosphere.fog.median_radius_um=5
+expect_error fog_radius_too_large 2 "atmosphere.fog.median_radius_um = 40 is not allowed: a number in um, >= 2 and <= 25" \
+  --set atmosphere.fog.enabled=true --set atmosphere.fog.droplets=lognormal --set atmosphere.fog.median_radius_um=40
 # A shower's keys are read only with extent = "shower", and named with their range.
 expect_error shower_keys_unread 2 'atmosphere.rain.shower_radius_m = 2000 is not allowed: only with atmosphere.rain.enabled = true and atmosphere.rain.extent = "shower"' \
   --set atmosphere.rain.enabled=true --set atmosphere.rain.shower_radius_m=2000

@@ -59,9 +59,9 @@ struct AirNumberDensity {
 AirNumberDensity air_number_density(const RayleighSpec& r);
 /// The surface's pressure over 101325 Pa (air.cpp): the air masses of the vertical column.
 double relative_surface_pressure(const RayleighSpec& r);
-/// One fog droplet's extinction cross-section at 550 nm, m^2 (fog.cpp: what the visibility is
-/// measured at).
-double fog_extinction_cross_section_550nm_m2();
+/// One fog droplet's extinction cross-section at 550 nm, m^2, averaged over the droplets of `fog`
+/// (fog.cpp: what the visibility is measured at).
+double fog_extinction_cross_section_550nm_m2(const FogSpec& fog = FogSpec{});
 /// The cosines the ice crystals' scattering function is tabulated at (ice.cpp): every 0.1 degree to
 /// 60 degrees (the halos' edges), every 0.5 degree beyond.
 const std::vector<double>& ice_scattering_cosines();
