@@ -144,6 +144,13 @@ Frame render_frame(const ViewRequest& request, TablesAtHand tables) {
     scene.render.scattering_orders = 1;
     frame.preview = "single scattering (the scattering tables are being built)";
   }
+  // A shower's own multiple scattering takes seconds per camera position and sun: previews leave
+  // it out (the tables' source alone).
+  if (!frame.preview.empty() && scene.render.scattering_orders >= 2 && scene.atmosphere.rain.enabled &&
+      scene.atmosphere.rain.extent == RainSpec::Extent::Shower && scene.render.shower_passes > 0) {
+    scene.render.shower_passes = 0;
+    frame.preview += kShowerPreview;
+  }
   const auto start = std::chrono::steady_clock::now();
   const SpectralImageBuffer image = render_to_memory(scene);
   frame.render_seconds = seconds_since(start);

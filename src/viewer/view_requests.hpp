@@ -23,6 +23,8 @@
 //                           kPreviewTableOrders orders (with_preview_tables), which the server builds
 //                           first, in a fraction of the scene's time; the coarse sky-view table too
 //   single scattering       neither is at hand yet: the orders above the first are missing
+// and, with a rain shower (atmosphere.rain.extent = "shower") and tables, kShowerPreview appended:
+// its own multiple scattering (render.shower_passes) left out, the tables' source alone.
 #pragma once
 
 #include <cstdint>
@@ -57,6 +59,8 @@ inline const std::vector<std::string> kViewerOwnedKeys = {"output.directory", "o
 /// The sky-view table of a preview: rows from the horizon to the zenith, azimuths, and the
 /// segments of its rays (render.view_segments).
 constexpr int kPreviewZenithSamples = 32, kPreviewAzimuthSamples = 16, kPreviewViewSegments = 32;
+/// What a preview of a shower adds to its description.
+constexpr const char* kShowerPreview = "; the shower's own multiple scattering left out";
 /// The scattering-order tables of a preview while the scene's are built (with_preview_tables):
 /// altitudes, sun angles, the harmonics' degree and the highest order, each at most these.
 constexpr int kPreviewTableAltitudes = 12, kPreviewTableSuns = 24, kPreviewTableDegree = 6, kPreviewTableOrders = 4;

@@ -252,6 +252,36 @@ BOOST_AUTO_TEST_CASE(the_preview_tables_come_first_and_frames_show_them_until_th
   BOOST_TEST(viewer::spectrum_at(request, pixel).at("preview").get<std::string>() == "");
 }
 
+// A shower's preview leaves its own multiple scattering out (its passes take seconds per camera
+// position and sun), says so, and is the scene rendered so; the exact frame has it.
+BOOST_AUTO_TEST_CASE(a_showers_preview_leaves_its_passes_out) {
+  SceneLoader l("default");
+  l.apply_toml(
+      "[camera]\ntype = \"perspective\"\nwidth = 8\nheight = 4\nlook_at_m = [0, 1000, 200]\n"
+      "[spectrum]\nwavelengths_nm = [450, 650]\n[render]\nscattering_orders = 2\nms_altitude_samples = 8\n"
+      "ms_sun_samples = 16\nms_angular_degree = 2\ncache_tables = false\nshower_passes = 1\n"
+      "[atmosphere.rain]\nenabled = true\nextent = \"shower\"\n",
+      "test");
+  const Scene scene = l.finish();
+  viewer::ViewRequest request;
+  request.scene = scene;
+  request.preview = true;
+  const viewer::Frame preview = viewer::render_frame(request, viewer::TablesAtHand::exact);
+  BOOST_TEST(preview.preview == std::string("coarse sky-view table") + viewer::kShowerPreview);
+  Scene expected = scene;
+  expected.render.sky_view_zenith_samples = viewer::kPreviewZenithSamples;
+  expected.render.sky_view_azimuth_samples = viewer::kPreviewAzimuthSamples;
+  expected.render.view_segments = viewer::kPreviewViewSegments;
+  expected.render.shower_passes = 0;
+  BOOST_TEST(preview.png == display_png_bytes(render_to_memory(expected), {}, PngCompression::Fastest));
+  // Without the shower's passes the rain is darker (its light scattered more than once missing).
+  expected.render.shower_passes = 1;
+  BOOST_TEST(preview.png != display_png_bytes(render_to_memory(expected), {}, PngCompression::Fastest));
+  // Without tables there is nothing to leave out.
+  BOOST_TEST(viewer::render_frame(request, viewer::TablesAtHand::none).preview.find(viewer::kShowerPreview) ==
+             std::string::npos);
+}
+
 BOOST_AUTO_TEST_CASE(an_export_never_replaces_a_file_and_its_toml_renders_the_same_files) {
   const auto base = small_base();
   test::ScratchFolder folder("viewer-export");
