@@ -112,11 +112,13 @@ TablesAtHand tables_at_hand(const Scene& scene) {
 
 void build_scattering_tables(const Scene& scene) {
   // A renderer of one pixel without a sky-view table: its construction is the tables' build (a
-  // polarised scene's are vector tables, so output.polarisation stays as asked). The preview's
-  // small tables first, for the frames shown while the scene's own are built.
+  // polarised scene's are vector tables, so output.polarisation stays as asked; a shower's passes,
+  // which are not in the tables, left out). The preview's small tables first, for the frames shown
+  // while the scene's own are built.
   const auto build = [](Scene s) {
     s.camera.width = s.camera.height = 1;
     s.render.sky_view_table = false;
+    s.render.shower_passes = 0;
     const SkyRenderer renderer(s);
   };
   const Scene preview = with_preview_tables(scene);
