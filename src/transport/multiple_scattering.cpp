@@ -661,6 +661,67 @@ void SourceTable::add(const SourceTable& o) {
   }
 }
 
+void SourceTable::set_blend(const std::vector<const SourceTable*>& members,
+                            const std::vector<std::vector<float>>& weights) {
+  if (members.empty() || members.size() != weights.size())
+    throw std::logic_error("SourceTable::set_blend: one weight row per member");
+  for (size_t m = 0; m < members.size(); ++m)
+    if (members[m]->n_h_ != n_h_ || members[m]->n_mu_ != n_mu_ || members[m]->n_c_ != n_c_ ||
+        members[m]->n_l_ != n_l_ || members[m]->n_p_ != n_p_ || weights[m].size() != static_cast<size_t>(n_l_))
+      throw std::logic_error("SourceTable::set_blend: a member of another shape");
+  prepared_ = false;
+  const size_t n = static_cast<size_t>(n_l_);
+  // rows of n wavelengths: out row = sum_m w_m * member row, over `rows` rows of `data`
+  const auto blend_rows = [&](float* out, size_t rows, auto data_of) {
+    for (size_t r = 0; r < rows; ++r) {
+      float* o = out + r * n;
+      std::fill(o, o + n, 0.0f);
+      for (size_t m = 0; m < members.size(); ++m) {
+        const float* in = data_of(*members[m]) + r * n;
+        const float* w = weights[m].data();
+        for (size_t l = 0; l < n; ++l) o[l] += w[l] * in[l];
+      }
+    }
+  };
+  const size_t entries = static_cast<size_t>(n_h_) * n_mu_;
+  blend_rows(j_.data(), entries * n_c_, [](const SourceTable& t) { return t.j_.data(); });
+  for (size_t e = 0; e < entries; ++e) {  // harmonic 0, the mean radiance, at each entry
+    float* mean = &j_[e * n_c_ * n];
+    for (size_t l = 0; l < n; ++l) mean[l] = std::max(mean[l], 0.0f);
+  }
+  blend_rows(g_.data(), static_cast<size_t>(n_mu_), [](const SourceTable& t) { return t.g_.data(); });
+  for (float& v : g_) v = std::max(v, 0.0f);
+  if (p_size() > 0) blend_rows(p_.data(), entries * n_p_, [](const SourceTable& t) { return t.p_.data(); });
+}
+
+void SourceTable::set_geometric_blend(const SourceTable& a, const SourceTable& b, float t) {
+  for (const SourceTable* x : {&a, &b})
+    if (x->n_h_ != n_h_ || x->n_mu_ != n_mu_ || x->n_c_ != n_c_ || x->n_l_ != n_l_ || x->n_p_ != n_p_)
+      throw std::logic_error("SourceTable::set_geometric_blend: a table of another shape");
+  prepared_ = false;
+  const size_t n = static_cast<size_t>(n_l_);
+  // The factor that turns the linear blend of a0 and b0 into the geometric one.
+  const auto factor = [t](float a0, float b0) {
+    if (!(a0 > 0.0f && b0 > 0.0f)) return 1.0f;
+    return std::exp((1.0f - t) * std::log(a0) + t * std::log(b0)) / ((1.0f - t) * a0 + t * b0);
+  };
+  const size_t entries = static_cast<size_t>(n_h_) * n_mu_;
+  for (size_t e = 0; e < entries; ++e)
+    for (size_t l = 0; l < n; ++l) {
+      const size_t mean = e * n_c_ * n + l;
+      const float f = factor(a.j_[mean], b.j_[mean]);
+      for (size_t c = 0; c < static_cast<size_t>(n_c_); ++c) {
+        const size_t i = mean + c * n;
+        j_[i] = f * ((1.0f - t) * a.j_[i] + t * b.j_[i]);
+      }
+      for (size_t c = 0; c < static_cast<size_t>(n_p_); ++c) {
+        const size_t i = (e * n_p_ + c) * n + l;
+        p_[i] = f * ((1.0f - t) * a.p_[i] + t * b.p_[i]);
+      }
+    }
+  for (size_t i = 0; i < g_.size(); ++i) g_[i] = factor(a.g_[i], b.g_[i]) * ((1.0f - t) * a.g_[i] + t * b.g_[i]);
+}
+
 void SourceTable::add_geometric_tail(const SourceTable& last, const SourceTable& before) {
   prepared_ = false;
   auto factor = [](float a, float b) {
@@ -1073,6 +1134,12 @@ std::uint64_t ScatteringOrders::cache_bytes(const MultipleScatteringSettings& st
   return bytes_per_harmonic(st, wavelengths) * harmonics;
 }
 
+std::size_t ScatteringOrders::bytes() const {
+  std::size_t b = sum_->bytes();
+  for (const auto& t : orders_) b += t->bytes();
+  return b;
+}
+
 const SourceTable& ScatteringOrders::order(int k) const {
   if (k < 2 || k > settings_.orders)
     throw Error("scattering order " + std::to_string(k) + " is not among the tables' orders 2-" +
@@ -1242,6 +1309,50 @@ std::unique_ptr<ScatteringOrders> ScatteringOrders::load(const std::string& path
   if (!f.read(reinterpret_cast<char*>(&checksum), sizeof checksum) || checksum != hashing.hash()) return nullptr;
   if (f.peek() != std::char_traits<char>::eof()) return nullptr;
   o->sum_->prepare();
+  return o;
+}
+
+std::unique_ptr<ScatteringOrders> ScatteringOrders::blended(const Blend& blend, const AtmosphereModel& atm,
+                                                            const MultipleScatteringSettings& settings) {
+  return blended(blend, Blend{}, 0.0f, atm, settings);
+}
+
+std::unique_ptr<ScatteringOrders> ScatteringOrders::blended(const Blend& lower, const Blend& upper, float t,
+                                                            const AtmosphereModel& own_atm,
+                                                            const MultipleScatteringSettings& settings) {
+  const auto t0 = std::chrono::steady_clock::now();
+  std::unique_ptr<ScatteringOrders> o(new ScatteringOrders(settings));
+  o->field_atmosphere_ = field_atmosphere_of(own_atm, settings);
+  const AtmosphereModel& atm = o->field_atmosphere_ ? *o->field_atmosphere_ : own_atm;
+  const auto moments = PhaseMoments::of(atm, settings.angular_degree);
+  // One table (degree -1: the moments' own), blended from each member's table of that kind.
+  const auto blend_of = [&](int degree, const SourceTable& (*of)(const ScatteringOrders&)) {
+    const auto make = [&] {
+      return std::make_unique<SourceTable>(atm.planet_radius_m(), atm.top_radius_m(), settings.altitude_samples,
+                                           settings.sun_samples, moments, degree, settings.polarisation);
+    };
+    const auto linear = [&](const Blend& b) {
+      std::vector<const SourceTable*> tables;
+      for (const ScatteringOrders* m : b.members) tables.push_back(&of(*m));
+      auto table = make();
+      table->set_blend(tables, b.weights);
+      return table;
+    };
+    std::unique_ptr<SourceTable> table = linear(lower);
+    if (!upper.members.empty()) {
+      const std::unique_ptr<SourceTable> high = linear(upper);
+      auto low = std::move(table);
+      table = make();
+      table->set_geometric_blend(*low, *high, t);
+    }
+    table->prepare();
+    return table;
+  };
+  if (settings.orders >= 2)
+    o->orders_.push_back(blend_of(degree_of_order(settings.angular_degree, 2),
+                                  [](const ScatteringOrders& m) -> const SourceTable& { return m.order(2); }));
+  o->sum_ = blend_of(-1, [](const ScatteringOrders& m) -> const SourceTable& { return m.sum(); });
+  o->build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return o;
 }
 

@@ -210,6 +210,17 @@ class SourceTable : public InScatteringSource {
   void add_geometric_tail(const SourceTable& last, const SourceTable& before);
   /// this += other (same altitudes, sun angles and wavelengths; other's degree at most this one's).
   void add(const SourceTable& other);
+  /// This table's values replaced by sum_m weights[m][l] members[m]'s at each wavelength l (tables
+  /// of this shape): the table of an atmosphere between the members' (ScatteringOrders::blended).
+  /// The mean radiance (harmonic 0) and the ground's irradiance are kept from going below zero,
+  /// where weights of both signs could take them in the planet's shadow. Needs prepare() after it.
+  void set_blend(const std::vector<const SourceTable*>& members, const std::vector<std::vector<float>>& weights);
+  /// This table's values replaced by a geometric blend of a and b (tables of this shape): at each
+  /// entry and wavelength, (1 - t) a + t b scaled by exp((1 - t) ln a_0 + t ln b_0) / ((1 - t) a_0 +
+  /// t b_0), a_0 and b_0 their mean radiances (harmonic 0; G's own values for G) where both are
+  /// positive, else left linear. Exact where the light falls exponentially from a to b, as it does
+  /// with the ozone column (the light's paths through the layer). Needs prepare() after it.
+  void set_geometric_blend(const SourceTable& a, const SourceTable& b, float t);
   /// Exact binary form (for the disk cache): shape, then J and G as raw floats.
   void write(std::ostream& out) const;
   /// Reads what write() wrote; false (and the table untouched) if the stream is short or the shape
@@ -218,6 +229,8 @@ class SourceTable : public InScatteringSource {
   /// Mean of the isotropic part of J (the mean radiance) over the table and the wavelengths (for
   /// diagnostics and tests).
   double mean_source() const;
+  /// The table's floats in bytes.
+  std::size_t bytes() const { return (j_size() + g_.size() + p_size()) * sizeof(float); }
 
  private:
   struct Blend;
@@ -327,6 +340,8 @@ class ScatteringOrders : public InScatteringSource {
   const SourceTable& order(int k) const;
   const SourceTable& sum() const { return *sum_; }
   double build_seconds() const { return build_seconds_; }
+  /// The bytes of the tables held (every order's after a build, order 2's and the sum's after a load).
+  std::size_t bytes() const;
 
   /// Seconds the constructor would take for these settings, without building them: order 2 and
   /// the look-ups of the higher orders are timed on a sample of entries with each order's
@@ -353,6 +368,22 @@ class ScatteringOrders : public InScatteringSource {
   /// missing, from another key or version, or damaged.
   static std::unique_ptr<ScatteringOrders> load(const std::string& path, const std::string& key,
                                                 const AtmosphereModel& atm, const MultipleScatteringSettings& settings);
+  /// The tables of `atm` as a blend of other atmospheres' tables (the members, built with the same
+  /// settings on the same wavelengths): at wavelength l, order 2's table and the sum are
+  /// sum_m weights[m][l] times member m's (SourceTable::set_blend). Right where each wavelength's
+  /// tables depend on the atmosphere through quantities of that wavelength alone that the weights
+  /// interpolate (render/table_family.hpp says which, and what the blend errs).
+  /// Members and their weights per wavelength ([member][wavelength]) of one linear blend.
+  struct Blend {
+    std::vector<const ScatteringOrders*> members;
+    std::vector<std::vector<float>> weights;
+  };
+  static std::unique_ptr<ScatteringOrders> blended(const Blend& blend, const AtmosphereModel& atm,
+                                                   const MultipleScatteringSettings& settings);
+  /// Two such blends combined geometrically, weighted 1 - t and t (SourceTable::set_geometric_blend).
+  static std::unique_ptr<ScatteringOrders> blended(const Blend& lower, const Blend& upper, float t,
+                                                   const AtmosphereModel& atm,
+                                                   const MultipleScatteringSettings& settings);
 
  private:
   explicit ScatteringOrders(const MultipleScatteringSettings& settings) : settings_(settings) {}

@@ -19,9 +19,9 @@ namespace {
 RecentValues<ScatteringOrders> g_recent(3, std::numeric_limits<std::size_t>::max(),
                                         [](const ScatteringOrders&) { return std::size_t{0}; });
 
-std::shared_ptr<const ScatteringOrders> load_or_build(const SingleScattering& integrator,
-                                                      const ScatteringTablesKey& key,
-                                                      const MultipleScatteringSettings& settings, bool use_disk_cache) {
+std::shared_ptr<const ScatteringOrders> load_or_build(const AtmosphereModel& atmosphere, const ScatteringTablesKey& key,
+                                                      const MultipleScatteringSettings& settings, bool use_disk_cache,
+                                                      const TablesBuild& build) {
   const std::filesystem::path dir = use_disk_cache ? table_cache_directory() : std::filesystem::path();
   const std::string path = dir.empty() ? std::string() : (dir / key.file_name()).string();
   // Only a regular file is read: a FIFO or a device under the cache file's name would block the
@@ -29,7 +29,7 @@ std::shared_ptr<const ScatteringOrders> load_or_build(const SingleScattering& in
   const std::uint64_t cap = path.empty() ? 0 : table_cache_cap_bytes();  // a bad value: refused before any work
   const auto load = [&]() -> std::unique_ptr<ScatteringOrders> {
     if (path.empty() || !is_regular_input(path)) return nullptr;
-    auto loaded = ScatteringOrders::load(path, key.inputs, integrator.atmosphere(), settings);
+    auto loaded = ScatteringOrders::load(path, key.inputs, atmosphere, settings);
     if (loaded) mark_cache_file_used(path);
     return loaded;
   };
@@ -39,7 +39,7 @@ std::shared_ptr<const ScatteringOrders> load_or_build(const SingleScattering& in
                                                                           : std::filesystem::path(path));
   if (claim.waited())
     if (auto loaded = load()) return loaded;
-  auto built = std::make_shared<const ScatteringOrders>(integrator, settings);
+  std::shared_ptr<const ScatteringOrders> built = build();
   if (!path.empty() && usable_cache_directory(dir)) {
     if (built->save(path, key.inputs))
       evict_table_cache(dir, cap, path);
@@ -55,8 +55,16 @@ std::shared_ptr<const ScatteringOrders> scattering_orders_for(const SingleScatte
                                                               const SunColumnTable::Resolution& sun_table,
                                                               const MultipleScatteringSettings& settings,
                                                               bool use_disk_cache) {
-  const ScatteringTablesKey key = scattering_tables_key(integrator.atmosphere(), sun_table, settings);
-  return g_recent.get(key.inputs, [&] { return load_or_build(integrator, key, settings, use_disk_cache); });
+  return scattering_orders_for(integrator.atmosphere(), sun_table, settings, use_disk_cache,
+                               [&] { return std::make_shared<const ScatteringOrders>(integrator, settings); });
+}
+
+std::shared_ptr<const ScatteringOrders> scattering_orders_for(const AtmosphereModel& atmosphere,
+                                                              const SunColumnTable::Resolution& sun_table,
+                                                              const MultipleScatteringSettings& settings,
+                                                              bool use_disk_cache, const TablesBuild& build) {
+  const ScatteringTablesKey key = scattering_tables_key(atmosphere, sun_table, settings);
+  return g_recent.get(key.inputs, [&] { return load_or_build(atmosphere, key, settings, use_disk_cache, build); });
 }
 
 bool scattering_orders_cached(const ScatteringTablesKey& key, bool use_disk_cache) {

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 
 #include "base/disk_cache.hpp"  // the folder, its cap and eviction
@@ -23,6 +24,17 @@ std::shared_ptr<const ScatteringOrders> scattering_orders_for(const SingleScatte
                                                               const SunColumnTable::Resolution& sun_table,
                                                               const MultipleScatteringSettings& settings,
                                                               bool use_disk_cache);
+
+/// Builds tables when neither this process nor the disk cache has them.
+using TablesBuild = std::function<std::shared_ptr<const ScatteringOrders>()>;
+
+/// The same for `atmosphere`, whose tables, when they must be built, build() makes (so that the
+/// integrator, and the sun table it needs, are made only then: render/table_family.cpp reads many
+/// atmospheres' tables, most of them cached).
+std::shared_ptr<const ScatteringOrders> scattering_orders_for(const AtmosphereModel& atmosphere,
+                                                              const SunColumnTable::Resolution& sun_table,
+                                                              const MultipleScatteringSettings& settings,
+                                                              bool use_disk_cache, const TablesBuild& build);
 
 /// Whether scattering_orders_for would take the tables of `key` from memory or from the disk
 /// cache rather than build them (a file of the key's name counts; its checksum is checked when it
