@@ -123,6 +123,10 @@ struct RenderSpec {
   double ms_forward_cone_deg = 5.0;
   /// A shower's own multiple scattering (RegionalSecondOrder's passes; 0: the tables' source alone).
   int shower_passes = 3;
+  /// Where the multiple-scattering tables come from: built for this atmosphere, or blended from
+  /// those of atmospheres on a grid of aerosol amounts and ozone columns (render/table_family.hpp).
+  enum class Tables { Exact, Interpolated };
+  Tables ms_tables = Tables::Exact;
   /// Keep the multiple-scattering tables on disk and reuse them for the same atmosphere.
   bool cache_tables = true;
   /// Interpolate images from a table of the sky over view directions (sky_view_table.hpp) rather

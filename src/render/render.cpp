@@ -6,9 +6,11 @@
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
+#include <iostream>
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -24,6 +26,7 @@
 #include "physics/sun_disk.hpp"
 #include "render/scene_tables.hpp"
 #include "render/sun_irradiance.hpp"
+#include "render/table_family.hpp"
 #include "scene/scene_terrain.hpp"
 #include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
@@ -53,6 +56,17 @@ SunColumnTable::MuBand sun_band(const Scene& s, const AtmosphereModel& atmospher
 
 // The scattering-order tables for orders 2 .. render.scattering_orders.
 std::shared_ptr<const ScatteringOrders> build_orders(const Scene& s, const SingleScattering& integrator) {
+  if (s.render.ms_tables == RenderSpec::Tables::Interpolated) {
+    std::string why_not;
+    if (auto blended = interpolated_scattering_orders(s, integrator.atmosphere(), &why_not)) return blended;
+    // Once per reason and process (a job's worker renders many such skies).
+    static std::mutex mutex;
+    static std::set<std::string> said;
+    const std::lock_guard<std::mutex> lock(mutex);
+    if (said.insert(why_not).second)
+      std::cerr << "skyspec: warning: render.ms_tables = \"interpolated\": " << why_not
+                << "; the tables are built for this atmosphere instead\n";
+  }
   return scattering_orders_for(integrator, sun_table_resolution(s), multiple_scattering_settings(s),
                                s.render.cache_tables);
 }

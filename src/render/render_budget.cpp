@@ -16,6 +16,7 @@
 #include "io/spectral_exr.hpp"
 #include "io/spectral_exr_encode.hpp"
 #include "render/scene_tables.hpp"
+#include "render/table_family.hpp"
 #include "skyspec/camera.hpp"
 #include "skyspec/display.hpp"
 #include "skyspec/error.hpp"
@@ -210,15 +211,20 @@ Scene scene_for_estimate(const Scene& scene) {
 }
 
 double estimate_scattering_orders_seconds(const Scene& scene) {
-  if (scene.render.scattering_orders < 2) return 0.0;
-  if (scattering_orders_cached(scattering_tables_key(scene), scene.render.cache_tables)) return 0.0;
-  tbb::task_arena arena(scene.render.threads > 0 ? scene.render.threads : tbb::this_task_arena::max_concurrency());
-  return arena.execute([&] {
-    const AtmosphereModel atmosphere(scene.atmosphere, make_wavelength_grid(scene), scene.render.cache_tables);
-    const auto table = SunColumnTable::shared(atmosphere, sun_table_resolution(scene), SunColumnTable::MuBand{});
+  // The tables the render builds: its own, or the grid's it interpolates (table_family.hpp), which
+  // share their settings and wavelengths, hence their cost: one is timed.
+  std::vector<Scene> builds;
+  for (Scene& s : scenes_of_tables(scene))
+    if (!scattering_orders_cached(scattering_tables_key(s), s.render.cache_tables)) builds.push_back(std::move(s));
+  if (builds.empty()) return 0.0;
+  const Scene& first = builds.front();
+  tbb::task_arena arena(first.render.threads > 0 ? first.render.threads : tbb::this_task_arena::max_concurrency());
+  return static_cast<double>(builds.size()) * arena.execute([&] {
+    const AtmosphereModel atmosphere(first.atmosphere, make_wavelength_grid(first), first.render.cache_tables);
+    const auto table = SunColumnTable::shared(atmosphere, sun_table_resolution(first), SunColumnTable::MuBand{});
     const TableSunColumns columns(*table);
-    const SingleScattering integrator(atmosphere, columns, IntegratorSettings{scene.render.view_segments});
-    return ScatteringOrders::estimate_build_seconds(integrator, multiple_scattering_settings(scene));
+    const SingleScattering integrator(atmosphere, columns, IntegratorSettings{first.render.view_segments});
+    return ScatteringOrders::estimate_build_seconds(integrator, multiple_scattering_settings(first));
   });
 }
 
@@ -229,8 +235,12 @@ std::uint64_t scattering_tables_file_bytes(const Scene& scene, const ScatteringT
 
 std::uint64_t estimate_table_cache_bytes(const Scene& scene) {
   if (scene.render.scattering_orders < 2 || !scene.render.cache_tables || table_cache_directory().empty()) return 0;
-  const auto key = scattering_tables_key(scene);
-  return scattering_orders_cached(key, true) ? 0 : scattering_tables_file_bytes(scene, key);
+  std::uint64_t bytes = 0;
+  for (const Scene& s : scenes_of_tables(scene)) {
+    const auto key = scattering_tables_key(s);
+    if (!scattering_orders_cached(key, true)) bytes += scattering_tables_file_bytes(s, key);
+  }
+  return bytes;
 }
 
 double estimate_frame_table_seconds(const Scene& scene, const SkyRenderer& estimate_renderer) {

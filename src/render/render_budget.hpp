@@ -116,14 +116,16 @@ double measure_render_seconds(const SkyRenderer& renderer, const RenderPlan& pla
 /// table of at most 32 x 32 entries. The cost of a pixel or a sky-view entry measured on its
 /// renderer is that of the render's (a look-up in tables of the same degree and wavelengths).
 Scene scene_for_estimate(const Scene& scene);
-/// Seconds to build the scene's scattering-order tables (render.scattering_orders >= 2), or 0
-/// when they are cached (in this process or on disk): ScatteringOrders::estimate_build_seconds,
-/// which builds and times 16 entries of one order. Builds the scene's sun table to do so.
+/// Seconds to build the scene's scattering-order tables (render.scattering_orders >= 2), or those
+/// of the grid's atmospheres it interpolates (scenes_of_tables), 0 for tables cached (in this
+/// process or on disk): ScatteringOrders::estimate_build_seconds, which builds and times 16
+/// entries of one order. Builds the scene's sun table to do so.
 double estimate_scattering_orders_seconds(const Scene& scene);
 /// The size of the cache file of the scene's scattering-order tables, named by `key`.
 std::uint64_t scattering_tables_file_bytes(const Scene& scene, const ScatteringTablesKey& key);
-/// Bytes the disk cache gains when the scene's scattering-order tables are built: their file, or 0
-/// when they are cached, single scattering is asked for or render.cache_tables is false.
+/// Bytes the disk cache gains when the scene's scattering-order tables are built: their files (the
+/// grid's, scenes_of_tables, for interpolated tables), or 0 when they are cached, single
+/// scattering is asked for or render.cache_tables is false.
 std::uint64_t estimate_table_cache_bytes(const Scene& scene);
 /// Seconds to build what every frame builds anew, measured on `estimate_renderer` (built from
 /// scene_for_estimate(scene)): its own construction (the atmosphere on the grid, the sun's

@@ -672,6 +672,18 @@ const std::vector<KeyDef>& registry() {
                            "angle is cut off and travels with the unscattered light (delta-M; single scattering "
                            "keeps the uncut phase function; 0: nothing cut)",
                            [](Scene& s) -> double& { return s.render.ms_forward_cone_deg; }));
+    r.push_back(choice_key(
+        "render.ms_tables", {"exact", "interpolated"},
+        "exact: the multiple-scattering tables built for this atmosphere; interpolated: blended, per wavelength, "
+        "from the cached tables of atmospheres on a grid of Angstrom aerosol amounts and ozone columns (a dataset "
+        "of many atmospheres shares their builds; docs/jobs.md measures what it errs; an atmosphere off the grid "
+        "gets exact tables)",
+        [](Scene& s, const std::string& v) {
+          s.render.ms_tables = v == "interpolated" ? RenderSpec::Tables::Interpolated : RenderSpec::Tables::Exact;
+        },
+        [](const Scene& s) {
+          return std::string(s.render.ms_tables == RenderSpec::Tables::Interpolated ? "interpolated" : "exact");
+        }));
     r.push_back(bool_key("render.cache_tables",
                          "keep multiple-scattering tables (and a microphysical aerosol's optics) on disk "
                          "($SKYSPEC_CACHE_DIR, $XDG_CACHE_HOME/skyspec or ~/.cache/skyspec) and reuse them for the "

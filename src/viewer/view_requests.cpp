@@ -10,12 +10,12 @@
 #include "colour/display_pipeline.hpp"
 #include "render/render_budget.hpp"
 #include "render/scene_tables.hpp"
+#include "render/table_family.hpp"
 #include "scene/key_registry.hpp"
 #include "skyspec/camera.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/render.hpp"
 #include "skyspec/units.hpp"
-#include "transport/scattering_tables_cache.hpp"
 
 namespace skyspec::viewer {
 namespace {
@@ -91,8 +91,11 @@ ViewRequest parse_view_request(const ViewerBase& base, const Query& query) {
 }
 
 bool scattering_tables_ready(const Scene& scene) {
-  if (scene.render.scattering_orders < 2) return true;
-  return scattering_orders_cached(skyspec::scattering_tables_key(scene), scene.render.cache_tables);
+  // Interpolated tables are blended in the background like a build (a frame does not wait for the
+  // grid's tables to be read and blended): ready once this process holds the blend.
+  if (scene.render.ms_tables == RenderSpec::Tables::Interpolated && table_family(scene))
+    return interpolated_tables_in_memory(scene);
+  return scene_tables_cached(scene);
 }
 
 Scene with_preview_tables(const Scene& scene) {
@@ -102,6 +105,7 @@ Scene with_preview_tables(const Scene& scene) {
   r.ms_sun_samples = std::min(r.ms_sun_samples, kPreviewTableSuns);
   r.ms_angular_degree = std::min(r.ms_angular_degree, kPreviewTableDegree);
   r.scattering_orders = std::min(r.scattering_orders, kPreviewTableOrders);
+  r.ms_tables = RenderSpec::Tables::Exact;  // one small build, not a grid of them
   return s;
 }
 
@@ -122,7 +126,8 @@ void build_scattering_tables(const Scene& scene) {
     const SkyRenderer renderer(s);
   };
   const Scene preview = with_preview_tables(scene);
-  if (!scattering_tables_ready(preview)) build(preview);
+  // Not where the scene's own tables are only to be read or blended: that is quicker.
+  if (!scattering_tables_ready(preview) && !scene_tables_cached(scene)) build(preview);
   if (!scattering_tables_ready(scene)) build(scene);
 }
 

@@ -105,7 +105,8 @@ TablesAtHand tables_at_hand(const Scene& scene);
 Frame render_frame(const ViewRequest& request, TablesAtHand tables = TablesAtHand::exact);
 
 /// Whether the scene's scattering-order tables are in memory or in the disk cache (true for single
-/// scattering): a frame of it is then exact without a table build.
+/// scattering), or, with render.ms_tables = "interpolated", blended in this process already: a frame
+/// of it is then exact without a table build or blend.
 bool scattering_tables_ready(const Scene& scene);
 /// The scene with the preview's smaller scattering-order tables (its render.ms_altitude_samples,
 /// ms_sun_samples, ms_angular_degree and scattering_orders at most kPreviewTable*).

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "render/table_family.hpp"
 #include "scratch_folder.hpp"
 #include "skyspec/error.hpp"
 #include "skyspec/render.hpp"
@@ -250,6 +251,30 @@ BOOST_AUTO_TEST_CASE(the_preview_tables_come_first_and_frames_show_them_until_th
   BOOST_TEST((viewer::tables_at_hand(scene) == viewer::TablesAtHand::exact));
   BOOST_TEST(viewer::render_frame(request, viewer::tables_at_hand(scene)).preview == "");
   BOOST_TEST(viewer::spectrum_at(request, pixel).at("preview").get<std::string>() == "");
+}
+
+// Interpolated tables (render.ms_tables) are blended in the background like a build: not at hand
+// before it although the grid's tables are, then at hand, and the preview's small tables are not
+// built first (reading and blending the grid's is quicker).
+BOOST_AUTO_TEST_CASE(interpolated_tables_are_blended_in_the_background) {
+  SceneLoader l("default");
+  l.apply_toml(
+      "[camera]\nwidth = 8\nheight = 8\n[render]\nscattering_orders = 2\nms_altitude_samples = 8\n"
+      "ms_sun_samples = 24\nms_angular_degree = 4\ncache_tables = false\nms_tables = \"interpolated\"\n"
+      "[atmosphere.mie]\nscattering_per_m = 1.9341e-05\n",
+      "test");
+  const Scene scene = l.finish();
+  BOOST_TEST_REQUIRE(table_family(scene).has_value());
+  for (const Scene& member : scenes_of_tables(scene)) scene_scattering_orders(member);  // the grid's, in memory
+  BOOST_TEST(scene_tables_cached(scene));
+  BOOST_TEST(!viewer::scattering_tables_ready(scene));
+  BOOST_TEST((viewer::tables_at_hand(scene) == viewer::TablesAtHand::none));
+  viewer::build_scattering_tables(scene);
+  BOOST_TEST((viewer::tables_at_hand(scene) == viewer::TablesAtHand::exact));
+  BOOST_TEST(!viewer::scattering_tables_ready(viewer::with_preview_tables(scene)));
+  viewer::ViewRequest request;
+  request.scene = scene;
+  BOOST_TEST(viewer::render_frame(request, viewer::tables_at_hand(scene)).preview == "");
 }
 
 // A shower's preview leaves its own multiple scattering out (its passes take seconds per camera
