@@ -80,6 +80,21 @@ def _write_failure(task_directory, task, error):
     os.replace(tmp, path)
 
 
+def build_table_set(skyspec, job, out, index, threads):
+    """One Dask task: builds set `index` of the scattering-order tables the job's tasks use into the
+    disk cache (skyspec job run --table-set), so that the workers build different sets at once
+    before the chunks read them. Returns an error text, or None."""
+    cmd = [skyspec, "job", "run", job, "--out", out, "--table-set", str(index), "--threads", str(threads), "--quiet",
+           "--stop-with-parent"]
+    env = dict(os.environ)
+    env.pop("MALLOC_TRIM_THRESHOLD_", None)
+    p = subprocess.run(cmd, capture_output=True, text=True, env=env)
+    if p.returncode != 0:
+        tail = p.stderr.strip().splitlines()[-3:]
+        return "table set %d: exit code %d%s" % (index, p.returncode, (": " + " / ".join(tail)) if tail else "")
+    return None
+
+
 def run_chunk(skyspec, job, out, task_directory, first, last, threads):
     """One Dask task: tasks [first, last) of the job in a child process. Returns, per task, its
     status, files (paths, sizes, SHA-256) and error: never pixels."""
@@ -114,8 +129,8 @@ def run_chunk(skyspec, job, out, task_directory, first, last, threads):
 class _Progress:
     """done/total, failures and an ETA on stderr; silent when stderr is not a terminal or quiet."""
 
-    def __init__(self, total, quiet):
-        self.total, self.done, self.failed = total, 0, 0
+    def __init__(self, total, quiet, what="tasks"):
+        self.total, self.done, self.failed, self.what = total, 0, 0, what
         self.active = not quiet and sys.stderr.isatty()
         self.start = time.monotonic()
 
@@ -129,8 +144,8 @@ class _Progress:
         width = 30
         filled = int(width * self.done / max(1, self.total))
         eta_text = "--" if eta != eta else "%dm%02ds" % divmod(int(eta), 60)
-        sys.stderr.write("\rjob [%s%s] %d/%d tasks, %d failed, ETA %s " % (
-            "#" * filled, "." * (width - filled), self.done, self.total, self.failed, eta_text))
+        sys.stderr.write("\rjob [%s%s] %d/%d %s, %d failed, ETA %s " % (
+            "#" * filled, "." * (width - filled), self.done, self.total, self.what, self.failed, eta_text))
         sys.stderr.flush()
 
     def finish(self):
@@ -177,6 +192,19 @@ def run_job(job, *, out=None, scheduler=None, workers=None, threads=1, skyspec=N
     failures = []
     try:
         run = uuid.uuid4().hex[:12]  # keys of this run only: another run on a shared cluster never shares them
+        # The tables first, a task per set not cached (a set failing here is built, or fails, in the
+        # tasks that use it).
+        builds = [client.submit(build_table_set, skyspec, job, out, k, threads,
+                                key="skyspec-%s-%s-tables-%d" % (plan["name"], run, k), pure=False)
+                  for k in plan.get("table_sets", [])]
+        tables = _Progress(len(builds), quiet or not builds, "table sets built")
+        for future in as_completed(builds):
+            error = future.result()
+            if error:
+                failures.append(error)
+            tables.update(1, error is not None)
+        tables.finish()
+        progress = _Progress(plan["tasks"], quiet)
         futures = [client.submit(run_chunk, skyspec, job, out, plan["task_directory"], a, b, threads,
                                  key="skyspec-%s-%s-%d-%d" % (plan["name"], run, a, b), pure=False)
                    for a, b in plan["chunks"]]

@@ -50,6 +50,7 @@ struct JobOptions {
   // Optional, not empty strings: `--shard ''` (an unset variable in a Slurm array script) is an
   // error, not "no shard", which would run every task on every node.
   std::optional<std::string> shard, tasks;
+  std::optional<int> table_set;
   std::string scheduler;
   int threads = 0, workers = 0;
   bool quiet = false, no_collect = false, stop_with_parent = false;
@@ -85,7 +86,8 @@ int run_plan(const JobOptions& o) {
                         {"output", plan.job.output_directory.string()},
                         {"task_directory", plan.task_directory().string()},
                         {"tasks_per_chunk", plan.job.tasks_per_chunk},
-                        {"chunks", nlohmann::json::array()}};
+                        {"chunks", nlohmann::json::array()},
+                        {"table_sets", job_table_sets_to_build(plan)}};
     for (int k = 0; k < plan.chunk_count(); ++k) j["chunks"].push_back({plan.chunk(k).first, plan.chunk(k).last});
     std::cout << j.dump() << "\n";
     return kExitOk;
@@ -210,7 +212,9 @@ int run_job(const JobOptions& o) {
   if (o.workers < 0 || o.workers > 4096)
     throw InputError("--workers", std::to_string(o.workers), "0 (one per core) to 4096");
   if (o.shard && o.tasks) throw InputError("--tasks", "\"" + *o.tasks + "\"", "either --shard or --tasks, not both");
-  if (!o.shard && !o.tasks) {
+  if (o.table_set && (o.shard || o.tasks))
+    throw InputError("--table-set", std::to_string(*o.table_set), "no --shard or --tasks (it runs no task)");
+  if (!o.shard && !o.tasks && !o.table_set) {
     if (o.no_collect)
       throw InputError("--no-collect", "(given)", "--shard or --tasks (the Dask driver always collects)");
     load_plan(o);  // a job with an error is refused here, before Python starts
@@ -226,6 +230,18 @@ int run_job(const JobOptions& o) {
     if (getppid() != parent) throw Interrupted(SIGTERM);
   }
   const JobPlan plan = load_plan(o);
+  if (o.table_set) {
+    const auto start = std::chrono::steady_clock::now();
+    const bool built = build_job_table_set(plan, *o.table_set, o.threads);
+    if (!o.quiet)
+      std::cout << "table set " << *o.table_set << ": "
+                << (built ? "built in " +
+                                format_duration(
+                                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count())
+                          : std::string("cached already"))
+                << "\n";
+    return kExitOk;
+  }
   if (o.tasks)
     return run_here(o, plan, parse_task_range(*o.tasks, static_cast<int>(plan.tasks.size()), "--tasks"), false);
   const auto [i, n] = parse_shard(*o.shard, "--shard");
@@ -284,6 +300,9 @@ Command add_job_command(CLI::App& app) {
   run->add_option("--scheduler", o->scheduler, "address of a running Dask scheduler (default: a local cluster)");
   run->add_option("--workers", o->workers, "local cluster: worker processes (default: the cores)");
   run->add_option("--threads", o->threads, "threads per render (default: all cores here; 1 per worker under Dask)");
+  run->add_option("--table-set", o->table_set,
+                  "build only the K-th set of scattering-order tables the job's tasks use into the disk cache, here "
+                  "(skyspec job plan JOB --json lists those not cached; the Dask driver runs each as a task)");
   run->add_flag("--no-collect", o->no_collect, "with --shard 1/1: do not write the manifest and tables");
   run->add_flag("--stop-with-parent", o->stop_with_parent,
                 "stop (as on SIGTERM) when the process that started this one ends (for drivers such as Dask's)");

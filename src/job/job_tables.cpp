@@ -5,9 +5,13 @@
 #include <tuple>
 #include <utility>
 
+#include <tbb/task_arena.h>
+
 #include "render/broadband_irradiance.hpp"
 #include "render/render_budget.hpp"
 #include "render/scene_tables.hpp"
+#include "render/table_family.hpp"
+#include "skyspec/error.hpp"
 #include "transport/scattering_tables_cache.hpp"
 
 namespace skyspec {
@@ -54,14 +58,8 @@ std::string JobTableEstimate::describe() const {
   return text;
 }
 
-JobTableEstimate estimate_job_tables(const JobPlan& plan) {
-  JobTableEstimate out;
+std::vector<JobTableSet> job_table_sets(const JobPlan& plan) {
   // One scene per (site, parameter set): the tables do not depend on the date-time or the sun.
-  struct DistinctSet {
-    Scene scene;              // the first (task or broadband run) scene that uses it
-    ScatteringTablesKey key;  // (an atmosphere built on the grid: computed once per set)
-    int chunks = 0;           // the chunks (processes) that use it, each building it without a disk cache
-  };
   // A task's scenes: its own, and with irradiance.broadband in an irradiance job the broadband
   // irradiance's runs (broadband_irradiance.hpp), each with tables of its own.
   const auto scenes_of = [&plan](const JobTask& task) {
@@ -71,26 +69,59 @@ JobTableEstimate estimate_job_tables(const JobPlan& plan) {
     return scenes;
   };
   std::map<std::pair<int, int>, std::vector<std::pair<std::uint64_t, bool>>> keys_of;  // -> (key hash, disk cache on)
-  std::map<std::uint64_t, DistinctSet> sets;
+  std::map<std::uint64_t, JobTableSet> sets;
   std::set<std::pair<int, std::uint64_t>> chunk_sets;  // (chunk, set) without a disk cache
   for (const JobTask& task : plan.tasks) {
     const auto pair = std::make_pair(task.site, task.combination);
     auto found = keys_of.find(pair);
     if (found == keys_of.end()) {
       found = keys_of.emplace(pair, std::vector<std::pair<std::uint64_t, bool>>{}).first;
-      for (Scene& scene : scenes_of(task)) {
-        if (scene.render.scattering_orders < 2) continue;
-        ScatteringTablesKey key = scattering_tables_key(scene);
-        found->second.emplace_back(key.hash, scene.render.cache_tables);
-        sets.emplace(key.hash, DistinctSet{std::move(scene), std::move(key)});
-      }
+      for (const Scene& task_scene : scenes_of(task))
+        for (Scene& scene : scenes_of_tables(task_scene)) {  // its own, or the grid's it interpolates
+          ScatteringTablesKey key = scattering_tables_key(scene);
+          found->second.emplace_back(key.hash, scene.render.cache_tables);
+          sets.emplace(key.hash, JobTableSet{std::move(scene), std::move(key)});
+        }
     }
     for (const auto& [hash, disk] : found->second)
       if (!disk && chunk_sets.emplace(task.index / plan.job.tasks_per_chunk, hash).second) ++sets.at(hash).chunks;
   }
+  std::vector<JobTableSet> out;
+  for (auto& [hash, set] : sets) out.push_back(std::move(set));
+  return out;
+}
+
+std::vector<int> job_table_sets_to_build(const JobPlan& plan) {
+  const std::vector<JobTableSet> sets = job_table_sets(plan);
+  std::vector<int> out;
+  for (size_t k = 0; k < sets.size(); ++k)
+    if (sets[k].scene.render.cache_tables && !scattering_orders_cached(sets[k].key, true))
+      out.push_back(static_cast<int>(k));
+  return out;
+}
+
+bool build_job_table_set(const JobPlan& plan, int index, int threads) {
+  const std::vector<JobTableSet> sets = job_table_sets(plan);
+  if (index < 0 || index >= static_cast<int>(sets.size()))
+    throw InputError("--table-set", std::to_string(index),
+                     sets.empty() ? std::string("no value: the job's tasks use no scattering-order tables")
+                                  : "a set from 0 to " + std::to_string(sets.size() - 1) +
+                                        " (skyspec job plan JOB --json lists those to build)");
+  const JobTableSet& set = sets[static_cast<size_t>(index)];
+  if (scattering_orders_cached(set.key, set.scene.render.cache_tables)) return false;
+  Scene scene = set.scene;
+  if (threads > 0) scene.render.threads = threads;
+  tbb::task_arena arena(scene.render.threads > 0 ? scene.render.threads : tbb::this_task_arena::max_concurrency());
+  arena.execute([&] { scene_scattering_orders(scene); });
+  return true;
+}
+
+JobTableEstimate estimate_job_tables(const JobPlan& plan) {
+  JobTableEstimate out;
+  const std::vector<JobTableSet> sets = job_table_sets(plan);
   out.distinct = static_cast<int>(sets.size());
   std::map<BuildCost, double> seconds_of;  // measured once per distinct cost
-  for (const auto& [hash, set] : sets) {
+  for (const JobTableSet& set : sets) {
     const Scene& scene = set.scene;
     if (scattering_orders_cached(set.key, scene.render.cache_tables)) {
       ++out.cached;

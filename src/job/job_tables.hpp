@@ -13,8 +13,10 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "job/job_plan.hpp"
+#include "transport/scattering_tables_key.hpp"
 
 namespace skyspec {
 
@@ -35,5 +37,27 @@ struct JobTableEstimate {
 /// The estimate for every task of the plan (builds a few sun tables and times 16 entries per
 /// distinct cost).
 JobTableEstimate estimate_job_tables(const JobPlan& plan);
+
+/// One distinct set of scattering-order tables among the plan's tasks.
+struct JobTableSet {
+  Scene scene;              ///< the first scene that uses it (a task's, a broadband run's or a grid atmosphere's)
+  ScatteringTablesKey key;  ///< its cache key
+  int chunks = 0;           ///< the chunks (processes) that use it, each building it without a disk cache
+};
+
+/// The plan's distinct sets, in a fixed order (by key): a task's scene's own tables, those of its
+/// broadband irradiance's runs, or, with render.ms_tables = "interpolated", the grid's atmospheres
+/// its tables are blended from (render/table_family.hpp).
+std::vector<JobTableSet> job_table_sets(const JobPlan& plan);
+
+/// The indices in job_table_sets of the sets a run should build before its tasks: not cached, and
+/// kept in the disk cache once built (render.cache_tables). The Dask driver builds each as a task of
+/// its own (`skyspec job run --table-set K`), so that the workers build different sets at once.
+std::vector<int> job_table_sets_to_build(const JobPlan& plan);
+
+/// Builds set `index` of job_table_sets (with `threads` threads, 0: all cores) into the disk cache,
+/// unless it is cached; returns whether it built it. Throws InputError naming --table-set for an
+/// index out of range.
+bool build_job_table_set(const JobPlan& plan, int index, int threads);
 
 }  // namespace skyspec

@@ -121,6 +121,29 @@ printf '[job]\nname = "suns"\nproduce = ["exr"]\ntasks_per_chunk = 1\n[scene]\n%
 "$skyspec" job plan "$work/suns.toml" --out "$work/suns" >"$work/plan.txt" 2>&1
 grep -q "^tables: 1 distinct set of scattering-order tables (0 cached): 3 builds, about .*, not kept (render.cache_tables = false)$" \
   "$work/plan.txt" && ok || bad "a sun sweep without the cache: $(cat "$work/plan.txt")"
+
+# Interpolated tables (render.ms_tables, render/table_family.hpp): two random aerosol amounts read
+# the tables of the grid's atmospheres about them, which the plan counts and lists (--json) and
+# `job run --table-set K` builds, one set per call (the Dask driver's tasks); then nothing is left
+# to build, and the job renders from them.
+printf '[job]\nname = "grid"\nproduce = ["exr"]\n[scene]\n%s\nrender.ms_tables = "interpolated"\n[random]\nsamples = 2\nseed = 1\n[random.axes]\n"atmosphere.mie.scattering_per_m" = { min = 1e-5, max = 1e-4 }\n' \
+  "$tables" >"$work/grid.toml"
+export SKYSPEC_CACHE_DIR="$work/grid-cache"
+"$skyspec" job plan "$work/grid.toml" --out "$work/grid" >"$work/plan.txt" 2>&1
+sets=$("$skyspec" job plan "$work/grid.toml" --out "$work/grid" --json | /usr/bin/python3 -c 'import json, sys; print(" ".join(map(str, json.load(sys.stdin)["table_sets"])))')
+count=$(echo "$sets" | wc -w)
+[ "$count" -ge 4 ] && grep -q "^tables: $count distinct sets of scattering-order tables (0 cached): $count builds" "$work/plan.txt" \
+  && ok || bad "interpolated tables: the plan lists '$sets': $(cat "$work/plan.txt")"
+for k in $sets; do "$skyspec" job run "$work/grid.toml" --out "$work/grid" --table-set "$k" --threads 2 -q || bad "--table-set $k failed"; done
+"$skyspec" job plan "$work/grid.toml" --out "$work/grid" >"$work/plan.txt" 2>&1
+grep -q "^tables: $count distinct sets of scattering-order tables ($count cached): nothing to build$" "$work/plan.txt" && ok \
+  || bad "after --table-set, sets left to build: $(cat "$work/plan.txt")"
+"$skyspec" job run "$work/grid.toml" --out "$work/grid" --shard 1/1 -q 2>"$work/stderr" && [ "$(ls "$work/grid-cache" | grep -c '^orders-')" = "$count" ] \
+  && ! grep -q "warning" "$work/stderr" && ok || bad "the interpolated job built more tables or warned: $(cat "$work/stderr")"
+run_expecting_error table_set_range 2 "--table-set = 99 is not allowed: a set from 0 to $((count - 1))" "$work/none" \
+  "$skyspec" job run "$work/grid.toml" --out "$work/grid" --table-set 99
+run_expecting_error table_set_shard 2 "--table-set = 0 is not allowed: no --shard or --tasks" "$work/none" \
+  "$skyspec" job run "$work/grid.toml" --out "$work/grid" --table-set 0 --shard 1/1
 fi
 
 finish budget
