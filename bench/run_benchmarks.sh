@@ -9,6 +9,8 @@
 #             g++ -O3 -march=native -std=c++17. When it does not exist the ratio columns are skipped.
 # --out       working folder for renders and logs (default: /tmp/skyspec-bench)
 #
+# DATASET=0 leaves out the dataset of 200 skies (bench/dataset_skies.sh, about 10 minutes more).
+#
 # Times are process wall-clock times (bash's EPOCHREALTIME around the command, to the millisecond;
 # peak memory is GNU time's maximum resident set size, /usr/bin/time -f %M), including start-up
 # and writing the output (skyspec: the spectral EXR, no PNG; baseline: its PFM). The baseline and
@@ -234,8 +236,16 @@ timed "ref2-c1-2" "$skyspec" render -q --no-png --out "$out" --name "ref2-c1-2" 
   "${REF[@]}" --view-segments 512
 printf 'refcheck\tref2-c1-2\treference check\t2\n' >> "$manifest"
 
+echo "dataset (issue 37's target 4: 200 random atmospheres as a job on 2 workers; bench/dataset_skies.sh) ..."
+if [[ "${DATASET:-1}" != 0 ]]; then
+  "$here/dataset_skies.sh" --skyspec "$skyspec" --out "$out/dataset" > "$out/dataset.txt"
+  grid=(--interpolated-cache "$out/dataset/cache-interpolated")
+else
+  echo "(skipped: DATASET=0)" > "$out/dataset.txt"; grid=()
+fi
+
 echo "viewer (skyspec view over HTTP: frames with the sun moved, the atmosphere changed) ..."
-/usr/bin/python3 "$here/viewer_frames.py" "$skyspec" > "$out/viewer.txt"
+/usr/bin/python3 "$here/viewer_frames.py" "$skyspec" "${grid[@]}" > "$out/viewer.txt"
 
 echo "docs figures (bench/docs_figures.sh: figures of docs/ too slow for the test command) ..."
 "$here/docs_figures.sh" "$skyspec" > "$out/docs_figures.txt" || true
@@ -243,6 +253,8 @@ echo "docs figures (bench/docs_figures.sh: figures of docs/ too slow for the tes
 echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
 echo
 /usr/bin/python3 "$here/bench_stats.py" "$out"
+echo
+cat "$out/dataset.txt"
 echo
 cat "$out/viewer.txt"
 echo
