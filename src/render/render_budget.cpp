@@ -103,8 +103,15 @@ RenderPlan RenderPlan::for_scene(const Scene& scene, const DisplaySettings& disp
   p.stokes_components = scene.output.polarisation ? 4 : 1;
   p.png_bit_depth = display.png_bit_depth;
   p.directory = scene.output.directory;
-  if (scene.render.scattering_orders >= 2)
-    p.table_bytes = ScatteringOrders::table_bytes(multiple_scattering_settings(scene), p.wavelengths);
+  if (scene.render.scattering_orders >= 2) {
+    const MultipleScatteringSettings ms = multiple_scattering_settings(scene);
+    p.table_bytes = ScatteringOrders::table_bytes(ms, p.wavelengths);
+    // Interpolated tables: the grid's, as read from the cache, held while they are blended (and
+    // kept after, for the next sky), and the blend itself, besides a build's.
+    if (scene.render.ms_tables == RenderSpec::Tables::Interpolated)
+      if (const std::optional<TableFamily> family = table_family(scene))
+        p.table_bytes += (family->members().size() + 1) * ScatteringOrders::cache_bytes(ms, p.wavelengths);
+  }
   return p;
 }
 

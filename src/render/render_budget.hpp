@@ -63,7 +63,8 @@ struct RenderPlan {
   /// per frame, and to peak_memory_bytes() per pixel. 0 for render and timelapse.
   std::uint64_t extra_output_bytes = 0;
   double extra_bytes_per_pixel = 0.0;
-  /// The multiple-scattering tables held while rendering (ScatteringOrders::table_bytes).
+  /// The multiple-scattering tables held while rendering (ScatteringOrders::table_bytes; with
+  /// interpolated tables also the grid's and the blend, render/table_family.hpp).
   std::uint64_t table_bytes = 0;
 
   /// The plan of render_scene_to_files for a scene: its size, grid, outputs and directory;
