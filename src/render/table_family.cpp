@@ -24,8 +24,8 @@ constexpr int kStencil = 4;  // cubic Lagrange in the aerosol's coefficient
 // The coordinate the aerosol's weights are cubic in: x = ln(beta + kAerosolOffset_per_m), in
 // which the doubling amounts are nearly evenly spaced. The tables bend most with the amount at
 // small amounts and near the terminator, where the sun's light crosses an air mass of 30 and more
-// and dims as exp(-m tau): a cubic in beta itself erred up to 2 % between the amounts there, one in
-// x 0.1 % (docs/jobs.md).
+// and dims as exp(-m tau): there a cubic in x errs far less than one in beta itself (docs/jobs.md,
+// "Tables shared between atmospheres", has both).
 double aerosol_coordinate(double beta_per_m) { return std::log(beta_per_m + kAerosolOffset_per_m); }
 
 // The Lagrange weights of the kStencil nodes from `first` on at beta, in aerosol_coordinate: sum_k

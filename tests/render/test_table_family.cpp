@@ -140,9 +140,9 @@ BOOST_AUTO_TEST_CASE(a_scene_between_the_grids_atmospheres_gets_tables_close_to_
       const Scene s = small_scene(toml);
       Scene own = s;
       own.render.ms_tables = RenderSpec::Tables::Exact;
-      // These small tables' entries err as the default tables' do (a render's radiance errs far
-      // less: the bench's bench/table_family.py, docs/jobs.md): up to 0.7 % in daylight and 7 % near
-      // the terminator at the ground in hazy air, where the sun's light crosses tens of air masses.
+      // The entries err most near the terminator at the ground in hazy air, where the sun's light
+      // crosses tens of air masses (the message below prints both; a render's radiance errs far
+      // less: bench/table_family.py, docs/jobs.md).
       const Differences d = largest_differences(*interpolated(s), *exact_tables(own), 3);
       BOOST_TEST_MESSAGE("largest relative difference of the interpolated tables' sources: daylight "
                          << d.day << ", near the terminator " << d.terminator);
