@@ -1312,11 +1312,6 @@ std::unique_ptr<ScatteringOrders> ScatteringOrders::load(const std::string& path
   return o;
 }
 
-std::unique_ptr<ScatteringOrders> ScatteringOrders::blended(const Blend& blend, const AtmosphereModel& atm,
-                                                            const MultipleScatteringSettings& settings) {
-  return blended(blend, Blend{}, 0.0f, atm, settings);
-}
-
 std::unique_ptr<ScatteringOrders> ScatteringOrders::blended(const Blend& lower, const Blend& upper, float t,
                                                             const AtmosphereModel& own_atm,
                                                             const MultipleScatteringSettings& settings) {

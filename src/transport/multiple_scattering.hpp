@@ -368,19 +368,18 @@ class ScatteringOrders : public InScatteringSource {
   /// missing, from another key or version, or damaged.
   static std::unique_ptr<ScatteringOrders> load(const std::string& path, const std::string& key,
                                                 const AtmosphereModel& atm, const MultipleScatteringSettings& settings);
-  /// The tables of `atm` as a blend of other atmospheres' tables (the members, built with the same
-  /// settings on the same wavelengths): at wavelength l, order 2's table and the sum are
-  /// sum_m weights[m][l] times member m's (SourceTable::set_blend). Right where each wavelength's
-  /// tables depend on the atmosphere through quantities of that wavelength alone that the weights
-  /// interpolate (render/table_family.hpp says which, and what the blend errs).
   /// Members and their weights per wavelength ([member][wavelength]) of one linear blend.
   struct Blend {
     std::vector<const ScatteringOrders*> members;
     std::vector<std::vector<float>> weights;
   };
-  static std::unique_ptr<ScatteringOrders> blended(const Blend& blend, const AtmosphereModel& atm,
-                                                   const MultipleScatteringSettings& settings);
-  /// Two such blends combined geometrically, weighted 1 - t and t (SourceTable::set_geometric_blend).
+  /// The tables of `atm` as a blend of other atmospheres' tables (the members, built with the same
+  /// settings on the same wavelengths): at wavelength l, order 2's table and the sum are, for each
+  /// of `lower` and `upper`, sum_m weights[m][l] times member m's (SourceTable::set_blend), and the
+  /// two are combined geometrically, weighted 1 - t and t (SourceTable::set_geometric_blend; lower
+  /// alone where upper has no members). Right where each wavelength's tables depend on the
+  /// atmosphere through quantities of that wavelength alone that the weights interpolate
+  /// (render/table_family.hpp says which; docs/jobs.md what the blend errs).
   static std::unique_ptr<ScatteringOrders> blended(const Blend& lower, const Blend& upper, float t,
                                                    const AtmosphereModel& atm,
                                                    const MultipleScatteringSettings& settings);
