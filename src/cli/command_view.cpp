@@ -7,6 +7,7 @@
 #include <string>
 #include <thread>
 
+#include "base/memory_reuse.hpp"
 #include "commands.hpp"
 #include "display_options.hpp"
 #include "scene_options.hpp"
@@ -42,6 +43,8 @@ viewer::ViewerBase base_of(const ViewOptions& o) {
 }
 
 int run(ViewOptions& o) {
+  // Frame after frame the same large blocks: kept rather than faulted in again (memory_reuse.hpp).
+  keep_freed_memory_for_reuse();
   if (o.threads < 0) throw InputError("--threads", std::to_string(o.threads), "0 (all cores) or more");
   // The folder is made by the first export; what stands in its way is refused now, not then.
   std::error_code ec;
