@@ -134,6 +134,11 @@ struct RenderSpec {
   bool sky_view_table = true;
   int sky_view_zenith_samples = 128;  ///< rows from the horizon to the zenith (half as many below)
   int sky_view_azimuth_samples = 64;  ///< columns from towards the sun to away from it
+  /// The higher orders' light in the sky-view table from a coarser table of this many rows and
+  /// columns, interpolated (the light scattered once keeps the table's own); at or above the
+  /// table's own: its own rays (docs/physics.md, "Numerics", has what the default errs).
+  int sky_view_higher_zenith_samples = 32;
+  int sky_view_higher_azimuth_samples = 64;
 };
 
 struct OutputSpec {

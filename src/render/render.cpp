@@ -90,7 +90,8 @@ std::unique_ptr<SkyViewTable> sky_view_table_for(const Scene& s, const Atmospher
   key << scattering_tables_key(atmosphere, sun_table_resolution(s), multiple_scattering_settings(s)).inputs
       << "view_segments " << s.render.view_segments << "\nhigher " << (sources.higher != nullptr) << " polarisation "
       << sources.polarisation << " single " << sources.single << "\nrows " << res.sky_rows << ' ' << res.ground_rows
-      << ' ' << res.azimuths << ' ' << res.ground_side << std::hexfloat << "\nradius " << origin_m.norm();
+      << ' ' << res.azimuths << ' ' << res.ground_side << ' ' << res.higher_sky_rows << ' ' << res.higher_azimuths
+      << std::hexfloat << "\nradius " << origin_m.norm();
   const Vec3 sun = SkyViewTable::own_frame_sun(origin_m, sun_dir);
   key << " sun " << sun[0] << ' ' << sun[1] << ' ' << sun[2];
   static RecentValues<SkyViewTable> kept(kKeptSkyViewTables, kKeptSkyViewBytes,
@@ -293,7 +294,9 @@ struct SkyRenderer::Impl {
         table_sources.terrain = nullptr;  // directions the terrain touches: table_less_shadows or marched
         sky_view = sky_view_table_for(
             s, atmosphere, integrator, table_sources, camera->origin_m(), sun_dir,
-            SkyViewResolution{rows, std::max(2, rows / 2), s.render.sky_view_azimuth_samples, below}, threads);
+            SkyViewResolution{rows, std::max(2, rows / 2), s.render.sky_view_azimuth_samples, below,
+                              s.render.sky_view_higher_zenith_samples, s.render.sky_view_higher_azimuth_samples},
+            threads);
       } catch (const Cancelled&) {
         throw;
       } catch (const Error&) {

@@ -214,6 +214,17 @@ Scene scene_for_estimate(const Scene& scene) {
   light.render.cache_tables = false;
   light.render.sky_view_zenith_samples = std::min(scene.render.sky_view_zenith_samples, 32);
   light.render.sky_view_azimuth_samples = std::min(scene.render.sky_view_azimuth_samples, 32);
+  // The higher orders' coarser table shrunk in the same proportion, so that both of the table's
+  // marches (its own rays without the higher orders, the coarse ones with them) scale alike.
+  const auto shrunk = [](int higher, int own, int light_own, int least) {
+    return higher >= own ? light_own : std::clamp(higher * light_own / own, least, light_own);
+  };
+  light.render.sky_view_higher_zenith_samples =
+      shrunk(scene.render.sky_view_higher_zenith_samples, scene.render.sky_view_zenith_samples,
+             light.render.sky_view_zenith_samples, 8);
+  light.render.sky_view_higher_azimuth_samples =
+      shrunk(scene.render.sky_view_higher_azimuth_samples, scene.render.sky_view_azimuth_samples,
+             light.render.sky_view_azimuth_samples, 4);
   return light;
 }
 

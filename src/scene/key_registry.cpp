@@ -699,6 +699,14 @@ const std::vector<KeyDef>& registry() {
     r.push_back(integer_key("render.sky_view_azimuth_samples", 4, 4096,
                             "sky-view table: columns from towards the sun to away from it",
                             [](Scene& s) -> int& { return s.render.sky_view_azimuth_samples; }));
+    r.push_back(integer_key("render.sky_view_higher_zenith_samples", 8, 4096,
+                            "sky-view table: rows of the coarser table the higher orders' light is interpolated from "
+                            "(at or above render.sky_view_zenith_samples: the table's own)",
+                            [](Scene& s) -> int& { return s.render.sky_view_higher_zenith_samples; }));
+    r.push_back(integer_key("render.sky_view_higher_azimuth_samples", 4, 4096,
+                            "sky-view table: columns of that coarser table (at or above "
+                            "render.sky_view_azimuth_samples: the table's own)",
+                            [](Scene& s) -> int& { return s.render.sky_view_higher_azimuth_samples; }));
     // output
     r.push_back(text_key(
         "output.directory", "folder for the output files", [](Scene& s) -> std::string& { return s.output.directory; },

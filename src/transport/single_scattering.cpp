@@ -1350,7 +1350,7 @@ void SingleScattering::ground_irradiance_at(const Vec3& ground_point, const Vec3
     field_integrator(sources).optical_depth(sun.data(), tau_sun);
     ws.source = (-tau_sun).exp() * static_cast<float>(mu_sun);
   }
-  if (sources.higher) {
+  if (sources.higher && sources.higher_light) {
     sources.higher->ground_irradiance(mu_sun, ws.ground_sky.data());
     if (sources.regional) sources.regional->add_ground(ground_point, ws.ground_sky.data());
     ws.source += ws.ground_sky;
@@ -1403,7 +1403,7 @@ void SingleScattering::terrain_irradiance(const Node& ground, const Vec3& p, con
       ws.source = (-tau_sun).exp() * static_cast<float>(incidence);
     }
   }
-  if (sources.higher) {
+  if (sources.higher && sources.higher_light) {
     // The normal in the tables' local frame (z up, x towards the sun's azimuth).
     const Vec3 x = tables_frame_x(up, s);
     const Vec3 local(n.dot(x), n.dot(up.cross(x)), n.dot(up));
@@ -1426,7 +1426,7 @@ void SingleScattering::integrate(const Ray& ray, const Vec3& o, const Vec3& d, c
                                  RadianceParts& parts) const {
   parts.resize(n_, scatterer_count());
   const int count = scatterer_count();
-  const bool higher = sources.higher != nullptr;
+  const bool higher = sources.higher != nullptr && sources.higher_light;
   const double os = o.dot(s), ds = d.dot(s);
   for (int j = 0; j < count; ++j)
     for (Spectrum* sum : {&ws.sums[j].single[0], &ws.sums[j].single[1], &ws.sums[j].higher[0], &ws.sums[j].higher[1],

@@ -227,6 +227,10 @@ class RegionalSource {
 struct ScatteringSources {
   bool single = true;                          ///< order 1: air scattering + direct sun off the ground
   const InScatteringSource* higher = nullptr;  ///< orders >= 2 from tables (or one order while building them)
+  /// False: `higher` only shapes the march (its nodes, where it places them, and its field
+  /// atmosphere's extinction, as with its light), and its light is left out, so that the light scattered
+  /// once is the same to the last bit as with it (SkyViewResolution::higher_sky_rows).
+  bool higher_light = true;
   /// Aerial perspective: integrate only up to this distance along the ray (a surface there hides
   /// what lies behind, including the ground), and, when `transmittance` is given, return the
   /// transmittance from the origin to the end of the integrated stretch.

@@ -236,6 +236,21 @@ SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringS
   src.transmittance = nullptr;
   src.max_distance_m = std::numeric_limits<double>::infinity();
   src.terrain = nullptr;  // it would break the symmetry the own frame relies on (renders march its pixels)
+  // The higher orders on a coarser table: this one's rays marched without them, their light added
+  // afterwards as the difference of two coarse tables, with and without them.
+  const bool coarse_higher = src.higher && res_.higher_sky_rows > 0 && res_.higher_azimuths > 0 &&
+                             (res_.higher_sky_rows < res_.sky_rows || res_.higher_azimuths < res_.azimuths);
+  std::unique_ptr<SkyViewTable> with_higher, without_higher;
+  if (coarse_higher) {
+    SkyViewResolution coarse = res_;
+    coarse.sky_rows = std::min(res_.higher_sky_rows, res_.sky_rows);
+    coarse.ground_rows = std::max(2, coarse.sky_rows / 2);
+    coarse.azimuths = std::min(res_.higher_azimuths, res_.azimuths);
+    coarse.higher_sky_rows = coarse.higher_azimuths = 0;
+    with_higher = std::make_unique<SkyViewTable>(integrator, src, own_origin, own_sun_, coarse, threads);
+    src.higher_light = false;
+    without_higher = std::make_unique<SkyViewTable>(integrator, src, own_origin, own_sun_, coarse, threads);
+  }
   // A row at a time: its rays share their zenith angle, so the integrator computes their nodes
   // once (SingleScattering::radiance_parts_same_zenith).
   struct RowScratch {
@@ -279,7 +294,39 @@ SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringS
       }
     });
   });
+  if (coarse_higher) add_coarse_higher_orders(*with_higher, *without_higher, threads);
   set_frame(origin_m, sun_dir);
+}
+
+// Each entry's phase-free part gains what the higher orders add there in the coarse tables
+// (interpolated at its direction as a look-up would), and its polarisation is theirs.
+void SkyViewTable::add_coarse_higher_orders(const SkyViewTable& with, const SkyViewTable& without, int threads) {
+  const int n = n_, m = res_.azimuths, scatterers = parts_ - 1;
+  const size_t stride = static_cast<size_t>(m) * parts_ * static_cast<size_t>(n);
+  const size_t polarised_stride = static_cast<size_t>(m) * kPolarisedParts * static_cast<size_t>(n);
+  const int total_rows = res_.sky_rows + (res_.ground_side ? res_.ground_rows : 0);
+  tbb::task_arena arena(std::max(1, threads));
+  arena.execute([&] {
+    tbb::parallel_for(0, total_rows, [&](int row_all) {
+      const bool sky_side = row_all < res_.sky_rows;
+      const int row = sky_side ? row_all : row_all - res_.sky_rows;
+      RadianceParts a(n, scatterers), b(n, scatterers);
+      for (int column = 0; column < m; ++column) {
+        const Vec3 d = direction(sky_side, row, column);
+        if (!with.lookup(d, a) || !without.lookup(d, b)) continue;
+        float* entry = (sky_side ? entries_->sky : entries_->ground).data() + row * stride +
+                       static_cast<size_t>(column) * parts_ * static_cast<size_t>(n) +
+                       static_cast<size_t>(scatterers) * n;
+        for (int l = 0; l < n; ++l) entry[l] = std::max(0.0f, entry[l] + a.phase_free[l] - b.phase_free[l]);
+        if (polarised_ && with.lookup_polarised(d, a)) {
+          float* q = (sky_side ? entries_->polarised_sky : entries_->polarised_ground).data() + row * polarised_stride +
+                     static_cast<size_t>(column) * kPolarisedParts * static_cast<size_t>(n);
+          std::copy(a.polarised_q.data(), a.polarised_q.data() + n, q);
+          std::copy(a.polarised_u.data(), a.polarised_u.data() + n, q + n);
+        }
+      }
+    });
+  });
 }
 
 // Angles by a polynomial atan2 good to 1e-9 rad (fast_atan2.hpp), cheaper than libm's correctly

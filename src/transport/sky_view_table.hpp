@@ -33,6 +33,10 @@ struct SkyViewResolution {
   int ground_rows = 48;     ///< view zenith samples from the horizon to the nadir
   int azimuths = 64;        ///< azimuth samples from towards the sun (0) to away from it (pi)
   bool ground_side = true;  ///< tabulate below the horizon too (false: an image of the sky alone)
+  /// The higher orders' light (what the higher-order source adds to the phase-free part, and their
+  /// polarisation) on a coarser table of this many sky rows and azimuths (ground rows half the sky
+  /// rows), interpolated to this table's entries; 0: on this table's own.
+  int higher_sky_rows = 0, higher_azimuths = 0;
 };
 
 class SkyViewTable {
@@ -115,6 +119,8 @@ class SkyViewTable {
 
   // The look-ups' frame for a camera at origin_m with the sun along sun_dir.
   void set_frame(const Vec3& origin_m, const Vec3& sun_dir);
+  // The higher orders' light from coarse tables with and without them (SkyViewResolution::higher_sky_rows).
+  void add_coarse_higher_orders(const SkyViewTable& with, const SkyViewTable& without, int threads);
 
   SkyViewResolution res_;
   int n_ = 0;                      // wavelengths

@@ -344,6 +344,8 @@ BOOST_AUTO_TEST_CASE(quality_levels) {
       if (lo.sky_view_table && hi.sky_view_table) {
         BOOST_TEST(lo.sky_view_zenith_samples <= hi.sky_view_zenith_samples);
         BOOST_TEST(lo.sky_view_azimuth_samples <= hi.sky_view_azimuth_samples);
+        BOOST_TEST(lo.sky_view_higher_zenith_samples <= hi.sky_view_higher_zenith_samples);
+        BOOST_TEST(lo.sky_view_higher_azimuth_samples <= hi.sky_view_higher_azimuth_samples);
         rises = rises || lo.sky_view_zenith_samples < hi.sky_view_zenith_samples;
       }
       BOOST_TEST(rises);
