@@ -8,8 +8,9 @@ namespace skyspec {
 
 void keep_freed_memory_for_reuse() {
 #if defined(__GLIBC__)
-  // Each setting alone does not do it (measured: docs/performance.md): with the mapping threshold
-  // raised, glibc still trims the heap's top beyond 128 KiB; threads' own heaps shrink on free.
+  // All three (docs/performance.md has each alone): threads' own heaps shrink on free; glibc's own
+  // mapping threshold, which rises after frees, stops at 32 MiB and stops rising once either
+  // threshold is set; with only the mapping threshold set the heap's top is trimmed beyond 128 KiB.
   mallopt(M_MMAP_THRESHOLD, 256 << 20);  // blocks above this still get their own mapping
   mallopt(M_TRIM_THRESHOLD, 1 << 30);
   mallopt(M_ARENA_MAX, 1);

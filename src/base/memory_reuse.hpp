@@ -1,8 +1,9 @@
 // Freed memory kept for reuse in a process that renders many frames (the viewer). glibc returns a
 // large block (a frame's spectral image, OpenColorIO's buffers) to the system when it is freed, so
 // that the next frame's block of the same size is faulted in again 4 KiB page by page; on a
-// virtual machine those faults cost more than the frame's rendering (docs/performance.md, "The
-// viewer's frames"). After this call the process keeps freed blocks in its heap and reuses them.
+// virtual machine, while another thread faults pages in too, they can cost more than the frame's
+// rendering (docs/performance.md, "The viewer's frames"). After this call the process keeps freed
+// blocks in its heap and reuses them.
 #pragma once
 
 namespace skyspec {
