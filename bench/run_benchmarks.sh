@@ -198,7 +198,7 @@ rm -f "$out/c5-10.exr"
 echo "codecs (case 5's panorama at 1024 x 512, each lossless codec) ..."
 "$skyspec" render -q --no-png --out "$out" --name "codec-sample" --sun-elevation 10 --scene "$scene" \
   --camera equirectangular --width 1024 --height 512 --lambda-step 5 --set output.exr_compression=none
-g++ -O2 -std=c++17 "$here/exr_codecs.cpp" -o "$out/exr_codecs" $(pkg-config --cflags --libs OpenEXR)
+g++ -O2 -std=c++17 "$here/exr_codecs.cpp" -o "$out/exr_codecs" $(pkg-config --cflags --libs OpenEXR) -lpthread
 "$out/exr_codecs" "$out/codec-sample.exr" /dev/shm 2 > "$out/codecs.tsv"
 rm -f "$out/codec-sample.exr"
 echo "case 6 (multiple scattering tables, cold then cached) ..."

@@ -5,10 +5,14 @@
 // and the chromaticities attribute for them.
 //
 // The writer streams: rows are handed over top to bottom in bands, so memory is bounded by one
-// band, not the image. The file is written under a temporary name and renamed on finish().
+// band, not the image. A band of whole line blocks can also be compressed on any thread
+// (encode_rows), several at once, and written in order afterwards (write_encoded): a renderer
+// compresses each band where it rendered it. The file is written under a temporary name and
+// renamed on finish().
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -48,10 +52,15 @@ struct SpectralExrMetadata {
   /// (the file's dataWindow; its displayWindow stays the whole image). write_rows then takes rows
   /// of x1 - x0 pixels, y1 - y0 of them. Tiles are assembled by merge_spectral_exr_tiles.
   std::optional<std::array<int, 4>> data_window;
-  /// Not stored in the file: how many cores compression may use (0: all; 1: the calling thread
-  /// only, as for a render limited to one thread).
+  /// Not stored in the file: how many cores write_rows may compress on (0: all; 1: the calling
+  /// thread only, as for a render limited to one thread). encode_rows uses the caller's threads.
   int threads = 0;
 };
+
+/// The rows a spectral EXR's codec compresses together (its line block): 32 for "piz", 16 for
+/// "zip", 1 for "zips", "rle" and "none" (OpenEXR's). SpectralExrWriter::rows_per_block() of a file
+/// with that compression.
+int spectral_exr_block_rows(const std::string& compression);
 
 class SpectralExrWriter {
  public:
@@ -71,8 +80,36 @@ class SpectralExrWriter {
   /// All rows written: close, fsync, rename. Throws IoError if rows are missing.
   void finish();
 
+  /// Rows that the file's codec compresses together (its line block: 32 for PIZ, 16 for ZIP, 1
+  /// for ZIPS, RLE and none).
+  int rows_per_block() const;
+  /// Rows compressed into the file's bytes, one byte string per line block, waiting to be written.
+  struct EncodedRows {
+    int first_row = 0, rows = 0;  ///< of the data window
+    std::vector<std::vector<unsigned char>> blocks;
+  };
+  /// Checks and compresses `rows` rows starting at `first_row` (laid out as write_rows takes
+  /// them): the band starts on a line block and ends on one or at the image's last row. Safe to
+  /// call from several threads at once, for different bands; a band of several blocks is compressed
+  /// in parallel in the caller's TBB arena unless meta.threads = 1. Throws IoError as write_rows.
+  EncodedRows encode_rows(int first_row, int rows, const float* spectral, const float* rgb) const;
+  /// Writes encoded rows: they must be the next rows of the file (IoError otherwise), and not
+  /// mixed with rows that write_rows holds back because they did not yet fill a line block.
+  void write_encoded(const EncodedRows& rows);
+
+  /// A writer whose bytes go nowhere (the render-time estimate: what encoding costs).
+  struct Discarding {};
+  SpectralExrWriter(Discarding, int width, int height, const std::vector<double>& wavelengths_nm,
+                    const SpectralExrMetadata& meta);
+  /// The file's length so far (the whole file's after finish()).
+  std::uint64_t bytes_written() const;
+
+  struct Impl;     ///< opaque: the open file
+  struct Encoder;  ///< opaque: one thread's line-block encoder
+
  private:
-  struct Impl;
+  void open(const std::filesystem::path& final_path, bool discard, int width, int height,
+            const std::vector<double>& wavelengths_nm, const SpectralExrMetadata& meta);
   std::unique_ptr<Impl> impl_;
 };
 

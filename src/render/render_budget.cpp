@@ -102,6 +102,7 @@ RenderPlan RenderPlan::for_scene(const Scene& scene, const DisplaySettings& disp
   p.outputs = planned_outputs(scene, display, tile);
   p.stokes_components = scene.output.polarisation ? 4 : 1;
   p.png_bit_depth = display.png_bit_depth;
+  p.exr_block_rows = spectral_exr_block_rows(scene.output.exr_compression);
   p.directory = scene.output.directory;
   if (scene.render.scattering_orders >= 2) {
     const MultipleScatteringSettings ms = multiple_scattering_settings(scene);
@@ -119,22 +120,35 @@ std::uint64_t RenderPlan::output_bytes() const {
   return (planned_output_bytes(*this) + extra_output_bytes) * static_cast<std::uint64_t>(std::max(frames, 1));
 }
 
+int render_band_rows(int width, int values_per_pixel, int block_rows, int height) {
+  const std::uint64_t row_bytes = static_cast<std::uint64_t>(std::max(width, 1)) *
+                                  (static_cast<std::uint64_t>(std::max(values_per_pixel, 0)) + 3) * 4;
+  const int block = std::max(block_rows, 1);
+  const int blocks = std::max(
+      1, std::min(64 / block,
+                  static_cast<int>(std::min<std::uint64_t>((std::uint64_t{4} << 20) / row_bytes, 1 << 20)) / block));
+  return std::max(1, std::min(block * blocks, std::max(height, 1)));
+}
+
 std::uint64_t RenderPlan::peak_memory_bytes() const {
   const std::uint64_t px = pixels(width, height), n = static_cast<std::uint64_t>(std::max(wavelengths, 0));
-  // render_scene_to_files renders a band of rows while the one before is written: bands of about
-  // 64 MiB (8 to 64 rows), two of them, and OpenEXR's buffers for one (uncompressed and compressed).
-  const std::uint64_t row_bytes = static_cast<std::uint64_t>(std::max(width, 1)) *
-                                  (n * static_cast<std::uint64_t>(std::max(stokes_components, 1)) + 3) * 4;
-  const std::uint64_t band_rows = std::clamp<std::uint64_t>((std::uint64_t{64} << 20) / row_bytes, 8, 64);
-  const std::uint64_t band =
-      std::min<std::uint64_t>(band_rows, static_cast<std::uint64_t>(std::max(height, 0))) * row_bytes;
-  std::uint64_t bytes = 2 * band + table_bytes;
-  // Per pixel, the measured slopes of peak memory rounded up (docs/reliability.md, "Memory
-  // estimates"): for a PNG, the whole-image RGB, the copy the display pipeline encodes, its output,
-  // the PNG's samples and the allocator's pages around them; for a spectral EXR alone, less.
-  // With both, the PNG's part is the peak (the same measurements).
+  // render_scene_to_files renders and encodes a band per thread at a time (render_bands): each
+  // thread holds its band's values and, with a spectral EXR, its encoder's three buffers of the
+  // band's size (the values in the file's layout, compressed, the codec's scratch).
+  const int values = static_cast<int>(n) * std::max(stokes_components, 1);
   const bool spectral_exr = writes("spectral_exr"), png = writes("png"), working_exr = writes("working_exr");
-  const std::uint64_t exr_part = spectral_exr ? 2 * band + px * 18 : 0;
+  const std::uint64_t row_bytes =
+      static_cast<std::uint64_t>(std::max(width, 1)) * (static_cast<std::uint64_t>(values) + 3) * 4;
+  const std::uint64_t band =
+      static_cast<std::uint64_t>(render_band_rows(width, values, spectral_exr ? exr_block_rows : 1, height)) *
+      row_bytes;
+  const std::uint64_t workers = static_cast<std::uint64_t>(std::max(threads, 1));
+  std::uint64_t bytes = workers * band + table_bytes;
+  // The spectral EXR's encoders; per pixel, the measured slopes of peak memory rounded up
+  // (docs/reliability.md, "Memory estimates"): for a PNG, the whole-image RGB, the copy the
+  // display pipeline encodes, its output, the PNG's samples and the allocator's pages around
+  // them. With both, the larger part is the peak (the same measurements).
+  const std::uint64_t exr_part = spectral_exr ? 3 * workers * band : 0;
   std::uint64_t display_part = 0;
   if (png || working_exr) {
     const std::uint64_t png_part = png ? px * 70 + px * 3 * static_cast<std::uint64_t>(png_bit_depth / 8 - 1) : 0;

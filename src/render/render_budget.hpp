@@ -45,6 +45,12 @@ std::string format_duration(double seconds);
 std::vector<std::string> planned_outputs(const Scene& scene, const DisplaySettings& display, bool tile);
 std::uint64_t planned_output_bytes(const RenderPlan& plan);
 
+/// The rows of a band of render_scene_to_files's image (render_outputs.cpp): whole line blocks
+/// of `block_rows` (the spectral EXR's codec's, 1 without the file) of about 4 MiB of values
+/// (`values_per_pixel` floats and R, G, B per pixel), at most 64 rows unless one block is taller,
+/// at most the image's `height`.
+int render_band_rows(int width, int values_per_pixel, int block_rows, int height);
+
 /// What a request asks for: image size, grid, outputs and how many frames.
 struct RenderPlan {
   int width = 0, height = 0, wavelengths = 0, view_segments = 0, threads = 1;
@@ -57,6 +63,8 @@ struct RenderPlan {
   /// 4 for a polarised render (S0-S3 per wavelength, output.polarisation; its Y/DoLP/AoLP EXR too), else 1.
   int stokes_components = 1;
   int png_bit_depth = 8;
+  /// The spectral EXR's line block (spectral_exr_block_rows of output.exr_compression).
+  int exr_block_rows = 32;
   std::filesystem::path directory;
   /// What a caller writes and holds besides what render_scene_to_files does (aerial perspective
   /// writes several spectral EXRs and keeps whole spectral images): added to output_bytes() once

@@ -9,11 +9,14 @@
 #include <functional>
 #include <future>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_pipeline.h>
 #include <tbb/task_arena.h>
 
 #include "base/atomic_file.hpp"
@@ -124,16 +127,19 @@ std::string describe(const PixelBounds& b) {
   return std::to_string(b.x0) + "," + std::to_string(b.x1) + "," + std::to_string(b.y0) + "," + std::to_string(b.y1);
 }
 
-// Renders the image in bands of rows, each rendered while the one before is compressed and
-// written (OpenEXR compresses a band's line blocks in parallel on its own threads), so that
-// rendering and compression overlap. With render.threads = 1 nothing overlaps: each band is
-// written on the same thread, so that the render uses one core, as asked (the writer's flush to
-// the disk runs on a helper thread that only waits: spectral_exr.cpp). 64 rows are two PIZ or
-// four ZIP line blocks; wide images take fewer rows so that a band stays near 64 MB. The whole
-// image's linear RGB is kept in `rgb` when it is not empty (for the PNG and the working-space EXR).
-// A polarised render also keeps, when `stokes_y` is not empty, the luminance-weighted S0, S1, S2 of
-// every pixel ([y][x][3]: the spectrum_to_rgb of each component's spectrum, then Rec.709
-// luminance; both steps are linear in the spectrum) for the DoLP / AoLP images.
+// Renders the image in bands of whole line blocks of the EXR's codec, each band rendered and
+// compressed on one thread while the other threads do the same with the next bands, and written
+// to the file in order as soon as it and the bands before it are done (tbb::parallel_pipeline):
+// compression, most of a render's time, is spread over the cores with the rows, and no thread
+// waits for another to write. With render.threads = 1 everything runs on the calling thread, so
+// that the render uses one core, as asked (the writer's flush to the disk runs on a helper thread
+// that only waits: exr_streams.hpp). A band is about 4 MiB of values (at most 64 rows, at least one
+// line block: 32 rows for PIZ, 16 for ZIP, one otherwise); two per thread are under way at most,
+// fewer when they are large (an 8192-pixel-wide PIZ band is 91 MB). The whole image's linear RGB is
+// kept in `rgb` when it is not empty (for the PNG and the working-space EXR). A polarised render
+// also keeps, when `stokes_y` is not empty, the luminance-weighted S0, S1, S2 of every pixel
+// ([y][x][3]: the spectrum_to_rgb of each component's spectrum, then Rec.709 luminance; both steps
+// are linear in the spectrum) for the DoLP / AoLP images.
 void render_bands(const SkyRenderer& r, SpectralExrWriter* exr, std::vector<float>& rgb, std::vector<float>& stokes_y,
                   const ProgressFn& progress, const PixelBounds& window) {
   const int x0 = window.x0, w = window.x1 - window.x0, y_first = window.y0, y_end = window.y1, n = r.grid().size();
@@ -141,45 +147,93 @@ void render_bands(const SkyRenderer& r, SpectralExrWriter* exr, std::vector<floa
   // Polarised: S0-S3 per wavelength (render_window_stokes), as the EXR takes them.
   const bool polarised = r.scene().output.polarisation;
   const int values = polarised ? 4 * n : n;
-  const size_t band_row_bytes = static_cast<size_t>(w) * static_cast<size_t>(values + 3) * sizeof(float);
-  const int band = static_cast<int>(std::clamp<size_t>((size_t{64} << 20) / band_row_bytes, 8, 64));
-  // Left uninitialised: render_rows writes every value, and its threads touch the pages first.
-  struct Band {
+  const size_t row_bytes = static_cast<size_t>(w) * static_cast<size_t>(values + 3) * sizeof(float);
+  const int band = render_band_rows(w, values, exr ? exr->rows_per_block() : 1, h);
+  const size_t band_bytes = static_cast<size_t>(band) * row_bytes;
+  const int threads = r.threads();
+  const auto in_flight =
+      static_cast<size_t>(std::clamp<size_t>((size_t{256} << 20) / band_bytes, 1, 2 * static_cast<size_t>(threads)));
+
+  // The bands' values, reused: one per band being rendered. Left uninitialised: the renderer
+  // writes every value, and its threads touch the pages first.
+  struct Buffers {
     std::unique_ptr<float[]> spectral, rgb;
   };
-  Band bands[2];
-  for (Band& b : bands) {
-    b.spectral.reset(new float[static_cast<size_t>(band) * w * values]);
-    b.rgb.reset(new float[static_cast<size_t>(band) * w * 3]);
-  }
-  std::future<void> writing;  // the previous band on its way to the file
-  const bool overlap = r.threads() > 1;
-  for (int y = 0, k = 0; y < h; y += band, k ^= 1) {  // y: rows of the window done
-    const int rows = std::min(band, h - y);
-    Band& b = bands[k];
-    if (polarised)
-      r.render_window_stokes(x0, x0 + w, y_first + y, rows, b.spectral.get(), b.rgb.get());
-    else
-      r.render_window(x0, x0 + w, y_first + y, rows, b.spectral.get(), b.rgb.get());
-    if (writing.valid()) writing.get();  // rethrows a write error
-    if (exr && overlap)
-      writing =
-          std::async(std::launch::async, [exr, &b, rows] { exr->write_rows(rows, b.spectral.get(), b.rgb.get()); });
-    else if (exr)
-      exr->write_rows(rows, b.spectral.get(), b.rgb.get());
-    if (!rgb.empty())
-      std::copy(b.rgb.get(), b.rgb.get() + static_cast<long>(rows) * w * 3, rgb.begin() + static_cast<long>(y) * w * 3);
-    if (polarised && !stokes_y.empty())
-      for (size_t p = 0; p < static_cast<size_t>(rows) * w; ++p) {
-        const float* v = b.spectral.get() + p * static_cast<size_t>(values);
-        float* out = stokes_y.data() + (static_cast<size_t>(y) * w + p) * 3;
-        for (int c = 0; c < 3; ++c)
-          out[c] =
-              static_cast<float>(rec709_luminance(r.spectrum_to_rgb(Eigen::Map<const Spectrum>(v + c * n, n)).data()));
+  std::mutex free_mutex;
+  std::vector<std::unique_ptr<Buffers>> free_buffers;
+  const auto take = [&] {
+    {
+      std::lock_guard<std::mutex> lock(free_mutex);
+      if (!free_buffers.empty()) {
+        auto b = std::move(free_buffers.back());
+        free_buffers.pop_back();
+        return b;
       }
-    if (progress) progress(y + rows, h);
-  }
-  if (writing.valid()) writing.get();
+    }
+    auto b = std::make_unique<Buffers>();
+    b->spectral.reset(new float[static_cast<size_t>(band) * w * values]);
+    b->rgb.reset(new float[static_cast<size_t>(band) * w * 3]);
+    return b;
+  };
+  const auto give_back = [&](std::unique_ptr<Buffers> b) {
+    std::lock_guard<std::mutex> lock(free_mutex);
+    free_buffers.push_back(std::move(b));
+  };
+
+  // A band from its renderer to the file.
+  struct Band {
+    int y = 0, rows = 0;  // rows of the window
+    SpectralExrWriter::EncodedRows encoded;
+  };
+  int next_row = 0, rows_done = 0;
+  tbb::task_arena arena(threads);
+  arena.execute([&] {
+    tbb::parallel_pipeline(
+        in_flight,
+        tbb::make_filter<void, std::shared_ptr<Band>>(tbb::filter_mode::serial_in_order,
+                                                      [&](tbb::flow_control& control) {
+                                                        if (next_row >= h) {
+                                                          control.stop();
+                                                          return std::shared_ptr<Band>();
+                                                        }
+                                                        auto b = std::make_shared<Band>();
+                                                        b->y = next_row;
+                                                        b->rows = std::min(band, h - next_row);
+                                                        next_row += b->rows;
+                                                        return b;
+                                                      }) &
+            tbb::make_filter<std::shared_ptr<Band>, std::shared_ptr<Band>>(
+                tbb::filter_mode::parallel,
+                [&](std::shared_ptr<Band> b) {
+                  std::unique_ptr<Buffers> buffers = take();
+                  float* spectral = buffers->spectral.get();
+                  float* band_rgb = buffers->rgb.get();
+                  if (polarised)
+                    r.render_window_stokes(x0, x0 + w, y_first + b->y, b->rows, spectral, band_rgb);
+                  else
+                    r.render_window(x0, x0 + w, y_first + b->y, b->rows, spectral, band_rgb);
+                  const size_t pixels = static_cast<size_t>(b->rows) * w;
+                  if (!rgb.empty())
+                    std::copy(band_rgb, band_rgb + pixels * 3, rgb.begin() + static_cast<long>(b->y) * w * 3);
+                  if (polarised && !stokes_y.empty())
+                    for (size_t p = 0; p < pixels; ++p) {
+                      const float* v = spectral + p * static_cast<size_t>(values);
+                      float* out = stokes_y.data() + (static_cast<size_t>(b->y) * w + p) * 3;
+                      for (int c = 0; c < 3; ++c)
+                        out[c] = static_cast<float>(
+                            rec709_luminance(r.spectrum_to_rgb(Eigen::Map<const Spectrum>(v + c * n, n)).data()));
+                    }
+                  if (exr) b->encoded = exr->encode_rows(b->y, b->rows, spectral, band_rgb);
+                  give_back(std::move(buffers));
+                  return b;
+                }) &
+            tbb::make_filter<std::shared_ptr<Band>, void>(tbb::filter_mode::serial_in_order,
+                                                          [&](std::shared_ptr<Band> b) {
+                                                            if (exr) exr->write_encoded(b->encoded);
+                                                            rows_done += b->rows;
+                                                            if (progress) progress(rows_done, h);
+                                                          }));
+  });
 }
 
 // The text chunks of the PNG preview.

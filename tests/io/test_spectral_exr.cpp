@@ -18,6 +18,7 @@
 #include <random>
 #include <set>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "io/png_image.hpp"
@@ -284,6 +285,109 @@ BOOST_AUTO_TEST_CASE(one_band_and_row_by_row_give_the_same_pixels) {
   BOOST_TEST(same_bits(one.spectral, image.spectral));
   BOOST_TEST(same_bits(rows.spectral, image.spectral));
   BOOST_TEST(!one.ev.has_value());
+}
+
+// Line blocks compressed on several threads, out of order (encode_rows), then written in order
+// (write_encoded), make the file that write_rows makes, byte for byte, whether write_rows gets the
+// image at once or row by row (rows that do not fill a block wait for the next): for every
+// compression, half spectral channels, and a tile whose data window starts inside a block.
+BOOST_AUTO_TEST_CASE(blocks_encoded_on_threads_make_the_bytes_of_write_rows) {
+  ScratchFolder dir("exr-blocks");
+  TestImage img;
+  img.height = 75;  // PIZ: blocks of 32, 32 and 11 rows
+  img.spectral.resize(static_cast<size_t>(img.width * img.height) * img.n());
+  img.rgb.resize(static_cast<size_t>(img.width * img.height) * 3);
+  for (size_t i = 0; i < img.spectral.size(); ++i) img.spectral[i] = std::sin(0.001f * static_cast<float>(i)) + 1.5f;
+  for (size_t i = 0; i < img.rgb.size(); ++i) img.rgb[i] = std::cos(0.01f * static_cast<float>(i));
+  for (const char* compression : {"piz", "zip", "zips", "rle", "none"})
+    for (const bool half : {false, true})
+      for (const bool tile : {false, true}) {
+        BOOST_TEST_CONTEXT(compression << (half ? " half" : "") << (tile ? " tile" : "")) {
+          SpectralExrMetadata meta = test_metadata();
+          meta.compression = compression;
+          meta.half_spectral = half;
+          const int image_height = tile ? img.height + 40 : img.height;
+          if (tile) meta.data_window = std::array<int, 4>{0, img.width, 7, 7 + img.height};  // rows 7..81
+          const fs::path whole = dir.path / "whole.exr", rows = dir.path / "rows.exr", blocks = dir.path / "blocks.exr";
+          const auto rows_at = [&](int y) {
+            return img.spectral.data() + static_cast<size_t>(y * img.width) * img.n();
+          };
+          const auto rgb_at = [&](int y) { return img.rgb.data() + static_cast<size_t>(y * img.width) * 3; };
+          {
+            SpectralExrWriter w(whole, img.width, image_height, img.wavelengths_nm, meta);
+            w.write_rows(img.height, img.spectral.data(), img.rgb.data());
+            w.finish();
+          }
+          {
+            SpectralExrWriter w(rows, img.width, image_height, img.wavelengths_nm, meta);
+            for (int y = 0; y < img.height; ++y) w.write_rows(1, rows_at(y), rgb_at(y));
+            w.finish();
+          }
+          {
+            SpectralExrWriter w(blocks, img.width, image_height, img.wavelengths_nm, meta);
+            BOOST_TEST(w.rows_per_block() == spectral_exr_block_rows(compression));
+            const int block = w.rows_per_block();
+            std::vector<SpectralExrWriter::EncodedRows> encoded(static_cast<size_t>((img.height + block - 1) / block));
+            std::vector<std::thread> threads;
+            for (int t = 0; t < 3; ++t)  // three threads, each taking every third block from the last
+              threads.emplace_back([&, t] {
+                for (int b = static_cast<int>(encoded.size()) - 1 - t; b >= 0; b -= 3) {
+                  const int y = b * block;
+                  encoded[static_cast<size_t>(b)] =
+                      w.encode_rows(y, std::min(block, img.height - y), rows_at(y), rgb_at(y));
+                }
+              });
+            for (std::thread& t : threads) t.join();
+            for (const auto& e : encoded) w.write_encoded(e);
+            w.finish();
+          }
+          BOOST_TEST((read_all(rows) == read_all(whole)));
+          BOOST_TEST((read_all(blocks) == read_all(whole)));
+          const SpectralImage back = read_spectral_exr(blocks);
+          BOOST_TEST(back.height == img.height);
+          if (!half) BOOST_TEST(same_bits(back.spectral, img.spectral));
+          BOOST_TEST(same_bits(back.rgb, img.rgb));
+        }
+      }
+}
+
+// Bands that would make a wrong file are refused by name: one that does not start on a line block,
+// one written out of order, one written while write_rows holds rows back; nothing is left.
+BOOST_AUTO_TEST_CASE(encoded_bands_in_the_wrong_place_are_refused) {
+  ScratchFolder dir("exr-bad-blocks");
+  TestImage img;
+  img.height = 70;
+  img.spectral.assign(static_cast<size_t>(img.width * img.height) * img.n(), 1.0f);
+  img.rgb.assign(static_cast<size_t>(img.width * img.height) * 3, 1.0f);
+  const fs::path path = dir.path / "bad.exr";
+  const auto message = [](const auto& call) {
+    try {
+      call();
+    } catch (const IoError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  {
+    SpectralExrWriter w(path, img.width, img.height, img.wavelengths_nm, SpectralExrMetadata{});  // PIZ
+    const float* s = img.spectral.data();
+    const float* c = img.rgb.data();
+    BOOST_TEST(message([&] { w.encode_rows(1, 32, s, c); }).find("starts on a line block (32 rows)") !=
+               std::string::npos);
+    BOOST_TEST(message([&] { w.encode_rows(0, 20, s, c); }).find("ends on one or at the last row") !=
+               std::string::npos);
+    const auto second = w.encode_rows(32, 32, s, c);
+    BOOST_TEST(message([&] { w.write_encoded(second); }).find("out of order: the next row to write is 0") !=
+               std::string::npos);
+    w.write_rows(5, s, c);  // held back: 5 rows do not fill a block
+    const auto first = w.encode_rows(0, 32, s, c);
+    BOOST_TEST(message([&] { w.write_encoded(first); }).find("the next row to write is 5") != std::string::npos);
+    img.spectral[img.n() * static_cast<size_t>(img.width + 2) + 3] = std::nanf("");  // x = 2, y = 1
+    BOOST_TEST(message([&] {
+                 w.encode_rows(0, 32, img.spectral.data(), c);
+               }).find("non-finite spectral value at x = 2, y = 1, channel S0.410") != std::string::npos);
+  }
+  BOOST_TEST(fs::is_empty(dir.path));
 }
 
 // The file as any OpenEXR reader sees it, through the library's own API.

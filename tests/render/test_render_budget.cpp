@@ -54,25 +54,34 @@ BOOST_AUTO_TEST_CASE(plan_of_a_scene) {
   BOOST_TEST(p.output_bytes() ==
              5 * (spectral_exr_bytes(300, 200, 41) + png_bytes(300, 200, 16) + rgb_exr_bytes(300, 200)));
   BOOST_TEST(p.settings() == "41 wavelengths, 32 view segments, 300x200, 1 thread, 5 frames");
-  // Memory: two bands of 64 rows (spectral + RGB; a band is at most 64 MiB, so 64 rows here), then
-  // the larger of the spectral EXR's part (OpenEXR's buffers for two more bands and 18 bytes per
-  // pixel) and the display's (70 bytes per pixel for an 8-bit PNG, 3 more for 16 bits; 70 for a
-  // working-space EXR): the per-pixel figures measured in docs/reliability.md, "Memory estimates".
-  // Plus the multiple-scattering tables: 16 x 72 entries x 41 wavelengths of floats, times the
-  // harmonics of the sum (degree 10: 66) and of orders 2-6 (degrees 10, 9, 8, 7, 6: 66 + 55 + 45 + 36 + 28).
+  // Memory: a band per thread (whole PIZ line blocks of about 4 MiB: 64 rows of 52.8 kB here,
+  // spectral + RGB), then the larger of the spectral EXR's part (each thread's encoder holds three
+  // buffers of a band) and the display's (70 bytes per pixel for an 8-bit PNG, 3 more for 16 bits;
+  // 70 for a working-space EXR): the per-pixel figures measured in docs/reliability.md, "Memory
+  // estimates". Plus the multiple-scattering tables: 16 x 72 entries x 41 wavelengths of floats,
+  // times the harmonics of the sum (degree 10: 66) and of orders 2-6 (degrees 10, 9, 8, 7, 6: 66 +
+  // 55 + 45 + 36 + 28).
   const std::uint64_t band = 64ull * 300 * 44 * 4, px = 300ull * 200;
+  BOOST_TEST(render_band_rows(300, 41, 32, 200) == 64);
   BOOST_TEST(p.table_bytes == 16ull * 72 * 41 * 4 * (66 + 66 + 55 + 45 + 36 + 28));
-  BOOST_TEST(p.peak_memory_bytes() == 2 * band + std::max(2 * band + px * 18, px * 73) + p.table_bytes);
+  BOOST_TEST(p.peak_memory_bytes() == band + std::max(3 * band, px * 73) + p.table_bytes);
+  p.threads = 2;  // two of each
+  BOOST_TEST(p.peak_memory_bytes() == 2 * band + std::max(6 * band, px * 73) + p.table_bytes);
+  p.threads = 1;
   p.outputs.clear();
   p.table_bytes = 0;
-  BOOST_TEST(p.peak_memory_bytes() == 2 * band);
+  BOOST_TEST(p.peak_memory_bytes() == band);  // without the EXR, 1-row blocks: 64 rows still
   p.extra_bytes_per_pixel = 10;
   p.extra_output_bytes = 7;
-  BOOST_TEST(p.peak_memory_bytes() == 2 * band + px * 10);
-  // Wide images take fewer rows per band (64 MiB), at least 8.
+  BOOST_TEST(p.peak_memory_bytes() == band + px * 10);
+  // Wide images take fewer rows per band, at least one line block.
   p.width = 65536;
   p.height = 1000;
-  BOOST_TEST(p.peak_memory_bytes() == 2 * 8ull * 65536 * 44 * 4 + 65536ull * 1000 * 10);
+  BOOST_TEST(p.peak_memory_bytes() == 65536ull * 44 * 4 + 65536ull * 1000 * 10);
+  BOOST_TEST(render_band_rows(65536, 41, 32, 1000) == 32);
+  BOOST_TEST(render_band_rows(65536, 41, 16, 1000) == 16);
+  BOOST_TEST(render_band_rows(100, 41, 32, 20) == 20);    // never more than the image
+  BOOST_TEST(render_band_rows(1000, 41, 1, 5000) == 23);  // 4 MiB / 176 kB
   BOOST_TEST(p.output_bytes() == 5u * 7u);
 }
 
