@@ -39,7 +39,6 @@
 #include "base/text_format.hpp"
 #include "io/exr_open.hpp"
 #include "io/exr_streams.hpp"
-#include "io/spectral_exr_encode.hpp"
 #include "skyspec/colour.hpp"
 #include "skyspec/error.hpp"
 
@@ -690,14 +689,6 @@ void SpectralExrWriter::finish() {
 }
 
 std::uint64_t SpectralExrWriter::bytes_written() const { return impl_->bytes_written; }
-
-uint64_t detail::encode_spectral_rows(int width, int rows, const std::vector<double>& wavelengths_nm,
-                                      const SpectralExrMetadata& meta, const float* spectral, const float* rgb) {
-  SpectralExrWriter writer(SpectralExrWriter::Discarding{}, width, rows, wavelengths_nm, meta);
-  writer.write_rows(rows, spectral, rgb);
-  writer.finish();
-  return writer.bytes_written();
-}
 
 // ---------------------------------------------------------------------------------------------
 // Reader

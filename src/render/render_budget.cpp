@@ -14,7 +14,6 @@
 #include "colour/display_pipeline.hpp"
 #include "io/png_image.hpp"
 #include "io/spectral_exr.hpp"
-#include "io/spectral_exr_encode.hpp"
 #include "render/scene_tables.hpp"
 #include "render/table_family.hpp"
 #include "skyspec/camera.hpp"
@@ -339,11 +338,11 @@ double measure_render_seconds(const SkyRenderer& renderer, const RenderPlan& pla
     rendered += w;
     if (cpu > 0.05 || h < 4) break;
   }
-  // And writing: the last row rendered, 16 times, encoded as a spectral EXR with the scene's
-  // compression into memory (spectral_exr_encode.hpp), timed the same way.
+  // And writing: the last row rendered, repeated over a line block of the scene's compression (at
+  // least 16 rows), encoded as a spectral EXR into nothing (SpectralExrWriter::Discarding).
   double write = 0.0;
   if (plan.writes("spectral_exr")) {
-    const int rows = 16;
+    const int rows = std::max(16, spectral_exr_block_rows(renderer.scene().output.exr_compression));
     std::vector<float> band_spectral(spectral.size() * rows), band_rgb(rgb.size() * rows);
     for (int r = 0; r < rows; ++r) {
       std::copy(spectral.begin(), spectral.end(), band_spectral.begin() + static_cast<long>(r * spectral.size()));
@@ -352,10 +351,17 @@ double measure_render_seconds(const SkyRenderer& renderer, const RenderPlan& pla
     SpectralExrMetadata meta;
     meta.compression = renderer.scene().output.exr_compression;
     meta.polarised = polarised;
-    meta.threads = renderer.threads();  // as the render's writer: no more OpenEXR threads than render.threads
-    const double before = process_cpu_seconds();
-    detail::encode_spectral_rows(w, rows, renderer.grid().nanometres(), meta, band_spectral.data(), band_rgb.data());
-    write = (process_cpu_seconds() - before) / rows;
+    // Encoded on this thread (as a render encodes each band on the thread that rendered it): this
+    // thread's CPU time, without other threads' waiting for work. Whole line blocks, and timed the
+    // second time in the same writer: a render's encoders keep their buffers from band to band,
+    // and the first band's page faults for them, or a part of a block, cost more per row
+    // (docs/reliability.md, "Time estimates").
+    meta.threads = 1;
+    SpectralExrWriter writer(SpectralExrWriter::Discarding{}, w, 2 * rows, renderer.grid().nanometres(), meta);
+    writer.write_rows(rows, band_spectral.data(), band_rgb.data());
+    const double before = thread_cpu_seconds();
+    writer.write_rows(rows, band_spectral.data(), band_rgb.data());
+    write = (thread_cpu_seconds() - before) / rows;
   }
   // And the PNG, which the render makes on one thread once the image is done: the row through the
   // display pipeline (skyspec's config, its default display and view, at the plan's bit depth) and

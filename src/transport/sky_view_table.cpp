@@ -223,14 +223,14 @@ SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringS
 
   parts_ = integrator.scatterer_count() + 1;
   const size_t stride = static_cast<size_t>(res_.azimuths) * parts_ * static_cast<size_t>(n_);
-  entries_->sky.assign(static_cast<size_t>(res_.sky_rows) * stride, 0.0f);
-  if (res_.ground_side) entries_->ground.assign(static_cast<size_t>(res_.ground_rows) * stride, 0.0f);
+  entries_->sky = ZeroedFloats(static_cast<size_t>(res_.sky_rows) * stride);
+  if (res_.ground_side) entries_->ground = ZeroedFloats(static_cast<size_t>(res_.ground_rows) * stride);
   polarised_ = sources.polarisation;
   const size_t polarised_stride = static_cast<size_t>(res_.azimuths) * kPolarisedParts * static_cast<size_t>(n_);
   if (polarised_) {
-    entries_->polarised_sky.assign(static_cast<size_t>(res_.sky_rows) * polarised_stride, 0.0f);
+    entries_->polarised_sky = ZeroedFloats(static_cast<size_t>(res_.sky_rows) * polarised_stride);
     if (res_.ground_side)
-      entries_->polarised_ground.assign(static_cast<size_t>(res_.ground_rows) * polarised_stride, 0.0f);
+      entries_->polarised_ground = ZeroedFloats(static_cast<size_t>(res_.ground_rows) * polarised_stride);
   }
   ScatteringSources src = sources;
   src.transmittance = nullptr;

@@ -23,6 +23,7 @@
 #include <memory>
 #include <vector>
 
+#include "base/zeroed_floats.hpp"
 #include "skyspec/geometry.hpp"
 #include "transport/single_scattering.hpp"
 
@@ -134,10 +135,11 @@ class SkyViewTable {
   bool polarised_ = false;
   // The entries, written while the constructor marches the rays and shared by reoriented() copies.
   struct Entries {
-    // [side][row][column][part][lambda], part = each scattering medium's, then phase_free.
-    std::vector<float> sky, ground;
+    // [side][row][column][part][lambda], part = each scattering medium's, then phase_free. Zeroed
+    // by the system as the table's rays fill them (ZeroedFloats), not on the calling thread first.
+    ZeroedFloats sky, ground;
     // With polarisation: [side][row][column][Q, U][lambda].
-    std::vector<float> polarised_sky, polarised_ground;
+    ZeroedFloats polarised_sky, polarised_ground;
   };
   std::shared_ptr<Entries> entries_ = std::make_shared<Entries>();
 };
