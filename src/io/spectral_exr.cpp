@@ -287,6 +287,30 @@ struct SpectralExrWriter::Impl {
   std::exception_ptr write_error;
   bool abandoned = false;  // finishing the context must write nothing: the file will be removed
   bool broken = false;     // an earlier write failed: the file is unusable
+  // Byte strings of blocks already written, kept for the next blocks' bytes: fresh ones are
+  // faulted in page by page (as the heap is trimmed and grown again), which cost an uncompressed
+  // render about as much again as its rows (docs/performance.md).
+  std::mutex spare_mutex;
+  std::vector<std::vector<unsigned char>> spare_blocks;
+  std::size_t spare_bytes = 0;
+  static constexpr std::size_t kSpareBytes = std::size_t{64} << 20, kLargestSpare = std::size_t{1} << 20;
+  std::vector<unsigned char> take_spare() {
+    std::lock_guard<std::mutex> lock(spare_mutex);
+    if (spare_blocks.empty()) return {};
+    std::vector<unsigned char> block = std::move(spare_blocks.back());
+    spare_blocks.pop_back();
+    spare_bytes -= block.capacity();
+    return block;
+  }
+  void give_back(std::vector<std::vector<unsigned char>>& blocks) {
+    std::lock_guard<std::mutex> lock(spare_mutex);
+    for (auto& block : blocks)
+      if (block.capacity() <= kLargestSpare && spare_bytes + block.capacity() <= kSpareBytes) {
+        spare_bytes += block.capacity();
+        spare_blocks.push_back(std::move(block));
+      }
+    blocks.clear();
+  }
   // Rows handed to write_rows that do not yet fill a line block.
   std::vector<float> pending_spectral, pending_rgb;
   int pending_rows = 0;
@@ -537,8 +561,10 @@ SpectralExrWriter::EncodedRows SpectralExrWriter::encode_rows(int first_row, int
   const size_t n = w.channel_names.size(), width = static_cast<size_t>(w.width);
   const auto encode = [&](int b) {
     const int row = b * w.block_rows, count = std::min(w.block_rows, rows - row);
+    std::vector<unsigned char>& bytes = encoded.blocks[static_cast<size_t>(b)];
+    bytes = w.take_spare();
     encode_block(w, w.encoders.local(), first_row + row, count, spectral + static_cast<size_t>(row) * width * n,
-                 rgb + static_cast<size_t>(row) * width * 3, encoded.blocks[static_cast<size_t>(b)]);
+                 rgb + static_cast<size_t>(row) * width * 3, bytes);
   };
   if (blocks == 1 || w.threads == 1) {
     for (int b = 0; b < blocks; ++b) encode(b);
@@ -548,7 +574,7 @@ SpectralExrWriter::EncodedRows SpectralExrWriter::encode_rows(int first_row, int
   return encoded;
 }
 
-void SpectralExrWriter::write_encoded(const EncodedRows& encoded) {
+void SpectralExrWriter::write_encoded(EncodedRows&& encoded) {
   Impl& w = *impl_;
   if (!w.context || w.broken) throw w.error(w.broken ? "an earlier write failed" : "write_encoded after finish()");
   if (w.pending_rows != 0 || encoded.first_row != w.rows_written)
@@ -561,6 +587,7 @@ void SpectralExrWriter::write_encoded(const EncodedRows& encoded) {
       w.check(exr_write_scanline_chunk(w.context, 0, y, bytes.data(), bytes.size()), "cannot write a line block");
     }
     if (w.file_stream) w.file_stream->start_writeback();
+    w.give_back(encoded.blocks);
   } catch (...) {
     // The file is unusable; the context is finished when the writer goes (other threads may
     // still be encoding with it), writing nothing more.
@@ -637,7 +664,7 @@ void SpectralExrWriter::write_rows(int rows, const float* spectral, const float*
       tbb::task_arena arena(w.threads > 0 ? w.threads : tbb::task_arena::automatic);
       EncodedRows encoded;
       arena.execute([&] { encoded = encode_rows(first_row, count, s, c); });
-      write_encoded(encoded);
+      write_encoded(std::move(encoded));
     } else {
       write_encoded(encode_rows(first_row, count, s, c));
     }

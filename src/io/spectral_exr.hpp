@@ -94,8 +94,9 @@ class SpectralExrWriter {
   /// in parallel in the caller's TBB arena unless meta.threads = 1. Throws IoError as write_rows.
   EncodedRows encode_rows(int first_row, int rows, const float* spectral, const float* rgb) const;
   /// Writes encoded rows: they must be the next rows of the file (IoError otherwise), and not
-  /// mixed with rows that write_rows holds back because they did not yet fill a line block.
-  void write_encoded(const EncodedRows& rows);
+  /// mixed with rows that write_rows holds back because they did not yet fill a line block. Their
+  /// byte strings are kept for the next encode_rows once written.
+  void write_encoded(EncodedRows&& rows);
 
   /// A writer whose bytes go nowhere (the render-time estimate: what encoding costs).
   struct Discarding {};

@@ -133,7 +133,8 @@ std::uint64_t RenderPlan::peak_memory_bytes() const {
   const std::uint64_t px = pixels(width, height), n = static_cast<std::uint64_t>(std::max(wavelengths, 0));
   // render_scene_to_files renders and encodes a band per thread at a time (render_bands): each
   // thread holds its band's values and, with a spectral EXR, its encoder's three buffers of the
-  // band's size (the values in the file's layout, compressed, the codec's scratch).
+  // band's size (the values in the file's layout, compressed, the codec's scratch), and up to two
+  // bands per thread wait, encoded, to be written in order.
   const int values = static_cast<int>(n) * std::max(stokes_components, 1);
   const bool spectral_exr = writes("spectral_exr"), png = writes("png"), working_exr = writes("working_exr");
   const std::uint64_t row_bytes =
@@ -147,7 +148,7 @@ std::uint64_t RenderPlan::peak_memory_bytes() const {
   // (docs/reliability.md, "Memory estimates"): for a PNG, the whole-image RGB, the copy the
   // display pipeline encodes, its output, the PNG's samples and the allocator's pages around
   // them. With both, the larger part is the peak (the same measurements).
-  const std::uint64_t exr_part = spectral_exr ? 3 * workers * band : 0;
+  const std::uint64_t exr_part = spectral_exr ? 5 * workers * band : 0;
   std::uint64_t display_part = 0;
   if (png || working_exr) {
     const std::uint64_t png_part = png ? px * 70 + px * 3 * static_cast<std::uint64_t>(png_bit_depth / 8 - 1) : 0;

@@ -229,7 +229,7 @@ void render_bands(const SkyRenderer& r, SpectralExrWriter* exr, std::vector<floa
                 }) &
             tbb::make_filter<std::shared_ptr<Band>, void>(tbb::filter_mode::serial_in_order,
                                                           [&](std::shared_ptr<Band> b) {
-                                                            if (exr) exr->write_encoded(b->encoded);
+                                                            if (exr) exr->write_encoded(std::move(b->encoded));
                                                             rows_done += b->rows;
                                                             if (progress) progress(rows_done, h);
                                                           }));

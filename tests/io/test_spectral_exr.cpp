@@ -338,7 +338,7 @@ BOOST_AUTO_TEST_CASE(blocks_encoded_on_threads_make_the_bytes_of_write_rows) {
                 }
               });
             for (std::thread& t : threads) t.join();
-            for (const auto& e : encoded) w.write_encoded(e);
+            for (auto& e : encoded) w.write_encoded(std::move(e));
             w.finish();
           }
           BOOST_TEST((read_all(rows) == read_all(whole)));
@@ -376,12 +376,13 @@ BOOST_AUTO_TEST_CASE(encoded_bands_in_the_wrong_place_are_refused) {
                std::string::npos);
     BOOST_TEST(message([&] { w.encode_rows(0, 20, s, c); }).find("ends on one or at the last row") !=
                std::string::npos);
-    const auto second = w.encode_rows(32, 32, s, c);
-    BOOST_TEST(message([&] { w.write_encoded(second); }).find("out of order: the next row to write is 0") !=
+    auto second = w.encode_rows(32, 32, s, c);
+    BOOST_TEST(message([&] { w.write_encoded(std::move(second)); }).find("out of order: the next row to write is 0") !=
                std::string::npos);
     w.write_rows(5, s, c);  // held back: 5 rows do not fill a block
-    const auto first = w.encode_rows(0, 32, s, c);
-    BOOST_TEST(message([&] { w.write_encoded(first); }).find("the next row to write is 5") != std::string::npos);
+    auto first = w.encode_rows(0, 32, s, c);
+    BOOST_TEST(message([&] { w.write_encoded(std::move(first)); }).find("the next row to write is 5") !=
+               std::string::npos);
     img.spectral[img.n() * static_cast<size_t>(img.width + 2) + 3] = std::nanf("");  // x = 2, y = 1
     BOOST_TEST(message([&] {
                  w.encode_rows(0, 32, img.spectral.data(), c);
