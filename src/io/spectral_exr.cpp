@@ -206,7 +206,8 @@ std::optional<std::pair<int, double>> parse_stokes_channel_name(const std::strin
 // Writer: OpenEXR's C core library (OpenEXRCore), whose encoder compresses a line block on any
 // thread that asks, so that blocks are compressed where their rows were rendered and written in
 // order afterwards (encode_rows, write_encoded). The C++ library's OutputFile compresses on its own
-// thread pool and took 1.26-1.43 times less time on two threads than on one (docs/performance.md).
+// thread pool, which gained less from a second thread (docs/performance.md, "Where a render's two
+// threads go").
 // ---------------------------------------------------------------------------------------------
 
 namespace {

@@ -4,7 +4,7 @@
 //
 // Sizes are upper bounds from the image size (uncompressed pixel data plus room for the headers);
 // memory follows what render_scene_to_files keeps (a whole-image float RGB buffer for the PNG and
-// the working-space EXR, one band of spectral rows, OpenEXR's line buffers); the time is measured,
+// the working-space EXR, a band of spectral rows per thread, the EXR encoders' buffers); the time is measured,
 // not guessed: radiance() is timed on a sample of the camera's own pixels and extrapolated to the
 // image, the frames and the threads.
 #pragma once
