@@ -288,6 +288,10 @@ double estimate_table_seconds(const Scene& scene, const SkyRenderer& estimate_re
   return estimate_scattering_orders_seconds(scene) + estimate_frame_table_seconds(scene, estimate_renderer);
 }
 
+// The EXR's share of the estimate is timed on this many pixels of a row at most: each render
+// pays for the sample before its image.
+constexpr int kWriteSampleWidth = 128;
+
 double measure_render_seconds(const SkyRenderer& renderer, const RenderPlan& plan) {
   const int w = renderer.width(), h = renderer.height();
   const double threads = std::max(plan.threads, 1);
@@ -339,15 +343,20 @@ double measure_render_seconds(const SkyRenderer& renderer, const RenderPlan& pla
     rendered += w;
     if (cpu > 0.05 || h < 4) break;
   }
-  // And writing: the last row rendered, repeated over a line block of the scene's compression (at
-  // least 16 rows), encoded as a spectral EXR into nothing (SpectralExrWriter::Discarding).
+  // And writing: the middle of the last row rendered (at most kWriteSampleWidth pixels), repeated
+  // over a line block of the scene's compression (at least 16 rows), encoded as a spectral EXR into
+  // nothing (SpectralExrWriter::Discarding); its cost per pixel is the image's.
   double write = 0.0;
   if (plan.writes("spectral_exr")) {
     const int rows = std::max(16, spectral_exr_block_rows(renderer.scene().output.exr_compression));
-    std::vector<float> band_spectral(spectral.size() * rows), band_rgb(rgb.size() * rows);
+    const int sw = std::min(w, kWriteSampleWidth), x0 = (w - sw) / 2;
+    const size_t row_values = static_cast<size_t>(sw) * values;
+    std::vector<float> band_spectral(row_values * rows), band_rgb(static_cast<size_t>(sw) * 3 * rows);
     for (int r = 0; r < rows; ++r) {
-      std::copy(spectral.begin(), spectral.end(), band_spectral.begin() + static_cast<long>(r * spectral.size()));
-      std::copy(rgb.begin(), rgb.end(), band_rgb.begin() + static_cast<long>(r * rgb.size()));
+      std::copy(spectral.begin() + static_cast<long>(x0 * values),
+                spectral.begin() + static_cast<long>((x0 + sw) * values),
+                band_spectral.begin() + static_cast<long>(r * row_values));
+      std::copy(rgb.begin() + x0 * 3, rgb.begin() + (x0 + sw) * 3, band_rgb.begin() + r * sw * 3);
     }
     SpectralExrMetadata meta;
     meta.compression = renderer.scene().output.exr_compression;
@@ -358,11 +367,11 @@ double measure_render_seconds(const SkyRenderer& renderer, const RenderPlan& pla
     // and the first band's page faults for them, or a part of a block, cost more per row
     // (docs/reliability.md, "Time estimates").
     meta.threads = 1;
-    SpectralExrWriter writer(SpectralExrWriter::Discarding{}, w, 2 * rows, renderer.grid().nanometres(), meta);
+    SpectralExrWriter writer(SpectralExrWriter::Discarding{}, sw, 2 * rows, renderer.grid().nanometres(), meta);
     writer.write_rows(rows, band_spectral.data(), band_rgb.data());
     const double before = thread_cpu_seconds();
     writer.write_rows(rows, band_spectral.data(), band_rgb.data());
-    write = (thread_cpu_seconds() - before) / rows;
+    write = (thread_cpu_seconds() - before) / rows * w / sw;  // a whole row's
   }
   // And the PNG, which the render makes on one thread once the image is done: the row through the
   // display pipeline (skyspec's config, its default display and view, at the plan's bit depth) and

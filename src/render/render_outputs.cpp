@@ -180,59 +180,54 @@ void render_bands(const SkyRenderer& r, SpectralExrWriter* exr, std::vector<floa
     free_buffers.push_back(std::move(b));
   };
 
-  // A band from its renderer to the file.
+  // The bands, from their renderer to the file: the pipeline passes their numbers, and each band's
+  // encoded bytes live here until written, so that a stopped pipeline (a write error, a
+  // cancellation) leaves nothing behind that this function does not free.
   struct Band {
     int y = 0, rows = 0;  // rows of the window
     SpectralExrWriter::EncodedRows encoded;
   };
-  int next_row = 0, rows_done = 0;
+  std::vector<Band> bands(static_cast<size_t>((h + band - 1) / band));
+  for (size_t i = 0; i < bands.size(); ++i) {
+    bands[i].y = static_cast<int>(i) * band;
+    bands[i].rows = std::min(band, h - bands[i].y);
+  }
+  size_t next_band = 0;
+  int rows_done = 0;
   tbb::task_arena arena(threads);
   arena.execute([&] {
     tbb::parallel_pipeline(
         in_flight,
-        tbb::make_filter<void, std::shared_ptr<Band>>(tbb::filter_mode::serial_in_order,
-                                                      [&](tbb::flow_control& control) {
-                                                        if (next_row >= h) {
-                                                          control.stop();
-                                                          return std::shared_ptr<Band>();
-                                                        }
-                                                        auto b = std::make_shared<Band>();
-                                                        b->y = next_row;
-                                                        b->rows = std::min(band, h - next_row);
-                                                        next_row += b->rows;
-                                                        return b;
-                                                      }) &
-            tbb::make_filter<std::shared_ptr<Band>, std::shared_ptr<Band>>(
-                tbb::filter_mode::parallel,
-                [&](std::shared_ptr<Band> b) {
-                  std::unique_ptr<Buffers> buffers = take();
-                  float* spectral = buffers->spectral.get();
-                  float* band_rgb = buffers->rgb.get();
-                  if (polarised)
-                    r.render_window_stokes(x0, x0 + w, y_first + b->y, b->rows, spectral, band_rgb);
-                  else
-                    r.render_window(x0, x0 + w, y_first + b->y, b->rows, spectral, band_rgb);
-                  const size_t pixels = static_cast<size_t>(b->rows) * w;
-                  if (!rgb.empty())
-                    std::copy(band_rgb, band_rgb + pixels * 3, rgb.begin() + static_cast<long>(b->y) * w * 3);
-                  if (polarised && !stokes_y.empty())
-                    for (size_t p = 0; p < pixels; ++p) {
-                      const float* v = spectral + p * static_cast<size_t>(values);
-                      float* out = stokes_y.data() + (static_cast<size_t>(b->y) * w + p) * 3;
-                      for (int c = 0; c < 3; ++c)
-                        out[c] = static_cast<float>(
-                            rec709_luminance(r.spectrum_to_rgb(Eigen::Map<const Spectrum>(v + c * n, n)).data()));
-                    }
-                  if (exr) b->encoded = exr->encode_rows(b->y, b->rows, spectral, band_rgb);
-                  give_back(std::move(buffers));
-                  return b;
-                }) &
-            tbb::make_filter<std::shared_ptr<Band>, void>(tbb::filter_mode::serial_in_order,
-                                                          [&](std::shared_ptr<Band> b) {
-                                                            if (exr) exr->write_encoded(std::move(b->encoded));
-                                                            rows_done += b->rows;
-                                                            if (progress) progress(rows_done, h);
-                                                          }));
+        tbb::make_filter<void, size_t>(tbb::filter_mode::serial_in_order, [&](tbb::flow_control& control) -> size_t {
+          if (next_band == bands.size()) control.stop();
+          return next_band < bands.size() ? next_band++ : 0;
+        }) & tbb::make_filter<size_t, size_t>(tbb::filter_mode::parallel, [&](size_t i) {
+          Band& b = bands[i];
+          std::unique_ptr<Buffers> buffers = take();
+          float* spectral = buffers->spectral.get();
+          float* band_rgb = buffers->rgb.get();
+          if (polarised)
+            r.render_window_stokes(x0, x0 + w, y_first + b.y, b.rows, spectral, band_rgb);
+          else
+            r.render_window(x0, x0 + w, y_first + b.y, b.rows, spectral, band_rgb);
+          const size_t pixels = static_cast<size_t>(b.rows) * w;
+          if (!rgb.empty()) std::copy(band_rgb, band_rgb + pixels * 3, rgb.begin() + static_cast<long>(b.y) * w * 3);
+          if (polarised && !stokes_y.empty())
+            for (size_t p = 0; p < pixels; ++p) {
+              const float* v = spectral + p * static_cast<size_t>(values);
+              float* out = stokes_y.data() + (static_cast<size_t>(b.y) * w + p) * 3;
+              for (int c = 0; c < 3; ++c)
+                out[c] = static_cast<float>(
+                    rec709_luminance(r.spectrum_to_rgb(Eigen::Map<const Spectrum>(v + c * n, n)).data()));
+            }
+          if (exr) b.encoded = exr->encode_rows(b.y, b.rows, spectral, band_rgb);
+          give_back(std::move(buffers));
+          return i;
+        }) & tbb::make_filter<size_t, void>(tbb::filter_mode::serial_in_order, [&](size_t i) {
+          if (exr) exr->write_encoded(std::move(bands[i].encoded));
+          rows_done += bands[i].rows;
+          if (progress) progress(rows_done, h);
+        }));
   });
 }
 
