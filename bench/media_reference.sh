@@ -27,3 +27,10 @@ if [[ -z "$SKYSPEC_BENCH_MEDIA_ONLY" || "shower" == *"$SKYSPEC_BENCH_MEDIA_ONLY"
     --log_level=nothing --report_level=no; then verdict=pass; else verdict=FAIL; fi
   echo "shower, all orders, Stokes vector at 650 nm against the vector Monte Carlo (4000 paths): $verdict"
 fi
+# Fog towards the sun, 3 degrees up, all orders, against the Monte Carlo drawing a share of its
+# scatterings about the sun (3000 paths; moved here from the test command for its time): pass or FAIL.
+if [[ -z "$SKYSPEC_BENCH_MEDIA_ONLY" || "fog" == *"$SKYSPEC_BENCH_MEDIA_ONLY"* ]]; then
+  if SKYSPEC_BENCH_MEDIA=1 "$build/tests/skyspec_tests" --run_test=test_bows_reference/fog_all_orders_towards_the_sun \
+    --log_level=nothing --report_level=no; then verdict=pass; else verdict=FAIL; fi
+  echo "fog, all orders, towards the sun 3 degrees up, 450 and 650 nm, against the Monte Carlo (3000 paths): $verdict"
+fi

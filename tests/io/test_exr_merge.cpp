@@ -7,10 +7,12 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
+#include <ImfIntAttribute.h>
 #include <ImfOutputFile.h>
 
 #include <array>
 #include <cmath>
+#include <functional>
 #include <random>
 #include <string>
 #include <vector>
@@ -186,6 +188,54 @@ BOOST_AUTO_TEST_CASE(a_tile_with_a_non_finite_value_is_refused) {
   const std::string e = error_of({top, bad}, out);
   BOOST_TEST(e.find("not finite") != std::string::npos, e);
   BOOST_TEST(!std::filesystem::exists(out));
+}
+
+// The merged file is written by the render's own writer, from what the tiles' header says: tiles
+// whose header that writer would not have written (an attribute of a type it does not write, a
+// channel other than S0-S3 and R, G, B) are refused, naming what is foreign, and leave no file.
+BOOST_AUTO_TEST_CASE(tiles_skyspec_would_not_have_written_are_refused_by_name) {
+  ScratchFolder dir("merge-foreign");
+  const Image im = random_image(10);
+  const SpectralExrMetadata meta = metadata("piz", false);
+  const auto top = dir.path / "top.exr", bottom = dir.path / "bottom.exr";
+  write_tile(top, im, {0, kWidth, 0, 40}, meta);
+  write_tile(bottom, im, {0, kWidth, 40, kHeight}, meta);
+  // A tile rewritten by OpenEXR itself with `change` made to its header (and a channel "A" of
+  // zeros when the header has one).
+  const auto rewrite = [](const std::filesystem::path& from, const std::filesystem::path& to,
+                          const std::function<void(Imf::Header&)>& change) {
+    Imf::InputFile in(from.c_str());
+    Imf::Header h = in.header();
+    change(h);
+    const auto w = h.dataWindow();
+    const int width = w.max.x - w.min.x + 1, rows = w.max.y - w.min.y + 1;
+    std::vector<std::vector<float>> planes;
+    Imf::FrameBuffer frame;
+    for (auto c = h.channels().begin(); c != h.channels().end(); ++c) {
+      planes.emplace_back(static_cast<size_t>(width) * rows);
+      frame.insert(c.name(),
+                   Imf::Slice::Make(Imf::FLOAT, planes.back().data(), w, sizeof(float), sizeof(float) * width));
+    }
+    in.setFrameBuffer(frame);
+    in.readPixels(w.min.y, w.max.y);
+    Imf::OutputFile out(to.c_str(), h);
+    out.setFrameBuffer(frame);
+    out.writePixels(rows);
+  };
+  const auto out = dir.path / "out.exr";
+  const auto with_int = [](Imf::Header& h) { h.insert("studio:shot", Imf::IntAttribute(42)); };
+  rewrite(top, dir.path / "top-int.exr", with_int);
+  rewrite(bottom, dir.path / "bottom-int.exr", with_int);
+  std::string e = error_of({dir.path / "top-int.exr", dir.path / "bottom-int.exr"}, out);
+  BOOST_TEST(e.find("its attribute studio:shot is of type int, which skyspec does not write") != std::string::npos, e);
+  const auto with_alpha = [](Imf::Header& h) { h.channels().insert("A", Imf::Channel(Imf::FLOAT)); };
+  rewrite(top, dir.path / "top-a.exr", with_alpha);
+  rewrite(bottom, dir.path / "bottom-a.exr", with_alpha);
+  e = error_of({dir.path / "top-a.exr", dir.path / "bottom-a.exr"}, out);
+  BOOST_TEST(e.find("it has a channel A") != std::string::npos, e);
+  BOOST_TEST(!std::filesystem::exists(out));
+  // The tiles as skyspec wrote them merge.
+  BOOST_TEST(error_of({top, bottom}, out).empty());
 }
 
 BOOST_AUTO_TEST_SUITE_END()
