@@ -16,24 +16,18 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <cerrno>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <exception>
-#include <future>
 #include <iomanip>
 #include <locale>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <sstream>
-#include <thread>
-#include <type_traits>
 #include <utility>
-
-#include <unistd.h>  // fdatasync
 
 #include "base/atomic_file.hpp"
 #include "base/text_format.hpp"
@@ -289,8 +283,8 @@ struct SpectralExrWriter::Impl {
   bool abandoned = false;  // finishing the context must write nothing: the file will be removed
   bool broken = false;     // an earlier write failed: the file is unusable
   // Byte strings of blocks already written, kept for the next blocks' bytes: fresh ones are
-  // faulted in page by page (as the heap is trimmed and grown again), which cost an uncompressed
-  // render about as much again as its rows (docs/performance.md).
+  // faulted in page by page (as the heap is trimmed and grown again), which slowed uncompressed
+  // files' one-row blocks most (docs/performance.md has the measurement).
   std::mutex spare_mutex;
   std::vector<std::vector<unsigned char>> spare_blocks;
   std::size_t spare_bytes = 0;
