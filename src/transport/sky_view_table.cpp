@@ -236,20 +236,22 @@ SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringS
   src.transmittance = nullptr;
   src.max_distance_m = std::numeric_limits<double>::infinity();
   src.terrain = nullptr;  // it would break the symmetry the own frame relies on (renders march its pixels)
-  // The higher orders on a coarser table: this one's rays marched without them, their light added
-  // afterwards as the difference of two coarse tables, with and without them.
-  const bool coarse_higher = src.higher && res_.higher_sky_rows > 0 && res_.higher_azimuths > 0 &&
+  // The higher orders on a coarser table: this one's rays marched without their light, which is
+  // added afterwards from a coarse table of it alone (its rays marched without the light scattered
+  // once: ScatteringSources::single; the same nodes, which the higher-order source places).
+  const bool coarse_higher = src.higher && src.higher_light && res_.higher_sky_rows > 0 && res_.higher_azimuths > 0 &&
                              (res_.higher_sky_rows < res_.sky_rows || res_.higher_azimuths < res_.azimuths);
-  std::unique_ptr<SkyViewTable> with_higher, without_higher;
+  std::unique_ptr<SkyViewTable> higher_only;
   if (coarse_higher) {
     SkyViewResolution coarse = res_;
     coarse.sky_rows = std::min(res_.higher_sky_rows, res_.sky_rows);
     coarse.ground_rows = std::max(2, coarse.sky_rows / 2);
     coarse.azimuths = std::min(res_.higher_azimuths, res_.azimuths);
     coarse.higher_sky_rows = coarse.higher_azimuths = 0;
-    with_higher = std::make_unique<SkyViewTable>(integrator, src, own_origin, own_sun_, coarse, threads);
+    ScatteringSources higher = src;
+    higher.single = false;
+    higher_only = std::make_unique<SkyViewTable>(integrator, higher, own_origin, own_sun_, coarse, threads);
     src.higher_light = false;
-    without_higher = std::make_unique<SkyViewTable>(integrator, src, own_origin, own_sun_, coarse, threads);
   }
   // A row at a time: its rays share their zenith angle, so the integrator computes their nodes
   // once (SingleScattering::radiance_parts_same_zenith).
@@ -294,13 +296,13 @@ SkyViewTable::SkyViewTable(const SingleScattering& integrator, const ScatteringS
       }
     });
   });
-  if (coarse_higher) add_coarse_higher_orders(*with_higher, *without_higher, threads);
+  if (coarse_higher) add_coarse_higher_orders(*higher_only, threads);
   set_frame(origin_m, sun_dir);
 }
 
-// Each entry's phase-free part gains what the higher orders add there in the coarse tables
-// (interpolated at its direction as a look-up would), and its polarisation is theirs.
-void SkyViewTable::add_coarse_higher_orders(const SkyViewTable& with, const SkyViewTable& without, int threads) {
+// Each entry's phase-free part gains the higher orders' light of the coarse table (interpolated at
+// its direction as a look-up would), and its polarisation is theirs.
+void SkyViewTable::add_coarse_higher_orders(const SkyViewTable& higher, int threads) {
   const int n = n_, m = res_.azimuths, scatterers = parts_ - 1;
   const size_t stride = static_cast<size_t>(m) * parts_ * static_cast<size_t>(n);
   const size_t polarised_stride = static_cast<size_t>(m) * kPolarisedParts * static_cast<size_t>(n);
@@ -310,15 +312,15 @@ void SkyViewTable::add_coarse_higher_orders(const SkyViewTable& with, const SkyV
     tbb::parallel_for(0, total_rows, [&](int row_all) {
       const bool sky_side = row_all < res_.sky_rows;
       const int row = sky_side ? row_all : row_all - res_.sky_rows;
-      RadianceParts a(n, scatterers), b(n, scatterers);
+      RadianceParts a(n, scatterers);
       for (int column = 0; column < m; ++column) {
         const Vec3 d = direction(sky_side, row, column);
-        if (!with.lookup(d, a) || !without.lookup(d, b)) continue;
+        if (!higher.lookup(d, a)) continue;
         float* entry = (sky_side ? entries_->sky : entries_->ground).data() + row * stride +
                        static_cast<size_t>(column) * parts_ * static_cast<size_t>(n) +
                        static_cast<size_t>(scatterers) * n;
-        for (int l = 0; l < n; ++l) entry[l] = std::max(0.0f, entry[l] + a.phase_free[l] - b.phase_free[l]);
-        if (polarised_ && with.lookup_polarised(d, a)) {
+        for (int l = 0; l < n; ++l) entry[l] += a.phase_free[l];
+        if (polarised_ && higher.lookup_polarised(d, a)) {
           float* q = (sky_side ? entries_->polarised_sky : entries_->polarised_ground).data() + row * polarised_stride +
                      static_cast<size_t>(column) * kPolarisedParts * static_cast<size_t>(n);
           std::copy(a.polarised_q.data(), a.polarised_q.data() + n, q);

@@ -120,8 +120,8 @@ class SkyViewTable {
 
   // The look-ups' frame for a camera at origin_m with the sun along sun_dir.
   void set_frame(const Vec3& origin_m, const Vec3& sun_dir);
-  // The higher orders' light from coarse tables with and without them (SkyViewResolution::higher_sky_rows).
-  void add_coarse_higher_orders(const SkyViewTable& with, const SkyViewTable& without, int threads);
+  // The higher orders' light from a coarse table of it alone (SkyViewResolution::higher_sky_rows).
+  void add_coarse_higher_orders(const SkyViewTable& higher, int threads);
 
   SkyViewResolution res_;
   int n_ = 0;                      // wavelengths
