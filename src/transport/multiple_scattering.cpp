@@ -224,7 +224,7 @@ struct SourceTable::Blend {
   const float* upper = nullptr;  // and of row ih + 1's
 };
 
-SourceTable::Blend SourceTable::blend(double r_m, double mu_s) const {
+SourceTable::Blend SourceTable::blend(double r_m, double mu_s, float* factors) const {
   if (!prepared_) throw std::logic_error("SourceTable::source: the table was not prepared after it was written");
   const double h = std::clamp(r_m - R_, 0.0, Rt_ - R_);
   const double fh = row_coordinate_of_altitude(h) * (n_h_ - 1);
@@ -248,7 +248,11 @@ SourceTable::Blend SourceTable::blend(double r_m, double mu_s) const {
   using Lanes = Eigen::Array<float, kLookupSlack, 1>;
   using LanesMap = Eigen::Map<const Lanes, Eigen::Unaligned>;
   thread_local std::vector<float> row_factors;
-  row_factors.assign(2 * static_cast<size_t>(padded), 1.0f);
+  if (!factors) {
+    row_factors.resize(2 * static_cast<size_t>(padded));
+    factors = row_factors.data();
+  }
+  std::fill_n(factors, 2 * static_cast<size_t>(padded), 1.0f);
   // Over whole blocks of fixed size (Eigen's vectorised exp on every lane: a dynamic-size
   // expression would peel a head with the scalar expf depending on the buffer's alignment, so
   // that the last bit depended on the heap, hence on the thread); the lanes past the last
@@ -261,84 +265,115 @@ SourceTable::Blend SourceTable::blend(double r_m, double mu_s) const {
                                                       ((1 - am) * LanesMap(x + i0) + am * LanesMap(y + i0)).max(1e-30f);
   };
   if (lower_steep) {
-    factor(ih, w.a, w.b, row_factors.data());
-    w.lower = row_factors.data();
+    factor(ih, w.a, w.b, factors);
+    w.lower = factors;
   }
   if (upper_steep) {
-    factor(ih + 1, w.c, w.d, row_factors.data() + padded);
-    w.upper = row_factors.data() + padded;
+    factor(ih + 1, w.c, w.d, factors + padded);
+    w.upper = factors + padded;
   }
   return w;
 }
 
-// source_to_degree's sums over the harmonics for each medium, per block of kLookupSlack wavelengths.
+// One node's look-up (harmonic_source): the blend of its four entries and its view direction's
+// harmonics, as doubles and as floats.
+struct SourceTable::NodeLookup {
+  Blend w;
+  double mv, cos_phi;
+  double basis_d[kMaxHarmonics];
+  float basis[kMaxHarmonics];
+};
+
+// The sums over the harmonics for each medium, per block of kLookupSlack wavelengths, of kRun
+// nodes that blend the same four entries (each with its own weights and view direction): each
+// entry's harmonics are loaded once for all of them. Successive nodes along a ray often lie between
+// the same four entries, whose harmonics (4 x 66 x 41 floats at degree 10) are larger than a
+// core's first-level cache. Each node's sums are the same to the last bit as alone (kRun = 1).
 struct SourceTable::HarmonicSum {
-  const Blend& w;
-  const float* basis;
+  const NodeLookup* nodes;  // kRun of them
   int degree, n_l, media;
   int media_degree[kMaxMedia];
   const float* chi[kMaxMedia];
-  float* const* out;
+  float* const* out;  // node r's J_s at out[s] + r * out_stride
+  size_t out_stride;
 
   // kMedia > 0: the number of media known at compile time; 0: `media` at run time.
-  template <int kMedia>
+  template <int kMedia, int kRun>
   void run() const {
     using Lanes = Eigen::Array<float, kLookupSlack, 1>;
     using LanesMap = Eigen::Map<const Lanes, Eigen::Unaligned>;
     const int count = kMedia > 0 ? kMedia : media;
-    const float *a = w.a, *b = w.b, *c = w.c, *d = w.d;
+    const Blend& first = nodes[0].w;
+    const float *a = first.a, *b = first.b, *c = first.c, *d = first.d;
     for (int i0 = 0; i0 < n_l; i0 += kLookupSlack) {
-      Lanes wa = Lanes::Constant(w.sa), wb = Lanes::Constant(w.sb), wc = Lanes::Constant(w.sc),
-            wd = Lanes::Constant(w.sd);
-      if (w.lower) {
-        const LanesMap f(w.lower + i0);
-        wa *= f;
-        wb *= f;
+      Lanes wa[kRun], wb[kRun], wc[kRun], wd[kRun];
+      for (int r = 0; r < kRun; ++r) {
+        const Blend& w = nodes[r].w;
+        wa[r] = Lanes::Constant(w.sa), wb[r] = Lanes::Constant(w.sb), wc[r] = Lanes::Constant(w.sc),
+        wd[r] = Lanes::Constant(w.sd);
+        if (w.lower) {
+          const LanesMap f(w.lower + i0);
+          wa[r] *= f;
+          wb[r] *= f;
+        }
+        if (w.upper) {
+          const LanesMap f(w.upper + i0);
+          wc[r] *= f;
+          wd[r] *= f;
+        }
       }
-      if (w.upper) {
-        const LanesMap f(w.upper + i0);
-        wc *= f;
-        wd *= f;
-      }
-      Lanes sums[kMedia > 0 ? kMedia : kMaxMedia];
-      for (int s = 0; s < count; ++s) sums[s] = Lanes::Zero();
+      Lanes sums[kRun][kMedia > 0 ? kMedia : kMaxMedia];
+      for (int r = 0; r < kRun; ++r)
+        for (int s = 0; s < count; ++s) sums[r][s] = Lanes::Zero();
       for (int l = 0; l <= degree; ++l) {
-        Lanes pa = Lanes::Zero(), pb = Lanes::Zero(), pc = Lanes::Zero(), pd = Lanes::Zero();
+        Lanes pa[kRun], pb[kRun], pc[kRun], pd[kRun];
+        for (int r = 0; r < kRun; ++r) pa[r] = pb[r] = pc[r] = pd[r] = Lanes::Zero();
         for (int m = 0; m <= l; ++m) {
           const int k = harmonic_index(l, m);
           const size_t o = static_cast<size_t>(k) * n_l + i0;
-          const float y = basis[k];
-          pa += y * LanesMap(a + o);
-          pb += y * LanesMap(b + o);
-          pc += y * LanesMap(c + o);
-          pd += y * LanesMap(d + o);
+          const Lanes ea = LanesMap(a + o), eb = LanesMap(b + o), ec = LanesMap(c + o), ed = LanesMap(d + o);
+          for (int r = 0; r < kRun; ++r) {
+            const float y = nodes[r].basis[k];
+            pa[r] += y * ea;
+            pb[r] += y * eb;
+            pc[r] += y * ec;
+            pd[r] += y * ed;
+          }
         }
-        const Lanes v = wa * pa + wb * pb + wc * pc + wd * pd;
         const size_t o = static_cast<size_t>(l) * n_l + i0;
-        for (int s = 0; s < count; ++s)
-          if (l <= media_degree[s]) sums[s] += LanesMap(chi[s] + o) * v;
+        for (int r = 0; r < kRun; ++r) {
+          const Lanes v = wa[r] * pa[r] + wb[r] * pb[r] + wc[r] * pc[r] + wd[r] * pd[r];
+          for (int s = 0; s < count; ++s)
+            if (l <= media_degree[s]) sums[r][s] += LanesMap(chi[s] + o) * v;
+        }
       }
-      for (int s = 0; s < count; ++s) {
-        if (n_l - i0 >= kLookupSlack)
-          Eigen::Map<Lanes, Eigen::Unaligned>(out[s] + i0) = sums[s];
-        else
-          std::copy_n(sums[s].data(), std::min(n_l - i0, kLookupSlack), out[s] + i0);
-      }
+      for (int r = 0; r < kRun; ++r)
+        for (int s = 0; s < count; ++s) {
+          float* const dest = out[s] + static_cast<size_t>(r) * out_stride + i0;
+          if (n_l - i0 >= kLookupSlack)
+            Eigen::Map<Lanes, Eigen::Unaligned>{dest} = sums[r][s];
+          else
+            std::copy_n(sums[r][s].data(), std::min(n_l - i0, kLookupSlack), dest);
+        }
     }
+  }
+
+  template <int kRun>
+  void run_for_media() const {
+    // Two media (air and aerosol, the common case) with a count the compiler knows, so that their
+    // sums stay in registers; any number otherwise.
+    if (media == 2)
+      run<2, kRun>();
+    else if (media == 4)  // two media and their light below a skyline (source_above_skyline)
+      run<4, kRun>();
+    else
+      run<0, kRun>();
   }
 };
 
 void SourceTable::source_to_degree(int max_degree, double r_m, double mu, double mu_view, double nu,
                                    float* const* out) const {
-  const int degree = std::clamp(max_degree, 0, degree_);
-  const int media = std::min(static_cast<int>(moments_->media.size()), kMaxMedia);
-  const float* chi[kMaxMedia];
-  int media_degree[kMaxMedia];
-  for (int s = 0; s < media; ++s) {
-    media_degree[s] = std::min(moments_->media[static_cast<size_t>(s)].nonzero_degree, degree);
-    chi[s] = moments_->media[static_cast<size_t>(s)].chi.data();
-  }
-  harmonic_source(degree, r_m, mu, mu_view, nu, media, chi, media_degree, out);
+  sources_to_degree(max_degree, 1, &r_m, &mu, &mu_view, nu, media_count(), n_l_, out);
 }
 
 // The table's light from below the skyline has the moments chi_l(gamma) of the nearest tabulated
@@ -439,16 +474,17 @@ bool ScatteringOrders::source_above_skyline(double r_m, double mu_sun, double mu
   return true;
 }
 
-void SourceTable::harmonic_source(int degree, double r_m, double mu, double mu_view, double nu, int media,
-                                  const float* const* chi, const int* media_degree, float* const* out,
-                                  bool polarised_share, bool upward_derivative) const {
-  const Blend w = blend(r_m, mu);
+void SourceTable::look_up(int degree, double r_m, double mu, double mu_view, double nu, bool upward_derivative,
+                          float* factors, NodeLookup& node) const {
+  node.w = blend(r_m, mu, factors);
   // The view direction's azimuth from the sun's vertical plane at this point.
   const double mu_s = std::clamp(mu, -1.0, 1.0);
   const double mv = std::clamp(mu_view, -1.0, 1.0);
   const double sin_product = std::sqrt(std::max(0.0, (1.0 - mv * mv) * (1.0 - mu_s * mu_s)));
   const double cos_phi = sin_product > 1e-12 ? (nu - mv * mu_s) / sin_product : 1.0;
-  double basis_d[kMaxHarmonics];
+  node.mv = mv;
+  node.cos_phi = cos_phi;
+  double* basis_d = node.basis_d;
   symmetric_harmonics(degree, mv, cos_phi, basis_d);
   if (upward_derivative) {
     // d Y_lm / d(elevation) at the view direction, its azimuth held: a central difference of
@@ -460,29 +496,84 @@ void SourceTable::harmonic_source(int degree, double r_m, double mu, double mu_v
     symmetric_harmonics(degree, std::cos(up), cos_phi, above);
     symmetric_harmonics(degree, std::cos(down), cos_phi, below);
     for (int k = 0; k < skyspec::harmonic_count(degree); ++k) basis_d[k] = (above[k] - below[k]) / (down - up);
-    polarised_share = false;
   }
-  float basis[kMaxHarmonics];
-  for (int k = 0; k < skyspec::harmonic_count(degree); ++k) basis[k] = static_cast<float>(basis_d[k]);
+  for (int k = 0; k < skyspec::harmonic_count(degree); ++k) node.basis[k] = static_cast<float>(basis_d[k]);
+}
 
+void SourceTable::harmonic_source(int degree, double r_m, double mu, double mu_view, double nu, int media,
+                                  const float* const* chi, const int* media_degree, float* const* out,
+                                  bool polarised_share, bool upward_derivative) const {
+  NodeLookup node;
+  look_up(degree, r_m, mu, mu_view, nu, upward_derivative, nullptr, node);
+  sum_harmonics(&node, 1, degree, media, chi, media_degree, out, 0, polarised_share && !upward_derivative);
+}
+
+void SourceTable::sources_to_degree(int max_degree, int count, const double* r_m, const double* mu_sun,
+                                    const double* mu_view, double nu, int media_given, int n, float* const* out) const {
+  if (count <= 0) return;
+  if (n < n_l_ || media_given < media_count())
+    throw std::logic_error("SourceTable::sources: fewer wavelengths or media than the table's");
+  const int degree = std::clamp(max_degree, 0, degree_);
+  const int media = std::min(static_cast<int>(moments_->media.size()), kMaxMedia);
+  const float* chi[kMaxMedia];
+  int media_degree[kMaxMedia];
+  for (int s = 0; s < media; ++s) {
+    media_degree[s] = std::min(moments_->media[static_cast<size_t>(s)].nonzero_degree, degree);
+    chi[s] = moments_->media[static_cast<size_t>(s)].chi.data();
+  }
+  const size_t padded = static_cast<size_t>((n_l_ + kLookupSlack - 1) / kLookupSlack * kLookupSlack);
+  thread_local std::vector<NodeLookup> nodes;
+  thread_local std::vector<float> factors;
+  if (nodes.size() < static_cast<size_t>(count)) nodes.resize(static_cast<size_t>(count));
+  if (factors.size() < 2 * padded * static_cast<size_t>(count)) factors.resize(2 * padded * static_cast<size_t>(count));
+  for (int k = 0; k < count; ++k)
+    look_up(degree, r_m[k], mu_sun[k], mu_view[k], nu, false, factors.data() + 2 * padded * static_cast<size_t>(k),
+            nodes[static_cast<size_t>(k)]);
+  // Runs of successive nodes between the same four entries, summed together.
+  float* at[kMaxMedia];
+  for (int k = 0; k < count;) {
+    const Blend& w = nodes[static_cast<size_t>(k)].w;
+    int run = 1;
+    while (run < kMaxRun && k + run < count && nodes[static_cast<size_t>(k + run)].w.ih == w.ih &&
+           nodes[static_cast<size_t>(k + run)].w.im == w.im)
+      ++run;
+    for (int s = 0; s < media; ++s) at[s] = out[s] + static_cast<size_t>(k) * static_cast<size_t>(n);
+    sum_harmonics(&nodes[static_cast<size_t>(k)], run, degree, media, chi, media_degree, at, static_cast<size_t>(n),
+                  true);
+    k += run;
+  }
+}
+
+void SourceTable::sum_harmonics(const NodeLookup* nodes, int count, int degree, int media, const float* const* chi,
+                                const int* media_degree, float* const* out, size_t out_stride,
+                                bool polarised_share) const {
   // J_s = sum_l chi_s,l sum_m Y_lm(view) a_lm, a_lm the blend of the four corners, per block of
   // wavelengths: the harmonics of each l are summed per corner first and blended once per l.
   // Blocks read past the last wavelength into the next harmonic or the spare floats; those lanes
   // are not written out.
-  HarmonicSum sum{w, basis, degree, n_l_, media, {}, {}, out};
+  HarmonicSum sum{nodes, degree, n_l_, media, {}, {}, out, out_stride};
   for (int s = 0; s < media; ++s) {
     sum.media_degree[s] = media_degree[s];
     sum.chi[s] = chi[s];
   }
-  // Two media (air and aerosol, the common case) with a count the compiler knows, so that their
-  // sums stay in registers; any number otherwise.
-  if (media == 2)
-    sum.run<2>();
-  else if (media == 4)  // two media and their light below a skyline (source_above_skyline)
-    sum.run<4>();
-  else
-    sum.run<0>();
-  if (polarised_ && degree >= 2 && polarised_share) {
+  switch (count) {
+    case 1:
+      sum.run_for_media<1>();
+      break;
+    case 2:
+      sum.run_for_media<2>();
+      break;
+    case 3:
+      sum.run_for_media<3>();
+      break;
+    default:
+      sum.run_for_media<kMaxRun>();
+      break;
+  }
+  if (!(polarised_ && degree >= 2 && polarised_share)) return;
+  for (int r = 0; r < count; ++r) {
+    const NodeLookup& node = nodes[r];
+    const Blend& w = node.w;
     // Polarisation's share of the intensity that molecules scatter, -2 B k^T D_pol k
     // (SingleScattering's polarised_sources derives it), B = 15 chi_2 / (8 pi) the phase
     // function's mu^2 coefficient; k^T D_pol k is even in the azimuth, so its sign does not matter.
@@ -490,6 +581,7 @@ void SourceTable::harmonic_source(int degree, double r_m, double mu, double mu_v
     tensor.resize(3 * static_cast<size_t>(n_l_));
     for (int j = 0; j < 3; ++j)
       mix(w, &SourceTable::p_index, p_, static_cast<size_t>(j) * n_l_, tensor.data() + static_cast<size_t>(j) * n_l_);
+    const double mv = node.mv, cos_phi = node.cos_phi;
     const double sin_view = std::sqrt(std::max(0.0, 1.0 - mv * mv));
     const double kx = sin_view * std::clamp(cos_phi, -1.0, 1.0), kz = mv;
     const double ky2 = std::max(0.0, sin_view * sin_view - kx * kx);
@@ -497,11 +589,11 @@ void SourceTable::harmonic_source(int degree, double r_m, double mu, double mu_v
                 cxz = static_cast<float>(2.0 * kx * kz);
     // The media's own sums only (source_above_skyline passes its part below the skyline after them).
     for (int s = 0; s < std::min(media, static_cast<int>(moments_->media.size())); ++s) {
+      float* j = out[s] + static_cast<size_t>(r) * out_stride;
       if (moments_->media[static_cast<size_t>(s)].sphere_matrix)
-        add_polarising_share(w, degree, basis_d, moments_->polarising(s).data(), out[s]);
+        add_polarising_share(w, degree, node.basis_d, moments_->polarising(s).data(), j);
       if (!moments_->media[static_cast<size_t>(s)].rayleigh) continue;
       const float* chi2 = &moments_->media[static_cast<size_t>(s)].chi[2 * static_cast<size_t>(n_l_)];
-      float* j = out[s];
       for (int i = 0; i < n_l_; ++i) {
         const float mu2_coefficient = static_cast<float>(15.0 / (8.0 * kPi)) * chi2[i];
         j[i] -= 2.0f * mu2_coefficient * (cxx * tensor[i] + cyy * tensor[n_l_ + i] + cxz * tensor[2 * n_l_ + i]);
@@ -1035,6 +1127,10 @@ class SourceToDegree final : public InScatteringSource {
       : table_(table), degree_(degree), polarisation_degree_(polarisation_degree) {}
   void source(double r_m, double mu_sun, double mu_view, double nu, float* const* out) const override {
     table_.source_to_degree(degree_, r_m, mu_sun, mu_view, nu, out);
+  }
+  void sources(int count, const double* r_m, const double* mu_sun, const double* mu_view, double nu, int media, int n,
+               float* const* out) const override {
+    table_.sources_to_degree(degree_, count, r_m, mu_sun, mu_view, nu, media, n, out);
   }
   void ground_irradiance(double mu_sun, float* out) const override { table_.ground_irradiance(mu_sun, out); }
   bool rayleigh_moments(double r_m, double mu_sun, float* out) const override {

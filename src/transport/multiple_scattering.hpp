@@ -145,6 +145,15 @@ class SourceTable : public InScatteringSource {
   /// source() from the harmonics up to max_degree only (all of them if it is the table's degree or
   /// more): the field smoothed to that degree.
   void source_to_degree(int max_degree, double r_m, double mu_sun, double mu_view, double nu, float* const* out) const;
+  /// source() at the points of one ray (InScatteringSource::sources): the same values, point k's at
+  /// out[s] + k n (n at least the table's wavelengths, media its media).
+  void sources(int count, const double* r_m, const double* mu_sun, const double* mu_view, double nu, int media, int n,
+               float* const* out) const override {
+    sources_to_degree(degree_, count, r_m, mu_sun, mu_view, nu, media, n, out);
+  }
+  /// sources() from the harmonics up to max_degree only (source_to_degree).
+  void sources_to_degree(int max_degree, int count, const double* r_m, const double* mu_sun, const double* mu_view,
+                         double nu, int media, int n, float* const* out) const;
   bool source_above_skyline(double r_m, double mu_sun, double mu_view, double nu, double skyline_rad, float* const* out,
                             float* const* hidden, float* const* hidden_share,
                             float* const* hidden_multiple) const override;
@@ -234,7 +243,10 @@ class SourceTable : public InScatteringSource {
 
  private:
   struct Blend;
+  struct NodeLookup;
   struct HarmonicSum;
+  /// Nodes summed at once when they blend the same four entries (sources_to_degree).
+  static constexpr int kMaxRun = 4;
   /// out[s] = sum_l chi[s]_l sum_m a_lm Y_lm(view) to `degree` with the moments chi[s] up to
   /// media_degree[s], s < count (source_to_degree, source_above_skyline), and for the molecules
   /// among the first media their polarised share (unless polarised_share is false: parts of a
@@ -243,12 +255,20 @@ class SourceTable : public InScatteringSource {
   void harmonic_source(int degree, double r_m, double mu, double mu_view, double nu, int count, const float* const* chi,
                        const int* media_degree, float* const* out, bool polarised_share = true,
                        bool upward_derivative = false) const;
+  /// harmonic_source's look-up of one node: the blend (its per-wavelength factors in `factors`, 2
+  /// blocks of wavelengths rounded up to kLookupSlack; null: the thread's own) and the harmonics.
+  void look_up(int degree, double r_m, double mu, double mu_view, double nu, bool upward_derivative, float* factors,
+               NodeLookup& node) const;
+  /// harmonic_source's sums for `count` (at most kMaxRun) nodes between the same four entries,
+  /// node r's at out[s] + r out_stride.
+  void sum_harmonics(const NodeLookup* nodes, int count, int degree, int media, const float* const* chi,
+                     const int* media_degree, float* const* out, size_t out_stride, bool polarised_share) const;
   /// hidden[s] += the first-order correction below the skyline (skyline_gradient_moments) of
   /// tabulated skyline `skyline`: the field's derivative towards the zenith at the view direction
   /// (harmonic_source's upward_derivative) weighted by its moments.
   void add_skyline_gradient(double r_m, double mu, double mu_view, double nu, int skyline, float* const* hidden) const;
   /// The four entries around (r, mu_s) and their weights (per wavelength in steep rows).
-  Blend blend(double r_m, double mu_s) const;
+  Blend blend(double r_m, double mu_s, float* factors = nullptr) const;
   /// One row of n wavelengths blended as `w` says from `data` (laid out by `at`), from `offset` on.
   void mix(const Blend& w, size_t (SourceTable::*at)(int, int) const, const ZeroedFloats& data, size_t offset,
            float* out) const;
@@ -300,6 +320,10 @@ class ScatteringOrders : public InScatteringSource {
   ScatteringOrders(const SingleScattering& integrator, const MultipleScatteringSettings& settings);
   void source(double r_m, double mu_sun, double mu_view, double nu, float* const* out) const override {
     sum_->source(r_m, mu_sun, mu_view, nu, out);
+  }
+  void sources(int count, const double* r_m, const double* mu_sun, const double* mu_view, double nu, int media, int n,
+               float* const* out) const override {
+    sum_->sources(count, r_m, mu_sun, mu_view, nu, media, n, out);
   }
   void ground_irradiance(double mu_sun, float* out) const override { sum_->ground_irradiance(mu_sun, out); }
   bool rayleigh_moments(double r_m, double mu_sun, float* out) const override {

@@ -26,6 +26,15 @@ ScatteringWorkspace::ScatteringWorkspace(int n)
   for (Spectrum& p : phase) p.setZero(n);
 }
 
+void InScatteringSource::sources(int count, const double* r_m, const double* mu_sun, const double* mu_view, double nu,
+                                 int media, int n, float* const* out) const {
+  float* at[kMaxMedia];
+  for (int k = 0; k < count; ++k) {
+    for (int s = 0; s < media; ++s) at[s] = out[s] + static_cast<size_t>(k) * static_cast<size_t>(n);
+    source(r_m[k], mu_sun[k], mu_view[k], nu, at);
+  }
+}
+
 void RadianceParts::resize(int n, int scatterers) {
   scattered.resize(static_cast<size_t>(scatterers));
   for (Spectrum& s : scattered) s.setZero(n);
@@ -905,8 +914,9 @@ struct SingleScattering::PieceScratch {
   Eigen::ArrayXXf source_t[kMaxMedia], source_q_t[kMaxMedia], source_u_t[kMaxMedia];
   // [wavelength, node]: SkylineCut's phase shares and the tables' light below the skyline
   Eigen::ArrayXXf hidden_share[kMaxMedia], hidden[kMaxMedia], hidden_multiple[kMaxMedia];
-  std::vector<float> shadowed_ahead;     // per node: SkylineCut::terrain_shadowed_ahead
-  std::vector<float> moments;            // InScatteringSource::rayleigh_moments at one node
+  std::vector<float> shadowed_ahead;                            // per node: SkylineCut::terrain_shadowed_ahead
+  std::vector<double> source_r, source_mu_sun, source_mu_view;  // per node: InScatteringSource::sources's
+  std::vector<float> moments;                                   // InScatteringSource::rayleigh_moments at one node
   std::vector<float> spin2;              // InScatteringSource::polarisation_harmonics at one node
   std::vector<double> spin2_q, spin2_u;  // the harmonics' Q and U parts in the node's view direction
   Spectrum q, u, pq, pu;                 // polarised_sources' sums at one node
@@ -1246,13 +1256,36 @@ bool SingleScattering::higher_orders_piece(const Node* nodes, int m, const Vec3&
     }
     sc.shadowed_ahead.resize(static_cast<size_t>(m));
   }
-  for (int k = 0; k < m; ++k) {
+  for (int k = 0; k < m; ++k)
     for (int j = 0; j < media_; ++j) sc.view_columns(k, j) = static_cast<float>(nodes[k].col[j]);
+  if (!cut) {
+    // Every node's source at once (InScatteringSource::sources): tables read what successive
+    // nodes share once for them.
+    sc.source_r.resize(static_cast<size_t>(m));
+    sc.source_mu_sun.resize(static_cast<size_t>(m));
+    sc.source_mu_view.resize(static_cast<size_t>(m));
+    for (int k = 0; k < m; ++k) {
+      const double r = nodes[k].r;
+      sc.source_r[static_cast<size_t>(k)] = r;
+      sc.source_mu_sun[static_cast<size_t>(k)] = (os + nodes[k].t * ds) / r;
+      sc.source_mu_view[static_cast<size_t>(k)] = (od + nodes[k].t) / r;
+    }
+    for (int s = 0; s < count; ++s) out[s] = sc.source_t[s].data();
+    higher.sources(m, sc.source_r.data(), sc.source_mu_sun.data(), sc.source_mu_view.data(), ds, count,
+                   static_cast<int>(n), out);
+    // In and about a region, every scatterer's source gains what the tables leave out.
+    if (regional)
+      for (int k = 0; k < m; ++k) {
+        for (int s = 0; s < count; ++s) out[s] = sc.source_t[s].col(k).data();
+        regional->add(o + nodes[k].t * d, -d, out);
+      }
+  }
+  for (int k = 0; k < m && cut; ++k) {
     const double r = nodes[k].r;
     for (int s = 0; s < count; ++s) out[s] = sc.source_t[s].col(k).data();
     const double mu_sun = (os + nodes[k].t * ds) / r, mu_view = (od + nodes[k].t) / r;
-    if (cut) sc.shadowed_ahead[static_cast<size_t>(k)] = static_cast<float>(cut->terrain_shadowed_ahead(nodes[k].t));
-    if (cut && sc.shadowed_ahead[static_cast<size_t>(k)] > 0.0f) {
+    sc.shadowed_ahead[static_cast<size_t>(k)] = static_cast<float>(cut->terrain_shadowed_ahead(nodes[k].t));
+    if (sc.shadowed_ahead[static_cast<size_t>(k)] > 0.0f) {
       const Vec3 towards = cut->skyline - (cut->o + nodes[k].t * cut->d);
       const double norm = towards.norm();
       const double gamma = norm > 0.0 ? std::acos(std::clamp(towards.dot(cut->d) / norm, -1.0, 1.0)) : 0.5 * kPi;

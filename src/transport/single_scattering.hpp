@@ -145,6 +145,12 @@ class InScatteringSource {
   virtual ~InScatteringSource() = default;
   /// J_s for each scattering medium s: out[s] (n floats each), in SingleScattering's order of them.
   virtual void source(double r_m, double mu_sun, double mu_view, double nu, float* const* out) const = 0;
+  /// source() at `count` points of one ray (nu, the cosine between the ray and the sun, the same
+  /// for all): point k's J_s at out[s] + k n for the `media` scattering media, n the wavelengths.
+  /// The same values as source() at each; a table may read what neighbouring points share once for
+  /// all of them.
+  virtual void sources(int count, const double* r_m, const double* mu_sun, const double* mu_view, double nu, int media,
+                       int n, float* const* out) const;
   virtual void ground_irradiance(double mu_sun, float* out) const = 0;
   /// What a scattering matrix reads of the radiance field that the source scatters, at
   /// (r, mu_s), per unit solar irradiance, in the local frame (z up, x towards the sun's azimuth):
