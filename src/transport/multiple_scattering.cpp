@@ -556,20 +556,14 @@ void SourceTable::sum_harmonics(const NodeLookup* nodes, int count, int degree, 
     sum.media_degree[s] = media_degree[s];
     sum.chi[s] = chi[s];
   }
-  switch (count) {
-    case 1:
-      sum.run_for_media<1>();
-      break;
-    case 2:
-      sum.run_for_media<2>();
-      break;
-    case 3:
-      sum.run_for_media<3>();
-      break;
-    default:
-      sum.run_for_media<kMaxRun>();
-      break;
-  }
+  // The run's length known at compile time, so that its nodes' sums stay in registers.
+  using Run = void (HarmonicSum::*)() const;
+  static constexpr Run kRuns[] = {&HarmonicSum::run_for_media<1>, &HarmonicSum::run_for_media<2>,
+                                  &HarmonicSum::run_for_media<3>, &HarmonicSum::run_for_media<4>,
+                                  &HarmonicSum::run_for_media<5>, &HarmonicSum::run_for_media<6>};
+  static_assert(std::size(kRuns) == kMaxRun);
+  if (count < 1 || count > kMaxRun) throw std::logic_error("SourceTable::sum_harmonics: a run of 1 to kMaxRun nodes");
+  (sum.*kRuns[count - 1])();
   if (!(polarised_ && degree >= 2 && polarised_share)) return;
   for (int r = 0; r < count; ++r) {
     const NodeLookup& node = nodes[r];

@@ -246,7 +246,7 @@ class SourceTable : public InScatteringSource {
   struct NodeLookup;
   struct HarmonicSum;
   /// Nodes summed at once when they blend the same four entries (sources_to_degree).
-  static constexpr int kMaxRun = 4;
+  static constexpr int kMaxRun = 6;
   /// out[s] = sum_l chi[s]_l sum_m a_lm Y_lm(view) to `degree` with the moments chi[s] up to
   /// media_degree[s], s < count (source_to_degree, source_above_skyline), and for the molecules
   /// among the first media their polarised share (unless polarised_share is false: parts of a
