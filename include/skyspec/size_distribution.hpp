@@ -32,6 +32,9 @@ class SizeDistribution {
   enum class Kind { Lognormal, ModifiedGamma, MarshallPalmer };
 
   static SizeDistribution lognormal(double median_radius_m, double geometric_standard_deviation);
+  /// lognormal() cut to [r_m / s^spreads, r_m s^spreads] (and renormalised): drops or droplets of
+  /// a median radius r_m and spread s without the far tails (rain and fog cut at 3 spreads).
+  static SizeDistribution lognormal_within(double median_radius_m, double geometric_standard_deviation, double spreads);
   static SizeDistribution modified_gamma(double mode_radius_m, double alpha, double gamma);
   static SizeDistribution marshall_palmer(double rain_rate_mm_per_h);
 

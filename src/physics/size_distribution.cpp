@@ -48,6 +48,14 @@ SizeDistribution SizeDistribution::lognormal(double median_radius_m, double geom
   return d;
 }
 
+SizeDistribution SizeDistribution::lognormal_within(double median_radius_m, double geometric_standard_deviation,
+                                                    double spreads) {
+  if (!(spreads > 0.0) || !std::isfinite(spreads)) refuse("spreads either side", spreads, "a positive number");
+  const SizeDistribution d = lognormal(median_radius_m, geometric_standard_deviation);
+  const double cut = std::pow(geometric_standard_deviation, spreads);
+  return d.truncated(median_radius_m / cut, median_radius_m * cut);
+}
+
 SizeDistribution SizeDistribution::modified_gamma(double mode_radius_m, double alpha, double gamma) {
   if (!(mode_radius_m > 0.0) || !std::isfinite(mode_radius_m))
     refuse("mode radius (m)", mode_radius_m, "a positive length");

@@ -80,6 +80,22 @@ BOOST_AUTO_TEST_CASE(truncation) {
   BOOST_TEST(cut.description().find("radii") != std::string::npos);
 }
 
+// A lognormal population without its far tails: cut at median * s^(+-k), renormalised.
+BOOST_AUTO_TEST_CASE(lognormal_within_spreads) {
+  const double median = 1e-5, s = 1.5;
+  const SizeDistribution cut = SizeDistribution::lognormal_within(median, s, 3.0);
+  BOOST_TEST(relative(cut.min_radius_m(), median / (s * s * s)) < 1e-12);
+  BOOST_TEST(relative(cut.max_radius_m(), median * s * s * s) < 1e-12);
+  BOOST_TEST(relative(cut.moment(0), 1.0) < 1e-10);
+  // Within the cut the density is the whole distribution's over its share inside, erf(3 / sqrt 2).
+  const SizeDistribution whole = SizeDistribution::lognormal(median, s);
+  const double inside = std::erf(3.0 / std::sqrt(2.0));
+  for (double r : {median / 2.0, median, median * 2.5})
+    BOOST_TEST(relative(cut.density_per_m(r), whole.density_per_m(r) / inside) < 1e-6);
+  BOOST_TEST(cut.density_per_m(median * 4.0) == 0.0);
+  BOOST_CHECK_THROW(SizeDistribution::lognormal_within(median, s, 0.0), std::invalid_argument);
+}
+
 BOOST_AUTO_TEST_CASE(bad_parameters_are_refused) {
   BOOST_CHECK_THROW(SizeDistribution::lognormal(0.0, 2.0), std::invalid_argument);
   BOOST_CHECK_THROW(SizeDistribution::lognormal(1e-6, 1.0), std::invalid_argument);

@@ -28,8 +28,7 @@ constexpr double kAlpha = 4.0, kB_per_um = 0.0562, kGamma = 1.77, kMinRadiusUm =
 
 SizeDistribution fog_droplets(const FogSpec& f) {
   if (f.droplets == FogSpec::Droplets::Lognormal) {
-    const double median_m = f.median_radius_um * 1e-6, cut = std::pow(f.radius_spread, 3.0);
-    return SizeDistribution::lognormal(median_m, f.radius_spread).truncated(median_m / cut, median_m * cut);
+    return SizeDistribution::lognormal_within(f.median_radius_um * 1e-6, f.radius_spread, kDropCutSpreads);
   }
   // The modified gamma distribution's mode radius: r_c = (alpha / (B gamma))^(1 / gamma).
   const double mode_um = std::pow(kAlpha / (kB_per_um * kGamma), 1.0 / kGamma);
@@ -61,7 +60,7 @@ std::string optics_key(const WavelengthGrid& grid, const FogSpec& f) {
   key.precision(17);
   key << "skyspec fog optics, format " << kFogOpticsFormat;
   if (f.droplets == FogSpec::Droplets::Lognormal)
-    key << "\nlognormal " << f.median_radius_um << ' ' << f.radius_spread << " cut at 3";
+    key << "\nlognormal " << f.median_radius_um << ' ' << f.radius_spread << " cut at " << kDropCutSpreads;
   else
     key << "\nmodified gamma " << kAlpha << ' ' << kB_per_um << ' ' << kGamma << ' ' << kMinRadiusUm << ' '
         << kMaxRadiusUm;

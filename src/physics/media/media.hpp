@@ -34,6 +34,11 @@ struct MediumEntry {
   MediumBuilder build;
 };
 
+/// Rain's and fog's lognormal populations are cut this many spreads either side of their median
+/// (SizeDistribution::lognormal_within): the far tails hold a fraction erfc(3 / sqrt 2) = 0.27 %
+/// of the drops.
+constexpr double kDropCutSpreads = 3.0;
+
 /// A medium of particles: `per_particle`'s coefficients times `amount` (particles per m^3 at
 /// density 1, or whatever unit per_particle is per), its tabulated matrix, density `profile`.
 Medium particle_medium(const char* name, DensityProfile profile, const AerosolMixtureOptics& per_particle,

@@ -93,15 +93,13 @@ std::string rain_optics_key(const WavelengthGrid& grid) {
 
 constexpr int kMieRainOpticsFormat = 2;
 constexpr double kForwardConeDeg = 0.5;  // the diffraction peak taken as unscattered light
-constexpr double kCutSpreads = 3.0;      // the distribution is cut at median * spread^(+-3)
 // Panels 4 wide in size parameter (8 nodes each): the bows' supernumeraries change over many
 // units of x, so a quarter of sphere_ensemble's default resolution holds them (docs/bows-and-halos.md
 // gives the measured difference from the default).
 constexpr double kPanelSizeParameter = 4.0;
 
 SizeDistribution lognormal_drops(const RainSpec& rain) {
-  const double median_m = rain.median_radius_mm * 1e-3, cut = std::pow(rain.radius_spread, kCutSpreads);
-  return SizeDistribution::lognormal(median_m, rain.radius_spread).truncated(median_m / cut, median_m * cut);
+  return SizeDistribution::lognormal_within(rain.median_radius_mm * 1e-3, rain.radius_spread, kDropCutSpreads);
 }
 
 // Atlas, Srivastava & Sekhon (1973): a drop of diameter D falls at 9.65 - 10.3 exp(-0.6 D / mm) m/s.
@@ -154,7 +152,7 @@ std::string lognormal_rain_optics_key(const WavelengthGrid& grid, const RainSpec
   std::ostringstream key;
   key.precision(17);
   key << "skyspec rain optics, Lorenz-Mie, format " << kMieRainOpticsFormat << "\nlognormal " << rain.median_radius_mm
-      << ' ' << rain.radius_spread << " cut " << kCutSpreads << "\nwater " << kRainTemperatureK << "\nforward cone "
+      << ' ' << rain.radius_spread << " cut " << kDropCutSpreads << "\nwater " << kRainTemperatureK << "\nforward cone "
       << kForwardConeDeg << "\nwavelengths_nm";
   for (double v : grid.nanometres()) key << ' ' << v;
   const SphereEnsembleSettings defaults;
@@ -172,7 +170,7 @@ std::optional<Medium> build_lognormal_rain(const MediumContext& c) {
     throw InputError("atmosphere.rain.median_radius_mm", format_number(rain.median_radius_mm),
                      "at most " +
                          format_number(std::floor(kMaxMieSizeParameter * shortest_nm * 1e-9 / (2.0 * kPi) * 1e6 /
-                                                  std::pow(rain.radius_spread, kCutSpreads)) /
+                                                  std::pow(rain.radius_spread, kDropCutSpreads)) /
                                        1e3) +
                          " mm with radius_spread " + format_number(rain.radius_spread) + " and spectrum.min_nm " +
                          format_number(shortest_nm) +
