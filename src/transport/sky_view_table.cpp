@@ -20,25 +20,15 @@ namespace {
 // it the ray falls on is decided by rounding: the row at the horizon is cast this far from it.
 constexpr double kHorizonOffsetRad = 1e-6;
 
-// Mixes the entries around a look-up: rows (n_rows of them, from rows_at, a row of `azimuths`
-// entries apart) weighted by row_w, then the two columns (the entries of columns c0 and c0 + 1
-// are contiguous, as are the parts of an entry: one loop over 2 x parts x n floats per row
-// accumulates both columns' parts) by w0 and w1. kN > 0: the wavelength count known at compile
-// time, so that the loops unroll; 0: n at run time.
-// n_parts per entry: the radiance's (one per scattering medium and the phase-free part; clamped
-// at 0), or the polarised two (Q, U: signed, not clamped).
-template <int kN>
-void mix_entries(const float* rows_at, int azimuths, const double* row_w, int n_rows, float w0, float w1, int n_run,
-                 int n_parts, bool clamp, float* const* parts) {
-  const int n = kN > 0 ? kN : n_run;
-  const size_t entry = static_cast<size_t>(n_parts) * static_cast<size_t>(n);
+// The first step of a look-up's mix: the rows around it (n_rows of them, from rows_at, a row of
+// `azimuths` entries apart) weighted by row_w, for the two columns c0 and c0 + 1 at once (their
+// entries are contiguous, as are the parts of an entry: one loop over the 2 x entry floats of a
+// row), into acc. kEntry > 0: the entry's floats known at compile time, so that the loops unroll.
+template <int kEntry>
+void mix_rows(const float* rows_at, int azimuths, const double* row_w, int n_rows, size_t entry_run,
+              float* __restrict acc) {
+  const size_t entry = kEntry > 0 ? static_cast<size_t>(kEntry) : entry_run;
   const size_t stride = static_cast<size_t>(azimuths) * entry;
-  // On the stack for up to 42 wavelengths (2 x 3 x 42 floats), per thread beyond.
-  constexpr size_t kStackFloats = 256;
-  alignas(32) float stack[kStackFloats];
-  thread_local std::vector<float> heap;
-  if (2 * entry > kStackFloats) heap.resize(2 * entry);
-  float* __restrict acc = 2 * entry > kStackFloats ? heap.data() : stack;
   if (n_rows == 4) {  // one pass over the four rows
     const float v0 = static_cast<float>(row_w[0]), v1 = static_cast<float>(row_w[1]);
     const float v2 = static_cast<float>(row_w[2]), v3 = static_cast<float>(row_w[3]);
@@ -56,16 +46,57 @@ void mix_entries(const float* rows_at, int azimuths, const double* row_w, int n_
       for (size_t k = 0; k < 2 * entry; ++k) acc[k] += vi * e[k];
     }
   }
-  // A cubic may undershoot where a part falls steeply to 0 (the planet's shadow); light is not
-  // negative (Q and U may be).
+}
+
+// The second step: the two columns of acc weighted by w0 and w1 into parts[0 .. n_parts - 1], n
+// wavelengths each (kN > 0: n known at compile time). n_parts per entry: the radiance's (one per scattering medium and
+// the phase-free part; clamped at 0: a cubic may undershoot where a part falls steeply to 0, the planet's shadow, and
+// light is not negative), or the polarised two (Q, U: signed, not clamped).
+template <int kN>
+void mix_columns(const float* __restrict acc, float w0, float w1, int n_run, int n_parts, bool clamp,
+                 float* const* parts) {
+  const int n = kN > 0 ? kN : n_run;
+  const size_t entry = static_cast<size_t>(n_parts) * static_cast<size_t>(n);
   for (int p = 0; p < n_parts; ++p) {
-    const float* a = acc + static_cast<size_t>(p) * n;
-    const float* b = a + entry;
+    const float* __restrict a = acc + static_cast<size_t>(p) * n;
+    const float* __restrict b = a + entry;
+    float* __restrict o = parts[p];
     if (clamp)
-      for (int l = 0; l < n; ++l) parts[p][l] = std::max(0.0f, w0 * a[l] + w1 * b[l]);
+      for (int l = 0; l < n; ++l) o[l] = std::max(0.0f, w0 * a[l] + w1 * b[l]);
     else
-      for (int l = 0; l < n; ++l) parts[p][l] = w0 * a[l] + w1 * b[l];
+      for (int l = 0; l < n; ++l) o[l] = w0 * a[l] + w1 * b[l];
   }
+}
+
+// Room for a look-up's rows mixed (2 entries): on the stack for up to 42 wavelengths (2 x 3 x 42
+// floats), per thread beyond.
+class MixBuffer {
+ public:
+  explicit MixBuffer(size_t entry) {
+    thread_local std::vector<float> heap;
+    if (2 * entry > kStackFloats) heap.resize(2 * entry);
+    data_ = 2 * entry > kStackFloats ? heap.data() : stack_;
+  }
+  float* data() { return data_; }
+
+ private:
+  static constexpr size_t kStackFloats = 256;
+  alignas(32) float stack_[kStackFloats];
+  float* data_;
+};
+
+// Both steps. kN > 0: the wavelength count known at compile time (the RGB-fast path's 3).
+template <int kN>
+void mix_entries(const float* rows_at, int azimuths, const double* row_w, int n_rows, float w0, float w1, int n_run,
+                 int n_parts, bool clamp, float* const* parts) {
+  const int n = kN > 0 ? kN : n_run;
+  const size_t entry = static_cast<size_t>(n_parts) * static_cast<size_t>(n);
+  MixBuffer acc(entry);
+  if (kN > 0 && n_parts == 3)
+    mix_rows<3 * kN>(rows_at, azimuths, row_w, n_rows, entry, acc.data());
+  else
+    mix_rows<0>(rows_at, azimuths, row_w, n_rows, entry, acc.data());
+  mix_columns<kN>(acc.data(), w0, w1, n, n_parts, clamp, parts);
 }
 constexpr int kPolarisedParts = 2;
 
@@ -367,6 +398,12 @@ void SkyViewTable::lookup_many(int count, const Vec3* dirs, float* out, bool* fo
   double theta[kChunk], phi[kChunk];
   const size_t entry = static_cast<size_t>(parts_) * static_cast<size_t>(n_);
   float* parts[kMaxMedia + 1];
+  // Successive directions between the same rows with the same row weights (a panorama's row of
+  // pixels, a level camera's) share the rows' mix: only the columns' weights differ.
+  MixBuffer acc(entry);
+  Weights mixed;  // whose rows acc holds
+  bool have = false;
+  const bool rgb = n_ == 3 && parts_ == 3;
   for (int first = 0; first < count; first += kChunk) {
     const int m = std::min(kChunk, count - first);
     for (int k = 0; k < m; ++k) angles_of(dirs[first + k], theta[k], phi[k]);  // vectorised
@@ -375,9 +412,35 @@ void SkyViewTable::lookup_many(int count, const Vec3* dirs, float* out, bool* fo
       for (int p = 0; p < parts_; ++p) parts[p] = o + static_cast<size_t>(p) * n_;
       Weights w;
       found[first + k] = weights(refined_zenith(dirs[first + k], theta[k]), phi[k], w);
-      if (found[first + k]) mix(w, parts);
+      if (!found[first + k]) continue;
+      if (!have || !same_rows(w, mixed)) {
+        const float* at = first_entry(w);
+        if (rgb)
+          mix_rows<9>(at, res_.azimuths, w.row_w, w.n_rows, entry, acc.data());
+        else
+          mix_rows<0>(at, res_.azimuths, w.row_w, w.n_rows, entry, acc.data());
+        mixed = w;
+        have = true;
+      }
+      if (rgb)
+        mix_columns<3>(acc.data(), w.w0, w.w1, n_, parts_, true, parts);
+      else
+        mix_columns<0>(acc.data(), w.w0, w.w1, n_, parts_, true, parts);
     }
   }
+}
+
+bool SkyViewTable::same_rows(const Weights& a, const Weights& b) {
+  if (a.sky_side != b.sky_side || a.first_row != b.first_row || a.n_rows != b.n_rows || a.c0 != b.c0) return false;
+  for (int i = 0; i < a.n_rows; ++i)
+    if (a.row_w[i] != b.row_w[i]) return false;
+  return true;
+}
+
+const float* SkyViewTable::first_entry(const Weights& w) const {
+  return (w.sky_side ? entries_->sky : entries_->ground).data() +
+         static_cast<size_t>(w.first_row) * static_cast<size_t>(res_.azimuths) * parts_ * static_cast<size_t>(n_) +
+         static_cast<size_t>(w.c0) * parts_ * static_cast<size_t>(n_);
 }
 
 bool SkyViewTable::weights(double theta, double phi, Weights& w) const {
@@ -436,9 +499,7 @@ bool SkyViewTable::weights(double theta, double phi, Weights& w) const {
 
 void SkyViewTable::mix(const Weights& w, float* const* parts) const {
   const int m = res_.azimuths;
-  const float* rows_at = (w.sky_side ? entries_->sky : entries_->ground).data() +
-                         static_cast<size_t>(w.first_row) * static_cast<size_t>(m) * parts_ * static_cast<size_t>(n_) +
-                         static_cast<size_t>(w.c0) * parts_ * static_cast<size_t>(n_);
+  const float* rows_at = first_entry(w);
   if (n_ == 3)  // the RGB-fast path's three wavelengths: loops of known length, unrolled
     mix_entries<3>(rows_at, m, w.row_w, w.n_rows, w.w0, w.w1, n_, parts_, true, parts);
   else

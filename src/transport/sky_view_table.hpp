@@ -114,6 +114,10 @@ class SkyViewTable {
     float w0 = 0, w1 = 0;
   };
   bool weights(double theta, double phi, Weights& w) const;
+  // Whether a and b mix the same rows with the same weights at the same column pair.
+  static bool same_rows(const Weights& a, const Weights& b);
+  // The entry of w's first row at column c0 (on w's side of the horizon).
+  const float* first_entry(const Weights& w) const;
   // The radiance's parts at those weights, into parts[0 .. parts() - 1] or into out.
   void mix(const Weights& w, float* const* parts) const;
   void mix(const Weights& w, RadianceParts& out) const;

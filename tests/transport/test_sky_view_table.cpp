@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -172,6 +173,34 @@ BOOST_AUTO_TEST_CASE(symmetric_and_deterministic) {
     BOOST_TEST(relative_difference(a, b) < 1e-6);
     for (size_t k = 0; k < a.scattered.size(); ++k) BOOST_TEST((a.scattered[k] == c.scattered[k]).all());
     BOOST_TEST((a.phase_free == c.phase_free).all());
+  }
+}
+
+// lookup_many gives lookup()'s values exactly, for directions that share the rows' mix with the
+// one before (rows of a level panorama: the same zenith angle at neighbouring azimuths, about five
+// to a column of the table) and for
+// directions that do not (random, on both sides of the horizon, below the ground included).
+BOOST_AUTO_TEST_CASE(lookup_many_equals_lookup) {
+  const Fixture f;
+  const Vec3 o(0, 0, R + 500), s = direction_from_angles(0, 20);
+  const SkyViewTable table(f.integrator, f.sources, o, s, {32, 16, 16}, 1);
+  std::vector<Vec3> dirs;
+  for (const double elevation : {60.0, 5.0, 0.0, -3.0, -40.0})
+    for (int k = 0; k < 150; ++k) dirs.push_back(direction_from_angles(k * 2.4, elevation));
+  std::mt19937_64 rng(11);
+  for (int k = 0; k < 200; ++k) dirs.push_back(random_direction(rng));
+  const int n = static_cast<int>(dirs.size()), entry = table.parts() * 3;
+  std::vector<float> many(static_cast<size_t>(n) * entry);
+  std::unique_ptr<bool[]> found(new bool[static_cast<size_t>(n)]);
+  table.lookup_many(n, dirs.data(), many.data(), found.get());
+  RadianceParts one(3);
+  for (int i = 0; i < n; ++i) {
+    BOOST_TEST_REQUIRE(found[i] == table.lookup(dirs[static_cast<size_t>(i)], one));
+    if (!found[i]) continue;
+    const float* m = many.data() + static_cast<size_t>(i) * entry;
+    for (size_t p = 0; p < one.scattered.size(); ++p)
+      for (int l = 0; l < 3; ++l) BOOST_TEST(m[p * 3 + static_cast<size_t>(l)] == one.scattered[p][l]);
+    for (int l = 0; l < 3; ++l) BOOST_TEST(m[one.scattered.size() * 3 + static_cast<size_t>(l)] == one.phase_free[l]);
   }
 }
 
