@@ -366,6 +366,8 @@ struct SourceTable::HarmonicSum {
       run<2, kRun>();
     else if (media == 4)  // two media and their light below a skyline (source_above_skyline)
       run<4, kRun>();
+    else if (media == 6)  // two media, below a skyline and its gradient (skyline_sums)
+      run<6, kRun>();
     else
       run<0, kRun>();
   }
@@ -383,7 +385,39 @@ void SourceTable::source_to_degree(int max_degree, double r_m, double mu, double
 bool SourceTable::source_above_skyline(double r_m, double mu, double mu_view, double nu, double skyline_rad,
                                        float* const* out, float* const* hidden, float* const* hidden_share,
                                        float* const* hidden_multiple) const {
+  return source_above_skyline_with(nullptr, nullptr, r_m, mu, mu_view, nu, skyline_rad, out, hidden, hidden_share,
+                                   hidden_multiple);
+}
+
+bool SourceTable::source_above_skyline_with(const SourceTable* below_table, float* const* below_hidden, double r_m,
+                                            double mu, double mu_view, double nu, double skyline_rad, float* const* out,
+                                            float* const* hidden, float* const* hidden_share,
+                                            float* const* hidden_multiple) const {
   const int media = std::min(static_cast<int>(moments_->media.size()), kMaxMedia);
+  if (3 * media <= kMaxMedia) {
+    // One pass over the node's four entries for the whole source, its part below the skyline and
+    // that part's gradient (two "nodes" of one blend: the view's harmonics and their derivative);
+    // below_table (order 2's beside the sum), of the same degree, reuses both harmonics.
+    const int j = PhaseMoments::nearest_skyline(skyline_rad);
+    NodeLookup nodes[2];
+    skyline_look_ups(r_m, mu, mu_view, nu, nullptr, nodes);
+    for (int s = 0; s < media; ++s)
+      std::copy_n(moments_->skyline_chi(s).data() + static_cast<size_t>(j) * (moments_->degree + 1) * n_l_, n_l_,
+                  hidden_share[s]);
+    skyline_sums(nodes, j, out, hidden);
+    for (int s = 0; s < media; ++s) {
+      for (int i = 0; i < n_l_; ++i) out[s][i] -= hidden[s][i];
+      std::copy_n(hidden[s], n_l_, hidden_multiple[s]);
+    }
+    if (below_table) {
+      NodeLookup below_nodes[2];
+      below_table->skyline_look_ups(r_m, mu, mu_view, nu, below_table->degree_ == degree_ ? nodes : nullptr,
+                                    below_nodes);
+      below_table->skyline_sums(below_nodes, j, nullptr, below_hidden);
+    }
+    return true;
+  }
+  if (below_table) below_table->source_below_skyline(r_m, mu, mu_view, nu, skyline_rad, below_hidden);
   const int d = moments_->degree;
   const int j = PhaseMoments::nearest_skyline(skyline_rad);
   const size_t per_degree = static_cast<size_t>(n_l_), per_skyline = static_cast<size_t>(d + 1) * per_degree;
@@ -441,6 +475,55 @@ void SourceTable::add_skyline_gradient(double r_m, double mu, double mu_view, do
     for (size_t i = 0; i < per_degree; ++i) hidden[s][i] += sums[s][i];
 }
 
+void SourceTable::skyline_look_ups(double r_m, double mu, double mu_view, double nu, const NodeLookup* shared,
+                                   NodeLookup* nodes) const {
+  if (shared) {  // another table's look-ups of the same node, to the same degree: its harmonics
+    nodes[0] = shared[0];
+    nodes[1] = shared[1];
+    nodes[0].w = blend(r_m, mu);
+  } else {
+    look_up(degree_, r_m, mu, mu_view, nu, false, nullptr, nodes[0]);
+    nodes[1] = nodes[0];
+    upward_derivative_harmonics(degree_, nodes[0].mv, nodes[0].cos_phi, nodes[1].basis_d);
+    for (int k = 0; k < skyspec::harmonic_count(degree_); ++k)
+      nodes[1].basis[k] = static_cast<float>(nodes[1].basis_d[k]);
+  }
+  nodes[1].w = nodes[0].w;
+}
+
+void SourceTable::skyline_sums(const NodeLookup* nodes, int skyline, float* const* out, float* const* hidden) const {
+  const int media = std::min(static_cast<int>(moments_->media.size()), kMaxMedia);
+  const int d = moments_->degree;
+  const size_t per_degree = static_cast<size_t>(n_l_), per_skyline = static_cast<size_t>(d + 1) * per_degree;
+  const int own = out ? media : 0, sets = own + 2 * media;
+  const float* chi[kMaxMedia];
+  int media_degree[kMaxMedia];
+  for (int s = 0; s < media; ++s) {
+    if (out) {
+      chi[s] = moments_->media[static_cast<size_t>(s)].chi.data();
+      media_degree[s] = std::min(moments_->media[static_cast<size_t>(s)].nonzero_degree, degree_);
+    }
+    chi[own + s] = moments_->skyline_chi(s).data() + static_cast<size_t>(skyline) * per_skyline;
+    chi[own + media + s] = moments_->skyline_gradient_chi(s).data() + static_cast<size_t>(skyline) * per_skyline;
+    media_degree[own + s] = media_degree[own + media + s] = std::min(d, degree_);
+  }
+  // Both nodes' sums of every set: node 0's own and below-the-skyline ones and node 1's gradient
+  // are kept (the other two products are not needed; their share of the pass is small).
+  thread_local std::vector<float> sums;
+  const size_t stride = static_cast<size_t>(sets) * per_degree;
+  sums.resize(2 * stride + kLookupSlack);
+  float* at[kMaxMedia];
+  for (int s = 0; s < sets; ++s) at[s] = sums.data() + static_cast<size_t>(s) * per_degree;
+  sum_harmonics(nodes, 2, degree_, sets, chi, media_degree, at, stride, false);
+  for (int s = 0; s < media; ++s) {
+    if (out) std::copy_n(at[s], per_degree, out[s]);
+    const float* part = at[own + s];
+    const float* gradient = at[own + media + s] + stride;
+    for (size_t i = 0; i < per_degree; ++i) hidden[s][i] = part[i] + gradient[i];
+  }
+  if (out && polarised_ && degree_ >= 2) add_polarised_shares(nodes[0], degree_, media, out);
+}
+
 void SourceTable::source_below_skyline(double r_m, double mu, double mu_view, double nu, double skyline_rad,
                                        float* const* hidden) const {
   const int media = std::min(static_cast<int>(moments_->media.size()), kMaxMedia);
@@ -460,15 +543,19 @@ void SourceTable::source_below_skyline(double r_m, double mu, double mu_view, do
 bool ScatteringOrders::source_above_skyline(double r_m, double mu_sun, double mu_view, double nu, double skyline_rad,
                                             float* const* out, float* const* hidden, float* const* hidden_share,
                                             float* const* hidden_multiple) const {
-  sum_->source_above_skyline(r_m, mu_sun, mu_view, nu, skyline_rad, out, hidden, hidden_share, hidden_multiple);
-  if (orders_.empty()) return true;
+  if (orders_.empty()) {
+    sum_->source_above_skyline(r_m, mu_sun, mu_view, nu, skyline_rad, out, hidden, hidden_share, hidden_multiple);
+    return true;
+  }
   thread_local std::vector<float> once;
   const int n = sum_->wavelength_count();
   const int count = sum_->media_count();
   once.resize(static_cast<size_t>(count) * static_cast<size_t>(n) + SourceTable::kLookupSlack);
   float* ptr[kMaxMedia];
   for (int s = 0; s < count; ++s) ptr[s] = once.data() + static_cast<size_t>(s) * static_cast<size_t>(n);
-  orders_.front()->source_below_skyline(r_m, mu_sun, mu_view, nu, skyline_rad, ptr);
+  // Order 2's part below the skyline (its field is the light scattered once) at the same node.
+  sum_->source_above_skyline_with(orders_.front().get(), ptr, r_m, mu_sun, mu_view, nu, skyline_rad, out, hidden,
+                                  hidden_share, hidden_multiple);
   for (int s = 0; s < count; ++s)
     for (int i = 0; i < n; ++i) hidden_multiple[s][i] = std::max(0.0f, hidden[s][i] - ptr[s][i]);
   return true;
@@ -486,18 +573,20 @@ void SourceTable::look_up(int degree, double r_m, double mu, double mu_view, dou
   node.cos_phi = cos_phi;
   double* basis_d = node.basis_d;
   symmetric_harmonics(degree, mv, cos_phi, basis_d);
-  if (upward_derivative) {
-    // d Y_lm / d(elevation) at the view direction, its azimuth held: a central difference of
-    // 1e-4 rad (one-sided at the zenith and the nadir).
-    constexpr double h = 1e-4;
-    const double zenith = std::acos(mv);
-    const double up = std::max(0.0, zenith - h), down = std::min(kPi, zenith + h);
-    double above[kMaxHarmonics], below[kMaxHarmonics];
-    symmetric_harmonics(degree, std::cos(up), cos_phi, above);
-    symmetric_harmonics(degree, std::cos(down), cos_phi, below);
-    for (int k = 0; k < skyspec::harmonic_count(degree); ++k) basis_d[k] = (above[k] - below[k]) / (down - up);
-  }
+  if (upward_derivative) upward_derivative_harmonics(degree, mv, cos_phi, basis_d);
   for (int k = 0; k < skyspec::harmonic_count(degree); ++k) node.basis[k] = static_cast<float>(basis_d[k]);
+}
+
+void SourceTable::upward_derivative_harmonics(int degree, double mv, double cos_phi, double* basis) {
+  // d Y_lm / d(elevation) at the view direction, its azimuth held: a central difference of
+  // 1e-4 rad (one-sided at the zenith and the nadir).
+  constexpr double h = 1e-4;
+  const double zenith = std::acos(mv);
+  const double up = std::max(0.0, zenith - h), down = std::min(kPi, zenith + h);
+  double above[kMaxHarmonics], below[kMaxHarmonics];
+  symmetric_harmonics(degree, std::cos(up), cos_phi, above);
+  symmetric_harmonics(degree, std::cos(down), cos_phi, below);
+  for (int k = 0; k < skyspec::harmonic_count(degree); ++k) basis[k] = (above[k] - below[k]) / (down - up);
 }
 
 void SourceTable::harmonic_source(int degree, double r_m, double mu, double mu_view, double nu, int media,
@@ -566,32 +655,38 @@ void SourceTable::sum_harmonics(const NodeLookup* nodes, int count, int degree, 
   (sum.*kRuns[count - 1])();
   if (!(polarised_ && degree >= 2 && polarised_share)) return;
   for (int r = 0; r < count; ++r) {
-    const NodeLookup& node = nodes[r];
-    const Blend& w = node.w;
-    // Polarisation's share of the intensity that molecules scatter, -2 B k^T D_pol k
-    // (SingleScattering's polarised_sources derives it), B = 15 chi_2 / (8 pi) the phase
-    // function's mu^2 coefficient; k^T D_pol k is even in the azimuth, so its sign does not matter.
-    thread_local std::vector<float> tensor;
-    tensor.resize(3 * static_cast<size_t>(n_l_));
-    for (int j = 0; j < 3; ++j)
-      mix(w, &SourceTable::p_index, p_, static_cast<size_t>(j) * n_l_, tensor.data() + static_cast<size_t>(j) * n_l_);
-    const double mv = node.mv, cos_phi = node.cos_phi;
-    const double sin_view = std::sqrt(std::max(0.0, 1.0 - mv * mv));
-    const double kx = sin_view * std::clamp(cos_phi, -1.0, 1.0), kz = mv;
-    const double ky2 = std::max(0.0, sin_view * sin_view - kx * kx);
-    const float cxx = static_cast<float>(kx * kx - kz * kz), cyy = static_cast<float>(ky2 - kz * kz),
-                cxz = static_cast<float>(2.0 * kx * kz);
-    // The media's own sums only (source_above_skyline passes its part below the skyline after them).
-    for (int s = 0; s < std::min(media, static_cast<int>(moments_->media.size())); ++s) {
-      float* j = out[s] + static_cast<size_t>(r) * out_stride;
-      if (moments_->media[static_cast<size_t>(s)].sphere_matrix)
-        add_polarising_share(w, degree, node.basis_d, moments_->polarising(s).data(), j);
-      if (!moments_->media[static_cast<size_t>(s)].rayleigh) continue;
-      const float* chi2 = &moments_->media[static_cast<size_t>(s)].chi[2 * static_cast<size_t>(n_l_)];
-      for (int i = 0; i < n_l_; ++i) {
-        const float mu2_coefficient = static_cast<float>(15.0 / (8.0 * kPi)) * chi2[i];
-        j[i] -= 2.0f * mu2_coefficient * (cxx * tensor[i] + cyy * tensor[n_l_ + i] + cxz * tensor[2 * n_l_ + i]);
-      }
+    float* at[kMaxMedia];
+    for (int s = 0; s < std::min(media, static_cast<int>(moments_->media.size())); ++s)
+      at[s] = out[s] + static_cast<size_t>(r) * out_stride;
+    add_polarised_shares(nodes[r], degree, media, at);
+  }
+}
+
+void SourceTable::add_polarised_shares(const NodeLookup& node, int degree, int media, float* const* out) const {
+  const Blend& w = node.w;
+  // Polarisation's share of the intensity that molecules scatter, -2 B k^T D_pol k
+  // (SingleScattering's polarised_sources derives it), B = 15 chi_2 / (8 pi) the phase
+  // function's mu^2 coefficient; k^T D_pol k is even in the azimuth, so its sign does not matter.
+  thread_local std::vector<float> tensor;
+  tensor.resize(3 * static_cast<size_t>(n_l_));
+  for (int j = 0; j < 3; ++j)
+    mix(w, &SourceTable::p_index, p_, static_cast<size_t>(j) * n_l_, tensor.data() + static_cast<size_t>(j) * n_l_);
+  const double mv = node.mv, cos_phi = node.cos_phi;
+  const double sin_view = std::sqrt(std::max(0.0, 1.0 - mv * mv));
+  const double kx = sin_view * std::clamp(cos_phi, -1.0, 1.0), kz = mv;
+  const double ky2 = std::max(0.0, sin_view * sin_view - kx * kx);
+  const float cxx = static_cast<float>(kx * kx - kz * kz), cyy = static_cast<float>(ky2 - kz * kz),
+              cxz = static_cast<float>(2.0 * kx * kz);
+  // The media's own sums only (source_above_skyline passes its part below the skyline after them).
+  for (int s = 0; s < std::min(media, static_cast<int>(moments_->media.size())); ++s) {
+    float* j = out[s];
+    if (moments_->media[static_cast<size_t>(s)].sphere_matrix)
+      add_polarising_share(w, degree, node.basis_d, moments_->polarising(s).data(), j);
+    if (!moments_->media[static_cast<size_t>(s)].rayleigh) continue;
+    const float* chi2 = &moments_->media[static_cast<size_t>(s)].chi[2 * static_cast<size_t>(n_l_)];
+    for (int i = 0; i < n_l_; ++i) {
+      const float mu2_coefficient = static_cast<float>(15.0 / (8.0 * kPi)) * chi2[i];
+      j[i] -= 2.0f * mu2_coefficient * (cxx * tensor[i] + cyy * tensor[n_l_ + i] + cxz * tensor[2 * n_l_ + i]);
     }
   }
 }

@@ -157,6 +157,12 @@ class SourceTable : public InScatteringSource {
   bool source_above_skyline(double r_m, double mu_sun, double mu_view, double nu, double skyline_rad, float* const* out,
                             float* const* hidden, float* const* hidden_share,
                             float* const* hidden_multiple) const override;
+  /// source_above_skyline, and at the same node below_table's source_below_skyline into
+  /// below_hidden (when below_table is not null: a table on the same grid, order 2's beside the sum), the two tables'
+  /// look-ups sharing the view's harmonics where their degrees agree.
+  bool source_above_skyline_with(const SourceTable* below_table, float* const* below_hidden, double r_m, double mu_sun,
+                                 double mu_view, double nu, double skyline_rad, float* const* out, float* const* hidden,
+                                 float* const* hidden_share, float* const* hidden_multiple) const;
   /// Only hidden[s] of source_above_skyline.
   void source_below_skyline(double r_m, double mu_sun, double mu_view, double nu, double skyline_rad,
                             float* const* hidden) const;
@@ -263,6 +269,22 @@ class SourceTable : public InScatteringSource {
   /// node r's at out[s] + r out_stride.
   void sum_harmonics(const NodeLookup* nodes, int count, int degree, int media, const float* const* chi,
                      const int* media_degree, float* const* out, size_t out_stride, bool polarised_share) const;
+  /// A node's look-ups for the sums below a skyline: nodes[0] the blend and the view's harmonics,
+  /// nodes[1] the same blend with the harmonics' upward derivative (harmonic_source's
+  /// upward_derivative); the harmonics copied from `shared` (another table's, same degree) when
+  /// not null.
+  void skyline_look_ups(double r_m, double mu, double mu_view, double nu, const NodeLookup* shared,
+                        NodeLookup* nodes) const;
+  /// In one pass over a node's four entries (skyline_look_ups' two nodes): out[s] (when not null)
+  /// the whole source with the polarised share, as harmonic_source, and hidden[s] its part below
+  /// tabulated skyline `skyline` with the gradient's correction (add_skyline_gradient). Needs
+  /// three sets of moments per medium within kMaxMedia.
+  void skyline_sums(const NodeLookup* nodes, int skyline, float* const* out, float* const* hidden) const;
+  /// d Y_lm / d(elevation) of the view direction (mv, cos_phi), to `degree`, into basis.
+  static void upward_derivative_harmonics(int degree, double mv, double cos_phi, double* basis);
+  /// The molecules' polarised share (and the spheres' polarising one) of one node's sums out[s],
+  /// s among the first `media` (sum_harmonics' polarised_share).
+  void add_polarised_shares(const NodeLookup& node, int degree, int media, float* const* out) const;
   /// hidden[s] += the first-order correction below the skyline (skyline_gradient_moments) of
   /// tabulated skyline `skyline`: the field's derivative towards the zenith at the view direction
   /// (harmonic_source's upward_derivative) weighted by its moments.

@@ -1,5 +1,6 @@
 #include <boost/test/unit_test.hpp>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -90,6 +91,50 @@ BOOST_AUTO_TEST_CASE(conservative_atmosphere_over_white_ground_conserves_energy)
   // Single scattering alone falls well short: the other orders carry real energy.
   const Spectrum single = upward_flux_at_top(ss, ScatteringSources{true, nullptr}, spec.planet_radius_m + 59.9e3);
   BOOST_TEST(single[0] < 0.95f);  // of the incoming flux, which the orders together return
+}
+
+// Below a terrain's skyline: the whole source, its part below the skyline with the gradient's
+// correction, and order 2's part, summed in one pass over each table's entries
+// (source_above_skyline_with), are exactly what the separate look-ups give: the whole source
+// (source()), each table's part below the skyline (source_below_skyline), their difference.
+BOOST_AUTO_TEST_CASE(skyline_sums_in_one_pass_equal_the_separate_look_ups) {
+  AtmosphereSpec spec = test::simple_atmosphere(ProfileKind::Exponential, 60e3, kNm, kBetaR, 21e-6);
+  spec.ground.albedo = 0.2;
+  const test::IntegratorChain chain(spec, kNm, {64, 128, 64}, 32);
+  const ScatteringOrders orders(chain.integrator, small_tables(4, 8, 16, 6));
+  const SourceTable &sum = orders.sum(), &second = orders.order(2);
+  const int media = sum.media_count(), n = sum.wavelength_count();
+  BOOST_TEST_REQUIRE(media == 2);
+  const size_t size = static_cast<size_t>(n) + SourceTable::kLookupSlack;
+  std::vector<std::vector<float>> buffers(static_cast<size_t>(9 * media), std::vector<float>(size));
+  const auto ptrs = [&](int which) {
+    std::array<float*, kMaxMedia> p{};
+    for (int s = 0; s < media; ++s) p[static_cast<size_t>(s)] = buffers[static_cast<size_t>(which * media + s)].data();
+    return p;
+  };
+  auto out = ptrs(0), hidden = ptrs(1), share = ptrs(2), multiple = ptrs(3), below = ptrs(4);
+  auto whole = ptrs(5), hidden_ref = ptrs(6), below_ref = ptrs(7);
+  for (const double r : {6360e3 + 5.0, 6360e3 + 1500.0, 6360e3 + 21e3})
+    for (const double mu_sun : {0.9, 0.2, -0.05})
+      for (const double mu_view : {0.3, 0.02, -0.4})
+        for (const double gamma : {0.01, 0.2, 0.9}) {
+          const double nu = mu_sun * mu_view + 0.5 * std::sqrt((1 - mu_sun * mu_sun) * (1 - mu_view * mu_view));
+          BOOST_TEST_CONTEXT("r " << r << ", mu_sun " << mu_sun << ", mu_view " << mu_view << ", gamma " << gamma) {
+            BOOST_TEST(sum.source_above_skyline_with(&second, below.data(), r, mu_sun, mu_view, nu, gamma, out.data(),
+                                                     hidden.data(), share.data(), multiple.data()));
+            sum.source(r, mu_sun, mu_view, nu, whole.data());
+            sum.source_below_skyline(r, mu_sun, mu_view, nu, gamma, hidden_ref.data());
+            second.source_below_skyline(r, mu_sun, mu_view, nu, gamma, below_ref.data());
+            for (int s = 0; s < media; ++s)
+              for (int i = 0; i < n; ++i) {
+                const size_t si = static_cast<size_t>(s), ii = static_cast<size_t>(i);
+                BOOST_TEST(hidden[si][ii] == hidden_ref[si][ii]);
+                BOOST_TEST(multiple[si][ii] == hidden_ref[si][ii]);
+                BOOST_TEST(out[si][ii] == whole[si][ii] - hidden_ref[si][ii]);
+                BOOST_TEST(below[si][ii] == below_ref[si][ii]);
+              }
+          }
+        }
 }
 
 // Each order carries less light than the one before (Earth-like atmosphere, black ground).
