@@ -69,7 +69,8 @@ void mix_columns(const float* __restrict acc, float w0, float w1, int n_run, int
 }
 
 // Room for a look-up's rows mixed (2 entries): on the stack for up to 42 wavelengths (2 x 3 x 42
-// floats), per thread beyond.
+// floats), per thread beyond (one buffer per thread: at most one MixBuffer alive per thread, as
+// mix_entries and lookup_many use them).
 class MixBuffer {
  public:
   explicit MixBuffer(size_t entry) {
