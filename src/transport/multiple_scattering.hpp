@@ -158,8 +158,8 @@ class SourceTable : public InScatteringSource {
                             float* const* hidden, float* const* hidden_share,
                             float* const* hidden_multiple) const override;
   /// source_above_skyline, and at the same node below_table's source_below_skyline into
-  /// below_hidden (when below_table is not null: a table on the same grid, order 2's beside the sum), the two tables'
-  /// look-ups sharing the view's harmonics where their degrees agree.
+  /// below_hidden (when below_table is not null: a table on the same grid, order 2's beside the
+  /// sum), the two tables' look-ups sharing the view's harmonics where their degrees agree.
   bool source_above_skyline_with(const SourceTable* below_table, float* const* below_hidden, double r_m, double mu_sun,
                                  double mu_view, double nu, double skyline_rad, float* const* out, float* const* hidden,
                                  float* const* hidden_share, float* const* hidden_multiple) const;

@@ -49,9 +49,10 @@ void mix_rows(const float* rows_at, int azimuths, const double* row_w, int n_row
 }
 
 // The second step: the two columns of acc weighted by w0 and w1 into parts[0 .. n_parts - 1], n
-// wavelengths each (kN > 0: n known at compile time). n_parts per entry: the radiance's (one per scattering medium and
-// the phase-free part; clamped at 0: a cubic may undershoot where a part falls steeply to 0, the planet's shadow, and
-// light is not negative), or the polarised two (Q, U: signed, not clamped).
+// wavelengths each (kN > 0: n known at compile time). n_parts per entry: the radiance's (one per
+// scattering medium and the phase-free part; clamped at 0: a cubic may undershoot where a part
+// falls steeply to 0, the planet's shadow, and light is not negative), or the polarised two (Q,
+// U: signed, not clamped).
 template <int kN>
 void mix_columns(const float* __restrict acc, float w0, float w1, int n_run, int n_parts, bool clamp,
                  float* const* parts) {
