@@ -424,7 +424,7 @@ void SkyViewTable::lookup_many(int count, const Vec3* dirs, float* out, bool* fo
         mixed = w;
         have = true;
       }
-      if (rgb)
+      if (n_ == 3)  // as mix() does
         mix_columns<3>(acc.data(), w.w0, w.w1, n_, parts_, true, parts);
       else
         mix_columns<0>(acc.data(), w.w0, w.w1, n_, parts_, true, parts);
